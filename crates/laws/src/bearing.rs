@@ -1,0 +1,95 @@
+//! Primary-strut bearing loads and Coulomb bearing friction, eqs. (59)-(63).
+//!
+//! Geometry (fig. 14, as the statics of eqs. 59-62 imply): bearing 1 is at the top of the inner
+//! cylinder, a distance D1 from the footpad; bearing 2 is the gland at the lower end of the outer
+//! cylinder, and D2 (the bearing separation) is the distance between the two bearings, so that
+//! F2 − F1 = FM and the moments about the pad balance. D2 grows with compression stroke:
+//! `D2 = D2_0 + c` (review A10).
+
+use crate::LawError;
+
+/// Primary-strut bearing: geometry and friction coefficient.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bearing {
+    /// Bearing friction coefficient μB, dimensionless.
+    pub friction_coefficient: f64,
+    /// Inner-cylinder length D1 (footpad to bearing 1), m.
+    pub inner_cylinder_length: f64,
+    /// Initial bearing separation (overlap) D2 at zero stroke, m.
+    pub initial_overlap: f64,
+}
+
+/// Normal loads at the two bearings, N (magnitudes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BearingLoads {
+    /// F1, at bearing 1 (top of the inner cylinder), N.
+    pub f1: f64,
+    /// F2, at bearing 2 (outer-cylinder gland), N.
+    pub f2: f64,
+}
+
+impl Bearing {
+    /// Bearing separation D2 at compression stroke `c` (m, compression positive), m.
+    #[inline]
+    pub fn separation(&self, compression_stroke: f64) -> f64 {
+        self.initial_overlap + compression_stroke
+    }
+
+    /// Bearing normal loads for a side load `fm` (N, magnitude of FM at the pad), eqs. (59)-(62):
+    /// `F2 = FM·D1/D2`, `F1 = FM·(D1 − D2)/D2`.
+    pub fn loads(&self, fm: f64, compression_stroke: f64) -> Result<BearingLoads, LawError> {
+        let d1 = self.inner_cylinder_length;
+        let d2 = self.separation(compression_stroke);
+        if !(d2 > 0.0 && d2 < d1) {
+            return Err(LawError::BearingGeometry { d2, d1, stroke: compression_stroke });
+        }
+        Ok(BearingLoads {
+            f2: fm * d1 / d2,        // eq. (60)
+            f1: fm * (d1 - d2) / d2, // eq. (62)
+        })
+    }
+
+    /// Bearing friction FBR, N, in the primary strut's compression-positive sense, eq. (63):
+    /// magnitude `μB·(F1 + F2)`, opposing the stroking direction: positive while compressing
+    /// (`compression_rate` > 0), negative while extending, zero at exactly zero rate (the report
+    /// gives no rule at rest; review A9).
+    pub fn friction(&self, fm: f64, compression_stroke: f64, compression_rate: f64) -> Result<f64, LawError> {
+        if self.friction_coefficient == 0.0 || fm == 0.0 || compression_rate == 0.0 {
+            return Ok(0.0);
+        }
+        let l = self.loads(fm, compression_stroke)?;
+        Ok(self.friction_coefficient * (l.f1 + l.f2) * compression_rate.signum()) // eq. (63)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const B: Bearing = Bearing { friction_coefficient: 0.1, inner_cylinder_length: 0.3, initial_overlap: 0.1 };
+
+    #[test]
+    fn inner_cylinder_statics_balance() {
+        // Pad load FM at s = 0, bearing 2 at D1 − D2 from the pad, bearing 1 at D1.
+        let fm = 250.0;
+        let c = 0.05;
+        let l = B.loads(fm, c).unwrap();
+        let (d1, d2) = (B.inner_cylinder_length, B.separation(c));
+        assert!((l.f2 - l.f1 - fm).abs() < 1e-9, "force balance");
+        assert!((l.f2 * (d1 - d2) - l.f1 * d1).abs() < 1e-9, "moment about the pad");
+    }
+
+    #[test]
+    fn friction_opposes_stroking() {
+        let l = B.loads(100.0, 0.0).unwrap();
+        let mag = 0.1 * (l.f1 + l.f2);
+        assert!((B.friction(100.0, 0.0, 2.0).unwrap() - mag).abs() < 1e-12);
+        assert!((B.friction(100.0, 0.0, -2.0).unwrap() + mag).abs() < 1e-12);
+        assert_eq!(B.friction(100.0, 0.0, 0.0).unwrap(), 0.0);
+    }
+
+    #[test]
+    fn separation_beyond_inner_cylinder_is_an_error() {
+        assert!(matches!(B.loads(1.0, 0.25), Err(LawError::BearingGeometry { .. })));
+    }
+}

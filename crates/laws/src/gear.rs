@@ -1,0 +1,91 @@
+//! The strut laws of one landing-gear assembly, built from a resolved scenario. Every engine
+//! builds its laws here, so the mapping from scenario to law exists once.
+
+use crate::{Bearing, DoubleActingHoneycomb, Honeycomb, LawError, LoadStroke, Stage, Viscous};
+use touchdown_scenario::{model, Scenario, ScenarioError};
+
+/// Primary-strut laws: compression honeycomb (trunnion-modified if a K_TP is given), viscous
+/// force and bearing friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrimaryStrutLaw {
+    /// Compression honeycomb FCP(c).
+    pub honeycomb: Honeycomb,
+    /// FVP of eq. (49), compression positive.
+    pub viscous: Viscous,
+    /// Bearing friction of eqs. (59)-(63).
+    pub bearing: Bearing,
+}
+
+/// Secondary-strut laws: double-acting honeycomb and viscous force, tension positive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SecondaryStrutLaw {
+    /// FC31(S31), tension positive.
+    pub honeycomb: DoubleActingHoneycomb,
+    /// FV31 of eq. (49), tension positive.
+    pub viscous: Viscous,
+}
+
+/// Laws of one gear assembly (identical for every leg).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GearLaws {
+    /// Primary strut.
+    pub primary: PrimaryStrutLaw,
+    /// Both secondary struts.
+    pub secondary: SecondaryStrutLaw,
+}
+
+fn honeycomb(s: &Scenario, field: &str, ls: &model::LoadStroke, trunnion: Option<f64>) -> Result<Honeycomb, ScenarioError> {
+    let err = |e: LawError| ScenarioError::field(&s.source, field, e.to_string());
+    let mut stages = [Stage { crush_load: 0.0, stroke_end: 0.0 }; crate::honeycomb::MAX_STAGES];
+    for (slot, (load, end)) in stages.iter_mut().zip(&ls.stages) {
+        *slot = Stage { crush_load: *load, stroke_end: *end };
+    }
+    let curve = LoadStroke::new(ls.onset_rate, &stages[..ls.stages.len()], ls.stroke_out_rate).map_err(err)?;
+    let h = Honeycomb::new(curve, ls.backoff_rate).map_err(err)?;
+    match trunnion {
+        Some(k) => h.with_trunnion(k).map_err(err),
+        None => Ok(h),
+    }
+}
+
+fn viscous(v: &model::Viscous) -> Viscous {
+    Viscous { coefficient: v.coefficient, exponent: v.exponent }
+}
+
+impl GearLaws {
+    /// Builds and checks the laws of a scenario's gear. Stage tables out of order, and a bearing
+    /// that would leave its domain (D2 ≥ D1) within the primary stroke capacity, are reported
+    /// against the scenario field.
+    pub fn from_scenario(s: &Scenario) -> Result<GearLaws, ScenarioError> {
+        let p = &s.primary;
+        let primary = PrimaryStrutLaw {
+            honeycomb: honeycomb(s, "primary_strut.compression", &p.compression, p.trunnion_rate)?,
+            viscous: viscous(&p.viscous),
+            bearing: Bearing {
+                friction_coefficient: p.bearing_friction,
+                inner_cylinder_length: p.inner_cylinder_length,
+                initial_overlap: p.initial_overlap,
+            },
+        };
+        let capacity = primary.honeycomb.curve.capacity();
+        if primary.bearing.separation(capacity) >= primary.bearing.inner_cylinder_length {
+            return Err(ScenarioError::field(
+                &s.source,
+                "primary_strut.bearing.inner_cylinder_length",
+                format!(
+                    "expected D1 longer than the initial overlap plus the stroke capacity ({:.6} m + {:.6} m), so that the bearings stay apart over the whole stroke",
+                    p.initial_overlap, capacity
+                ),
+            ));
+        }
+        let q = &s.secondary;
+        let secondary = SecondaryStrutLaw {
+            honeycomb: DoubleActingHoneycomb {
+                tension: honeycomb(s, "secondary_strut.tension", &q.tension, q.trunnion_rate)?,
+                compression: honeycomb(s, "secondary_strut.compression", &q.compression, q.trunnion_rate)?,
+            },
+            viscous: viscous(&q.viscous),
+        };
+        Ok(GearLaws { primary, secondary })
+    }
+}

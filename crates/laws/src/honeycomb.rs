@@ -1,0 +1,369 @@
+//! Crushable honeycomb load-stroke law with elastic onset, plateaus, rebound and permanent set
+//! (figs. 8 and 9), and the trunnion-spring modification of eqs. (35)-(39).
+//!
+//! Each loading direction is a *virgin curve* `F_v(x)`: from 0 the load rises at the onset rate
+//! to the first crush load FP1 (station A), stays on that plateau to the end of the first stage
+//! (B), rises at the onset rate to FP2 (C), and so on. Beyond the end of the last stage the strut
+//! bottoms (strokes out): the load rises at the stroke-out rate, a steep final segment the report
+//! leaves unspecified (review A6).
+//!
+//! The memory is the largest stroke reached, `x_max` ([`CrushMemory`]). At stroke x:
+//! `F = F_v(x)` if `x ≥ x_max`, otherwise `F = max(0, F_v(x_max) − K_B·(x_max − x))` (elastic
+//! rebound along the backoff rate K_B, F → G in fig. 8). The permanent set is
+//! `G = x_max − F_v(x_max)/K_B`. Memories are committed only at accepted states.
+
+use crate::{series_rate, LawError};
+
+/// Maximum number of honeycomb stages on one side (the report allows 3 primary, 4 secondary).
+pub const MAX_STAGES: usize = 4;
+const MAX_VERTICES: usize = 2 * MAX_STAGES + 1;
+
+/// One honeycomb cartridge: its crush load and the stroke at which its plateau ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stage {
+    /// Crush (plateau) load, N (report FP1, FP2, FST1, FSC1, ...).
+    pub crush_load: f64,
+    /// Stroke at the end of this stage's plateau (stations B, D, F), m.
+    pub stroke_end: f64,
+}
+
+/// A virgin load-stroke curve, piecewise linear through (0, 0), stroke in m, force in N.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadStroke {
+    x: [f64; MAX_VERTICES],
+    f: [f64; MAX_VERTICES],
+    n: usize,
+    stroke_out_rate: f64,
+}
+
+fn positive(name: &'static str, value: f64) -> Result<f64, LawError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(LawError::NotPositive { name, value })
+    }
+}
+
+impl LoadStroke {
+    /// Builds the virgin curve from the onset rate (N/m), the stage table (in loading order)
+    /// and the stroke-out rate (N/m) that applies beyond the last stage.
+    ///
+    /// Errors if a rate is not positive, if there are no or more than [`MAX_STAGES`] stages, if
+    /// loads do not increase from stage to stage, or if a stage's plateau would end before the
+    /// onset ramp reaches its load (stage table out of order).
+    pub fn new(onset_rate: f64, stages: &[Stage], stroke_out_rate: f64) -> Result<Self, LawError> {
+        positive("onset rate", onset_rate)?;
+        positive("stroke-out rate", stroke_out_rate)?;
+        if stages.is_empty() || stages.len() > MAX_STAGES {
+            return Err(LawError::StageTable(format!(
+                "expected 1 to {MAX_STAGES} stages, got {}",
+                stages.len()
+            )));
+        }
+        let mut x = [0.0; MAX_VERTICES];
+        let mut f = [0.0; MAX_VERTICES];
+        let mut n = 1;
+        for (i, s) in stages.iter().enumerate() {
+            positive("stage crush load", s.crush_load)?;
+            positive("stage stroke end", s.stroke_end)?;
+            let (x0, f0) = (x[n - 1], f[n - 1]);
+            if s.crush_load <= f0 {
+                return Err(LawError::StageTable(format!(
+                    "stage {} crush load {} N is not above the previous stage's {} N",
+                    i + 1,
+                    s.crush_load,
+                    f0
+                )));
+            }
+            let plateau_start = x0 + (s.crush_load - f0) / onset_rate;
+            if s.stroke_end <= plateau_start {
+                return Err(LawError::StageTable(format!(
+                    "stage {} ends at stroke {} m, before its onset ramp reaches {} N at {} m",
+                    i + 1,
+                    s.stroke_end,
+                    s.crush_load,
+                    plateau_start
+                )));
+            }
+            x[n] = plateau_start;
+            f[n] = s.crush_load;
+            x[n + 1] = s.stroke_end;
+            f[n + 1] = s.crush_load;
+            n += 2;
+        }
+        Ok(LoadStroke { x, f, n, stroke_out_rate })
+    }
+
+    /// Virgin-curve force F_v(x), N, at stroke `x`, m (zero for x ≤ 0).
+    #[inline]
+    pub fn force(&self, x: f64) -> f64 {
+        if x <= 0.0 {
+            return 0.0;
+        }
+        for i in 1..self.n {
+            if x <= self.x[i] {
+                let (x0, x1, f0, f1) = (self.x[i - 1], self.x[i], self.f[i - 1], self.f[i]);
+                return f0 + (f1 - f0) * (x - x0) / (x1 - x0);
+            }
+        }
+        self.f[self.n - 1] + self.stroke_out_rate * (x - self.x[self.n - 1])
+    }
+
+    /// Stroke at which the last stage is exhausted (bottoming begins), m.
+    pub fn capacity(&self) -> f64 {
+        self.x[self.n - 1]
+    }
+
+    /// Vertices (stroke m, force N) of the curve, from (0, 0) to the end of the last stage.
+    pub fn vertices(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.x[..self.n].iter().copied().zip(self.f[..self.n].iter().copied())
+    }
+
+    /// Stroke-out (bottoming) rate beyond the last stage, N/m.
+    pub fn stroke_out_rate(&self) -> f64 {
+        self.stroke_out_rate
+    }
+
+    /// The curve seen through a trunnion spring `k_t` (N/m) in series, eqs. (35)-(39): every
+    /// point moves by F/K_T (`x' = x + F_v(x)/K_T`), which gives the series onset rates of
+    /// eq. (35) and the plateau shifts of eqs. (37)-(39) for every stage (the report prints
+    /// only the first-stage shift; review A7, docs/errata.md).
+    pub fn with_trunnion(&self, k_t: f64) -> Result<Self, LawError> {
+        positive("trunnion spring rate", k_t)?;
+        let mut out = *self;
+        for i in 0..self.n {
+            out.x[i] = self.x[i] + self.f[i] / k_t;
+        }
+        out.stroke_out_rate = series_rate(self.stroke_out_rate, k_t);
+        Ok(out)
+    }
+}
+
+/// Crush memory of one loading direction: the largest stroke reached, m.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CrushMemory {
+    /// Largest stroke reached so far on this side (x_max), m.
+    pub max_stroke: f64,
+}
+
+/// A one-sided crushable honeycomb (the primary strut: compression only).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Honeycomb {
+    /// Virgin loading curve.
+    pub curve: LoadStroke,
+    /// Backoff (rebound) rate K_B, N/m.
+    pub backoff_rate: f64,
+}
+
+impl Honeycomb {
+    /// A honeycomb from its virgin curve and backoff rate (N/m).
+    pub fn new(curve: LoadStroke, backoff_rate: f64) -> Result<Self, LawError> {
+        positive("backoff rate", backoff_rate)?;
+        Ok(Honeycomb { curve, backoff_rate })
+    }
+
+    /// The same honeycomb behind a trunnion spring `k_t` (N/m): curve per
+    /// [`LoadStroke::with_trunnion`], backoff rate `K'_B` of eq. (36).
+    pub fn with_trunnion(&self, k_t: f64) -> Result<Self, LawError> {
+        Ok(Honeycomb {
+            curve: self.curve.with_trunnion(k_t)?,
+            backoff_rate: series_rate(self.backoff_rate, k_t),
+        })
+    }
+
+    /// Honeycomb force, N (≥ 0), at stroke `x` (m, in this side's loading direction), given the
+    /// committed memory.
+    #[inline]
+    pub fn force(&self, x: f64, memory: CrushMemory) -> f64 {
+        let m = memory.max_stroke;
+        if x >= m {
+            self.curve.force(x)
+        } else {
+            (self.curve.force(m) - self.backoff_rate * (m - x)).max(0.0)
+        }
+    }
+
+    /// Commits an accepted stroke `x` (m) into the memory.
+    #[inline]
+    pub fn commit(&self, x: f64, memory: &mut CrushMemory) {
+        if x > memory.max_stroke {
+            memory.max_stroke = x;
+        }
+    }
+
+    /// Permanent set G = x_max − F_v(x_max)/K_B, m (never negative).
+    pub fn permanent_set(&self, memory: CrushMemory) -> f64 {
+        (memory.max_stroke - self.curve.force(memory.max_stroke) / self.backoff_rate).max(0.0)
+    }
+
+    /// Elastic energy stored at stroke `x` and recoverable along the backoff line, J:
+    /// `F²/(2·K_B)`.
+    #[inline]
+    pub fn stored_energy(&self, x: f64, memory: CrushMemory) -> f64 {
+        let f = self.force(x, memory);
+        f * f / (2.0 * self.backoff_rate)
+    }
+}
+
+/// Memories of a double-acting honeycomb: tension and compression, both referenced to the
+/// original zero stroke.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DoubleActingMemory {
+    /// Tension-side memory.
+    pub tension: CrushMemory,
+    /// Compression-side memory.
+    pub compression: CrushMemory,
+}
+
+/// A double-acting honeycomb (the secondary struts): independent tension and compression
+/// cartridges, fig. 9. Stroke and force are **tension positive**, as eq. (34) defines S31.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DoubleActingHoneycomb {
+    /// Tension side (stations A-D, rebound D-E).
+    pub tension: Honeycomb,
+    /// Compression side (stations F-I, rebound I-J).
+    pub compression: Honeycomb,
+}
+
+impl DoubleActingHoneycomb {
+    /// Force, N (tension positive), at stroke `s` (m, tension positive). Zero between the two
+    /// permanent sets (J < s < E in fig. 9).
+    #[inline]
+    pub fn force(&self, s: f64, memory: DoubleActingMemory) -> f64 {
+        if s >= 0.0 {
+            self.tension.force(s, memory.tension)
+        } else {
+            -self.compression.force(-s, memory.compression)
+        }
+    }
+
+    /// Commits an accepted stroke `s` (m, tension positive).
+    #[inline]
+    pub fn commit(&self, s: f64, memory: &mut DoubleActingMemory) {
+        if s >= 0.0 {
+            self.tension.commit(s, &mut memory.tension)
+        } else {
+            self.compression.commit(-s, &mut memory.compression)
+        }
+    }
+
+    /// Recoverable elastic energy at stroke `s`, J.
+    #[inline]
+    pub fn stored_energy(&self, s: f64, memory: DoubleActingMemory) -> f64 {
+        if s >= 0.0 {
+            self.tension.stored_energy(s, memory.tension)
+        } else {
+            self.compression.stored_energy(-s, memory.compression)
+        }
+    }
+
+    /// The same strut behind a trunnion spring `k_t`, N/m (both sides, eqs. 35-36, 38-39).
+    pub fn with_trunnion(&self, k_t: f64) -> Result<Self, LawError> {
+        Ok(DoubleActingHoneycomb {
+            tension: self.tension.with_trunnion(k_t)?,
+            compression: self.compression.with_trunnion(k_t)?,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn primary() -> Honeycomb {
+        // Onset 1e5 N/m, FP1 = 1000 N to 0.1 m, FP2 = 3000 N to 0.2 m, stroke-out 1e7 N/m.
+        let stages = [Stage { crush_load: 1000.0, stroke_end: 0.1 }, Stage { crush_load: 3000.0, stroke_end: 0.2 }];
+        Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6).unwrap()
+    }
+
+    #[test]
+    fn virgin_curve_stations() {
+        let h = primary();
+        let c = &h.curve;
+        assert_eq!(c.force(-0.01), 0.0);
+        assert!((c.force(0.005) - 500.0).abs() < 1e-9, "onset");
+        assert!((c.force(0.01) - 1000.0).abs() < 1e-9, "station A");
+        assert!((c.force(0.05) - 1000.0).abs() < 1e-9, "first plateau");
+        assert!((c.force(0.11) - 2000.0).abs() < 1e-9, "onset to the second stage");
+        assert!((c.force(0.15) - 3000.0).abs() < 1e-9, "second plateau");
+        assert!((c.force(0.201) - 13000.0).abs() < 1e-6, "stroke-out");
+        assert_eq!(c.capacity(), 0.2);
+    }
+
+    #[test]
+    fn load_unload_reload_keeps_permanent_set() {
+        let h = primary();
+        let mut m = CrushMemory::default();
+        // Load to 0.05 m on the first plateau and commit.
+        for i in 0..=50 {
+            let x = 0.001 * i as f64;
+            h.commit(x, &mut m);
+        }
+        assert_eq!(m.max_stroke, 0.05);
+        // Unload: linear at K_B, reaches zero at G = 0.05 − 1000/1e6 = 0.049.
+        assert!((h.force(0.0495, m) - 500.0).abs() < 1e-6);
+        assert!((h.permanent_set(m) - 0.049).abs() < 1e-12);
+        assert_eq!(h.force(0.03, m), 0.0, "no tension in a crushed cartridge");
+        // Reload: zero load until G, then back up the backoff line to the virgin curve.
+        assert_eq!(h.force(0.0489, m), 0.0);
+        assert!((h.force(0.05, m) - 1000.0).abs() < 1e-9);
+        assert!((h.force(0.06, m) - 1000.0).abs() < 1e-9, "continues on the plateau");
+        // The memory never shrinks.
+        h.commit(0.02, &mut m);
+        assert_eq!(m.max_stroke, 0.05);
+        // Stored energy on the rebound line is F²/(2 K_B).
+        assert!((h.stored_energy(0.0495, m) - 500.0 * 500.0 / 2e6).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tension_and_compression_are_independent() {
+        let side = |f: f64| {
+            Honeycomb::new(LoadStroke::new(2e5, &[Stage { crush_load: f, stroke_end: 0.05 }], 1e7).unwrap(), 1e6).unwrap()
+        };
+        let s = DoubleActingHoneycomb { tension: side(400.0), compression: side(600.0) };
+        let mut m = DoubleActingMemory::default();
+        // Tension to 0.02 m.
+        assert!((s.force(0.02, m) - 400.0).abs() < 1e-9);
+        s.commit(0.02, &mut m);
+        // Back through zero into compression: no force between the permanent sets.
+        assert_eq!(s.force(0.0, m), 0.0);
+        assert!((s.force(-0.001, m) + 200.0).abs() < 1e-9, "compression onset from the original zero");
+        assert!((s.force(-0.01, m) + 600.0).abs() < 1e-9);
+        s.commit(-0.01, &mut m);
+        // Back to tension: the tension memory is intact (reload from its permanent set).
+        let g_t = s.tension.permanent_set(m.tension);
+        assert!((g_t - (0.02 - 400.0 / 1e6)).abs() < 1e-12);
+        assert_eq!(s.force(g_t - 1e-6, m), 0.0);
+        assert!((s.force(0.02, m) - 400.0).abs() < 1e-9);
+        assert_eq!(m.compression.max_stroke, 0.01);
+    }
+
+    #[test]
+    fn trunnion_spring_gives_series_rates_and_shifts_every_stage() {
+        let h = primary();
+        let kt = 4e5;
+        let t = h.with_trunnion(kt).unwrap();
+        // eq. (35): onset slope K' = K_T K / (K_T + K).
+        let k_onset = series_rate(1e5, kt);
+        assert!((t.curve.force(0.001) - k_onset * 0.001).abs() < 1e-6);
+        // eq. (36): backoff.
+        assert!((t.backoff_rate - series_rate(1e6, kt)).abs() < 1e-6);
+        // eq. (37) for stage 1, and its generalisation F_i/K_T for stage 2.
+        let v: Vec<_> = t.curve.vertices().collect();
+        assert!((v[1].0 - (0.01 + 1000.0 / kt)).abs() < 1e-12);
+        assert!((v[4].0 - (0.2 + 3000.0 / kt)).abs() < 1e-12);
+        // Permanent set is unchanged by the trunnion spring: x_max − F/K_B.
+        let m = CrushMemory { max_stroke: 0.05 + 1000.0 / kt };
+        assert!((t.permanent_set(m) - (0.05 - 1000.0 / 1e6)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn stage_tables_out_of_order_are_rejected() {
+        let bad_load = [Stage { crush_load: 1000.0, stroke_end: 0.1 }, Stage { crush_load: 900.0, stroke_end: 0.2 }];
+        assert!(matches!(LoadStroke::new(1e5, &bad_load, 1e7), Err(LawError::StageTable(_))));
+        let bad_end = [Stage { crush_load: 1000.0, stroke_end: 0.005 }];
+        assert!(matches!(LoadStroke::new(1e5, &bad_end, 1e7), Err(LawError::StageTable(_))));
+        assert!(matches!(LoadStroke::new(-1.0, &bad_end, 1e7), Err(LawError::NotPositive { .. })));
+        assert!(matches!(LoadStroke::new(1e5, &[], 1e7), Err(LawError::StageTable(_))));
+    }
+}

@@ -1,0 +1,47 @@
+//! Force laws of NASA TN D-7045, written once and used by every engine.
+//!
+//! All quantities are SI: strokes in m, forces in N, rates in N/m, speeds in m/s.
+//! Each law is a pure function of its inputs plus, for the crushable honeycomb, an explicit
+//! memory ([`CrushMemory`]) that the caller commits only at accepted states.
+//!
+//! | module | report | law |
+//! |---|---|---|
+//! | [`honeycomb`] | Figs. 8, 9; eqs. 35-39 | crushable honeycomb load-stroke with elastic onset, plateaus, rebound (backoff) and permanent set; trunnion-spring modification |
+//! | [`viscous`] | eq. 49 | stroking-velocity force `C·sgn(v)·|v|^γ` |
+//! | [`bearing`] | eqs. 59-63 | primary-strut bearing normal loads and Coulomb bearing friction |
+//! | [`sliding`] | eqs. 85, 96 | Coulomb sliding friction on the footpad bottom |
+
+pub mod bearing;
+pub mod gear;
+pub mod honeycomb;
+pub mod sliding;
+pub mod viscous;
+
+pub use bearing::{Bearing, BearingLoads};
+pub use gear::{GearLaws, PrimaryStrutLaw, SecondaryStrutLaw};
+pub use honeycomb::{CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage};
+pub use sliding::sliding_friction;
+pub use viscous::Viscous;
+
+/// An error raised by a force law: bad parameters at construction, or a state in which the law
+/// is not defined during a run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LawError {
+    /// The load-stroke stage table is not usable.
+    #[error("load-stroke table: {0}")]
+    StageTable(String),
+    /// A rate or coefficient is not a positive finite number.
+    #[error("{name} must be a positive finite number, got {value}")]
+    NotPositive { name: &'static str, value: f64 },
+    /// The primary-strut bearing geometry left its domain (D2 must stay in (0, D1)).
+    #[error(
+        "bearing friction: bearing separation D2 = {d2} m is outside (0, D1 = {d1} m) \
+         at compression stroke {stroke} m"
+    )]
+    BearingGeometry { d2: f64, d1: f64, stroke: f64 },
+}
+
+/// Series combination of two spring rates, eqs. (35)-(36): `K' = K1·K2/(K1 + K2)`, N/m.
+pub fn series_rate(k1: f64, k2: f64) -> f64 {
+    k1 * k2 / (k1 + k2)
+}

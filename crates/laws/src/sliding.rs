@@ -1,0 +1,19 @@
+//! Coulomb sliding friction on the footpad bottom, eq. (85) (printed as FDRAG; it is FDRAGP).
+
+/// Magnitude of the sliding-friction drag on a footpad, N (report FDRAGP):
+/// `U·max(FZI, 0)`, where `normal_load` is FZI, the inertial Z component of the gear force on
+/// the vehicle, positive when the gear presses the pad into the surface (eq. (85), corrected
+/// label; see docs/errata.md). The caller applies it against the sliding direction.
+#[inline]
+pub fn sliding_friction(friction_coefficient: f64, normal_load: f64) -> f64 {
+    friction_coefficient * normal_load.max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn no_drag_without_pressure() {
+        assert_eq!(super::sliding_friction(0.4, 100.0), 40.0);
+        assert_eq!(super::sliding_friction(0.4, -5.0), 0.0);
+    }
+}

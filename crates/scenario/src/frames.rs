@@ -1,0 +1,102 @@
+//! Coordinate frames of TN D-7045 (eqs. 1-4) and the initial state (eq. 19, corrected), shared
+//! by every engine so that all of them start a landing from the same state.
+//!
+//! Frames: I (inertial) has its X-Y plane on the sloped surface and Z up its normal; G (gravity)
+//! shares X with I and has Z_G up along −g; B (body) has its origin at the rigid-vehicle centre
+//! of mass and Z_B up the vehicle centre line. `v_I = T_BI·v_B`.
+
+use nalgebra::{Matrix3, Vector3};
+
+/// Rotation about X by `a` rad (active).
+pub fn rot_x(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+}
+
+/// Rotation about Y by `a` rad (active).
+pub fn rot_y(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
+}
+
+/// Rotation about Z by `a` rad (active).
+pub fn rot_z(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// T_IG, inertial → gravity components, eq. (1), for slope `alpha` rad.
+pub fn t_ig(alpha: f64) -> Matrix3<f64> {
+    let (s, c) = alpha.sin_cos();
+    Matrix3::new(1.0, 0.0, 0.0, 0.0, c, s, 0.0, -s, c) // eq. (1)
+}
+
+/// T_GI = T_IGᵀ, gravity → inertial components, eq. (2).
+pub fn t_gi(alpha: f64) -> Matrix3<f64> {
+    t_ig(alpha).transpose() // eq. (2)
+}
+
+/// T_BI, body → inertial components, eq. (3): the intrinsic sequence θx, then θy about Y_B',
+/// then θz about Z_B'', i.e. Rx(θx)·Ry(θy)·Rz(θz) (equal to the printed GO** matrix; coded
+/// as the product to avoid transcription sign errors). Angles in rad.
+pub fn t_bi(theta: &Vector3<f64>) -> Matrix3<f64> {
+    rot_x(theta.x) * rot_y(theta.y) * rot_z(theta.z) // eq. (3)
+}
+
+/// Euler angles (θx, θy, θz), rad, of a body → inertial rotation matrix: the inverse of
+/// [`t_bi`], with θy in [−π/2, π/2].
+pub fn euler_from_t_bi(t: &Matrix3<f64>) -> Vector3<f64> {
+    // T = Rx Ry Rz: T[0,2] = sin θy, T[0,0] = cθy·cθz, T[0,1] = −cθy·sθz,
+    // T[1,2] = −sθx·cθy, T[2,2] = cθx·cθy.
+    let ty = t[(0, 2)].clamp(-1.0, 1.0).asin();
+    let tx = (-t[(1, 2)]).atan2(t[(2, 2)]);
+    let tz = (-t[(0, 1)]).atan2(t[(0, 0)]);
+    Vector3::new(tx, ty, tz)
+}
+
+/// Gravity in the inertial frame, G_I = T_GI·(0, 0, −g) = (0, g·sin α, −g·cos α): +Y is
+/// downhill for α > 0 (review §0).
+pub fn gravity_inertial(g: f64, alpha: f64) -> Vector3<f64> {
+    t_gi(alpha) * Vector3::new(0.0, 0.0, -g)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn t_bi_matches_the_printed_go_terms() {
+        let th = Vector3::new(0.3, -0.4, 1.1);
+        let t = t_bi(&th);
+        let (sx, cx) = th.x.sin_cos();
+        let (sy, cy) = th.y.sin_cos();
+        let (sz, cz) = th.z.sin_cos();
+        let goxx = cy * cz;
+        let goxy = cy * sz;
+        let goxz = sy;
+        let goyx = sx * sy * cz + cx * sz;
+        let goyy = sx * sy * sz - cx * cz;
+        let goyz = sx * cy;
+        let gozx = cx * sy * cz - sx * sz;
+        let gozy = cx * sy * sz + sx * cz;
+        let gozz = cx * cy;
+        let printed = Matrix3::new(goxx, -goxy, goxz, goyx, -goyy, -goyz, -gozx, gozy, gozz);
+        assert!((t - printed).abs().max() < 1e-14);
+    }
+
+    #[test]
+    fn euler_angles_round_trip() {
+        let th = Vector3::new(0.2, -0.7, 2.5);
+        assert!((euler_from_t_bi(&t_bi(&th)) - th).abs().max() < 1e-12);
+    }
+
+    #[test]
+    fn gravity_points_downhill_along_plus_y() {
+        let g = gravity_inertial(9.81, 0.1);
+        assert!(g.y > 0.0 && g.z < 0.0 && g.x == 0.0);
+        assert!((g.norm() - 9.81).abs() < 1e-12);
+        // An upright vehicle on slope α has θx = α relative to the surface.
+        let up_g = Vector3::z();
+        assert!((t_gi(0.1) * up_g - t_bi(&Vector3::new(0.1, 0.0, 0.0)) * up_g).norm() < 1e-15);
+    }
+}

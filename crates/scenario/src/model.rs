@@ -1,0 +1,221 @@
+//! The resolved scenario: every value in SI, geometry derived, ready for an engine.
+
+use crate::schema::{self, Arrangement, AttitudeReference, ReleaseRule, ScenarioFile, WallRule};
+use nalgebra::{Matrix3, Vector3};
+
+/// A validated scenario in SI units (m, kg, N, s, rad).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scenario {
+    /// Path of the file it was read from, as given (for messages).
+    pub source: String,
+    /// The merged file with every default written out (in the file's units), for `--out`.
+    pub file: ScenarioFile,
+    /// Rigid vehicle.
+    pub vehicle: Vehicle,
+    /// Gear arrangement.
+    pub arrangement: Arrangement,
+    /// Legs in counter-clockwise order seen from above.
+    pub legs: Vec<Leg>,
+    /// Primary strut.
+    pub primary: PrimaryStrut,
+    /// Secondary struts.
+    pub secondary: SecondaryStrut,
+    /// Effective footpad.
+    pub footpad: Footpad,
+    /// Landing surface.
+    pub surface: Surface,
+    /// Touchdown conditions.
+    pub touchdown: Touchdown,
+    /// Integrator settings.
+    pub integrator: Integrator,
+    /// Stability criteria.
+    pub stability: Stability,
+}
+
+/// Rigid vehicle (excluding the effective footpad masses).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vehicle {
+    /// Mass M, kg.
+    pub mass: f64,
+    /// Inertia tensor J about the centre of mass, body axes, kg·m² (products with the report's
+    /// sign: off-diagonal terms are −Ixy, −Ixz, −Iyz).
+    pub inertia: Matrix3<f64>,
+    /// Gravitational acceleration g, m/s².
+    pub gravity: f64,
+}
+
+/// One leg's undeformed geometry in body axes (origin at the centre of mass), m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Leg {
+    /// B2, primary trunnion, m.
+    pub b2: Vector3<f64>,
+    /// B3, first secondary trunnion, m.
+    pub b3: Vector3<f64>,
+    /// B4, second secondary trunnion, m.
+    pub b4: Vector3<f64>,
+    /// BP, footpad ball joint (undeformed), m.
+    pub bp: Vector3<f64>,
+    /// L21, B2 to point 1 along the primary strut, m.
+    pub l21: f64,
+    /// L2P, undeformed primary strut length |BP − B2|, m.
+    pub l2p: f64,
+    /// L31, undeformed length of the first secondary strut, m.
+    pub l31: f64,
+    /// L41, undeformed length of the second secondary strut, m.
+    pub l41: f64,
+}
+
+impl Leg {
+    /// Builds a leg from its points, deriving the undeformed lengths (eqs. 27-34 at zero
+    /// stroke).
+    pub fn from_points(b2: Vector3<f64>, b3: Vector3<f64>, b4: Vector3<f64>, bp: Vector3<f64>, l21: f64) -> Leg {
+        let v2p = bp - b2;
+        let l2p = v2p.norm();
+        let b1 = b2 + v2p * (l21 / l2p);
+        Leg { b2, b3, b4, bp, l21, l2p, l31: (b1 - b3).norm(), l41: (b1 - b4).norm() }
+    }
+
+    /// Point 1 (secondary attachment) of the undeformed leg, m.
+    pub fn b1(&self) -> Vector3<f64> {
+        self.b2 + (self.bp - self.b2) * (self.l21 / self.l2p)
+    }
+}
+
+/// One load-stroke diagram, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadStroke {
+    /// Onset rate, N/m.
+    pub onset_rate: f64,
+    /// Backoff rate, N/m.
+    pub backoff_rate: f64,
+    /// Stroke-out rate, N/m.
+    pub stroke_out_rate: f64,
+    /// (crush load N, stroke at end of plateau m), in loading order.
+    pub stages: Vec<(f64, f64)>,
+}
+
+/// Viscous law, SI: F = coefficient·sgn(v)·|v|^exponent, N with v in m/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Viscous {
+    /// N/(m/s)^exponent.
+    pub coefficient: f64,
+    /// Dimensionless.
+    pub exponent: f64,
+}
+
+/// Primary strut, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrimaryStrut {
+    /// Compression load-stroke diagram.
+    pub compression: LoadStroke,
+    /// Trunnion spring rate K_TP, N/m; `None` if the diagram is already trunnion-modified.
+    pub trunnion_rate: Option<f64>,
+    /// Viscous law.
+    pub viscous: Viscous,
+    /// Bearing friction coefficient μB.
+    pub bearing_friction: f64,
+    /// D1, m.
+    pub inner_cylinder_length: f64,
+    /// Initial D2, m.
+    pub initial_overlap: f64,
+}
+
+/// Secondary struts, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SecondaryStrut {
+    /// Tension diagram.
+    pub tension: LoadStroke,
+    /// Compression diagram.
+    pub compression: LoadStroke,
+    /// Trunnion spring rate K_TS, N/m; `None` if rigid.
+    pub trunnion_rate: Option<f64>,
+    /// Viscous law.
+    pub viscous: Viscous,
+}
+
+/// Effective footpad, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Footpad {
+    /// PMASS, kg.
+    pub mass: f64,
+    /// PR, m.
+    pub radius: f64,
+}
+
+/// Surface under one footpad.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PadSurface {
+    /// HOLE_n, m: the local plane is Z = −hole.
+    pub hole: f64,
+    /// OBST_n, m: > 0 lateral lock up to this height above the plane; ≤ 0 sliding.
+    pub obstacle: f64,
+    /// U_n, sliding friction coefficient.
+    pub friction: f64,
+}
+
+impl PadSurface {
+    /// Height of the local surface plane, Z = −HOLE, m.
+    pub fn plane(&self) -> f64 {
+        -self.hole
+    }
+    /// Whether the footpad is locked laterally after contact (OBST > 0).
+    pub fn locked(&self) -> bool {
+        self.obstacle > 0.0
+    }
+}
+
+/// Landing surface, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Surface {
+    /// Slope α, rad.
+    pub slope: f64,
+    /// One entry per leg.
+    pub pads: Vec<PadSurface>,
+    /// Release rule.
+    pub release: ReleaseRule,
+}
+
+/// Touchdown conditions, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Touchdown {
+    /// Euler angles as given, rad.
+    pub attitude: Vector3<f64>,
+    /// Frame of `attitude`.
+    pub attitude_reference: AttitudeReference,
+    /// Centre-of-mass velocity in the gravity frame, m/s.
+    pub velocity_g: Vector3<f64>,
+    /// Body rates, rad/s.
+    pub body_rates: Vector3<f64>,
+}
+
+/// Integrator settings, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Integrator {
+    /// Scheme.
+    pub scheme: schema::Scheme,
+    /// DIST, m.
+    pub dist: f64,
+    /// Smallest step, s.
+    pub dt_min: f64,
+    /// Largest step, s.
+    pub dt_max: f64,
+    /// End time, s.
+    pub t_end: f64,
+    /// Land airborne footpads on their plane instead of overshooting.
+    pub contact_step_limit: bool,
+    /// Divergence guard on the energy residual (fraction of the energy scale).
+    pub energy_tolerance: f64,
+}
+
+/// Stability criteria, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stability {
+    /// Kinetic-energy fraction of condition 1.
+    pub kinetic_energy_fraction: f64,
+    /// Minimum separation velocity of condition 4, m/s.
+    pub min_separation_velocity: f64,
+    /// Walls counted for the unstable declaration.
+    pub walls: WallRule,
+    /// End the run on a decision.
+    pub terminate_on_decision: bool,
+}
