@@ -1,0 +1,53 @@
+//! The report-faithful core of Touchdown: NASA TN D-7045 (Zupp & Doiron, 1971), equation by
+//! equation. A 6-DOF rigid vehicle on massless cantilever gear assemblies with effective
+//! footpad point masses, on a rigid sloped surface with holes and obstacles, integrated with
+//! the report's linear-acceleration predictor-corrector and its step-size rule.
+//!
+//! | module | report |
+//! |---|---|
+//! | [`kinematics`] | Euler-angle kinematics, eqs. (5)-(9) (frames, eqs. 1-4 and 19, are in `touchdown_scenario::frames`) |
+//! | [`rigid_body`] | rigid-vehicle equations, eqs. (10)-(15) |
+//! | [`gear`] | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
+//! | [`surface`] | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
+//! | [`stability`] | stability distance, overturning velocity, eqs. (105)-(107) |
+//! | [`simulation`] | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
+//!
+//! Departures from the printed equations are listed with their derivations and tests in
+//! `docs/errata.md`.
+
+pub mod gear;
+pub mod kinematics;
+pub mod rigid_body;
+pub mod simulation;
+pub mod stability;
+pub mod summary;
+pub mod surface;
+
+pub use simulation::{Observer, Simulation, VehicleState};
+pub use stability::Outcome;
+pub use summary::{EnergyReport, Summary};
+
+/// Errors of the core engine.
+#[derive(Debug, thiserror::Error)]
+pub enum CoreError {
+    /// The scenario cannot be simulated (names the file and field).
+    #[error(transparent)]
+    Scenario(#[from] touchdown_scenario::ScenarioError),
+    /// The simulation diverged or left the domain of a law; the run was stopped.
+    #[error("simulation stopped at t = {time:.6} s in {law}: {message}; state: {state}")]
+    Diverged {
+        /// Time of the failure, s.
+        time: f64,
+        /// The law or equation involved.
+        law: String,
+        /// What happened.
+        message: String,
+        /// Vehicle state at the failure.
+        state: String,
+    },
+}
+
+/// Runs a scenario to its end with no observer and returns its summary.
+pub fn run(scenario: &touchdown_scenario::Scenario) -> Result<Summary, CoreError> {
+    Simulation::new(scenario)?.run(&mut ())
+}

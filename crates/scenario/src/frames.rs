@@ -100,3 +100,39 @@ mod tests {
         assert!((t_gi(0.1) * up_g - t_bi(&Vector3::new(0.1, 0.0, 0.0)) * up_g).norm() < 1e-15);
     }
 }
+
+/// The state a landing starts from, in the inertial frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InitialState {
+    /// T_BI at touchdown.
+    pub t_bi: Matrix3<f64>,
+    /// Euler angles relative to the surface (inertial) frame, rad.
+    pub theta: Vector3<f64>,
+    /// Centre-of-mass position, m.
+    pub position: Vector3<f64>,
+    /// Centre-of-mass velocity, m/s (eq. 2: V_I = T_GI·V_G).
+    pub velocity: Vector3<f64>,
+    /// Body rates, rad/s.
+    pub omega: Vector3<f64>,
+    /// Index of the leg whose footpad touches first.
+    pub first_leg: usize,
+}
+
+/// Initial state of a scenario, eq. (19) corrected for holes (review eq. 19 row): the footpad
+/// k that is lowest relative to its own plane, k = argmin_n [(T_BI·BP_n)_z + HOLE_n], touches
+/// its plane at inertial X = Y = 0, so R_cm = (0, 0, −HOLE_k) − T_BI·BP_k. An attitude given
+/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (review A17).
+pub fn initial_state(s: &crate::Scenario) -> InitialState {
+    let td = &s.touchdown;
+    let alpha = s.surface.slope;
+    let t_bi0 = match td.attitude_reference {
+        crate::schema::AttitudeReference::Surface => t_bi(&td.attitude),
+        crate::schema::AttitudeReference::Horizontal => t_gi(alpha) * t_bi(&td.attitude),
+    };
+    let theta = euler_from_t_bi(&t_bi0);
+    let t = t_bi(&theta);
+    let height = |i: usize| (t * s.legs[i].bp).z + s.surface.pads[i].hole;
+    let first_leg = (0..s.legs.len()).fold(0, |k, i| if height(i) < height(k) { i } else { k });
+    let position = Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane()) - t * s.legs[first_leg].bp; // eq. (19)
+    InitialState { t_bi: t, theta, position, velocity: t_gi(alpha) * td.velocity_g, omega: td.body_rates, first_leg }
+}

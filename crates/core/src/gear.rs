@@ -1,0 +1,209 @@
+//! Landing-gear geometry, strokes and force resolution at the footpad for one cantilever gear
+//! assembly, eqs. (26)-(34), (49)-(66). Body axes throughout; the gear is massless.
+//!
+//! Sign conventions (review §0, verified by independent statics in docs/errata.md):
+//! the primary stroke S2P = V2P − L2P is negative in compression; the code works with the
+//! compression stroke c = −S2P and FCP, FVP, FBR, F2P compression-positive. Secondary strokes
+//! and forces are tension positive. FS = F31·V̂31 + F41·V̂41 is the force the primary exerts on
+//! the secondaries at point 1. FP is the force the gear exerts on the footpad.
+
+use nalgebra::Vector3;
+use touchdown_laws::{DoubleActingMemory, GearLaws, LawError};
+use touchdown_scenario::model::Leg;
+
+/// Committed hysteresis of one gear: primary compression and both secondaries.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GearMemory {
+    /// Primary-strut compression memory.
+    pub primary: touchdown_laws::CrushMemory,
+    /// Secondary struts 3-1 and 4-1.
+    pub secondary: [DoubleActingMemory; 2],
+}
+
+/// Everything computed for one gear at one state.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GearState {
+    /// Primary compression stroke c = L2P − V2P (eq. 33, sign flipped), m.
+    pub primary_stroke: f64,
+    /// Primary compression rate ċ = −V̇2P, m/s.
+    pub primary_rate: f64,
+    /// Secondary strokes S31, S41 (eq. 34), tension positive, m.
+    pub secondary_stroke: [f64; 2],
+    /// Secondary stroking rates V̇31, V̇41, m/s.
+    pub secondary_rate: [f64; 2],
+    /// FCP, honeycomb force, N (compression positive).
+    pub fcp: f64,
+    /// FVP, viscous force, N (compression positive).
+    pub fvp: f64,
+    /// FBR, bearing friction, N (compression positive).
+    pub fbr: f64,
+    /// F2P = FCP + FVP + FBR, eq. (50), N.
+    pub f2p: f64,
+    /// FC31, FC41 honeycomb forces, N (tension positive).
+    pub fc_secondary: [f64; 2],
+    /// FV31, FV41 viscous forces, N (tension positive).
+    pub fv_secondary: [f64; 2],
+    /// |FM|, side load at the footpad, N.
+    pub fm: f64,
+    /// FP, force of the gear on the footpad, body axes, N (eq. 65).
+    pub fp: Vector3<f64>,
+}
+
+impl GearState {
+    /// Secondary axial forces F31, F41 = FC + FV (eq. 51), N, tension positive.
+    pub fn f_secondary(&self) -> [f64; 2] {
+        [self.fc_secondary[0] + self.fv_secondary[0], self.fc_secondary[1] + self.fv_secondary[1]]
+    }
+}
+
+/// Geometry and strut forces for one gear with the footpad at `bp` (body axes, m) moving at
+/// `bp_dot` (its velocity relative to the body, in body axes, m/s), eqs. (26)-(65).
+pub fn evaluate(leg: &Leg, laws: &GearLaws, memory: &GearMemory, bp: &Vector3<f64>, bp_dot: &Vector3<f64>) -> Result<GearState, LawError> {
+    // eqs. (27)-(28): primary strut vector, length and direction (from point 2 to the pad)
+    let v2p = bp - leg.b2;
+    let len = v2p.norm();
+    let e = v2p / len;
+    // eqs. (29)-(30): point 1 at L21 along the primary (cantilever)
+    let v21 = e * leg.l21;
+    let b1 = leg.b2 + v21;
+    // eqs. (31)-(32): secondary strut vectors and directions (trunnion → point 1)
+    let v31 = b1 - leg.b3;
+    let v41 = b1 - leg.b4;
+    let (l31, l41) = (v31.norm(), v41.norm());
+    let u = [v31 / l31, v41 / l41];
+    // eqs. (33)-(34): strokes (primary as compression c = −S2P; secondaries tension positive)
+    let c = leg.l2p - len;
+    let s = [l31 - leg.l31, l41 - leg.l41];
+    // Stroking rates (eq. 49 row): V̇2P = V̂2P·Ḃp; point 1 moves with L21·dV̂2P/dt.
+    let v2p_dot = e.dot(bp_dot);
+    let e_dot = (bp_dot - e * v2p_dot) / len;
+    let b1_dot = e_dot * leg.l21;
+    let c_dot = -v2p_dot;
+    let s_dot = [u[0].dot(&b1_dot), u[1].dot(&b1_dot)];
+
+    // eq. (49) and (51): secondary forces, tension positive
+    let sec = &laws.secondary;
+    let fc = [sec.honeycomb.force(s[0], memory.secondary[0]), sec.honeycomb.force(s[1], memory.secondary[1])];
+    let fv = [sec.viscous.force(s_dot[0]), sec.viscous.force(s_dot[1])];
+    // eq. (52): FS, force of the primary on the secondaries at point 1
+    let fs = u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]);
+    // eqs. (53)-(58) with eq. (54) corrected (MS = V21 × FS), in closed form:
+    // FM = −(L21/V2P)·(FS − (FS·V̂2P)·V̂2P)
+    let fm = -(fs - e * fs.dot(&e)) * (leg.l21 / len);
+    let fm_mag = fm.norm();
+    // eqs. (59)-(63): bearing friction, opposing the stroking direction
+    let pri = &laws.primary;
+    let fbr = pri.bearing.friction(fm_mag, c, c_dot)?;
+    // eq. (49): primary viscous force (compression positive opposes extension: FVP = CP·sgn(ċ)|ċ|^γ)
+    let fvp = pri.viscous.force(c_dot);
+    let fcp = pri.honeycomb.force(c, memory.primary);
+    // eq. (50)
+    let f2p = fcp + fvp + fbr;
+    // eqs. (64)-(65): force on the footpad
+    let fp = e * f2p + fm;
+    Ok(GearState {
+        primary_stroke: c,
+        primary_rate: c_dot,
+        secondary_stroke: s,
+        secondary_rate: s_dot,
+        fcp,
+        fvp,
+        fbr,
+        f2p,
+        fc_secondary: fc,
+        fv_secondary: fv,
+        fm: fm_mag,
+        fp,
+    })
+}
+
+/// Commits an accepted gear state into the hysteresis memory (honeycomb x_max per side).
+pub fn commit(laws: &GearLaws, state: &GearState, memory: &mut GearMemory) {
+    laws.primary.honeycomb.commit(state.primary_stroke, &mut memory.primary);
+    for i in 0..2 {
+        laws.secondary.honeycomb.commit(state.secondary_stroke[i], &mut memory.secondary[i]);
+    }
+}
+
+/// Elastic energy stored in the gear's honeycombs (recoverable along the backoff lines), J.
+pub fn stored_energy(laws: &GearLaws, state: &GearState, memory: &GearMemory) -> f64 {
+    let p = laws.primary.honeycomb.stored_energy(state.primary_stroke, memory.primary);
+    let s: f64 = (0..2).map(|i| laws.secondary.honeycomb.stored_energy(state.secondary_stroke[i], memory.secondary[i])).sum();
+    p + s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use touchdown_laws::{Bearing, DoubleActingHoneycomb, Honeycomb, LoadStroke, PrimaryStrutLaw, SecondaryStrutLaw, Stage, Viscous};
+
+    fn laws(mu: f64) -> GearLaws {
+        let h = |f: f64| Honeycomb::new(LoadStroke::new(1e5, &[Stage { crush_load: f, stroke_end: 0.2 }], 1e7).unwrap(), 1e6).unwrap();
+        GearLaws {
+            primary: PrimaryStrutLaw {
+                honeycomb: h(3000.0),
+                viscous: Viscous::NONE,
+                bearing: Bearing { friction_coefficient: mu, inner_cylinder_length: 0.6, initial_overlap: 0.2 },
+            },
+            secondary: SecondaryStrutLaw { honeycomb: DoubleActingHoneycomb { tension: h(1000.0), compression: h(1200.0) }, viscous: Viscous::NONE },
+        }
+    }
+
+    fn leg() -> Leg {
+        Leg::from_points(
+            Vector3::new(1.0, 0.0, 0.5),
+            Vector3::new(0.9, 0.35, 0.2),
+            Vector3::new(0.9, -0.3, 0.1),
+            Vector3::new(1.6, 0.05, -0.9),
+            0.9,
+        )
+    }
+
+    /// Independent statics of the massless gear (review check_forces.py): the primary pinned
+    /// at 2, secondaries two-force members, pad force FP; the forces at the trunnions on the
+    /// body must balance −FP and their moments about the origin must equal BP × (−FP) (eq. 66).
+    #[test]
+    fn footpad_force_balances_the_trunnion_loads() {
+        let leg = leg();
+        let laws = laws(0.0);
+        let mem = GearMemory::default();
+        // A deformed footpad position: compressed and pushed sideways.
+        let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros()).unwrap();
+        assert!(g.fcp > 0.0 && g.fc_secondary.iter().any(|f| f.abs() > 0.0));
+        // Reconstruct the trunnion forces on the body.
+        let e = (bp - leg.b2).normalize();
+        let b1 = leg.b2 + e * leg.l21;
+        let u3 = (b1 - leg.b3).normalize();
+        let u4 = (b1 - leg.b4).normalize();
+        let f = g.f_secondary();
+        // Secondary in tension pulls the body trunnion toward point 1.
+        let f3 = u3 * f[0];
+        let f4 = u4 * f[1];
+        // Primary equilibrium: forces on it are −FP (pad), −(f3 + f4) (secondaries pull point 1
+        // toward their trunnions when in tension) and R2 at point 2.
+        let r2 = g.fp + f3 + f4; // force of the body on the primary at 2
+        let on_body = [(leg.b2, -r2), (leg.b3, f3), (leg.b4, f4)];
+        let total: Vector3<f64> = on_body.iter().map(|(_, f)| *f).sum();
+        let moment: Vector3<f64> = on_body.iter().map(|(p, f)| p.cross(f)).sum();
+        assert!((total + g.fp).norm() < 1e-9 * g.fp.norm());
+        assert!((moment - bp.cross(&(-g.fp))).norm() < 1e-9 * g.fp.norm());
+        // Moment balance of the primary about point 2 (the check that fails with printed eq. 54).
+        let m2 = (bp - leg.b2).cross(&(-g.fp)) + (b1 - leg.b2).cross(&(-(f3 + f4)));
+        assert!(m2.norm() < 1e-9 * g.fp.norm(), "primary moment about 2: {m2}");
+    }
+
+    #[test]
+    fn bearing_friction_opposes_stroking() {
+        let leg = leg();
+        let laws = laws(0.2);
+        let mem = GearMemory::default();
+        let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let e = (bp - leg.b2).normalize();
+        let compressing = evaluate(&leg, &laws, &mem, &bp, &(-e * 0.5)).unwrap();
+        let extending = evaluate(&leg, &laws, &mem, &bp, &(e * 0.5)).unwrap();
+        assert!(compressing.primary_rate > 0.0 && compressing.fbr > 0.0);
+        assert!(extending.fbr < 0.0);
+        assert!((compressing.fbr + extending.fbr).abs() < 1e-9);
+    }
+}

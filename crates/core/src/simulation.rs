@@ -1,0 +1,719 @@
+//! One landing: state, the report's integration step (eqs. 20-25), contact logic, energy
+//! bookkeeping, stability criteria and divergence diagnostics.
+//!
+//! Step ordering (not stated by the report; review A11):
+//! 1. at t_k the state, the committed hysteresis and the accelerations a_k are known;
+//! 2. footpads in sliding contact advance over Δt with their forces frozen at t_k (eq. 97);
+//! 3. the vehicle is predicted with c = 0 (eqs. 22-23);
+//! 4. forces and accelerations are evaluated at the prediction (trial, nothing committed);
+//! 5. the vehicle is corrected with c from eq. (24);
+//! 6. forces are evaluated at the corrected state, the contact logic runs, and if a footpad
+//!    changed state the forces are evaluated again;
+//! 7. the honeycomb memories are committed at that accepted state, whose accelerations are
+//!    a_{k+1}; energy and stability are updated;
+//! 8. the next Δt follows eq. (25).
+//! Nothing in the step allocates.
+
+use crate::gear::{self, GearMemory, GearState};
+use crate::kinematics::{euler_acceleration, t_eb, GIMBAL_LOCK_COS};
+use crate::rigid_body::MassProperties;
+use crate::stability::{overturn_velocity, stability_distance, Outcome};
+use crate::summary::{EnergyReport, Summary};
+use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
+use crate::CoreError;
+use nalgebra::{Matrix3, Vector2, Vector3};
+use touchdown_laws::{sliding_friction, GearLaws};
+use touchdown_scenario::frames::{self, gravity_inertial};
+use touchdown_scenario::model::{Integrator, Leg, PadSurface, Stability};
+use touchdown_scenario::schema::{ReleaseRule, WallRule};
+use touchdown_scenario::Scenario;
+
+/// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VehicleState {
+    /// Centre-of-mass position, m.
+    pub position: Vector3<f64>,
+    /// Centre-of-mass velocity, m/s.
+    pub velocity: Vector3<f64>,
+    /// Centre-of-mass acceleration, m/s² (including gravity).
+    pub acceleration: Vector3<f64>,
+    /// Euler angles θ, rad.
+    pub theta: Vector3<f64>,
+    /// Euler rates θ̇, rad/s.
+    pub theta_dot: Vector3<f64>,
+    /// Euler accelerations θ̈, rad/s².
+    pub theta_ddot: Vector3<f64>,
+    /// Body rates ω, rad/s.
+    pub omega: Vector3<f64>,
+    /// T_BI (eq. 3) at θ.
+    pub t_bi: Matrix3<f64>,
+}
+
+impl VehicleState {
+    /// Sets θ (and T_BI, ω = T_EB·θ̇, eq. 6).
+    fn set_attitude(&mut self, theta: Vector3<f64>, theta_dot: Vector3<f64>) {
+        self.theta = theta;
+        self.theta_dot = theta_dot;
+        self.t_bi = frames::t_bi(&theta);
+        self.omega = t_eb(&theta) * theta_dot; // eq. (6)
+    }
+
+    /// Inertial position of a body-fixed point `b` (body axes), m.
+    pub fn point(&self, b: &Vector3<f64>) -> Vector3<f64> {
+        self.position + self.t_bi * b
+    }
+
+    /// Inertial velocity of a body-fixed point `b`, m/s.
+    pub fn point_velocity(&self, b: &Vector3<f64>) -> Vector3<f64> {
+        self.velocity + self.t_bi * self.omega.cross(b)
+    }
+
+    /// Angular velocity in inertial axes, rad/s.
+    pub fn omega_inertial(&self) -> Vector3<f64> {
+        self.t_bi * self.omega
+    }
+}
+
+/// Energy ledger: work absorbed by each mechanism since touchdown, J.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Ledger {
+    /// Work done on the honeycombs (stored + dissipated).
+    honeycomb: f64,
+    viscous: f64,
+    bearing: f64,
+    /// Dissipated by sliding friction and by sliding footpads stopping.
+    sliding: f64,
+    /// Energy added by contact-state changes (footpad velocity set on touchdown, removed on
+    /// lift-off).
+    events: f64,
+}
+
+/// Stability tracking.
+#[derive(Debug, Clone, PartialEq)]
+struct StabilityTrack {
+    /// Current SD per wall (NaN where undefined), m.
+    sd: Vec<f64>,
+    /// Outward normals per wall.
+    normal: Vec<Vector3<f64>>,
+    /// Minimum over time of the smallest SD, m.
+    min_sd: f64,
+    /// Kinetic energy at first contact, J.
+    ke0: f64,
+    outcome: Option<(Outcome, f64)>,
+    overturn_velocity: Option<f64>,
+}
+
+/// Running extremes for the summary.
+#[derive(Debug, Clone, PartialEq)]
+struct Extremes {
+    primary: Vec<f64>,
+    sec_compression: Vec<[f64; 2]>,
+    sec_tension: Vec<[f64; 2]>,
+    pitch_rate: f64,
+    pitch_rate_time: f64,
+}
+
+/// A landing simulated by the report-faithful core.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    name: String,
+    legs: Vec<Leg>,
+    laws: GearLaws,
+    mass: MassProperties,
+    gravity: Vector3<f64>,
+    surfaces: Vec<PadSurface>,
+    footpad_mass: f64,
+    release: ReleaseRule,
+    integrator: Integrator,
+    criteria: Stability,
+    // state
+    t: f64,
+    steps: u64,
+    evaluations: u64,
+    vehicle: VehicleState,
+    pads: Vec<Footpad>,
+    memory: Vec<GearMemory>,
+    gear: Vec<GearState>,
+    trial: Vec<GearState>,
+    previous: Vec<GearState>,
+    ledger: Ledger,
+    potential0: f64,
+    stability: StabilityTrack,
+    extremes: Extremes,
+}
+
+/// Something that watches a landing after every accepted step (and at t = 0).
+pub trait Observer {
+    /// Called with the simulation at an accepted state.
+    fn observe(&mut self, sim: &Simulation);
+}
+
+impl Observer for () {
+    fn observe(&mut self, _: &Simulation) {}
+}
+
+/// Net loads on the vehicle (eqs. 66-68, 83-84): force in inertial axes excluding gravity,
+/// torque in body axes.
+struct Loads {
+    force: Vector3<f64>,
+    torque: Vector3<f64>,
+}
+
+impl Simulation {
+    /// Sets up a landing from a resolved scenario: laws, initial state (eq. 19) and the
+    /// contact of the first footpad.
+    pub fn new(scenario: &Scenario) -> Result<Simulation, CoreError> {
+        let laws = GearLaws::from_scenario(scenario)?;
+        let init = frames::initial_state(scenario);
+        let n = scenario.legs.len();
+        let mut vehicle = VehicleState {
+            position: init.position,
+            velocity: init.velocity,
+            acceleration: Vector3::zeros(),
+            theta: init.theta,
+            theta_dot: Vector3::zeros(),
+            theta_ddot: Vector3::zeros(),
+            omega: init.omega,
+            t_bi: init.t_bi,
+        };
+        let theta_dot = crate::kinematics::t_be(&init.theta) * init.omega; // eq. (7)
+        vehicle.set_attitude(init.theta, theta_dot);
+        let pads = scenario
+            .legs
+            .iter()
+            .map(|l| Footpad { position: vehicle.point(&l.bp), velocity: vehicle.point_velocity(&l.bp), bp_attached: l.bp, bp: l.bp, ..Default::default() })
+            .collect();
+        let mass = MassProperties::new(scenario.vehicle.mass, scenario.vehicle.inertia);
+        let gravity = gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
+        let mut sim = Simulation {
+            name: scenario.file.name.clone(),
+            legs: scenario.legs.clone(),
+            laws,
+            mass,
+            gravity,
+            surfaces: scenario.surface.pads.clone(),
+            footpad_mass: scenario.footpad.mass,
+            release: scenario.surface.release,
+            integrator: scenario.integrator.clone(),
+            criteria: scenario.stability.clone(),
+            t: 0.0,
+            steps: 0,
+            evaluations: 0,
+            vehicle,
+            pads,
+            memory: vec![GearMemory::default(); n],
+            gear: vec![GearState::default(); n],
+            trial: vec![GearState::default(); n],
+            previous: vec![GearState::default(); n],
+            ledger: Ledger::default(),
+            potential0: 0.0,
+            stability: StabilityTrack {
+                sd: vec![f64::NAN; n],
+                normal: vec![Vector3::zeros(); n],
+                min_sd: f64::INFINITY,
+                ke0: 0.0,
+                outcome: None,
+                overturn_velocity: None,
+            },
+            extremes: Extremes {
+                primary: vec![0.0; n],
+                sec_compression: vec![[0.0; 2]; n],
+                sec_tension: vec![[0.0; 2]; n],
+                pitch_rate: 0.0,
+                pitch_rate_time: 0.0,
+            },
+        };
+        sim.potential0 = sim.potential_energy();
+        sim.stability.ke0 = sim.kinetic_energy();
+        // First contact at t = 0, then the accepted state's forces and accelerations.
+        let before = sim.footpad_energy();
+        sim.contact_logic();
+        sim.ledger.events += sim.footpad_energy() - before;
+        let mut v = sim.vehicle;
+        sim.accept(&mut v)?;
+        sim.vehicle = v;
+        sim.update_stability(None);
+        sim.update_extremes();
+        Ok(sim)
+    }
+
+    /// Runs to a decision (if the scenario terminates on one) or to the end time.
+    pub fn run(&mut self, observer: &mut impl Observer) -> Result<Summary, CoreError> {
+        observer.observe(self);
+        while !self.finished() {
+            self.step()?;
+            observer.observe(self);
+        }
+        Ok(self.summary())
+    }
+
+    /// Whether the run has ended (end time, or a decision with termination on).
+    pub fn finished(&self) -> bool {
+        self.t >= self.integrator.t_end * (1.0 - 1e-12) || (self.criteria.terminate_on_decision && self.stability.outcome.is_some())
+    }
+
+    /// Current time, s.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Accepted steps so far.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Rigid-vehicle state.
+    pub fn vehicle(&self) -> &VehicleState {
+        &self.vehicle
+    }
+
+    /// Footpads.
+    pub fn footpads(&self) -> &[Footpad] {
+        &self.pads
+    }
+
+    /// Gear states at the accepted state.
+    pub fn gear(&self) -> &[GearState] {
+        &self.gear
+    }
+
+    /// Current stability distance per wall (wall i joins footpads i and i+1), m; NaN if the
+    /// wall is undefined.
+    pub fn stability_distances(&self) -> &[f64] {
+        &self.stability.sd
+    }
+
+    /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
+    pub fn kinetic_energy(&self) -> f64 {
+        self.mass.kinetic_energy(&self.vehicle.velocity, &self.vehicle.omega)
+    }
+
+    /// Vehicle potential energy −M·G·R, J.
+    fn potential_energy(&self) -> f64 {
+        -self.mass.mass * self.gravity.dot(&self.vehicle.position)
+    }
+
+    /// Kinetic + potential energy of the footpads in contact (the only ones with dynamics), J.
+    fn footpad_energy(&self) -> f64 {
+        let m = self.footpad_mass;
+        self.pads.iter().filter(|p| p.state == ContactState::Contact).map(|p| 0.5 * m * p.velocity.norm_squared() - m * self.gravity.dot(&p.position)).sum()
+    }
+
+    /// Energy report at the current state.
+    pub fn energy(&self) -> EnergyReport {
+        let stored: f64 = (0..self.legs.len()).map(|i| gear::stored_energy(&self.laws, &self.gear[i], &self.memory[i])).sum();
+        let l = &self.ledger;
+        let kinetic = self.kinetic_energy();
+        let potential_change = self.potential_energy() - self.potential0;
+        let footpads = self.footpad_energy();
+        let absorbed = l.honeycomb + l.viscous + l.bearing + l.sliding;
+        let residual = kinetic + potential_change + footpads + absorbed - l.events - self.stability.ke0;
+        EnergyReport {
+            kinetic_initial_j: self.stability.ke0,
+            kinetic_j: kinetic,
+            potential_change_j: potential_change,
+            footpad_j: footpads,
+            honeycomb_stored_j: stored,
+            honeycomb_dissipated_j: l.honeycomb - stored,
+            viscous_j: l.viscous,
+            bearing_friction_j: l.bearing,
+            sliding_friction_j: l.sliding,
+            contact_events_j: l.events,
+            residual_j: residual,
+        }
+    }
+
+    /// The summary at the current state.
+    pub fn summary(&self) -> Summary {
+        let (outcome, decision) = match self.stability.outcome {
+            Some((o, t)) => (o, Some(t)),
+            None => (Outcome::Undecided, None),
+        };
+        let energy = self.energy();
+        Summary {
+            engine: "core".to_string(),
+            scenario: self.name.clone(),
+            outcome,
+            decision_time_s: decision,
+            t_end_s: self.t,
+            steps: self.steps,
+            force_evaluations: self.evaluations,
+            max_primary_stroke_m: self.extremes.primary.clone(),
+            max_secondary_compression_m: self.extremes.sec_compression.clone(),
+            max_secondary_tension_m: self.extremes.sec_tension.clone(),
+            peak_pitch_rate_rad_s: self.extremes.pitch_rate,
+            peak_pitch_rate_time_s: self.extremes.pitch_rate_time,
+            min_stability_distance_m: self.stability.min_sd,
+            overturn_velocity_m_s: self.stability.overturn_velocity,
+            first_contact_s: self.pads.iter().map(|p| p.first_contact).collect(),
+            energy_residual_j: energy.residual_j,
+            energy,
+        }
+    }
+
+    /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], shortened so that an
+    /// airborne footpad lands on its plane (review A12) and so that the end time is met.
+    fn step_size(&self) -> f64 {
+        let it = &self.integrator;
+        let v = &self.vehicle;
+        let mut vel: f64 = 0.0;
+        for p in &self.pads {
+            let rel = if p.state == ContactState::Contact { p.velocity - v.velocity } else { v.t_bi * v.omega.cross(&p.bp_attached) };
+            vel = vel.max(rel.norm());
+        }
+        let mut dt = if vel > 0.0 { it.dist / vel } else { it.dt_max }; // eq. (25)
+        dt = dt.clamp(it.dt_min, it.dt_max);
+        if it.contact_step_limit {
+            for (p, s) in self.pads.iter().zip(&self.surfaces) {
+                if p.state != ContactState::Contact {
+                    let gap = v.point(&p.bp_attached).z - s.plane();
+                    let approach = -v.point_velocity(&p.bp_attached).z;
+                    if gap > 0.0 && approach > 0.0 && gap < approach * dt {
+                        dt = (gap / approach).max(it.dt_min);
+                    }
+                }
+            }
+        }
+        dt.min(it.t_end - self.t).max(f64::MIN_POSITIVE)
+    }
+
+    /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
+    /// written into `out` (eqs. 26-68, 83-84). Footpads not in contact carry no load.
+    fn loads(&self, v: &VehicleState, out: &mut [GearState]) -> Result<Loads, CoreError> {
+        let t_ib = v.t_bi.transpose();
+        let mut force = Vector3::zeros();
+        let mut torque = Vector3::zeros();
+        for i in 0..self.legs.len() {
+            let pad = &self.pads[i];
+            if pad.state != ContactState::Contact {
+                let prev = &self.gear[i];
+                out[i] = GearState { primary_stroke: prev.primary_stroke, secondary_stroke: prev.secondary_stroke, ..GearState::default() };
+                continue;
+            }
+            let bp = t_ib * (pad.position - v.position);
+            let bp_dot = t_ib * (pad.velocity - v.velocity) - v.omega.cross(&bp);
+            let g = gear::evaluate(&self.legs[i], &self.laws, &self.memory[i], &bp, &bp_dot).map_err(|e| self.diverged(v, e.to_string(), "bearing friction", i))?;
+            torque += bp.cross(&(-g.fp)); // eq. (66)
+            force -= v.t_bi * g.fp; // eqs. (67)-(68)
+            out[i] = g;
+        }
+        Ok(Loads { force, torque })
+    }
+
+    /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c).
+    fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), CoreError> {
+        if v.theta.y.cos().abs() < GIMBAL_LOCK_COS {
+            return Err(self.diverged(v, "Euler-angle singularity: θy reached ±90° (eqs. 5 and 9a divide by cos θy)".into(), "kinematics", usize::MAX));
+        }
+        v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
+        let omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
+        v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &omega_dot);
+        Ok(())
+    }
+
+    /// Evaluates the accepted state `v` into `self.gear` and sets its accelerations.
+    fn accept(&mut self, v: &mut VehicleState) -> Result<(), CoreError> {
+        let mut out = std::mem::take(&mut self.trial);
+        let loads = self.loads(v, &mut out);
+        self.evaluations += 1;
+        let loads = match loads {
+            Ok(l) => l,
+            Err(e) => {
+                self.trial = out;
+                return Err(e);
+            }
+        };
+        self.accelerate(v, &loads)?;
+        self.trial = std::mem::replace(&mut self.gear, out);
+        Ok(())
+    }
+
+    /// Contact logic of the rigid surface (text before eq. 85; review A1-A2, A4-A5) at the
+    /// current vehicle state. Returns whether any footpad changed state.
+    fn contact_logic(&mut self) -> bool {
+        let v = self.vehicle;
+        let mut changed = false;
+        for i in 0..self.pads.len() {
+            let s = self.surfaces[i];
+            let pad = &mut self.pads[i];
+            match pad.state {
+                ContactState::Free | ContactState::Detached => {
+                    let tentative = v.point(&pad.bp_attached);
+                    if tentative.z <= s.plane() {
+                        let vel = v.point_velocity(&pad.bp_attached);
+                        touch_down(pad, &s, Vector2::new(tentative.x, tentative.y), Vector2::new(vel.x, vel.y), self.t);
+                        changed = true;
+                    } else {
+                        pad.position = tentative;
+                        pad.velocity = v.point_velocity(&pad.bp_attached);
+                    }
+                }
+                ContactState::Contact => {
+                    // Tentative position with the previous step's geometry; the footpad stays
+                    // on the surface while the primary strut is compressive.
+                    let tentative = v.point(&pad.bp);
+                    let g = &self.gear[i];
+                    let compressive = match self.release {
+                        ReleaseRule::StrutForce => g.f2p > 0.0,
+                        ReleaseRule::HoneycombForce => g.fcp > 0.0,
+                    };
+                    if tentative.z > s.plane() && !compressive {
+                        pad.state = ContactState::Detached;
+                        pad.stuck = false;
+                        pad.bp_attached = v.t_bi.transpose() * (pad.position - v.position);
+                        pad.velocity = v.point_velocity(&pad.bp_attached);
+                        changed = true;
+                    }
+                }
+            }
+        }
+        changed
+    }
+
+    /// One integration step (see the module documentation).
+    pub fn step(&mut self) -> Result<(), CoreError> {
+        let dt = self.step_size();
+        let old = self.vehicle;
+        // 2. sliding footpads, forces frozen at t_k (eq. 97)
+        let mut pad_work = 0.0;
+        let mut pad_energy_change = 0.0;
+        for i in 0..self.pads.len() {
+            if self.pads[i].state != ContactState::Contact || self.surfaces[i].locked() {
+                continue;
+            }
+            let f = self.sliding_forces(i, &old);
+            let m = self.footpad_mass;
+            let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
+            advance_sliding(&mut self.pads[i], &f, dt);
+            let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
+            let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
+            pad_work += f.gear_xy.dot(&dp);
+            pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared()) - m * self.gravity.dot(&(p1 - p0));
+        }
+        // 3. predictor, c = 0 (eqs. 22-23)
+        let mut pred = old;
+        pred.position = old.position + old.velocity * dt + old.acceleration * (0.5 * dt * dt);
+        pred.velocity = old.velocity + old.acceleration * dt;
+        pred.set_attitude(old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt), old.theta_dot + old.theta_ddot * dt);
+        // 4. trial evaluation
+        let mut trial = std::mem::take(&mut self.trial);
+        let loads = self.loads(&pred, &mut trial);
+        self.trial = trial;
+        let loads = loads?;
+        self.evaluations += 1;
+        self.accelerate(&mut pred, &loads)?;
+        // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
+        let mut new = old;
+        new.velocity = old.velocity + (old.acceleration + pred.acceleration) * (0.5 * dt);
+        new.position = old.position + old.velocity * dt + (old.acceleration / 3.0 + pred.acceleration / 6.0) * (dt * dt);
+        let theta_dot = old.theta_dot + (old.theta_ddot + pred.theta_ddot) * (0.5 * dt);
+        let theta = old.theta + old.theta_dot * dt + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
+        new.set_attitude(theta, theta_dot);
+        // 6. evaluate, contact logic, re-evaluate on a change
+        self.previous.copy_from_slice(&self.gear);
+        self.t += dt;
+        self.accept(&mut new)?;
+        self.vehicle = new;
+        let pads_before = self.footpad_energy();
+        if self.contact_logic() {
+            let events = self.footpad_energy() - pads_before;
+            self.ledger.events += events;
+            self.accept(&mut new)?;
+            self.vehicle = new;
+        }
+        // 7. commit hysteresis at the accepted state
+        for i in 0..self.legs.len() {
+            if self.pads[i].state == ContactState::Contact {
+                gear::commit(&self.laws, &self.gear[i], &mut self.memory[i]);
+                let bp = new.t_bi.transpose() * (self.pads[i].position - new.position);
+                self.pads[i].bp = bp;
+            }
+        }
+        self.ledger.sliding += pad_work - pad_energy_change;
+        self.book_strut_work(dt);
+        self.steps += 1;
+        self.check_divergence()?;
+        self.update_stability(Some(&old));
+        self.update_extremes();
+        Ok(())
+    }
+
+    /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
+    /// corrected: the footpad receives −FPI = T_BI·FP).
+    fn sliding_forces(&self, i: usize, v: &VehicleState) -> SlidingForces {
+        let on_pad = v.t_bi * self.gear[i].fp; // −FPI, eq. (67) reversed
+        let fzi = -on_pad.z; // FZI = (FPI)_z, positive pressing into the surface
+        SlidingForces {
+            gear_xy: Vector2::new(on_pad.x, on_pad.y),
+            drag: sliding_friction(self.surfaces[i].friction, fzi), // eq. (85)
+            gravity_xy: Vector2::new(self.gravity.x, self.gravity.y),
+            mass: self.footpad_mass,
+        }
+    }
+
+    /// Adds the strut work between the previous and the accepted state (trapezoidal rule):
+    /// honeycomb ∫F·dx, viscous and bearing-friction ∫F·ẋ·dt.
+    fn book_strut_work(&mut self, dt: f64) {
+        for (a, b) in self.previous.iter().zip(&self.gear) {
+            self.ledger.honeycomb += 0.5 * (a.fcp + b.fcp) * (b.primary_stroke - a.primary_stroke);
+            self.ledger.viscous += 0.5 * (a.fvp * a.primary_rate + b.fvp * b.primary_rate) * dt;
+            self.ledger.bearing += 0.5 * (a.fbr * a.primary_rate + b.fbr * b.primary_rate) * dt;
+            for j in 0..2 {
+                self.ledger.honeycomb += 0.5 * (a.fc_secondary[j] + b.fc_secondary[j]) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                self.ledger.viscous += 0.5 * (a.fv_secondary[j] * a.secondary_rate[j] + b.fv_secondary[j] * b.secondary_rate[j]) * dt;
+            }
+        }
+    }
+
+    /// A divergence diagnostic at state `v`; `leg` is usize::MAX when no leg is involved.
+    fn diverged(&self, v: &VehicleState, message: String, law: &str, leg: usize) -> CoreError {
+        CoreError::Diverged {
+            time: self.t,
+            law: if leg == usize::MAX { law.to_string() } else { format!("{law} (leg {})", leg + 1) },
+            message,
+            state: format!(
+                "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, θ = [{:.6e}, {:.6e}, {:.6e}] rad, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s",
+                v.position.x, v.position.y, v.position.z, v.velocity.x, v.velocity.y, v.velocity.z, v.theta.x, v.theta.y, v.theta.z, v.omega.x, v.omega.y, v.omega.z
+            ),
+        }
+    }
+
+    /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
+    /// tolerance, naming the law most involved.
+    fn check_divergence(&self) -> Result<(), CoreError> {
+        let v = &self.vehicle;
+        for (i, g) in self.gear.iter().enumerate() {
+            let checks = [
+                ("primary honeycomb", g.fcp),
+                ("primary viscous", g.fvp),
+                ("bearing friction", g.fbr),
+                ("secondary honeycomb", g.fc_secondary[0] + g.fc_secondary[1]),
+                ("secondary viscous", g.fv_secondary[0] + g.fv_secondary[1]),
+                ("gear geometry", g.primary_stroke + g.secondary_stroke[0] + g.secondary_stroke[1]),
+            ];
+            if let Some((law, value)) = checks.iter().find(|(_, x)| !x.is_finite()) {
+                return Err(self.diverged(v, format!("non-finite value {value}"), law, i));
+            }
+        }
+        let finite = [v.position, v.velocity, v.acceleration, v.theta, v.theta_dot, v.theta_ddot].iter().all(|x| x.iter().all(|c| c.is_finite()))
+            && self.pads.iter().all(|p| p.position.iter().chain(p.velocity.iter()).all(|c| c.is_finite()));
+        if !finite {
+            return Err(self.diverged(v, "non-finite vehicle or footpad state".into(), "equations of motion", usize::MAX));
+        }
+        let e = self.energy();
+        let l = &self.ledger;
+        let scale = e.kinetic_initial_j + e.potential_change_j.abs() + l.honeycomb.abs() + l.viscous.abs() + l.bearing.abs() + l.sliding.abs() + l.events.abs();
+        if e.residual_j.abs() > self.integrator.energy_tolerance * scale.max(f64::MIN_POSITIVE) {
+            // The mechanism that has exchanged the most energy is the likeliest culprit.
+            let terms = [
+                ("honeycomb", l.honeycomb),
+                ("viscous", l.viscous),
+                ("bearing friction", l.bearing),
+                ("sliding friction", l.sliding),
+                ("contact events", l.events),
+            ];
+            let law = terms.iter().fold(terms[0], |m, t| if t.1.abs() > m.1.abs() { *t } else { m }).0;
+            return Err(self.diverged(
+                v,
+                format!(
+                    "energy balance residual {:.4e} J exceeds {} of the energy scale {:.4e} J (step too large for the stiffest law?)",
+                    e.residual_j, self.integrator.energy_tolerance, scale
+                ),
+                law,
+                usize::MAX,
+            ));
+        }
+        Ok(())
+    }
+
+    /// Stability distances, the unstable crossing and the four stable conditions
+    /// (eqs. 105-107 and the text after them). `old` is the previous accepted vehicle state.
+    fn update_stability(&mut self, old: Option<&VehicleState>) {
+        let v = self.vehicle;
+        let n = self.pads.len();
+        let mut min_now = f64::INFINITY;
+        let mut min_wall = usize::MAX;
+        let mut crossing: Option<(usize, f64)> = None;
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let counted = match self.criteria.walls {
+                WallRule::All => true,
+                WallRule::TouchedDown => self.pads[i].first_contact.is_some() && self.pads[j].first_contact.is_some(),
+            };
+            let a = self.pad_position(i);
+            let b = self.pad_position(j);
+            let prev = self.stability.sd[i];
+            match stability_distance(&self.gravity, &v.position, &a, &b) {
+                Some((sd, normal)) => {
+                    self.stability.sd[i] = sd;
+                    self.stability.normal[i] = normal;
+                    if counted && sd < min_now {
+                        min_now = sd;
+                        min_wall = i;
+                    }
+                    if counted && sd < 0.0 && crossing.is_none() {
+                        // Fraction of the step at which SD crossed zero.
+                        let f = if prev.is_finite() && prev > 0.0 { prev / (prev - sd) } else { 1.0 };
+                        crossing = Some((i, f));
+                    }
+                }
+                None => self.stability.sd[i] = f64::NAN,
+            }
+        }
+        if min_now < self.stability.min_sd {
+            self.stability.min_sd = min_now;
+        }
+        if self.stability.outcome.is_some() {
+            return;
+        }
+        if let Some((wall, f)) = crossing {
+            let v_cross = match old {
+                Some(o) => o.velocity + (v.velocity - o.velocity) * f,
+                None => v.velocity,
+            };
+            self.stability.overturn_velocity = Some(overturn_velocity(&v_cross, &self.stability.normal[wall]));
+            self.stability.outcome = Some((Outcome::Unstable, self.t));
+            return;
+        }
+        if min_wall == usize::MAX {
+            return;
+        }
+        let ke = self.kinetic_energy();
+        let j = (min_wall + 1) % n;
+        let stable = ke < self.criteria.kinetic_energy_fraction * self.stability.ke0 // 1
+            && min_now > 0.0 // 2
+            && self.pads[min_wall].state == ContactState::Contact && self.pads[j].state == ContactState::Contact // 3
+            && -v.velocity.dot(&self.stability.normal[min_wall]) >= self.criteria.min_separation_velocity; // 4
+        if stable {
+            self.stability.outcome = Some((Outcome::Stable, self.t));
+        }
+    }
+
+    /// Inertial position of footpad `i`, m.
+    fn pad_position(&self, i: usize) -> Vector3<f64> {
+        let p = &self.pads[i];
+        if p.state == ContactState::Contact {
+            p.position
+        } else {
+            self.vehicle.point(&p.bp_attached)
+        }
+    }
+
+    /// Running maxima of strokes and the pitch rate (angular velocity about the inertial X
+    /// axis, the cross-slope axis normal to the plane of a planar landing).
+    fn update_extremes(&mut self) {
+        let x = &mut self.extremes;
+        for (i, g) in self.gear.iter().enumerate() {
+            x.primary[i] = x.primary[i].max(g.primary_stroke);
+            for j in 0..2 {
+                x.sec_tension[i][j] = x.sec_tension[i][j].max(g.secondary_stroke[j]);
+                x.sec_compression[i][j] = x.sec_compression[i][j].max(-g.secondary_stroke[j]);
+            }
+        }
+        let q = self.vehicle.omega_inertial().x;
+        if q.abs() > x.pitch_rate.abs() {
+            x.pitch_rate = q;
+            x.pitch_rate_time = self.t;
+        }
+    }
+}
