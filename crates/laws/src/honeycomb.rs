@@ -11,6 +11,12 @@
 //! `F = F_v(x)` if `x ≥ x_max`, otherwise `F = max(0, F_v(x_max) − K_B·(x_max − x))` (elastic
 //! rebound along the backoff rate K_B, F → G in fig. 8). The permanent set is
 //! `G = x_max − F_v(x_max)/K_B`. Memories are committed only at accepted states.
+//!
+//! Bottoming is an elastic stop: beyond the capacity X_c (end of the last stage) the load
+//! follows the stroke-out line reversibly, and rebound from it starts at the last plateau,
+//! i.e. x_max is used as `min(x_max, X_c)`. (Rebounding from a bottomed load along K_B, which is
+//! far softer than the stop, would return the bottoming energy over a stroke longer than the
+//! strut; docs/errata.md.)
 
 use crate::{series_rate, LawError};
 
@@ -175,12 +181,19 @@ impl Honeycomb {
     /// committed memory.
     #[inline]
     pub fn force(&self, x: f64, memory: CrushMemory) -> f64 {
-        let m = memory.max_stroke;
-        if x >= m {
+        let m = self.crushed(memory);
+        if x >= m || x >= self.curve.capacity() {
             self.curve.force(x)
         } else {
             (self.curve.force(m) - self.backoff_rate * (m - x)).max(0.0)
         }
+    }
+
+    /// The crushed stroke the rebound starts from: x_max, capped at the capacity (bottoming is
+    /// elastic), m.
+    #[inline]
+    fn crushed(&self, memory: CrushMemory) -> f64 {
+        memory.max_stroke.min(self.curve.capacity())
     }
 
     /// Commits an accepted stroke `x` (m) into the memory.
@@ -193,15 +206,22 @@ impl Honeycomb {
 
     /// Permanent set G = x_max − F_v(x_max)/K_B, m (never negative).
     pub fn permanent_set(&self, memory: CrushMemory) -> f64 {
-        (memory.max_stroke - self.curve.force(memory.max_stroke) / self.backoff_rate).max(0.0)
+        let m = self.crushed(memory);
+        (m - self.curve.force(m) / self.backoff_rate).max(0.0)
     }
 
-    /// Elastic energy stored at stroke `x` and recoverable along the backoff line, J:
-    /// `F²/(2·K_B)`.
+    /// Elastic energy stored at stroke `x` and recoverable, J: `F²/(2·K_B)` on the rebound
+    /// line, plus `(F² − F_c²)/(2·K_so)` on the bottoming stop (F_c: last plateau load).
     #[inline]
     pub fn stored_energy(&self, x: f64, memory: CrushMemory) -> f64 {
         let f = self.force(x, memory);
-        f * f / (2.0 * self.backoff_rate)
+        let cap = self.curve.capacity();
+        if x > cap {
+            let fc = self.curve.force(cap);
+            fc * fc / (2.0 * self.backoff_rate) + (f * f - fc * fc) / (2.0 * self.curve.stroke_out_rate())
+        } else {
+            f * f / (2.0 * self.backoff_rate)
+        }
     }
 }
 
@@ -313,6 +333,22 @@ mod tests {
         assert_eq!(m.max_stroke, 0.05);
         // Stored energy on the rebound line is F²/(2 K_B).
         assert!((h.stored_energy(0.0495, m) - 500.0 * 500.0 / 2e6).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bottoming_is_an_elastic_stop() {
+        let h = primary();
+        let mut m = CrushMemory::default();
+        h.commit(0.21, &mut m); // 0.01 m into stroke-out: 3000 + 1e7·0.01 N
+        assert!((h.force(0.21, m) - 103_000.0).abs() < 1e-6);
+        // Unloading retraces the stop down to the capacity, then rebounds along K_B.
+        assert!((h.force(0.205, m) - 53_000.0).abs() < 1e-6);
+        assert!((h.force(0.2, m) - 3000.0).abs() < 1e-6);
+        assert!((h.force(0.199, m) - 2000.0).abs() < 1e-6);
+        assert!((h.permanent_set(m) - (0.2 - 3000.0 / 1e6)).abs() < 1e-12);
+        // Stored energy: the rebound triangle plus the stop's own.
+        let e = 3000.0f64.powi(2) / 2e6 + (103_000.0f64.powi(2) - 3000.0f64.powi(2)) / 2e7;
+        assert!((h.stored_energy(0.21, m) - e).abs() < 1e-9);
     }
 
     #[test]
