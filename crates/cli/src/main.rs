@@ -9,7 +9,11 @@ use std::path::PathBuf;
 use touchdown_scenario::Scenario;
 
 #[derive(Parser)]
-#[command(name = "touchdown", version, about = "Touchdown dynamics of soft-landing spacecraft (NASA TN D-7045 testbench)")]
+#[command(
+    name = "touchdown",
+    version,
+    about = "Touchdown dynamics of soft-landing spacecraft (NASA TN D-7045 testbench)"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -57,16 +61,26 @@ fn main() -> std::process::ExitCode {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Run { scenario, format, out, engine: Engine::Core } => {
+        Command::Run {
+            scenario,
+            format,
+            out,
+            engine: Engine::Core,
+        } => {
             let sc = Scenario::load(&scenario)?;
             let mut sim = touchdown_core::Simulation::new(&sc)?;
             let summary = match &out {
                 Some(dir) => {
-                    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-                    let mut rec = history::Recorder::create(&dir.join("history.csv"), sc.legs.len())?;
+                    std::fs::create_dir_all(dir)
+                        .with_context(|| format!("cannot create {}", dir.display()))?;
+                    let mut rec =
+                        history::Recorder::create(&dir.join("history.csv"), sc.legs.len())?;
                     let summary = sim.run(&mut rec)?;
                     rec.finish()?;
-                    std::fs::write(dir.join("scenario.resolved.toml"), report::resolved_scenario(&sc))?;
+                    std::fs::write(
+                        dir.join("scenario.resolved.toml"),
+                        report::resolved_scenario(&sc),
+                    )?;
                     std::fs::write(dir.join("summary.json"), report::json(&summary)?)?;
                     summary
                 }

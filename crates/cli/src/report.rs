@@ -19,9 +19,20 @@ pub fn resolved_scenario(sc: &Scenario) -> String {
 pub fn text(sc: &Scenario, s: &Summary) -> String {
     let u = sc.file.units;
     let (lu, lname) = (u.length(), u.length_label());
-    let len = |m: f64| if lname == "m" { format!("{m:9.4} m") } else { format!("{m:9.4} m  {:9.4} {lname}", m / lu) };
+    let len = |m: f64| {
+        if lname == "m" {
+            format!("{m:9.4} m")
+        } else {
+            format!("{m:9.4} m  {:9.4} {lname}", m / lu)
+        }
+    };
     let mut o = String::new();
-    let _ = writeln!(o, "touchdown {} — {} engine", env!("CARGO_PKG_VERSION"), s.engine);
+    let _ = writeln!(
+        o,
+        "touchdown {} — {} engine",
+        env!("CARGO_PKG_VERSION"),
+        s.engine
+    );
     let _ = writeln!(o, "scenario: {} ({})", s.scenario, sc.source);
     let outcome = match (s.outcome, s.decision_time_s) {
         (Outcome::Stable, Some(t)) => format!("STABLE (declared at t = {t:.4} s)"),
@@ -32,22 +43,47 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
         _ => "UNDECIDED (no stability decision before the end time)".to_string(),
     };
     let _ = writeln!(o, "outcome:  {outcome}");
-    let _ = writeln!(o, "run:      {:.4} s simulated, {} steps, {} force evaluations", s.t_end_s, s.steps, s.force_evaluations);
+    let _ = writeln!(
+        o,
+        "run:      {:.4} s simulated, {} steps, {} force evaluations",
+        s.t_end_s, s.steps, s.force_evaluations
+    );
     let _ = writeln!(o, "\nmaximum strokes (compression and tension positive)");
     for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
         let contact = match s.first_contact_s[i] {
             Some(t) => format!("first contact {t:.4} s"),
             None => "never touched".to_string(),
         };
-        let _ = writeln!(o, "  leg {}  primary compression   {}   ({contact})", i + 1, len(*p));
+        let _ = writeln!(
+            o,
+            "  leg {}  primary compression   {}   ({contact})",
+            i + 1,
+            len(*p)
+        );
         for j in 0..2 {
             let name = if j == 0 { "3-1" } else { "4-1" };
-            let _ = writeln!(o, "         secondary {name} compr.  {}", len(s.max_secondary_compression_m[i][j]));
-            let _ = writeln!(o, "         secondary {name} tension {}", len(s.max_secondary_tension_m[i][j]));
+            let _ = writeln!(
+                o,
+                "         secondary {name} compr.  {}",
+                len(s.max_secondary_compression_m[i][j])
+            );
+            let _ = writeln!(
+                o,
+                "         secondary {name} tension {}",
+                len(s.max_secondary_tension_m[i][j])
+            );
         }
     }
-    let _ = writeln!(o, "\npeak pitch rate:            {:+.4} rad/s at t = {:.4} s", s.peak_pitch_rate_rad_s, s.peak_pitch_rate_time_s);
-    let _ = writeln!(o, "minimum stability distance: {}", len(s.min_stability_distance_m));
+    let _ = writeln!(
+        o,
+        "\npeak pitch rate:            {:+.4} rad/s at t = {:.4} s",
+        s.peak_pitch_rate_rad_s, s.peak_pitch_rate_time_s
+    );
+    let _ = writeln!(
+        o,
+        "minimum stability distance: {}",
+        len(s.min_stability_distance_m)
+    );
     let e = &s.energy;
     let _ = writeln!(o, "\nenergy since touchdown (J)");
     let rows = [
@@ -65,7 +101,15 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
     for (name, v) in rows {
         let _ = writeln!(o, "  {name:<28}{v:12.4}");
     }
-    let rel = if e.kinetic_initial_j > 0.0 { 100.0 * e.residual_j / e.kinetic_initial_j } else { f64::NAN };
-    let _ = writeln!(o, "  {:<28}{:12.4}  ({rel:+.3} % of the initial kinetic energy)", "balance residual", e.residual_j);
+    let rel = if e.kinetic_initial_j > 0.0 {
+        100.0 * e.residual_j / e.kinetic_initial_j
+    } else {
+        f64::NAN
+    };
+    let _ = writeln!(
+        o,
+        "  {:<28}{:12.4}  ({rel:+.3} % of the initial kinetic energy)",
+        "balance residual", e.residual_j
+    );
     o
 }

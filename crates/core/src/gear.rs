@@ -52,13 +52,22 @@ pub struct GearState {
 impl GearState {
     /// Secondary axial forces F31, F41 = FC + FV (eq. 51), N, tension positive.
     pub fn f_secondary(&self) -> [f64; 2] {
-        [self.fc_secondary[0] + self.fv_secondary[0], self.fc_secondary[1] + self.fv_secondary[1]]
+        [
+            self.fc_secondary[0] + self.fv_secondary[0],
+            self.fc_secondary[1] + self.fv_secondary[1],
+        ]
     }
 }
 
 /// Geometry and strut forces for one gear with the footpad at `bp` (body axes, m) moving at
 /// `bp_dot` (its velocity relative to the body, in body axes, m/s), eqs. (26)-(65).
-pub fn evaluate(leg: &Leg, laws: &GearLaws, memory: &GearMemory, bp: &Vector3<f64>, bp_dot: &Vector3<f64>) -> Result<GearState, LawError> {
+pub fn evaluate(
+    leg: &Leg,
+    laws: &GearLaws,
+    memory: &GearMemory,
+    bp: &Vector3<f64>,
+    bp_dot: &Vector3<f64>,
+) -> Result<GearState, LawError> {
     // eqs. (27)-(28): primary strut vector, length and direction (from point 2 to the pad)
     let v2p = bp - leg.b2;
     let len = v2p.norm();
@@ -83,7 +92,10 @@ pub fn evaluate(leg: &Leg, laws: &GearLaws, memory: &GearMemory, bp: &Vector3<f6
 
     // eq. (49) and (51): secondary forces, tension positive
     let sec = &laws.secondary;
-    let fc = [sec.honeycomb.force(s[0], memory.secondary[0]), sec.honeycomb.force(s[1], memory.secondary[1])];
+    let fc = [
+        sec.honeycomb.force(s[0], memory.secondary[0]),
+        sec.honeycomb.force(s[1], memory.secondary[1]),
+    ];
     let fv = [sec.viscous.force(s_dot[0]), sec.viscous.force(s_dot[1])];
     // eq. (52): FS, force of the primary on the secondaries at point 1
     let fs = u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]);
@@ -119,33 +131,73 @@ pub fn evaluate(leg: &Leg, laws: &GearLaws, memory: &GearMemory, bp: &Vector3<f6
 
 /// Commits an accepted gear state into the hysteresis memory (honeycomb x_max per side).
 pub fn commit(laws: &GearLaws, state: &GearState, memory: &mut GearMemory) {
-    laws.primary.honeycomb.commit(state.primary_stroke, &mut memory.primary);
+    laws.primary
+        .honeycomb
+        .commit(state.primary_stroke, &mut memory.primary);
     for i in 0..2 {
-        laws.secondary.honeycomb.commit(state.secondary_stroke[i], &mut memory.secondary[i]);
+        laws.secondary
+            .honeycomb
+            .commit(state.secondary_stroke[i], &mut memory.secondary[i]);
     }
 }
 
 /// Elastic energy stored in the gear's honeycombs (recoverable along the backoff lines), J.
 pub fn stored_energy(laws: &GearLaws, state: &GearState, memory: &GearMemory) -> f64 {
-    let p = laws.primary.honeycomb.stored_energy(state.primary_stroke, memory.primary);
-    let s: f64 = (0..2).map(|i| laws.secondary.honeycomb.stored_energy(state.secondary_stroke[i], memory.secondary[i])).sum();
+    let p = laws
+        .primary
+        .honeycomb
+        .stored_energy(state.primary_stroke, memory.primary);
+    let s: f64 = (0..2)
+        .map(|i| {
+            laws.secondary
+                .honeycomb
+                .stored_energy(state.secondary_stroke[i], memory.secondary[i])
+        })
+        .sum();
     p + s
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use touchdown_laws::{Bearing, DoubleActingHoneycomb, Honeycomb, LoadStroke, PrimaryStrutLaw, SecondaryStrutLaw, Stage, Viscous};
+    use touchdown_laws::{
+        Bearing, DoubleActingHoneycomb, Honeycomb, LoadStroke, PrimaryStrutLaw, SecondaryStrutLaw,
+        Stage, Viscous,
+    };
 
     fn laws(mu: f64) -> GearLaws {
-        let h = |f: f64| Honeycomb::new(LoadStroke::new(1e5, &[Stage { crush_load: f, stroke_end: 0.2 }], 1e7).unwrap(), 1e6).unwrap();
+        let h = |f: f64| {
+            Honeycomb::new(
+                LoadStroke::new(
+                    1e5,
+                    &[Stage {
+                        crush_load: f,
+                        stroke_end: 0.2,
+                    }],
+                    1e7,
+                )
+                .unwrap(),
+                1e6,
+            )
+            .unwrap()
+        };
         GearLaws {
             primary: PrimaryStrutLaw {
                 honeycomb: h(3000.0),
                 viscous: Viscous::NONE,
-                bearing: Bearing { friction_coefficient: mu, inner_cylinder_length: 0.6, initial_overlap: 0.2 },
+                bearing: Bearing {
+                    friction_coefficient: mu,
+                    inner_cylinder_length: 0.6,
+                    initial_overlap: 0.2,
+                },
             },
-            secondary: SecondaryStrutLaw { honeycomb: DoubleActingHoneycomb { tension: h(1000.0), compression: h(1200.0) }, viscous: Viscous::NONE },
+            secondary: SecondaryStrutLaw {
+                honeycomb: DoubleActingHoneycomb {
+                    tension: h(1000.0),
+                    compression: h(1200.0),
+                },
+                viscous: Viscous::NONE,
+            },
         }
     }
 
@@ -190,7 +242,10 @@ mod tests {
         assert!((moment - bp.cross(&(-g.fp))).norm() < 1e-9 * g.fp.norm());
         // Moment balance of the primary about point 2 (the check that fails with printed eq. 54).
         let m2 = (bp - leg.b2).cross(&(-g.fp)) + (b1 - leg.b2).cross(&(-(f3 + f4)));
-        assert!(m2.norm() < 1e-9 * g.fp.norm(), "primary moment about 2: {m2}");
+        assert!(
+            m2.norm() < 1e-9 * g.fp.norm(),
+            "primary moment about 2: {m2}"
+        );
     }
 
     #[test]

@@ -10,7 +10,17 @@ pub const GIMBAL_LOCK_COS: f64 = 1e-6;
 pub fn t_be(theta: &Vector3<f64>) -> Matrix3<f64> {
     let (sy, cy) = theta.y.sin_cos();
     let (sz, cz) = theta.z.sin_cos();
-    Matrix3::new(cz / cy, -sz / cy, 0.0, sz, cz, 0.0, -sy * cz / cy, sy * sz / cy, 1.0) // eq. (5)
+    Matrix3::new(
+        cz / cy,
+        -sz / cy,
+        0.0,
+        sz,
+        cz,
+        0.0,
+        -sy * cz / cy,
+        sy * sz / cy,
+        1.0,
+    ) // eq. (5)
 }
 
 /// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6).
@@ -23,7 +33,12 @@ pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
 /// Euler-angle accelerations θ̈ from the body angular acceleration ω̇, eqs. (9a)-(9c), which
 /// expand the corrected eq. (8), θ̈ = T_BE·ω̇ + (dT_BE/dt)·ω (the printed eq. 8 lacks T_BE on
 /// ω̇; docs/errata.md). `theta_dot` = θ̇, `omega` = ω, `omega_dot` = ω̇ (rad, rad/s, rad/s²).
-pub fn euler_acceleration(theta: &Vector3<f64>, theta_dot: &Vector3<f64>, omega: &Vector3<f64>, omega_dot: &Vector3<f64>) -> Vector3<f64> {
+pub fn euler_acceleration(
+    theta: &Vector3<f64>,
+    theta_dot: &Vector3<f64>,
+    omega: &Vector3<f64>,
+    omega_dot: &Vector3<f64>,
+) -> Vector3<f64> {
     let (sy, cy) = theta.y.sin_cos();
     let (sz, cz) = theta.z.sin_cos();
     let (td_x, td_y, td_z) = (theta_dot.x, theta_dot.y, theta_dot.z);
@@ -63,7 +78,13 @@ mod tests {
     fn eq9_is_the_derivative_of_eq7() {
         // Along an arbitrary smooth attitude path θ(t), with ω = T_EB·θ̇ (eq. 6), eq. (9) must
         // give θ̈ from ω̇.
-        let th = |t: f64| Vector3::new(0.3 + 0.2 * t, -0.4 + 0.5 * t * t, 1.0 - 0.3 * t + 0.1 * t * t * t);
+        let th = |t: f64| {
+            Vector3::new(
+                0.3 + 0.2 * t,
+                -0.4 + 0.5 * t * t,
+                1.0 - 0.3 * t + 0.1 * t * t * t,
+            )
+        };
         let h = 1e-4;
         let thd = |t: f64| (th(t + h) - th(t - h)) / (2.0 * h);
         let om = |t: f64| t_eb(&th(t)) * thd(t);

@@ -16,18 +16,32 @@ pub struct MassProperties {
 impl MassProperties {
     /// From mass (kg) and a positive-definite inertia tensor (kg·m²).
     pub fn new(mass: f64, inertia: Matrix3<f64>) -> Self {
-        let inertia_inv = inertia.try_inverse().expect("the scenario checks the inertia is positive definite");
-        MassProperties { mass, inertia, inertia_inv }
+        let inertia_inv = inertia
+            .try_inverse()
+            .expect("the scenario checks the inertia is positive definite");
+        MassProperties {
+            mass,
+            inertia,
+            inertia_inv,
+        }
     }
 
     /// Centre-of-mass acceleration, m/s², eqs. (10)-(12): `F/M + g` (F excludes gravity).
-    pub fn linear_acceleration(&self, force: &Vector3<f64>, gravity: &Vector3<f64>) -> Vector3<f64> {
+    pub fn linear_acceleration(
+        &self,
+        force: &Vector3<f64>,
+        gravity: &Vector3<f64>,
+    ) -> Vector3<f64> {
         force / self.mass + gravity // eqs. (10)-(12)
     }
 
     /// Body angular acceleration ω̇, rad/s², from the body torque T (N·m) and rates ω (rad/s):
     /// eqs. (13)-(15) solved as the 3×3 system J·ω̇ = T − ω×(J·ω).
-    pub fn angular_acceleration(&self, torque: &Vector3<f64>, omega: &Vector3<f64>) -> Vector3<f64> {
+    pub fn angular_acceleration(
+        &self,
+        torque: &Vector3<f64>,
+        omega: &Vector3<f64>,
+    ) -> Vector3<f64> {
         self.inertia_inv * (torque - omega.cross(&(self.inertia * omega))) // eqs. (13)-(15)
     }
 
@@ -45,11 +59,17 @@ pub fn euler_torque(i: [f64; 6], omega: &Vector3<f64>, omega_dot: &Vector3<f64>)
     let (wx, wy, wz) = (omega.x, omega.y, omega.z);
     let (ax, ay, az) = (omega_dot.x, omega_dot.y, omega_dot.z);
     // eq. (13), corrected
-    let tx = ixx * ax - ixy * ay - ixz * az + (-ixz * wx - iyz * wy + izz * wz) * wy - (-ixy * wx + iyy * wy - iyz * wz) * wz;
+    let tx = ixx * ax - ixy * ay - ixz * az + (-ixz * wx - iyz * wy + izz * wz) * wy
+        - (-ixy * wx + iyy * wy - iyz * wz) * wz;
     // eq. (14), corrected
-    let ty = -ixy * ax + iyy * ay - iyz * az + (ixx * wx - ixy * wy - ixz * wz) * wz + (ixz * wx + iyz * wy - izz * wz) * wx;
+    let ty = -ixy * ax + iyy * ay - iyz * az
+        + (ixx * wx - ixy * wy - ixz * wz) * wz
+        + (ixz * wx + iyz * wy - izz * wz) * wx;
     // eq. (15), as printed
-    let tz = -ixz * ax - iyz * ay + izz * az + (-ixy * wx + iyy * wy - iyz * wz) * wx + (-ixx * wx + ixy * wy + ixz * wz) * wy;
+    let tz = -ixz * ax - iyz * ay
+        + izz * az
+        + (-ixy * wx + iyy * wy - iyz * wz) * wx
+        + (-ixx * wx + ixy * wy + ixz * wz) * wy;
     Vector3::new(tx, ty, tz)
 }
 
@@ -60,7 +80,10 @@ mod tests {
     fn sample() -> ([f64; 6], Matrix3<f64>) {
         let i = [3.0, 4.0, 5.0, 0.4, -0.3, 0.2];
         let [ixx, iyy, izz, ixy, ixz, iyz] = i;
-        (i, Matrix3::new(ixx, -ixy, -ixz, -ixy, iyy, -iyz, -ixz, -iyz, izz))
+        (
+            i,
+            Matrix3::new(ixx, -ixy, -ixz, -ixy, iyy, -iyz, -ixz, -iyz, izz),
+        )
     }
 
     #[test]

@@ -181,7 +181,13 @@ impl Simulation {
         let pads = scenario
             .legs
             .iter()
-            .map(|l| Footpad { position: vehicle.point(&l.bp), velocity: vehicle.point_velocity(&l.bp), bp_attached: l.bp, bp: l.bp, ..Default::default() })
+            .map(|l| Footpad {
+                position: vehicle.point(&l.bp),
+                velocity: vehicle.point_velocity(&l.bp),
+                bp_attached: l.bp,
+                bp: l.bp,
+                ..Default::default()
+            })
             .collect();
         let mass = MassProperties::new(scenario.vehicle.mass, scenario.vehicle.inertia);
         let gravity = gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
@@ -249,7 +255,8 @@ impl Simulation {
 
     /// Whether the run has ended (end time, or a decision with termination on).
     pub fn finished(&self) -> bool {
-        self.t >= self.integrator.t_end * (1.0 - 1e-12) || (self.criteria.terminate_on_decision && self.stability.outcome.is_some())
+        self.t >= self.integrator.t_end * (1.0 - 1e-12)
+            || (self.criteria.terminate_on_decision && self.stability.outcome.is_some())
     }
 
     /// Current time, s.
@@ -285,7 +292,8 @@ impl Simulation {
 
     /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
     pub fn kinetic_energy(&self) -> f64 {
-        self.mass.kinetic_energy(&self.vehicle.velocity, &self.vehicle.omega)
+        self.mass
+            .kinetic_energy(&self.vehicle.velocity, &self.vehicle.omega)
     }
 
     /// Vehicle potential energy −M·G·R, J.
@@ -296,18 +304,25 @@ impl Simulation {
     /// Kinetic + potential energy of the footpads in contact (the only ones with dynamics), J.
     fn footpad_energy(&self) -> f64 {
         let m = self.footpad_mass;
-        self.pads.iter().filter(|p| p.state == ContactState::Contact).map(|p| 0.5 * m * p.velocity.norm_squared() - m * self.gravity.dot(&p.position)).sum()
+        self.pads
+            .iter()
+            .filter(|p| p.state == ContactState::Contact)
+            .map(|p| 0.5 * m * p.velocity.norm_squared() - m * self.gravity.dot(&p.position))
+            .sum()
     }
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        let stored: f64 = (0..self.legs.len()).map(|i| gear::stored_energy(&self.laws, &self.gear[i], &self.memory[i])).sum();
+        let stored: f64 = (0..self.legs.len())
+            .map(|i| gear::stored_energy(&self.laws, &self.gear[i], &self.memory[i]))
+            .sum();
         let l = &self.ledger;
         let kinetic = self.kinetic_energy();
         let potential_change = self.potential_energy() - self.potential0;
         let footpads = self.footpad_energy();
         let absorbed = l.honeycomb + l.viscous + l.bearing + l.sliding;
-        let residual = kinetic + potential_change + footpads + absorbed - l.events - self.stability.ke0;
+        let residual =
+            kinetic + potential_change + footpads + absorbed - l.events - self.stability.ke0;
         EnergyReport {
             kinetic_initial_j: self.stability.ke0,
             kinetic_j: kinetic,
@@ -358,7 +373,11 @@ impl Simulation {
         let v = &self.vehicle;
         let mut vel: f64 = 0.0;
         for p in &self.pads {
-            let rel = if p.state == ContactState::Contact { p.velocity - v.velocity } else { v.t_bi * v.omega.cross(&p.bp_attached) };
+            let rel = if p.state == ContactState::Contact {
+                p.velocity - v.velocity
+            } else {
+                v.t_bi * v.omega.cross(&p.bp_attached)
+            };
             vel = vel.max(rel.norm());
         }
         let mut dt = if vel > 0.0 { it.dist / vel } else { it.dt_max }; // eq. (25)
@@ -387,12 +406,17 @@ impl Simulation {
             let pad = &self.pads[i];
             if pad.state != ContactState::Contact {
                 let prev = &self.gear[i];
-                out[i] = GearState { primary_stroke: prev.primary_stroke, secondary_stroke: prev.secondary_stroke, ..GearState::default() };
+                out[i] = GearState {
+                    primary_stroke: prev.primary_stroke,
+                    secondary_stroke: prev.secondary_stroke,
+                    ..GearState::default()
+                };
                 continue;
             }
             let bp = t_ib * (pad.position - v.position);
             let bp_dot = t_ib * (pad.velocity - v.velocity) - v.omega.cross(&bp);
-            let g = gear::evaluate(&self.legs[i], &self.laws, &self.memory[i], &bp, &bp_dot).map_err(|e| self.diverged(v, e.to_string(), "bearing friction", i))?;
+            let g = gear::evaluate(&self.legs[i], &self.laws, &self.memory[i], &bp, &bp_dot)
+                .map_err(|e| self.diverged(v, e.to_string(), "bearing friction", i))?;
             torque += bp.cross(&(-g.fp)); // eq. (66)
             force -= v.t_bi * g.fp; // eqs. (67)-(68)
             out[i] = g;
@@ -403,7 +427,12 @@ impl Simulation {
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c).
     fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), CoreError> {
         if v.theta.y.cos().abs() < GIMBAL_LOCK_COS {
-            return Err(self.diverged(v, "Euler-angle singularity: θy reached ±90° (eqs. 5 and 9a divide by cos θy)".into(), "kinematics", usize::MAX));
+            return Err(self.diverged(
+                v,
+                "Euler-angle singularity: θy reached ±90° (eqs. 5 and 9a divide by cos θy)".into(),
+                "kinematics",
+                usize::MAX,
+            ));
         }
         v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
         let omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
@@ -441,7 +470,13 @@ impl Simulation {
                     let tentative = v.point(&pad.bp_attached);
                     if tentative.z <= s.plane() {
                         let vel = v.point_velocity(&pad.bp_attached);
-                        touch_down(pad, &s, Vector2::new(tentative.x, tentative.y), Vector2::new(vel.x, vel.y), self.t);
+                        touch_down(
+                            pad,
+                            &s,
+                            Vector2::new(tentative.x, tentative.y),
+                            Vector2::new(vel.x, vel.y),
+                            self.t,
+                        );
                         changed = true;
                     } else {
                         pad.position = tentative;
@@ -488,13 +523,17 @@ impl Simulation {
             let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
             let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
             pad_work += f.gear_xy.dot(&dp);
-            pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared()) - m * self.gravity.dot(&(p1 - p0));
+            pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
+                - m * self.gravity.dot(&(p1 - p0));
         }
         // 3. predictor, c = 0 (eqs. 22-23)
         let mut pred = old;
         pred.position = old.position + old.velocity * dt + old.acceleration * (0.5 * dt * dt);
         pred.velocity = old.velocity + old.acceleration * dt;
-        pred.set_attitude(old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt), old.theta_dot + old.theta_ddot * dt);
+        pred.set_attitude(
+            old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt),
+            old.theta_dot + old.theta_ddot * dt,
+        );
         // 4. trial evaluation
         let mut trial = std::mem::take(&mut self.trial);
         let loads = self.loads(&pred, &mut trial);
@@ -505,9 +544,13 @@ impl Simulation {
         // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
         let mut new = old;
         new.velocity = old.velocity + (old.acceleration + pred.acceleration) * (0.5 * dt);
-        new.position = old.position + old.velocity * dt + (old.acceleration / 3.0 + pred.acceleration / 6.0) * (dt * dt);
+        new.position = old.position
+            + old.velocity * dt
+            + (old.acceleration / 3.0 + pred.acceleration / 6.0) * (dt * dt);
         let theta_dot = old.theta_dot + (old.theta_ddot + pred.theta_ddot) * (0.5 * dt);
-        let theta = old.theta + old.theta_dot * dt + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
+        let theta = old.theta
+            + old.theta_dot * dt
+            + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
         new.set_attitude(theta, theta_dot);
         // 6. evaluate, contact logic, re-evaluate on a change
         self.previous.copy_from_slice(&self.gear);
@@ -559,8 +602,13 @@ impl Simulation {
             self.ledger.viscous += 0.5 * (a.fvp * a.primary_rate + b.fvp * b.primary_rate) * dt;
             self.ledger.bearing += 0.5 * (a.fbr * a.primary_rate + b.fbr * b.primary_rate) * dt;
             for j in 0..2 {
-                self.ledger.honeycomb += 0.5 * (a.fc_secondary[j] + b.fc_secondary[j]) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
-                self.ledger.viscous += 0.5 * (a.fv_secondary[j] * a.secondary_rate[j] + b.fv_secondary[j] * b.secondary_rate[j]) * dt;
+                self.ledger.honeycomb += 0.5
+                    * (a.fc_secondary[j] + b.fc_secondary[j])
+                    * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                self.ledger.viscous += 0.5
+                    * (a.fv_secondary[j] * a.secondary_rate[j]
+                        + b.fv_secondary[j] * b.secondary_rate[j])
+                    * dt;
             }
         }
     }
@@ -589,20 +637,48 @@ impl Simulation {
                 ("bearing friction", g.fbr),
                 ("secondary honeycomb", g.fc_secondary[0] + g.fc_secondary[1]),
                 ("secondary viscous", g.fv_secondary[0] + g.fv_secondary[1]),
-                ("gear geometry", g.primary_stroke + g.secondary_stroke[0] + g.secondary_stroke[1]),
+                (
+                    "gear geometry",
+                    g.primary_stroke + g.secondary_stroke[0] + g.secondary_stroke[1],
+                ),
             ];
             if let Some((law, value)) = checks.iter().find(|(_, x)| !x.is_finite()) {
                 return Err(self.diverged(v, format!("non-finite value {value}"), law, i));
             }
         }
-        let finite = [v.position, v.velocity, v.acceleration, v.theta, v.theta_dot, v.theta_ddot].iter().all(|x| x.iter().all(|c| c.is_finite()))
-            && self.pads.iter().all(|p| p.position.iter().chain(p.velocity.iter()).all(|c| c.is_finite()));
+        let finite = [
+            v.position,
+            v.velocity,
+            v.acceleration,
+            v.theta,
+            v.theta_dot,
+            v.theta_ddot,
+        ]
+        .iter()
+        .all(|x| x.iter().all(|c| c.is_finite()))
+            && self.pads.iter().all(|p| {
+                p.position
+                    .iter()
+                    .chain(p.velocity.iter())
+                    .all(|c| c.is_finite())
+            });
         if !finite {
-            return Err(self.diverged(v, "non-finite vehicle or footpad state".into(), "equations of motion", usize::MAX));
+            return Err(self.diverged(
+                v,
+                "non-finite vehicle or footpad state".into(),
+                "equations of motion",
+                usize::MAX,
+            ));
         }
         let e = self.energy();
         let l = &self.ledger;
-        let scale = e.kinetic_initial_j + e.potential_change_j.abs() + l.honeycomb.abs() + l.viscous.abs() + l.bearing.abs() + l.sliding.abs() + l.events.abs();
+        let scale = e.kinetic_initial_j
+            + e.potential_change_j.abs()
+            + l.honeycomb.abs()
+            + l.viscous.abs()
+            + l.bearing.abs()
+            + l.sliding.abs()
+            + l.events.abs();
         if e.residual_j.abs() > self.integrator.energy_tolerance * scale.max(f64::MIN_POSITIVE) {
             // The mechanism that has exchanged the most energy is the likeliest culprit.
             let terms = [
@@ -612,7 +688,10 @@ impl Simulation {
                 ("sliding friction", l.sliding),
                 ("contact events", l.events),
             ];
-            let law = terms.iter().fold(terms[0], |m, t| if t.1.abs() > m.1.abs() { *t } else { m }).0;
+            let law = terms
+                .iter()
+                .fold(terms[0], |m, t| if t.1.abs() > m.1.abs() { *t } else { m })
+                .0;
             return Err(self.diverged(
                 v,
                 format!(
@@ -638,7 +717,9 @@ impl Simulation {
             let j = (i + 1) % n;
             let counted = match self.criteria.walls {
                 WallRule::All => true,
-                WallRule::TouchedDown => self.pads[i].first_contact.is_some() && self.pads[j].first_contact.is_some(),
+                WallRule::TouchedDown => {
+                    self.pads[i].first_contact.is_some() && self.pads[j].first_contact.is_some()
+                }
             };
             let a = self.pad_position(i);
             let b = self.pad_position(j);
@@ -653,7 +734,11 @@ impl Simulation {
                     }
                     if counted && sd < 0.0 && crossing.is_none() {
                         // Fraction of the step at which SD crossed zero.
-                        let f = if prev.is_finite() && prev > 0.0 { prev / (prev - sd) } else { 1.0 };
+                        let f = if prev.is_finite() && prev > 0.0 {
+                            prev / (prev - sd)
+                        } else {
+                            1.0
+                        };
                         crossing = Some((i, f));
                     }
                 }
@@ -671,7 +756,8 @@ impl Simulation {
                 Some(o) => o.velocity + (v.velocity - o.velocity) * f,
                 None => v.velocity,
             };
-            self.stability.overturn_velocity = Some(overturn_velocity(&v_cross, &self.stability.normal[wall]));
+            self.stability.overturn_velocity =
+                Some(overturn_velocity(&v_cross, &self.stability.normal[wall]));
             self.stability.outcome = Some((Outcome::Unstable, self.t));
             return;
         }

@@ -23,7 +23,12 @@ pub enum Outcome {
 
 /// Stability distance of the centre of mass `cm` to the wall through footpads `a` → `b`, m,
 /// and the wall's outward unit normal, eq. (105). `None` if the wall is parallel to G.
-pub fn stability_distance(gravity: &Vector3<f64>, cm: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> Option<(f64, Vector3<f64>)> {
+pub fn stability_distance(
+    gravity: &Vector3<f64>,
+    cm: &Vector3<f64>,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+) -> Option<(f64, Vector3<f64>)> {
     let ab = b - a;
     let n = gravity.cross(&ab);
     let len = n.norm();
@@ -47,7 +52,12 @@ mod tests {
     #[test]
     fn inside_is_positive_for_counter_clockwise_pads() {
         let g = Vector3::new(0.0, 0.0, -9.81);
-        let pads = [Vector3::new(1.0, 0.0, 0.0), Vector3::new(0.0, 1.0, 0.0), Vector3::new(-1.0, 0.0, 0.0), Vector3::new(0.0, -1.0, 0.0)];
+        let pads = [
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+            Vector3::new(-1.0, 0.0, 0.0),
+            Vector3::new(0.0, -1.0, 0.0),
+        ];
         let cm = Vector3::new(0.1, 0.2, 1.0);
         for i in 0..4 {
             let (sd, n) = stability_distance(&g, &cm, &pads[i], &pads[(i + 1) % 4]).unwrap();

@@ -72,7 +72,11 @@ impl SlidingForces {
     /// In-plane acceleration at velocity `v`, eq. (97): (FXP, FYP)/PMASS − (FDRAGP/PMASS)·v̂ + g.
     fn acceleration(&self, v: &Vector2<f64>) -> Vector2<f64> {
         let speed = v.norm();
-        let drag = if speed > 0.0 { v * (self.drag / (self.mass * speed)) } else { Vector2::zeros() };
+        let drag = if speed > 0.0 {
+            v * (self.drag / (self.mass * speed))
+        } else {
+            Vector2::zeros()
+        };
         self.gear_xy / self.mass - drag + self.gravity_xy // eq. (97)
     }
 
@@ -161,11 +165,21 @@ fn set_xy(pad: &mut Footpad, p: Vector2<f64>, v: Vector2<f64>) {
 /// Puts a footpad into contact at inertial X-Y `xy` on its plane (text before eq. 86, A1):
 /// records (XPI, YPI), zeroes the normal velocity, and keeps the in-plane velocity `v_xy` of
 /// the rigid attachment unless the footpad is locked (OBST > 0).
-pub fn touch_down(pad: &mut Footpad, surface: &PadSurface, xy: Vector2<f64>, v_xy: Vector2<f64>, t: f64) {
+pub fn touch_down(
+    pad: &mut Footpad,
+    surface: &PadSurface,
+    xy: Vector2<f64>,
+    v_xy: Vector2<f64>,
+    t: f64,
+) {
     pad.state = ContactState::Contact;
     pad.position = Vector3::new(xy.x, xy.y, surface.plane());
     pad.touchdown_xy = xy;
-    let v = if surface.locked() { Vector2::zeros() } else { v_xy };
+    let v = if surface.locked() {
+        Vector2::zeros()
+    } else {
+        v_xy
+    };
     pad.velocity = Vector3::new(v.x, v.y, 0.0);
     pad.stuck = !surface.locked() && v == Vector2::zeros();
     pad.first_contact.get_or_insert(t);
@@ -176,12 +190,21 @@ mod tests {
     use super::*;
 
     fn pad(v: Vector2<f64>) -> Footpad {
-        Footpad { state: ContactState::Contact, velocity: Vector3::new(v.x, v.y, 0.0), ..Default::default() }
+        Footpad {
+            state: ContactState::Contact,
+            velocity: Vector3::new(v.x, v.y, 0.0),
+            ..Default::default()
+        }
     }
 
     #[test]
     fn friction_stops_a_sliding_pad_and_holds_it() {
-        let f = SlidingForces { gear_xy: Vector2::zeros(), drag: 10.0, gravity_xy: Vector2::zeros(), mass: 1.0 };
+        let f = SlidingForces {
+            gear_xy: Vector2::zeros(),
+            drag: 10.0,
+            gravity_xy: Vector2::zeros(),
+            mass: 1.0,
+        };
         let mut p = pad(Vector2::new(1.0, 0.5));
         for _ in 0..20 {
             advance_sliding(&mut p, &f, 0.01);
@@ -192,10 +215,16 @@ mod tests {
         let d = Vector2::new(p.position.x, p.position.y).norm();
         assert!((d - 1.25 / 20.0).abs() < 2e-3, "{d}");
         // Held while the applied force is below the drag; breaks away above it.
-        let weak = SlidingForces { gear_xy: Vector2::new(5.0, 0.0), ..f };
+        let weak = SlidingForces {
+            gear_xy: Vector2::new(5.0, 0.0),
+            ..f
+        };
         advance_sliding(&mut p, &weak, 0.01);
         assert!(p.stuck);
-        let strong = SlidingForces { gear_xy: Vector2::new(15.0, 0.0), ..f };
+        let strong = SlidingForces {
+            gear_xy: Vector2::new(15.0, 0.0),
+            ..f
+        };
         advance_sliding(&mut p, &strong, 0.01);
         assert!(!p.stuck && p.velocity.x > 0.0);
         assert!((p.velocity.x - 0.05).abs() < 1e-12, "(15 − 10)/1 · 0.01");
@@ -203,7 +232,12 @@ mod tests {
 
     #[test]
     fn frictionless_pad_follows_constant_force_exactly() {
-        let f = SlidingForces { gear_xy: Vector2::new(2.0, -1.0), drag: 0.0, gravity_xy: Vector2::new(0.0, 0.5), mass: 2.0 };
+        let f = SlidingForces {
+            gear_xy: Vector2::new(2.0, -1.0),
+            drag: 0.0,
+            gravity_xy: Vector2::new(0.0, 0.5),
+            mass: 2.0,
+        };
         let mut p = pad(Vector2::new(0.3, 0.0));
         advance_sliding(&mut p, &f, 0.1);
         // a = (1, 0): x = 0.3·0.1 + 0.5·1·0.01, v = 0.4; y: a = 0, v stays 0 (not a reversal)

@@ -41,7 +41,11 @@ impl Bearing {
         let d1 = self.inner_cylinder_length;
         let d2 = self.separation(compression_stroke);
         if !(d2 > 0.0 && d2 < d1) {
-            return Err(LawError::BearingGeometry { d2, d1, stroke: compression_stroke });
+            return Err(LawError::BearingGeometry {
+                d2,
+                d1,
+                stroke: compression_stroke,
+            });
         }
         Ok(BearingLoads {
             f2: fm * d1 / d2,        // eq. (60)
@@ -53,12 +57,18 @@ impl Bearing {
     /// magnitude `μB·(F1 + F2)`, opposing the stroking direction: positive while compressing
     /// (`compression_rate` > 0), negative while extending, zero at exactly zero rate (the report
     /// gives no rule at rest; review A9).
-    pub fn friction(&self, fm: f64, compression_stroke: f64, compression_rate: f64) -> Result<f64, LawError> {
+    pub fn friction(
+        &self,
+        fm: f64,
+        compression_stroke: f64,
+        compression_rate: f64,
+    ) -> Result<f64, LawError> {
         if self.friction_coefficient == 0.0 || fm == 0.0 || compression_rate == 0.0 {
             return Ok(0.0);
         }
         let l = self.loads(fm, compression_stroke)?;
-        Ok(self.friction_coefficient * (l.f1 + l.f2) * compression_rate.signum()) // eq. (63)
+        Ok(self.friction_coefficient * (l.f1 + l.f2) * compression_rate.signum())
+        // eq. (63)
     }
 }
 
@@ -66,7 +76,11 @@ impl Bearing {
 mod tests {
     use super::*;
 
-    const B: Bearing = Bearing { friction_coefficient: 0.1, inner_cylinder_length: 0.3, initial_overlap: 0.1 };
+    const B: Bearing = Bearing {
+        friction_coefficient: 0.1,
+        inner_cylinder_length: 0.3,
+        initial_overlap: 0.1,
+    };
 
     #[test]
     fn inner_cylinder_statics_balance() {
@@ -76,7 +90,10 @@ mod tests {
         let l = B.loads(fm, c).unwrap();
         let (d1, d2) = (B.inner_cylinder_length, B.separation(c));
         assert!((l.f2 - l.f1 - fm).abs() < 1e-9, "force balance");
-        assert!((l.f2 * (d1 - d2) - l.f1 * d1).abs() < 1e-9, "moment about the pad");
+        assert!(
+            (l.f2 * (d1 - d2) - l.f1 * d1).abs() < 1e-9,
+            "moment about the pad"
+        );
     }
 
     #[test]
@@ -90,6 +107,9 @@ mod tests {
 
     #[test]
     fn separation_beyond_inner_cylinder_is_an_error() {
-        assert!(matches!(B.loads(1.0, 0.25), Err(LawError::BearingGeometry { .. })));
+        assert!(matches!(
+            B.loads(1.0, 0.25),
+            Err(LawError::BearingGeometry { .. })
+        ));
     }
 }

@@ -34,13 +34,29 @@ pub struct GearLaws {
     pub secondary: SecondaryStrutLaw,
 }
 
-fn honeycomb(s: &Scenario, field: &str, ls: &model::LoadStroke, trunnion: Option<f64>) -> Result<Honeycomb, ScenarioError> {
+fn honeycomb(
+    s: &Scenario,
+    field: &str,
+    ls: &model::LoadStroke,
+    trunnion: Option<f64>,
+) -> Result<Honeycomb, ScenarioError> {
     let err = |e: LawError| ScenarioError::field(&s.source, field, e.to_string());
-    let mut stages = [Stage { crush_load: 0.0, stroke_end: 0.0 }; crate::honeycomb::MAX_STAGES];
+    let mut stages = [Stage {
+        crush_load: 0.0,
+        stroke_end: 0.0,
+    }; crate::honeycomb::MAX_STAGES];
     for (slot, (load, end)) in stages.iter_mut().zip(&ls.stages) {
-        *slot = Stage { crush_load: *load, stroke_end: *end };
+        *slot = Stage {
+            crush_load: *load,
+            stroke_end: *end,
+        };
     }
-    let curve = LoadStroke::new(ls.onset_rate, &stages[..ls.stages.len()], ls.stroke_out_rate).map_err(err)?;
+    let curve = LoadStroke::new(
+        ls.onset_rate,
+        &stages[..ls.stages.len()],
+        ls.stroke_out_rate,
+    )
+    .map_err(err)?;
     let h = Honeycomb::new(curve, ls.backoff_rate).map_err(err)?;
     match trunnion {
         Some(k) => h.with_trunnion(k).map_err(err),
@@ -49,7 +65,10 @@ fn honeycomb(s: &Scenario, field: &str, ls: &model::LoadStroke, trunnion: Option
 }
 
 fn viscous(v: &model::Viscous) -> Viscous {
-    Viscous { coefficient: v.coefficient, exponent: v.exponent }
+    Viscous {
+        coefficient: v.coefficient,
+        exponent: v.exponent,
+    }
 }
 
 impl GearLaws {
@@ -59,7 +78,12 @@ impl GearLaws {
     pub fn from_scenario(s: &Scenario) -> Result<GearLaws, ScenarioError> {
         let p = &s.primary;
         let primary = PrimaryStrutLaw {
-            honeycomb: honeycomb(s, "primary_strut.compression", &p.compression, p.trunnion_rate)?,
+            honeycomb: honeycomb(
+                s,
+                "primary_strut.compression",
+                &p.compression,
+                p.trunnion_rate,
+            )?,
             viscous: viscous(&p.viscous),
             bearing: Bearing {
                 friction_coefficient: p.bearing_friction,
@@ -82,7 +106,12 @@ impl GearLaws {
         let secondary = SecondaryStrutLaw {
             honeycomb: DoubleActingHoneycomb {
                 tension: honeycomb(s, "secondary_strut.tension", &q.tension, q.trunnion_rate)?,
-                compression: honeycomb(s, "secondary_strut.compression", &q.compression, q.trunnion_rate)?,
+                compression: honeycomb(
+                    s,
+                    "secondary_strut.compression",
+                    &q.compression,
+                    q.trunnion_rate,
+                )?,
             },
             viscous: viscous(&q.viscous),
         };

@@ -97,7 +97,12 @@ impl LoadStroke {
             f[n + 1] = s.crush_load;
             n += 2;
         }
-        Ok(LoadStroke { x, f, n, stroke_out_rate })
+        Ok(LoadStroke {
+            x,
+            f,
+            n,
+            stroke_out_rate,
+        })
     }
 
     /// Virgin-curve force F_v(x), N, at stroke `x`, m (zero for x ≤ 0).
@@ -122,7 +127,10 @@ impl LoadStroke {
 
     /// Vertices (stroke m, force N) of the curve, from (0, 0) to the end of the last stage.
     pub fn vertices(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.x[..self.n].iter().copied().zip(self.f[..self.n].iter().copied())
+        self.x[..self.n]
+            .iter()
+            .copied()
+            .zip(self.f[..self.n].iter().copied())
     }
 
     /// Stroke-out (bottoming) rate beyond the last stage, N/m.
@@ -165,7 +173,10 @@ impl Honeycomb {
     /// A honeycomb from its virgin curve and backoff rate (N/m).
     pub fn new(curve: LoadStroke, backoff_rate: f64) -> Result<Self, LawError> {
         positive("backoff rate", backoff_rate)?;
-        Ok(Honeycomb { curve, backoff_rate })
+        Ok(Honeycomb {
+            curve,
+            backoff_rate,
+        })
     }
 
     /// The same honeycomb behind a trunnion spring `k_t` (N/m): curve per
@@ -218,7 +229,8 @@ impl Honeycomb {
         let cap = self.curve.capacity();
         if x > cap {
             let fc = self.curve.force(cap);
-            fc * fc / (2.0 * self.backoff_rate) + (f * f - fc * fc) / (2.0 * self.curve.stroke_out_rate())
+            fc * fc / (2.0 * self.backoff_rate)
+                + (f * f - fc * fc) / (2.0 * self.curve.stroke_out_rate())
         } else {
             f * f / (2.0 * self.backoff_rate)
         }
@@ -292,7 +304,16 @@ mod tests {
 
     fn primary() -> Honeycomb {
         // Onset 1e5 N/m, FP1 = 1000 N to 0.1 m, FP2 = 3000 N to 0.2 m, stroke-out 1e7 N/m.
-        let stages = [Stage { crush_load: 1000.0, stroke_end: 0.1 }, Stage { crush_load: 3000.0, stroke_end: 0.2 }];
+        let stages = [
+            Stage {
+                crush_load: 1000.0,
+                stroke_end: 0.1,
+            },
+            Stage {
+                crush_load: 3000.0,
+                stroke_end: 0.2,
+            },
+        ];
         Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6).unwrap()
     }
 
@@ -304,7 +325,10 @@ mod tests {
         assert!((c.force(0.005) - 500.0).abs() < 1e-9, "onset");
         assert!((c.force(0.01) - 1000.0).abs() < 1e-9, "station A");
         assert!((c.force(0.05) - 1000.0).abs() < 1e-9, "first plateau");
-        assert!((c.force(0.11) - 2000.0).abs() < 1e-9, "onset to the second stage");
+        assert!(
+            (c.force(0.11) - 2000.0).abs() < 1e-9,
+            "onset to the second stage"
+        );
         assert!((c.force(0.15) - 3000.0).abs() < 1e-9, "second plateau");
         assert!((c.force(0.201) - 13000.0).abs() < 1e-6, "stroke-out");
         assert_eq!(c.capacity(), 0.2);
@@ -327,7 +351,10 @@ mod tests {
         // Reload: zero load until G, then back up the backoff line to the virgin curve.
         assert_eq!(h.force(0.0489, m), 0.0);
         assert!((h.force(0.05, m) - 1000.0).abs() < 1e-9);
-        assert!((h.force(0.06, m) - 1000.0).abs() < 1e-9, "continues on the plateau");
+        assert!(
+            (h.force(0.06, m) - 1000.0).abs() < 1e-9,
+            "continues on the plateau"
+        );
         // The memory never shrinks.
         h.commit(0.02, &mut m);
         assert_eq!(m.max_stroke, 0.05);
@@ -354,16 +381,34 @@ mod tests {
     #[test]
     fn tension_and_compression_are_independent() {
         let side = |f: f64| {
-            Honeycomb::new(LoadStroke::new(2e5, &[Stage { crush_load: f, stroke_end: 0.05 }], 1e7).unwrap(), 1e6).unwrap()
+            Honeycomb::new(
+                LoadStroke::new(
+                    2e5,
+                    &[Stage {
+                        crush_load: f,
+                        stroke_end: 0.05,
+                    }],
+                    1e7,
+                )
+                .unwrap(),
+                1e6,
+            )
+            .unwrap()
         };
-        let s = DoubleActingHoneycomb { tension: side(400.0), compression: side(600.0) };
+        let s = DoubleActingHoneycomb {
+            tension: side(400.0),
+            compression: side(600.0),
+        };
         let mut m = DoubleActingMemory::default();
         // Tension to 0.02 m.
         assert!((s.force(0.02, m) - 400.0).abs() < 1e-9);
         s.commit(0.02, &mut m);
         // Back through zero into compression: no force between the permanent sets.
         assert_eq!(s.force(0.0, m), 0.0);
-        assert!((s.force(-0.001, m) + 200.0).abs() < 1e-9, "compression onset from the original zero");
+        assert!(
+            (s.force(-0.001, m) + 200.0).abs() < 1e-9,
+            "compression onset from the original zero"
+        );
         assert!((s.force(-0.01, m) + 600.0).abs() < 1e-9);
         s.commit(-0.01, &mut m);
         // Back to tension: the tension memory is intact (reload from its permanent set).
@@ -389,17 +434,43 @@ mod tests {
         assert!((v[1].0 - (0.01 + 1000.0 / kt)).abs() < 1e-12);
         assert!((v[4].0 - (0.2 + 3000.0 / kt)).abs() < 1e-12);
         // Permanent set is unchanged by the trunnion spring: x_max − F/K_B.
-        let m = CrushMemory { max_stroke: 0.05 + 1000.0 / kt };
+        let m = CrushMemory {
+            max_stroke: 0.05 + 1000.0 / kt,
+        };
         assert!((t.permanent_set(m) - (0.05 - 1000.0 / 1e6)).abs() < 1e-12);
     }
 
     #[test]
     fn stage_tables_out_of_order_are_rejected() {
-        let bad_load = [Stage { crush_load: 1000.0, stroke_end: 0.1 }, Stage { crush_load: 900.0, stroke_end: 0.2 }];
-        assert!(matches!(LoadStroke::new(1e5, &bad_load, 1e7), Err(LawError::StageTable(_))));
-        let bad_end = [Stage { crush_load: 1000.0, stroke_end: 0.005 }];
-        assert!(matches!(LoadStroke::new(1e5, &bad_end, 1e7), Err(LawError::StageTable(_))));
-        assert!(matches!(LoadStroke::new(-1.0, &bad_end, 1e7), Err(LawError::NotPositive { .. })));
-        assert!(matches!(LoadStroke::new(1e5, &[], 1e7), Err(LawError::StageTable(_))));
+        let bad_load = [
+            Stage {
+                crush_load: 1000.0,
+                stroke_end: 0.1,
+            },
+            Stage {
+                crush_load: 900.0,
+                stroke_end: 0.2,
+            },
+        ];
+        assert!(matches!(
+            LoadStroke::new(1e5, &bad_load, 1e7),
+            Err(LawError::StageTable(_))
+        ));
+        let bad_end = [Stage {
+            crush_load: 1000.0,
+            stroke_end: 0.005,
+        }];
+        assert!(matches!(
+            LoadStroke::new(1e5, &bad_end, 1e7),
+            Err(LawError::StageTable(_))
+        ));
+        assert!(matches!(
+            LoadStroke::new(-1.0, &bad_end, 1e7),
+            Err(LawError::NotPositive { .. })
+        ));
+        assert!(matches!(
+            LoadStroke::new(1e5, &[], 1e7),
+            Err(LawError::StageTable(_))
+        ));
     }
 }

@@ -19,7 +19,9 @@ pub mod viscous;
 
 pub use bearing::{Bearing, BearingLoads};
 pub use gear::{GearLaws, PrimaryStrutLaw, SecondaryStrutLaw};
-pub use honeycomb::{CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage};
+pub use honeycomb::{
+    CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
+};
 pub use sliding::sliding_friction;
 pub use viscous::Viscous;
 

@@ -16,7 +16,10 @@ pub struct Viscous {
 
 impl Viscous {
     /// No viscous force.
-    pub const NONE: Viscous = Viscous { coefficient: 0.0, exponent: 1.0 };
+    pub const NONE: Viscous = Viscous {
+        coefficient: 0.0,
+        exponent: 1.0,
+    };
 
     /// Force, N, for a stroking rate `rate`, m/s (positive in the strut's positive sense).
     #[inline]
@@ -34,7 +37,10 @@ mod tests {
 
     #[test]
     fn opposes_motion_with_the_sign_of_the_rate() {
-        let v = Viscous { coefficient: 2.0, exponent: 1.5 };
+        let v = Viscous {
+            coefficient: 2.0,
+            exponent: 1.5,
+        };
         assert_eq!(v.force(4.0), 16.0);
         assert_eq!(v.force(-4.0), -16.0);
         assert_eq!(v.force(0.0), 0.0);

@@ -11,12 +11,20 @@ pub enum ScenarioError {
     Syntax { file: String, message: String },
     /// A field is missing, unknown, of the wrong type, or has an invalid value.
     #[error("{file}: field `{field}`: {message}")]
-    Field { file: String, field: String, message: String },
+    Field {
+        file: String,
+        field: String,
+        message: String,
+    },
 }
 
 impl ScenarioError {
     /// A field error: `expected` says what a valid value is.
     pub fn field(file: &str, field: impl Into<String>, message: impl Into<String>) -> Self {
-        ScenarioError::Field { file: file.to_string(), field: field.into(), message: message.into() }
+        ScenarioError::Field {
+            file: file.to_string(),
+            field: field.into(),
+            message: message.into(),
+        }
     }
 }

@@ -133,6 +133,14 @@ pub fn initial_state(s: &crate::Scenario) -> InitialState {
     let t = t_bi(&theta);
     let height = |i: usize| (t * s.legs[i].bp).z + s.surface.pads[i].hole;
     let first_leg = (0..s.legs.len()).fold(0, |k, i| if height(i) < height(k) { i } else { k });
-    let position = Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane()) - t * s.legs[first_leg].bp; // eq. (19)
-    InitialState { t_bi: t, theta, position, velocity: t_gi(alpha) * td.velocity_g, omega: td.body_rates, first_leg }
+    let position =
+        Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane()) - t * s.legs[first_leg].bp; // eq. (19)
+    InitialState {
+        t_bi: t,
+        theta,
+        position,
+        velocity: t_gi(alpha) * td.velocity_g,
+        omega: td.body_rates,
+        first_leg,
+    }
 }

@@ -21,8 +21,14 @@ struct Merged {
 
 fn read_table(path: &Path) -> Result<toml::Table, ScenarioError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Io { file: file.clone(), message: e.to_string() })?;
-    toml::from_str::<toml::Table>(&text).map_err(|e| ScenarioError::Syntax { file, message: e.to_string() })
+    let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Io {
+        file: file.clone(),
+        message: e.to_string(),
+    })?;
+    toml::from_str::<toml::Table>(&text).map_err(|e| ScenarioError::Syntax {
+        file,
+        message: e.to_string(),
+    })
 }
 
 /// Deep-merges `over` onto `base`: tables merge key by key, anything else is replaced.
@@ -41,13 +47,24 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
     let file = path.display().to_string();
     let own = read_table(path)?;
     let Some(parent) = own.get("extends") else {
-        return Ok(Merged { table: own.clone(), layers: vec![(file, own)] });
+        return Ok(Merged {
+            table: own.clone(),
+            layers: vec![(file, own)],
+        });
     };
     let Some(parent) = parent.as_str() else {
-        return Err(ScenarioError::field(&file, "extends", "expected a file name (string)"));
+        return Err(ScenarioError::field(
+            &file,
+            "extends",
+            "expected a file name (string)",
+        ));
     };
     if depth >= MAX_EXTENDS_DEPTH {
-        return Err(ScenarioError::field(&file, "extends", format!("more than {MAX_EXTENDS_DEPTH} levels of `extends` (a cycle?)")));
+        return Err(ScenarioError::field(
+            &file,
+            "extends",
+            format!("more than {MAX_EXTENDS_DEPTH} levels of `extends` (a cycle?)"),
+        ));
     }
     let parent_path: PathBuf = path.parent().unwrap_or(Path::new(".")).join(parent);
     let mut base = load_merged(&parent_path, depth + 1)?;
@@ -62,7 +79,11 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
 /// The file (of an `extends` chain) that sets the value at a serde path such as
 /// `primary_strut.compression.stages[1].crush_load`: the first layer that has it.
 fn owner_of<'a>(layers: &'a [(String, toml::Table)], path: &str) -> &'a str {
-    let keys: Vec<&str> = path.split('.').map(|k| k.split('[').next().unwrap_or(k)).filter(|k| !k.is_empty()).collect();
+    let keys: Vec<&str> = path
+        .split('.')
+        .map(|k| k.split('[').next().unwrap_or(k))
+        .filter(|k| !k.is_empty())
+        .collect();
     for (file, table) in layers {
         let mut node = Some(table);
         let mut found = true;
@@ -89,19 +110,27 @@ impl Scenario {
         let path = path.as_ref();
         let merged = load_merged(path, 0)?;
         let source = path.display().to_string();
-        let file: ScenarioFile = serde_path_to_error::deserialize(toml::Value::Table(merged.table)).map_err(|e| {
-            let field = e.path().to_string();
-            let message = e.inner().to_string();
-            let message = message.lines().next().unwrap_or_default().to_string();
-            let owner = owner_of(&merged.layers, &field).to_string();
-            ScenarioError::Field { file: owner, field, message }
-        })?;
+        let file: ScenarioFile = serde_path_to_error::deserialize(toml::Value::Table(merged.table))
+            .map_err(|e| {
+                let field = e.path().to_string();
+                let message = e.inner().to_string();
+                let message = message.lines().next().unwrap_or_default().to_string();
+                let owner = owner_of(&merged.layers, &field).to_string();
+                ScenarioError::Field {
+                    file: owner,
+                    field,
+                    message,
+                }
+            })?;
         resolve(&source, file)
     }
 
     /// Parses a scenario from TOML text (no `extends`); `source` names it in messages.
     pub fn from_toml(source: &str, text: &str) -> Result<Scenario, ScenarioError> {
-        let file: ScenarioFile = toml::from_str(text).map_err(|e| ScenarioError::Syntax { file: source.to_string(), message: e.to_string() })?;
+        let file: ScenarioFile = toml::from_str(text).map_err(|e| ScenarioError::Syntax {
+            file: source.to_string(),
+            message: e.to_string(),
+        })?;
         resolve(source, file)
     }
 
@@ -151,20 +180,38 @@ impl Check<'_> {
         let values = match v {
             PerPad::All(x) => vec![*x; n],
             PerPad::Each(xs) if xs.len() == n => xs.clone(),
-            PerPad::Each(xs) => return Err(self.err(field, format!("expected one value or {n} values (one per leg), got {}", xs.len()))),
+            PerPad::Each(xs) => {
+                return Err(self.err(
+                    field,
+                    format!(
+                        "expected one value or {n} values (one per leg), got {}",
+                        xs.len()
+                    ),
+                ))
+            }
         };
         for (i, x) in values.iter().enumerate() {
             self.finite(&format!("{field}[{i}]"), *x)?;
         }
         Ok(values)
     }
-    fn load_stroke(&self, field: &str, ls: &schema::LoadStroke, max_stages: usize, u: &Units) -> Result<model::LoadStroke, ScenarioError> {
+    fn load_stroke(
+        &self,
+        field: &str,
+        ls: &schema::LoadStroke,
+        max_stages: usize,
+        u: &Units,
+    ) -> Result<model::LoadStroke, ScenarioError> {
         let k = u.stiffness();
         let onset_rate = self.positive(&format!("{field}.onset_rate"), ls.onset_rate)? * k;
         let backoff_rate = self.positive(&format!("{field}.backoff_rate"), ls.backoff_rate)? * k;
-        let stroke_out_rate = self.positive(&format!("{field}.stroke_out_rate"), ls.stroke_out_rate)? * k;
+        let stroke_out_rate =
+            self.positive(&format!("{field}.stroke_out_rate"), ls.stroke_out_rate)? * k;
         if ls.stages.is_empty() || ls.stages.len() > max_stages {
-            return Err(self.err(&format!("{field}.stages"), format!("expected 1 to {max_stages} stages, got {}", ls.stages.len())));
+            return Err(self.err(
+                &format!("{field}.stages"),
+                format!("expected 1 to {max_stages} stages, got {}", ls.stages.len()),
+            ));
         }
         let mut stages = Vec::with_capacity(ls.stages.len());
         for (i, s) in ls.stages.iter().enumerate() {
@@ -173,7 +220,12 @@ impl Check<'_> {
             let end = self.positive(&format!("{f}.stroke_end"), s.stroke_end)? * u.length();
             stages.push((load, end));
         }
-        Ok(model::LoadStroke { onset_rate, backoff_rate, stroke_out_rate, stages })
+        Ok(model::LoadStroke {
+            onset_rate,
+            backoff_rate,
+            stroke_out_rate,
+            stages,
+        })
     }
     fn trunnion(&self, field: &str, t: Trunnion, u: &Units) -> Result<Option<f64>, ScenarioError> {
         match t {
@@ -181,22 +233,48 @@ impl Check<'_> {
             Trunnion::Rate(k) => Ok(Some(self.positive(field, k)? * u.stiffness())),
         }
     }
-    fn viscous(&self, field: &str, v: schema::Viscous, u: &Units) -> Result<model::Viscous, ScenarioError> {
+    fn viscous(
+        &self,
+        field: &str,
+        v: schema::Viscous,
+        u: &Units,
+    ) -> Result<model::Viscous, ScenarioError> {
         let exponent = self.positive(&format!("{field}.exponent"), v.exponent)?;
         let c = self.non_negative(&format!("{field}.coefficient"), v.coefficient)?;
-        Ok(model::Viscous { coefficient: c * u.viscous_coefficient(exponent), exponent })
+        Ok(model::Viscous {
+            coefficient: c * u.viscous_coefficient(exponent),
+            exponent,
+        })
     }
 }
 
 /// Legs from the report's parameterisation (see [`schema::Parametric`]), body axes, m.
-fn parametric_legs(c: &Check, p: &schema::Parametric, u: &Units) -> Result<Vec<model::Leg>, ScenarioError> {
+fn parametric_legs(
+    c: &Check,
+    p: &schema::Parametric,
+    u: &Units,
+) -> Result<Vec<model::Leg>, ScenarioError> {
     let l = u.length();
-    let f = |name: &str, v: f64| c.positive(&format!("gear.parametric.{name}"), v).map(|v| v * l);
+    let f = |name: &str, v: f64| {
+        c.positive(&format!("gear.parametric.{name}"), v)
+            .map(|v| v * l)
+    };
     let (r1, r2, r3) = (f("r1", p.r1)?, f("r2", p.r2)?, f("r3", p.r3)?);
-    let (z1, z2, z3, zc) = (f("z1", p.z1)?, f("z2", p.z2)?, f("z3", p.z3)?, f("zc", p.zc)?);
+    let (z1, z2, z3, zc) = (
+        f("z1", p.z1)?,
+        f("z2", p.z2)?,
+        f("z3", p.z3)?,
+        f("zc", p.zc)?,
+    );
     let beta = c.finite("gear.parametric.beta", p.beta)? * u.angle();
     if !(z1 < z3) {
-        return Err(c.err("gear.parametric.z1", format!("expected Z1 below the primary trunnion height Z3 = {}, got {}", p.z3, p.z1)));
+        return Err(c.err(
+            "gear.parametric.z1",
+            format!(
+                "expected Z1 below the primary trunnion height Z3 = {}, got {}",
+                p.z3, p.z1
+            ),
+        ));
     }
     // Point 1: on the primary axis from B2 = (R1, Z3) to BP = (R3, 0), at height Z1.
     let t1 = (z3 - z1) / z3;
@@ -216,20 +294,36 @@ fn parametric_legs(c: &Check, p: &schema::Parametric, u: &Units) -> Result<Vec<m
     let l21 = t1 * (bp - b2).norm();
     let shift = Vector3::new(0.0, 0.0, zc);
     if p.leg_azimuths.len() < 3 {
-        return Err(c.err("gear.parametric.leg_azimuths", format!("expected at least 3 legs, got {}", p.leg_azimuths.len())));
+        return Err(c.err(
+            "gear.parametric.leg_azimuths",
+            format!("expected at least 3 legs, got {}", p.leg_azimuths.len()),
+        ));
     }
     let mut legs = Vec::with_capacity(p.leg_azimuths.len());
     for (i, az) in p.leg_azimuths.iter().enumerate() {
         let a = c.finite(&format!("gear.parametric.leg_azimuths[{i}]"), *az)? * u.angle();
         let r = frames::rot_z(a);
-        legs.push(model::Leg::from_points(r * b2 - shift, r * b3 - shift, r * b4 - shift, r * bp - shift, l21));
+        legs.push(model::Leg::from_points(
+            r * b2 - shift,
+            r * b3 - shift,
+            r * b4 - shift,
+            r * bp - shift,
+            l21,
+        ));
     }
     Ok(legs)
 }
 
-fn explicit_legs(c: &Check, legs: &[schema::Leg], u: &Units) -> Result<Vec<model::Leg>, ScenarioError> {
+fn explicit_legs(
+    c: &Check,
+    legs: &[schema::Leg],
+    u: &Units,
+) -> Result<Vec<model::Leg>, ScenarioError> {
     if legs.len() < 3 {
-        return Err(c.err("gear.legs", format!("expected at least 3 legs, got {}", legs.len())));
+        return Err(c.err(
+            "gear.legs",
+            format!("expected at least 3 legs, got {}", legs.len()),
+        ));
     }
     let l = u.length();
     legs.iter()
@@ -248,7 +342,12 @@ fn explicit_legs(c: &Check, legs: &[schema::Leg], u: &Units) -> Result<Vec<model
 }
 
 /// Geometric checks common to both ways of giving the legs.
-fn check_legs(c: &Check, field: &str, legs: &[model::Leg], lengths: f64) -> Result<(), ScenarioError> {
+fn check_legs(
+    c: &Check,
+    field: &str,
+    legs: &[model::Leg],
+    lengths: f64,
+) -> Result<(), ScenarioError> {
     let tiny = 1e-9;
     for (i, leg) in legs.iter().enumerate() {
         let f = format!("{field}[{i}]");
@@ -266,7 +365,10 @@ fn check_legs(c: &Check, field: &str, legs: &[model::Leg], lengths: f64) -> Resu
             ));
         }
         if leg.l31 < tiny || leg.l41 < tiny {
-            return Err(c.err(&f, "a secondary trunnion coincides with the attachment point 1"));
+            return Err(c.err(
+                &f,
+                "a secondary trunnion coincides with the attachment point 1",
+            ));
         }
     }
     // Counter-clockwise order seen from above: footpad azimuths strictly increasing, one turn.
@@ -280,7 +382,10 @@ fn check_legs(c: &Check, field: &str, legs: &[model::Leg], lengths: f64) -> Resu
         turn += d;
     }
     if (turn - std::f64::consts::TAU).abs() > 1e-6 {
-        return Err(c.err(field, "legs must be listed counter-clockwise seen from above (+Z_B), once around"));
+        return Err(c.err(
+            field,
+            "legs must be listed counter-clockwise seen from above (+Z_B), once around",
+        ));
     }
     Ok(())
 }
@@ -300,7 +405,10 @@ fn inertia(c: &Check, i: &schema::Inertia, u: &Units) -> Result<Matrix3<f64>, Sc
 fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> {
     let c = Check { file: source };
     if file.schema_version != SCHEMA_VERSION {
-        return Err(c.err("schema_version", format!("expected {SCHEMA_VERSION}, got {}", file.schema_version)));
+        return Err(c.err(
+            "schema_version",
+            format!("expected {SCHEMA_VERSION}, got {}", file.schema_version),
+        ));
     }
     let u = file.units;
     let vehicle = model::Vehicle {
@@ -309,7 +417,10 @@ fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> 
         gravity: c.non_negative("vehicle.gravity", file.vehicle.gravity)? * u.acceleration(),
     };
     if file.gear.arrangement == schema::Arrangement::Tripod {
-        return Err(c.err("gear.arrangement", "expected \"cantilever\": the tripod arrangement is not supported by this version"));
+        return Err(c.err(
+            "gear.arrangement",
+            "expected \"cantilever\": the tripod arrangement is not supported by this version",
+        ));
     }
     let (legs, legs_field) = match (&file.gear.legs, &file.gear.parametric) {
         (Some(l), None) => (explicit_legs(&c, l, &u)?, "gear.legs"),
@@ -324,15 +435,27 @@ fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> 
         trunnion_rate: c.trunnion("primary_strut.trunnion", ps.trunnion, &u)?,
         viscous: c.viscous("primary_strut.viscous", ps.viscous, &u)?,
         bearing_friction: c.non_negative("primary_strut.bearing.friction", ps.bearing.friction)?,
-        inner_cylinder_length: c.positive("primary_strut.bearing.inner_cylinder_length", ps.bearing.inner_cylinder_length)? * u.length(),
-        initial_overlap: c.positive("primary_strut.bearing.initial_overlap", ps.bearing.initial_overlap)? * u.length(),
+        inner_cylinder_length: c.positive(
+            "primary_strut.bearing.inner_cylinder_length",
+            ps.bearing.inner_cylinder_length,
+        )? * u.length(),
+        initial_overlap: c.positive(
+            "primary_strut.bearing.initial_overlap",
+            ps.bearing.initial_overlap,
+        )? * u.length(),
     };
     if primary.initial_overlap >= primary.inner_cylinder_length {
-        return Err(c.err("primary_strut.bearing.initial_overlap", "expected the initial overlap D2 to be shorter than the inner cylinder D1"));
+        return Err(c.err(
+            "primary_strut.bearing.initial_overlap",
+            "expected the initial overlap D2 to be shorter than the inner cylinder D1",
+        ));
     }
     let shortest = legs.iter().map(|l| l.l2p).fold(f64::INFINITY, f64::min);
     if primary.inner_cylinder_length >= shortest {
-        return Err(c.err("primary_strut.bearing.inner_cylinder_length", "expected the inner cylinder D1 to be shorter than the primary strut"));
+        return Err(c.err(
+            "primary_strut.bearing.inner_cylinder_length",
+            "expected the inner cylinder D1 to be shorter than the primary strut",
+        ));
     }
     let ss = &file.secondary_strut;
     let secondary = model::SecondaryStrut {
@@ -348,24 +471,42 @@ fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> 
     let sf = &file.surface;
     let slope = c.finite("surface.slope", sf.slope)? * u.angle();
     if slope.abs() >= std::f64::consts::FRAC_PI_2 {
-        return Err(c.err("surface.slope", "expected a slope strictly between −90° and 90°"));
+        return Err(c.err(
+            "surface.slope",
+            "expected a slope strictly between −90° and 90°",
+        ));
     }
     let hole = c.per_pad("surface.hole", &sf.hole, n)?;
     let obstacle = c.per_pad("surface.obstacle", &sf.obstacle, n)?;
     let friction = c.per_pad("surface.friction", &sf.friction, n)?;
     if let Some(i) = friction.iter().position(|f| *f < 0.0) {
-        return Err(c.err(&format!("surface.friction[{i}]"), format!("expected a friction coefficient ≥ 0, got {}", friction[i])));
+        return Err(c.err(
+            &format!("surface.friction[{i}]"),
+            format!("expected a friction coefficient ≥ 0, got {}", friction[i]),
+        ));
     }
     let pads = (0..n)
-        .map(|i| model::PadSurface { hole: hole[i] * u.length(), obstacle: obstacle[i] * u.length(), friction: friction[i] })
+        .map(|i| model::PadSurface {
+            hole: hole[i] * u.length(),
+            obstacle: obstacle[i] * u.length(),
+            friction: friction[i],
+        })
         .collect();
-    let surface = model::Surface { slope, pads, release: sf.release };
+    let surface = model::Surface {
+        slope,
+        pads,
+        release: sf.release,
+    };
     let td = &file.touchdown;
     let vh = td.horizontal_velocity;
     let touchdown = model::Touchdown {
         attitude: c.vec3("touchdown.attitude", td.attitude, u.angle())?,
         attitude_reference: td.attitude_reference,
-        velocity_g: c.vec3("touchdown.velocity", [vh[0], vh[1], td.vertical_velocity], u.velocity())?,
+        velocity_g: c.vec3(
+            "touchdown.velocity",
+            [vh[0], vh[1], td.vertical_velocity],
+            u.velocity(),
+        )?,
         body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
     };
     let it = &file.integrator;
@@ -382,13 +523,22 @@ fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> 
         return Err(c.err("integrator.dt_min", "expected dt_min ≤ dt_max"));
     }
     let st = &file.stability;
-    let frac = c.positive("stability.kinetic_energy_fraction", st.kinetic_energy_fraction)?;
+    let frac = c.positive(
+        "stability.kinetic_energy_fraction",
+        st.kinetic_energy_fraction,
+    )?;
     if frac > 1.0 {
-        return Err(c.err("stability.kinetic_energy_fraction", format!("expected a fraction in (0, 1], got {frac}")));
+        return Err(c.err(
+            "stability.kinetic_energy_fraction",
+            format!("expected a fraction in (0, 1], got {frac}"),
+        ));
     }
     let stability = model::Stability {
         kinetic_energy_fraction: frac,
-        min_separation_velocity: c.non_negative("stability.min_separation_velocity", st.min_separation_velocity)? * u.velocity(),
+        min_separation_velocity: c.non_negative(
+            "stability.min_separation_velocity",
+            st.min_separation_velocity,
+        )? * u.velocity(),
         walls: st.walls,
         terminate_on_decision: st.terminate_on_decision,
     };

@@ -68,11 +68,26 @@ pub struct Leg {
 impl Leg {
     /// Builds a leg from its points, deriving the undeformed lengths (eqs. 27-34 at zero
     /// stroke).
-    pub fn from_points(b2: Vector3<f64>, b3: Vector3<f64>, b4: Vector3<f64>, bp: Vector3<f64>, l21: f64) -> Leg {
+    pub fn from_points(
+        b2: Vector3<f64>,
+        b3: Vector3<f64>,
+        b4: Vector3<f64>,
+        bp: Vector3<f64>,
+        l21: f64,
+    ) -> Leg {
         let v2p = bp - b2;
         let l2p = v2p.norm();
         let b1 = b2 + v2p * (l21 / l2p);
-        Leg { b2, b3, b4, bp, l21, l2p, l31: (b1 - b3).norm(), l41: (b1 - b4).norm() }
+        Leg {
+            b2,
+            b3,
+            b4,
+            bp,
+            l21,
+            l2p,
+            l31: (b1 - b3).norm(),
+            l41: (b1 - b4).norm(),
+        }
     }
 
     /// Point 1 (secondary attachment) of the undeformed leg, m.

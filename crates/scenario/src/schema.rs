@@ -229,7 +229,10 @@ pub struct Viscous {
 
 impl Default for Viscous {
     fn default() -> Self {
-        Viscous { coefficient: 0.0, exponent: 1.0 }
+        Viscous {
+            coefficient: 0.0,
+            exponent: 1.0,
+        }
     }
 }
 

@@ -1,0 +1,58 @@
+//! The core's step loop allocates nothing (it is meant to run thousands of landings): a
+//! counting global allocator for this test binary, counted per thread so that parallel tests
+//! do not interfere.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations() -> u64 {
+    ALLOCATIONS.with(|c| c.get())
+}
+
+#[test]
+fn stepping_a_landing_does_not_allocate() {
+    let sc =
+        touchdown_scenario::Scenario::load(touchdown_tests::scenario("fig-25-26.toml")).unwrap();
+    let mut sim = touchdown_core::Simulation::new(&sc).unwrap();
+    let before = allocations();
+    let mut steps = 0;
+    while !sim.finished() {
+        sim.step().unwrap();
+        steps += 1;
+    }
+    let during = allocations() - before;
+    assert!(
+        steps > 500,
+        "the landing should take many steps, took {steps}"
+    );
+    // The counter itself must work: the summary allocates.
+    let _ = sim.summary();
+    assert!(
+        allocations() > before,
+        "the counting allocator is not counting"
+    );
+    assert_eq!(during, 0, "{during} allocations in {steps} steps");
+}

@@ -1,0 +1,90 @@
+//! Crate layers: scenario format → force laws → engines (never depending on each other) →
+//! comparison → CLI. Every workspace crate must be listed here; a new crate or a new internal
+//! dependency that breaks the layers fails this test.
+
+use std::collections::BTreeMap;
+
+/// Internal crates each crate may depend on (normal, dev or build dependencies).
+const ALLOWED: &[(&str, &[&str])] = &[
+    ("touchdown-scenario", &[]),
+    ("touchdown-laws", &["touchdown-scenario"]),
+    // Engines: scenario and laws only; never another engine.
+    ("touchdown-core", &["touchdown-scenario", "touchdown-laws"]),
+    (
+        "touchdown-cli",
+        &["touchdown-scenario", "touchdown-laws", "touchdown-core"],
+    ),
+    (
+        "touchdown-tests",
+        &["touchdown-scenario", "touchdown-laws", "touchdown-core"],
+    ),
+];
+
+fn internal_dependencies() -> BTreeMap<String, Vec<String>> {
+    let root = touchdown_tests::root();
+    let workspace: toml::Table =
+        toml::from_str(&std::fs::read_to_string(root.join("Cargo.toml")).unwrap()).unwrap();
+    let members = workspace["workspace"]["members"].as_array().unwrap();
+    let mut out = BTreeMap::new();
+    for m in members {
+        let dir = root.join(m.as_str().unwrap());
+        let manifest: toml::Table =
+            toml::from_str(&std::fs::read_to_string(dir.join("Cargo.toml")).unwrap()).unwrap();
+        let name = manifest["package"]["name"].as_str().unwrap().to_string();
+        let mut deps = Vec::new();
+        for section in ["dependencies", "dev-dependencies", "build-dependencies"] {
+            if let Some(t) = manifest.get(section).and_then(|t| t.as_table()) {
+                deps.extend(t.keys().filter(|k| k.starts_with("touchdown")).cloned());
+            }
+        }
+        out.insert(name, deps);
+    }
+    out
+}
+
+#[test]
+fn crates_respect_the_layers() {
+    let deps = internal_dependencies();
+    let allowed: BTreeMap<&str, &[&str]> = ALLOWED.iter().copied().collect();
+    let mut problems = Vec::new();
+    for (name, ds) in &deps {
+        match allowed.get(name.as_str()) {
+            None => problems.push(format!(
+                "{name} is not in the layering table of tests/integration/layering.rs"
+            )),
+            Some(ok) => {
+                for d in ds {
+                    if !ok.contains(&d.as_str()) {
+                        problems.push(format!("{name} must not depend on {d}"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "layering violations:\n{}",
+        problems.join("\n")
+    );
+    assert!(deps.len() >= 5, "the workspace lost crates: {deps:?}");
+}
+
+#[test]
+fn engines_never_depend_on_each_other() {
+    let deps = internal_dependencies();
+    let engines: Vec<&String> = deps
+        .keys()
+        .filter(|n| {
+            ["touchdown-core", "touchdown-rapier", "touchdown-mujoco"].contains(&n.as_str())
+        })
+        .collect();
+    assert!(!engines.is_empty());
+    for e in &engines {
+        for other in &engines {
+            assert!(
+                e == other || !deps[*e].contains(other),
+                "{e} depends on the engine {other}"
+            );
+        }
+    }
+}

@@ -1,0 +1,16 @@
+//! Workspace-level tests, one binary. What lives where:
+//!
+//! * `scenario_errors`: the catalogue of malformed scenarios in `tests/data/malformed/`, each
+//!   producing its own specific error (file, field, what was expected);
+//! * `physics`: checks of the core against analytic results (vertical drop energy balance,
+//!   torque-free tumbling, a lander at rest carrying its weight, energy closure on Table I);
+//! * `allocation`: the core's step loop does not allocate;
+//! * `layering`: the crate dependency layers (engines never depend on each other).
+//!
+//! Determinism and the command line are tested against the `touchdown` binary in
+//! `crates/cli/tests/`.
+
+mod allocation;
+mod layering;
+mod physics;
+mod scenario_errors;

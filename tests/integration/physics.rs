@@ -1,0 +1,291 @@
+//! The core against results it must reproduce without any tuning.
+
+use nalgebra::Vector3;
+use touchdown_core::{Observer, Outcome, Simulation};
+use touchdown_laws::{GearLaws, LoadStroke};
+use touchdown_scenario::Scenario;
+use touchdown_tests::scenario;
+
+/// A scenario that extends `base` (under scenarios/) with extra TOML, written to a temporary file.
+fn variant(base: &str, name: &str, extra: &str) -> Scenario {
+    let dir = std::env::temp_dir().join(format!("touchdown-physics-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{name}.toml"));
+    let text = format!(
+        "schema_version = 1\nextends = {:?}\nname = {name:?}\n{extra}",
+        scenario(base).display().to_string()
+    );
+    std::fs::write(&path, text).unwrap();
+    Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Area under a virgin load-stroke curve from 0 to x (J): work of monotonic loading.
+fn area(curve: &LoadStroke, x: f64) -> f64 {
+    if x <= 0.0 {
+        return 0.0;
+    }
+    let mut a = 0.0;
+    let mut prev = (0.0, 0.0);
+    for (xi, fi) in curve.vertices().skip(1) {
+        if x <= xi {
+            let f = prev.1 + (fi - prev.1) * (x - prev.0) / (xi - prev.0);
+            return a + 0.5 * (prev.1 + f) * (x - prev.0);
+        }
+        a += 0.5 * (prev.1 + fi) * (xi - prev.0);
+        prev = (xi, fi);
+    }
+    let f = curve.force(x);
+    a + 0.5 * (prev.1 + f) * (x - prev.0)
+}
+
+/// A symmetric vertical drop on flat ground with locked footpads, frictionless and without
+/// viscous forces: at maximum stroke the vehicle is at rest, so the initial kinetic energy
+/// plus the potential energy released by the drop h equals the work of monotonic loading of
+/// every strut. Solve that balance for h independently of the simulation (pure translation:
+/// the footpad fixed in space moves up by h in body axes) and compare the primary stroke.
+#[test]
+fn symmetric_vertical_drop_strokes_to_the_energy_balance() {
+    let sc = Scenario::load(scenario("flat-drop.toml")).unwrap();
+    assert_eq!(sc.primary.bearing_friction, 0.0);
+    assert_eq!(sc.primary.viscous.coefficient, 0.0);
+    let laws = GearLaws::from_scenario(&sc).unwrap();
+    let m = sc.vehicle.mass;
+    let g = sc.vehicle.gravity;
+    let v = sc.touchdown.velocity_g.norm();
+    let strokes = |h: f64| -> Vec<(f64, f64, f64)> {
+        sc.legs
+            .iter()
+            .map(|leg| {
+                let bp = leg.bp + Vector3::new(0.0, 0.0, h);
+                let v2p = bp - leg.b2;
+                let b1 = leg.b2 + v2p.normalize() * leg.l21;
+                (
+                    leg.l2p - v2p.norm(),
+                    (b1 - leg.b3).norm() - leg.l31,
+                    (b1 - leg.b4).norm() - leg.l41,
+                )
+            })
+            .collect()
+    };
+    let secondary_area = |s: f64| {
+        if s >= 0.0 {
+            area(&laws.secondary.honeycomb.tension.curve, s)
+        } else {
+            area(&laws.secondary.honeycomb.compression.curve, -s)
+        }
+    };
+    let work = |h: f64| -> f64 {
+        strokes(h)
+            .iter()
+            .map(|(c, s3, s4)| {
+                area(&laws.primary.honeycomb.curve, *c) + secondary_area(*s3) + secondary_area(*s4)
+            })
+            .sum()
+    };
+    let balance = |h: f64| 0.5 * m * v * v + m * g * h - work(h);
+    let (mut lo, mut hi) = (0.0, 0.3);
+    assert!(balance(lo) > 0.0 && balance(hi) < 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if balance(mid) > 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let analytic = strokes(lo)[0].0;
+    let summary = touchdown_core::run(&sc).unwrap();
+    for (i, c) in summary.max_primary_stroke_m.iter().enumerate() {
+        let err = (c - analytic).abs() / analytic;
+        assert!(
+            err < 0.01,
+            "leg {}: primary stroke {c:.6} m vs analytic {analytic:.6} m ({:.3} %)",
+            i + 1,
+            100.0 * err
+        );
+    }
+    assert_eq!(summary.outcome, Outcome::Stable);
+}
+
+struct Invariants {
+    energy: Vec<f64>,
+    momentum: Vec<Vector3<f64>>,
+}
+
+impl Observer for Invariants {
+    fn observe(&mut self, sim: &Simulation) {
+        // Eq. (19) sets the first footpad on the surface at t = 0; count from the moment every
+        // footpad has left it (after that the body is torque-free).
+        if sim
+            .footpads()
+            .iter()
+            .any(|p| p.state == touchdown_core::surface::ContactState::Contact)
+        {
+            return;
+        }
+        let v = sim.vehicle();
+        let j = |w: &Vector3<f64>| -> Vector3<f64> {
+            // Angular momentum in inertial axes, H = T_BI·J·ω, from the kinetic energy's J.
+            v.t_bi * (INERTIA.with(|i| *i) * w)
+        };
+        self.energy.push(sim.kinetic_energy());
+        self.momentum.push(j(&v.omega));
+    }
+}
+
+thread_local! {
+    static INERTIA: nalgebra::Matrix3<f64> = {
+        let sc = tumbling();
+        sc.vehicle.inertia
+    };
+}
+
+fn tumbling() -> Scenario {
+    variant(
+        "flat-drop.toml",
+        "tumbling",
+        r#"
+[vehicle]
+gravity = 0.0
+inertia = { xx = 1.397, yy = 1.297, zz = 0.994, xy = 0.05, xz = 0.02, yz = -0.03 }
+[touchdown]
+attitude = [0.0, 0.0, 0.0]
+attitude_reference = "horizontal"
+vertical_velocity = 1.0
+horizontal_velocity = [0.0, 0.0]
+body_rates = [20.0, -15.0, 200.0]
+[integrator]
+dist = 0.0014
+dt_min = 1.0e-7
+dt_max = 2.0e-4
+t_end = 2.0
+[stability]
+terminate_on_decision = false
+"#,
+    )
+}
+
+/// A torque-free tumbling body (no gravity, flying away from the surface, products of inertia
+/// non-zero) keeps its kinetic energy and its inertial angular momentum: checks eqs. (5)-(15)
+/// and the predictor-corrector together.
+#[test]
+fn torque_free_tumbling_conserves_energy_and_angular_momentum() {
+    let sc = tumbling();
+    let mut sim = Simulation::new(&sc).unwrap();
+    let mut inv = Invariants {
+        energy: Vec::new(),
+        momentum: Vec::new(),
+    };
+    let summary = sim.run(&mut inv).unwrap();
+    assert!(
+        inv.energy.len() > 5000,
+        "free flight from the first steps on: {} samples",
+        inv.energy.len()
+    );
+    assert!(summary.t_end_s >= 2.0 - 1e-9, "ran to {}", summary.t_end_s);
+    assert!(
+        sim.footpads()
+            .iter()
+            .all(|p| p.state != touchdown_core::surface::ContactState::Contact),
+        "the vehicle must fly free"
+    );
+    let (e0, h0) = (inv.energy[0], inv.momentum[0]);
+    let de = inv
+        .energy
+        .iter()
+        .map(|e| (e - e0).abs() / e0)
+        .fold(0.0, f64::max);
+    let dh = inv
+        .momentum
+        .iter()
+        .map(|h| (h - h0).norm() / h0.norm())
+        .fold(0.0, f64::max);
+    assert!(de < 1e-6, "kinetic energy drift {de:.2e}");
+    assert!(dh < 1e-6, "angular momentum drift {dh:.2e}");
+    // It really tumbles: the body rates change direction in body axes.
+    assert!(
+        (sim.vehicle().omega - sc.touchdown.body_rates).norm()
+            > 0.01 * sc.touchdown.body_rates.norm()
+    );
+}
+
+/// A lander set down at rest on flat ground (strut damping added so that it settles) ends at
+/// rest with its weight carried by the footpads, a quarter each.
+#[test]
+fn lander_at_rest_carries_its_weight_through_its_footpads() {
+    let sc = variant(
+        "flat-drop.toml",
+        "at-rest",
+        r#"
+[primary_strut.viscous]
+coefficient = 50.0
+exponent = 1.0
+[touchdown]
+attitude = [0.0, 0.0, 0.0]
+attitude_reference = "horizontal"
+vertical_velocity = 0.0
+horizontal_velocity = [0.0, 0.0]
+[integrator]
+dist = 0.0014
+dt_min = 1.0e-7
+dt_max = 2.0e-4
+t_end = 1.0
+[stability]
+terminate_on_decision = false
+"#,
+    );
+    let mut sim = Simulation::new(&sc).unwrap();
+    sim.run(&mut ()).unwrap();
+    let v = sim.vehicle();
+    let weight = sc.vehicle.mass * sc.vehicle.gravity;
+    assert!(v.velocity.norm() < 1e-4, "still moving: {}", v.velocity);
+    let mut total = 0.0;
+    for (i, g) in sim.gear().iter().enumerate() {
+        let on_vehicle = -(v.t_bi * g.fp); // eq. (67)
+        total += on_vehicle.z;
+        assert!(
+            (on_vehicle.z - weight / 4.0).abs() < 0.01 * weight / 4.0,
+            "leg {}: {} N vs {} N",
+            i + 1,
+            on_vehicle.z,
+            weight / 4.0
+        );
+        assert!(g.fcp > 0.0);
+    }
+    assert!(
+        (total - weight).abs() < 1e-3 * weight,
+        "gear carries {total} N, weight {weight} N"
+    );
+}
+
+/// The energy balance closes on every Table I landing: the kinetic energy at touchdown equals
+/// what is left plus what each mechanism absorbed, to within 2 % (the residual is the
+/// integration error of the report's scheme at the scenario's DIST).
+#[test]
+fn energy_closes_on_the_table_i_landings() {
+    let mut worst = (0.0, String::new());
+    for entry in std::fs::read_dir(touchdown_tests::root().join("scenarios")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if !name.starts_with("table-i-") {
+            continue;
+        }
+        let sc = Scenario::load(&path).unwrap();
+        let s = touchdown_core::run(&sc).unwrap();
+        let rel = s.energy.residual_j.abs() / s.energy.kinetic_initial_j;
+        assert!(
+            s.energy.honeycomb_dissipated_j > 0.5 * s.energy.kinetic_initial_j,
+            "{name}: the honeycombs absorb most of the energy"
+        );
+        if rel > worst.0 {
+            worst = (rel, name);
+        }
+    }
+    assert!(!worst.1.is_empty());
+    assert!(
+        worst.0 < 0.02,
+        "worst energy residual {:.3} % on {}",
+        100.0 * worst.0,
+        worst.1
+    );
+}
