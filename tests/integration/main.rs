@@ -5,12 +5,14 @@
 //! * `physics`: checks of the core against analytic results (vertical drop energy balance,
 //!   torque-free tumbling, a lander at rest carrying its weight, energy closure on Table I);
 //! * `allocation`: the core's step loop does not allocate;
+//! * `docs`: docs/scenario-format.md documents every scenario field;
 //! * `layering`: the crate dependency layers (engines never depend on each other).
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
 //! `crates/cli/tests/`.
 
 mod allocation;
+mod docs;
 mod layering;
 mod physics;
 mod scenario_errors;

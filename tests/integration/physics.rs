@@ -289,3 +289,34 @@ fn energy_closes_on_the_table_i_landings() {
         worst.1
     );
 }
+
+/// Eq. (96) corrected: the footpad receives −FPI = T_BI·FP. In a level drop on frictionless
+/// ground every compressing strut must push its footpad radially outward (with the printed
+/// +FPI it would pull it inward).
+#[test]
+fn sliding_footpads_are_pushed_outward() {
+    let sc = variant(
+        "flat-drop.toml",
+        "sliding",
+        r#"
+[surface]
+kind = "rigid"
+slope = 0.0
+hole = 0.0
+obstacle = -1.0
+friction = 0.0
+"#,
+    );
+    let mut sim = Simulation::new(&sc).unwrap();
+    for _ in 0..100 {
+        sim.step().unwrap();
+    }
+    let v = sim.vehicle();
+    for (i, (pad, leg)) in sim.footpads().iter().zip(&sc.legs).enumerate() {
+        assert_eq!(pad.state, touchdown_core::surface::ContactState::Contact);
+        let radial = (v.t_bi * leg.bp).xy().normalize();
+        let moved = (pad.position - pad.touchdown_xy.push(pad.position.z)).xy();
+        assert!(sim.gear()[i].fcp > 0.0);
+        assert!(moved.dot(&radial) > 1e-4, "leg {}: footpad moved {moved} against radial {radial}", i + 1);
+    }
+}

@@ -85,8 +85,14 @@ impl Recorder {
     }
 }
 
+/// A number for the CSV; a non-finite value (an undefined stability wall) is an empty cell,
+/// never NaN.
 fn num(x: f64) -> String {
-    format!("{x:.9e}")
+    if x.is_finite() {
+        format!("{x:.9e}")
+    } else {
+        String::new()
+    }
 }
 
 impl Observer for Recorder {

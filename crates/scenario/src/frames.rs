@@ -85,6 +85,25 @@ mod tests {
     }
 
     #[test]
+    fn initial_state_puts_the_lowest_pad_on_its_plane() {
+        // Table I 2-2 (footnote reading): depressions under legs 1 and 2.
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/table-i-2-2-vv8.toml");
+        let s = crate::Scenario::load(path).unwrap();
+        let init = initial_state(&s);
+        let gap = |i: usize| (init.position + init.t_bi * s.legs[i].bp).z - s.surface.pads[i].plane();
+        assert!(gap(init.first_leg).abs() < 1e-12, "the first pad sits on its own plane");
+        assert_eq!((init.position + init.t_bi * s.legs[init.first_leg].bp).xy(), nalgebra::Vector2::zeros());
+        for i in 0..s.legs.len() {
+            assert!(gap(i) >= -1e-12, "pad {} starts below its plane", i + 1);
+        }
+        // Attitude relative to the horizontal: the body Z axis is tilted 5° from Z_G, and the
+        // velocity is given in the gravity frame.
+        let z_b_in_g = t_ig(s.surface.slope) * init.t_bi * Vector3::z();
+        assert!((z_b_in_g.z - (5.0f64).to_radians().cos()).abs() < 1e-12);
+        assert!((t_ig(s.surface.slope) * init.velocity - s.touchdown.velocity_g).norm() < 1e-12);
+    }
+
+    #[test]
     fn euler_angles_round_trip() {
         let th = Vector3::new(0.2, -0.7, 2.5);
         assert!((euler_from_t_bi(&t_bi(&th)) - th).abs().max() < 1e-12);
