@@ -4,11 +4,18 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().unwrap()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .unwrap()
 }
 
 fn touchdown(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_touchdown")).args(args).current_dir(root()).output().expect("the touchdown binary runs")
+    Command::new(env!("CARGO_BIN_EXE_touchdown"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("the touchdown binary runs")
 }
 
 fn temp(name: &str) -> PathBuf {
@@ -21,48 +28,101 @@ fn temp(name: &str) -> PathBuf {
 fn same_scenario_same_binary_byte_identical_outputs() {
     let (a, b) = (temp("a"), temp("b"));
     for d in [&a, &b] {
-        let out = touchdown(&["run", "scenarios/fig-25-26.toml", "--format", "json", "--out", d.to_str().unwrap()]);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let out = touchdown(&[
+            "run",
+            "scenarios/fig-25-26.toml",
+            "--format",
+            "json",
+            "--out",
+            d.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
     for f in ["summary.json", "history.csv", "scenario.resolved.toml"] {
-        let (x, y) = (std::fs::read(a.join(f)).unwrap(), std::fs::read(b.join(f)).unwrap());
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
         assert!(!x.is_empty(), "{f} is empty");
         assert!(x == y, "{f} differs between two runs");
     }
     let history = std::fs::read_to_string(a.join("history.csv")).unwrap();
-    assert!(!history.contains("NaN") && !history.contains("inf"), "no NaN or infinity in the history");
+    assert!(
+        !history.contains("NaN") && !history.contains("inf"),
+        "no NaN or infinity in the history"
+    );
     assert!(history.lines().count() > 500);
 }
 
 #[test]
 fn json_summary_has_the_documented_fields() {
     let out = touchdown(&["run", "scenarios/table-i-2-2-vv8.toml", "--format", "json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for key in [
-        "engine", "outcome", "t_end_s", "steps", "max_primary_stroke_m", "max_secondary_compression_m", "max_secondary_tension_m", "peak_pitch_rate_rad_s",
-        "min_stability_distance_m", "overturn_velocity_m_s", "energy_residual_j",
+        "engine",
+        "outcome",
+        "t_end_s",
+        "steps",
+        "max_primary_stroke_m",
+        "max_secondary_compression_m",
+        "max_secondary_tension_m",
+        "peak_pitch_rate_rad_s",
+        "min_stability_distance_m",
+        "overturn_velocity_m_s",
+        "energy_residual_j",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
     assert_eq!(v["engine"], "core");
     assert!(["stable", "unstable", "undecided"].contains(&v["outcome"].as_str().unwrap()));
     assert_eq!(v["max_primary_stroke_m"].as_array().unwrap().len(), 4);
-    assert_eq!(v["max_secondary_compression_m"][0].as_array().unwrap().len(), 2);
+    assert_eq!(
+        v["max_secondary_compression_m"][0]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
     assert!(v["overturn_velocity_m_s"].is_null() || v["outcome"] == "unstable");
 }
 
 #[test]
 fn resolved_scenario_reloads_to_the_same_result() {
     let d = temp("resolved");
-    let out = touchdown(&["run", "scenarios/table-i-1-2-1-vv7.toml", "--format", "json", "--out", d.to_str().unwrap()]);
+    let out = touchdown(&[
+        "run",
+        "scenarios/table-i-1-2-1-vv7.toml",
+        "--format",
+        "json",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
     assert!(out.status.success());
     let resolved = d.join("scenario.resolved.toml");
     let text = std::fs::read_to_string(&resolved).unwrap();
-    assert!(!text.contains("extends"), "the resolved scenario stands alone");
-    assert!(text.contains("release = \"strut_force\""), "defaults are written out");
+    assert!(
+        !text.contains("extends"),
+        "the resolved scenario stands alone"
+    );
+    assert!(
+        text.contains("release = \"strut_force\""),
+        "defaults are written out"
+    );
     let again = touchdown(&["run", resolved.to_str().unwrap(), "--format", "json"]);
-    assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+    assert!(
+        again.status.success(),
+        "{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
     assert_eq!(out.stdout, again.stdout);
 }
 
@@ -71,7 +131,13 @@ fn text_summary_reads_well() {
     let out = touchdown(&["run", "scenarios/flat-drop.toml"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for needle in ["outcome:  STABLE", "primary", "minimum stability distance", "balance residual", " ft"] {
+    for needle in [
+        "outcome:  STABLE",
+        "primary",
+        "minimum stability distance",
+        "balance residual",
+        " ft",
+    ] {
         assert!(text.contains(needle), "missing {needle:?} in\n{text}");
     }
 }
@@ -82,10 +148,20 @@ fn bad_input_fails_with_the_file_and_field() {
     std::fs::create_dir_all(&d).unwrap();
     let f = d.join("bad.toml");
     let base = root().join("scenarios/flat-drop.toml");
-    std::fs::write(&f, format!("schema_version = 1\nextends = {:?}\nname = \"bad\"\n[vehicle]\nmass = -2.0\n", base.display().to_string())).unwrap();
+    std::fs::write(
+        &f,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = \"bad\"\n[vehicle]\nmass = -2.0\n",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
     let out = touchdown(&["run", f.to_str().unwrap()]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("bad.toml") && err.contains("vehicle.mass") && err.contains("positive"), "{err}");
+    assert!(
+        err.contains("bad.toml") && err.contains("vehicle.mass") && err.contains("positive"),
+        "{err}"
+    );
     assert!(out.stdout.is_empty(), "nothing is written on failure");
 }

@@ -7,7 +7,9 @@ use std::path::Path;
 use touchdown_scenario::Scenario;
 
 fn load(name: &str) -> Scenario {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenarios")
+        .join(name);
     Scenario::load(path).expect("bundled scenario loads")
 }
 
@@ -18,7 +20,9 @@ fn landings(c: &mut Criterion) {
         let steps = touchdown_core::run(&sc).expect("the landing runs").steps;
         println!("{name}: {steps} steps per landing");
         group.throughput(Throughput::Elements(1));
-        group.bench_function(name, |b| b.iter(|| touchdown_core::run(black_box(&sc)).expect("the landing runs")));
+        group.bench_function(name, |b| {
+            b.iter(|| touchdown_core::run(black_box(&sc)).expect("the landing runs"))
+        });
     }
     group.finish();
 }

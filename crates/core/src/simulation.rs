@@ -12,6 +12,7 @@
 //! 7. the honeycomb memories are committed at that accepted state, whose accelerations are
 //!    a_{k+1}; energy and stability are updated;
 //! 8. the next Δt follows eq. (25).
+//!
 //! Nothing in the step allocates.
 
 use crate::gear::{self, GearMemory, GearState};
@@ -136,6 +137,7 @@ pub struct Simulation {
     gear: Vec<GearState>,
     trial: Vec<GearState>,
     previous: Vec<GearState>,
+    scratch: Vec<GearState>,
     ledger: Ledger,
     potential0: f64,
     stability: StabilityTrack,
@@ -211,6 +213,7 @@ impl Simulation {
             gear: vec![GearState::default(); n],
             trial: vec![GearState::default(); n],
             previous: vec![GearState::default(); n],
+            scratch: vec![GearState::default(); n],
             ledger: Ledger::default(),
             potential0: 0.0,
             stability: StabilityTrack {
@@ -402,11 +405,11 @@ impl Simulation {
         let t_ib = v.t_bi.transpose();
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
-        for i in 0..self.legs.len() {
+        for (i, slot) in out.iter_mut().enumerate() {
             let pad = &self.pads[i];
             if pad.state != ContactState::Contact {
                 let prev = &self.gear[i];
-                out[i] = GearState {
+                *slot = GearState {
                     primary_stroke: prev.primary_stroke,
                     secondary_stroke: prev.secondary_stroke,
                     ..GearState::default()
@@ -419,7 +422,7 @@ impl Simulation {
                 .map_err(|e| self.diverged(v, e.to_string(), "bearing friction", i))?;
             torque += bp.cross(&(-g.fp)); // eq. (66)
             force -= v.t_bi * g.fp; // eqs. (67)-(68)
-            out[i] = g;
+            *slot = g;
         }
         Ok(Loads { force, torque })
     }
@@ -442,18 +445,18 @@ impl Simulation {
 
     /// Evaluates the accepted state `v` into `self.gear` and sets its accelerations.
     fn accept(&mut self, v: &mut VehicleState) -> Result<(), CoreError> {
-        let mut out = std::mem::take(&mut self.trial);
+        let mut out = std::mem::take(&mut self.scratch);
         let loads = self.loads(v, &mut out);
         self.evaluations += 1;
         let loads = match loads {
             Ok(l) => l,
             Err(e) => {
-                self.trial = out;
+                self.scratch = out;
                 return Err(e);
             }
         };
         self.accelerate(v, &loads)?;
-        self.trial = std::mem::replace(&mut self.gear, out);
+        self.scratch = std::mem::replace(&mut self.gear, out);
         Ok(())
     }
 
@@ -509,6 +512,7 @@ impl Simulation {
     pub fn step(&mut self) -> Result<(), CoreError> {
         let dt = self.step_size();
         let old = self.vehicle;
+        self.previous.copy_from_slice(&self.gear);
         // 2. sliding footpads, forces frozen at t_k (eq. 97)
         let mut pad_work = 0.0;
         let mut pad_energy_change = 0.0;
@@ -553,7 +557,6 @@ impl Simulation {
             + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
         new.set_attitude(theta, theta_dot);
         // 6. evaluate, contact logic, re-evaluate on a change
-        self.previous.copy_from_slice(&self.gear);
         self.t += dt;
         self.accept(&mut new)?;
         self.vehicle = new;
@@ -594,21 +597,25 @@ impl Simulation {
         }
     }
 
-    /// Adds the strut work between the previous and the accepted state (trapezoidal rule):
-    /// honeycomb ∫F·dx, viscous and bearing-friction ∫F·ẋ·dt.
+    /// Adds the strut work of the step with the forces the corrector used (eq. 24: the
+    /// accepted state k and the trial at the prediction), so that the ledger and the vehicle's
+    /// energy see the same forces even when a footpad leaves the surface in the step:
+    /// honeycomb ½(F_k + F*)·(x_{k+1} − x_k), viscous and bearing friction ½(P_k + P*)·Δt.
     fn book_strut_work(&mut self, dt: f64) {
-        for (a, b) in self.previous.iter().zip(&self.gear) {
-            self.ledger.honeycomb += 0.5 * (a.fcp + b.fcp) * (b.primary_stroke - a.primary_stroke);
-            self.ledger.viscous += 0.5 * (a.fvp * a.primary_rate + b.fvp * b.primary_rate) * dt;
-            self.ledger.bearing += 0.5 * (a.fbr * a.primary_rate + b.fbr * b.primary_rate) * dt;
+        let steps = self.previous.iter().zip(&self.trial).zip(&self.gear);
+        for ((a, t), b) in steps {
+            let l = &mut self.ledger;
+            l.honeycomb += 0.5 * (a.fcp + t.fcp) * (b.primary_stroke - a.primary_stroke);
+            l.viscous += 0.5 * (a.fvp * a.primary_rate + t.fvp * t.primary_rate) * dt;
+            l.bearing += 0.5 * (a.fbr * a.primary_rate + t.fbr * t.primary_rate) * dt;
             for j in 0..2 {
-                self.ledger.honeycomb += 0.5
-                    * (a.fc_secondary[j] + b.fc_secondary[j])
-                    * (b.secondary_stroke[j] - a.secondary_stroke[j]);
-                self.ledger.viscous += 0.5
-                    * (a.fv_secondary[j] * a.secondary_rate[j]
-                        + b.fv_secondary[j] * b.secondary_rate[j])
-                    * dt;
+                let (fa, ft) = (a.fc_secondary[j], t.fc_secondary[j]);
+                l.honeycomb += 0.5 * (fa + ft) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                let (pa, pt) = (
+                    a.fv_secondary[j] * a.secondary_rate[j],
+                    t.fv_secondary[j] * t.secondary_rate[j],
+                );
+                l.viscous += 0.5 * (pa + pt) * dt;
             }
         }
     }
@@ -680,25 +687,14 @@ impl Simulation {
             + l.sliding.abs()
             + l.events.abs();
         if e.residual_j.abs() > self.integrator.energy_tolerance * scale.max(f64::MIN_POSITIVE) {
-            // The mechanism that has exchanged the most energy is the likeliest culprit.
-            let terms = [
-                ("honeycomb", l.honeycomb),
-                ("viscous", l.viscous),
-                ("bearing friction", l.bearing),
-                ("sliding friction", l.sliding),
-                ("contact events", l.events),
-            ];
-            let law = terms
-                .iter()
-                .fold(terms[0], |m, t| if t.1.abs() > m.1.abs() { *t } else { m })
-                .0;
             return Err(self.diverged(
                 v,
                 format!(
-                    "energy balance residual {:.4e} J exceeds {} of the energy scale {:.4e} J (step too large for the stiffest law?)",
-                    e.residual_j, self.integrator.energy_tolerance, scale
+                    "energy balance residual {:.4e} J exceeds {} of the energy scale {:.4e} J (step too large for the stiffest mode?); \
+                     exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J",
+                    e.residual_j, self.integrator.energy_tolerance, scale, l.honeycomb, l.viscous, l.bearing, l.sliding, l.events
                 ),
-                law,
+                "energy balance",
                 usize::MAX,
             ));
         }

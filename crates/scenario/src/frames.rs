@@ -87,12 +87,20 @@ mod tests {
     #[test]
     fn initial_state_puts_the_lowest_pad_on_its_plane() {
         // Table I 2-2 (footnote reading): depressions under legs 1 and 2.
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/table-i-2-2-vv8.toml");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios/table-i-2-2-vv8.toml");
         let s = crate::Scenario::load(path).unwrap();
         let init = initial_state(&s);
-        let gap = |i: usize| (init.position + init.t_bi * s.legs[i].bp).z - s.surface.pads[i].plane();
-        assert!(gap(init.first_leg).abs() < 1e-12, "the first pad sits on its own plane");
-        assert_eq!((init.position + init.t_bi * s.legs[init.first_leg].bp).xy(), nalgebra::Vector2::zeros());
+        let gap =
+            |i: usize| (init.position + init.t_bi * s.legs[i].bp).z - s.surface.pads[i].plane();
+        assert!(
+            gap(init.first_leg).abs() < 1e-12,
+            "the first pad sits on its own plane"
+        );
+        assert_eq!(
+            (init.position + init.t_bi * s.legs[init.first_leg].bp).xy(),
+            nalgebra::Vector2::zeros()
+        );
         for i in 0..s.legs.len() {
             assert!(gap(i) >= -1e-12, "pad {} starts below its plane", i + 1);
         }

@@ -267,7 +267,7 @@ fn parametric_legs(
         f("zc", p.zc)?,
     );
     let beta = c.finite("gear.parametric.beta", p.beta)? * u.angle();
-    if !(z1 < z3) {
+    if z1 >= z3 {
         return Err(c.err(
             "gear.parametric.z1",
             format!(

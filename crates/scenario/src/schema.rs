@@ -387,7 +387,7 @@ fn yes() -> bool {
     true
 }
 fn default_energy_tolerance() -> f64 {
-    0.25
+    0.02
 }
 
 /// Integration settings (eqs. 20-25).
