@@ -93,9 +93,10 @@ impl GearLaws {
         };
         let capacity = primary.honeycomb.curve.capacity();
         if primary.bearing.separation(capacity) >= primary.bearing.inner_cylinder_length {
+            let field = "primary_strut.bearing.inner_cylinder_length";
             return Err(ScenarioError::field(
-                &s.source,
-                "primary_strut.bearing.inner_cylinder_length",
+                s.file_of(field),
+                field,
                 format!(
                     "expected D1 longer than the initial overlap plus the stroke capacity ({:.6} m + {:.6} m), so that the bearings stay apart over the whole stroke",
                     p.initial_overlap, capacity

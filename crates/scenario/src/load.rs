@@ -67,7 +67,17 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
         ));
     }
     let parent_path: PathBuf = path.parent().unwrap_or(Path::new(".")).join(parent);
-    let mut base = load_merged(&parent_path, depth + 1)?;
+    let mut base = load_merged(&parent_path, depth + 1).map_err(|e| match e {
+        ScenarioError::Io {
+            file: missing,
+            message,
+        } => ScenarioError::field(
+            &file,
+            "extends",
+            format!("cannot read {missing}: {message}"),
+        ),
+        other => other,
+    })?;
     let mut over = own.clone();
     over.remove("extends");
     base.table.remove("extends");
@@ -86,12 +96,12 @@ fn owner_of<'a>(layers: &'a [(String, toml::Table)], path: &str) -> &'a str {
         .collect();
     for (file, table) in layers {
         let mut node = Some(table);
-        let mut found = true;
+        let mut found = !keys.is_empty();
         for (i, k) in keys.iter().enumerate() {
             match node.and_then(|t| t.get(*k)) {
-                Some(toml::Value::Table(t)) => node = Some(t),
-                Some(_) if i + 1 == keys.len() => node = None,
-                _ => {
+                Some(toml::Value::Table(t)) if i + 1 < keys.len() => node = Some(t),
+                Some(_) => break,
+                None => {
                     found = false;
                     break;
                 }
@@ -108,46 +118,57 @@ impl Scenario {
     /// Reads, merges, checks and resolves the scenario at `path`.
     pub fn load(path: impl AsRef<Path>) -> Result<Scenario, ScenarioError> {
         let path = path.as_ref();
-        let merged = load_merged(path, 0)?;
-        let source = path.display().to_string();
-        let file: ScenarioFile = serde_path_to_error::deserialize(toml::Value::Table(merged.table))
-            .map_err(|e| {
-                let field = e.path().to_string();
-                let message = e.inner().to_string();
-                let message = message.lines().next().unwrap_or_default().to_string();
-                let owner = owner_of(&merged.layers, &field).to_string();
-                ScenarioError::Field {
-                    file: owner,
-                    field,
-                    message,
-                }
-            })?;
-        resolve(&source, file)
+        resolve_layers(path.display().to_string(), load_merged(path, 0)?)
     }
 
     /// Parses a scenario from TOML text (no `extends`); `source` names it in messages.
     pub fn from_toml(source: &str, text: &str) -> Result<Scenario, ScenarioError> {
-        let file: ScenarioFile = toml::from_str(text).map_err(|e| ScenarioError::Syntax {
+        let table = toml::from_str::<toml::Table>(text).map_err(|e| ScenarioError::Syntax {
             file: source.to_string(),
             message: e.to_string(),
         })?;
-        resolve(source, file)
+        let layers = vec![(source.to_string(), table.clone())];
+        resolve_layers(source.to_string(), Merged { table, layers })
     }
 
     /// The resolved scenario as TOML (every default written out, the file's units).
     pub fn to_toml(&self) -> String {
         toml::to_string(&self.file).expect("a scenario always serialises")
     }
+
+    /// The file of the `extends` chain that sets `field` (a path such as
+    /// `primary_strut.compression.stages[1]`), to name it in messages about that field.
+    pub fn file_of(&self, field: &str) -> &str {
+        owner_of(&self.layers, field)
+    }
 }
 
-/// Field checker bound to one file.
+/// Schema check (types, required and unknown fields), then resolution.
+fn resolve_layers(source: String, merged: Merged) -> Result<Scenario, ScenarioError> {
+    let value = toml::Value::Table(merged.table);
+    let file: ScenarioFile = serde_path_to_error::deserialize(value).map_err(|e| {
+        let field = e.path().to_string();
+        let message = e.inner().to_string();
+        let message = message.lines().next().unwrap_or_default().to_string();
+        let file = owner_of(&merged.layers, &field).to_string();
+        ScenarioError::Field {
+            file,
+            field,
+            message,
+        }
+    })?;
+    resolve(&source, merged.layers, file)
+}
+
+/// Field checker bound to one file and the chain it extends: an error names the file that
+/// sets the field.
 struct Check<'a> {
-    file: &'a str,
+    layers: &'a [(String, toml::Table)],
 }
 
 impl Check<'_> {
     fn err(&self, field: &str, message: impl Into<String>) -> ScenarioError {
-        ScenarioError::field(self.file, field, message)
+        ScenarioError::field(owner_of(self.layers, field), field, message)
     }
     fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() {
@@ -402,8 +423,12 @@ fn inertia(c: &Check, i: &schema::Inertia, u: &Units) -> Result<Matrix3<f64>, Sc
     Ok(j)
 }
 
-fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> {
-    let c = Check { file: source };
+fn resolve(
+    source: &str,
+    layers: Vec<(String, toml::Table)>,
+    file: ScenarioFile,
+) -> Result<Scenario, ScenarioError> {
+    let c = Check { layers: &layers };
     if file.schema_version != SCHEMA_VERSION {
         return Err(c.err(
             "schema_version",
@@ -499,14 +524,14 @@ fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> 
     };
     let td = &file.touchdown;
     let vh = td.horizontal_velocity;
+    for (i, v) in vh.iter().enumerate() {
+        c.finite(&format!("touchdown.horizontal_velocity[{i}]"), *v)?;
+    }
+    let vv = c.finite("touchdown.vertical_velocity", td.vertical_velocity)?;
     let touchdown = model::Touchdown {
         attitude: c.vec3("touchdown.attitude", td.attitude, u.angle())?,
         attitude_reference: td.attitude_reference,
-        velocity_g: c.vec3(
-            "touchdown.velocity",
-            [vh[0], vh[1], td.vertical_velocity],
-            u.velocity(),
-        )?,
+        velocity_g: Vector3::new(vh[0], vh[1], vv) * u.velocity(),
         body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
     };
     let it = &file.integrator;
@@ -544,6 +569,7 @@ fn resolve(source: &str, file: ScenarioFile) -> Result<Scenario, ScenarioError> 
     };
     Ok(Scenario {
         source: source.to_string(),
+        layers,
         file,
         vehicle,
         arrangement: schema::Arrangement::Cantilever,

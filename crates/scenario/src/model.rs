@@ -30,6 +30,9 @@ pub struct Scenario {
     pub integrator: Integrator,
     /// Stability criteria.
     pub stability: Stability,
+    /// The files of the `extends` chain with their own tables (this file first), to name the
+    /// file that sets a field in messages.
+    pub(crate) layers: Vec<(String, toml::Table)>,
 }
 
 /// Rigid vehicle (excluding the effective footpad masses).

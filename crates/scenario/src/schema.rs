@@ -195,7 +195,10 @@ pub struct LoadStroke {
 /// A trunnion spring: `"rigid"` (the load-stroke diagrams are already trunnion-modified, as
 /// the report feeds them) or a spring rate (force/length) applied per eqs. (35)-(39).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "\"rigid\" or a trunnion spring rate (a number, force/length)"
+)]
 pub enum Trunnion {
     /// The string "rigid".
     Rigid(RigidTag),
@@ -292,7 +295,10 @@ pub struct Footpad {
 
 /// A per-footpad value: one number for every footpad, or a list with one per leg.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "one number for every footpad or a list of numbers, one per leg"
+)]
 pub enum PerPad {
     /// Same value for every footpad.
     All(f64),
