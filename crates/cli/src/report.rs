@@ -48,31 +48,9 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
         "run:      {:.4} s simulated, {} steps, {} force evaluations",
         s.t_end_s, s.steps, s.force_evaluations
     );
-    let _ = writeln!(o, "\nmaximum strokes (compression and tension positive)");
-    for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
-        let contact = match s.first_contact_s[i] {
-            Some(t) => format!("first contact {t:.4} s"),
-            None => "never touched".to_string(),
-        };
-        let _ = writeln!(
-            o,
-            "  leg {}  primary compression   {}   ({contact})",
-            i + 1,
-            len(*p)
-        );
-        for j in 0..2 {
-            let name = if j == 0 { "3-1" } else { "4-1" };
-            let _ = writeln!(
-                o,
-                "         secondary {name} compr.  {}",
-                len(s.max_secondary_compression_m[i][j])
-            );
-            let _ = writeln!(
-                o,
-                "         secondary {name} tension {}",
-                len(s.max_secondary_tension_m[i][j])
-            );
-        }
+    strokes(&mut o, s, 1.0, "m");
+    if lname != "m" {
+        strokes(&mut o, s, lu, lname);
     }
     let _ = writeln!(
         o,
@@ -112,4 +90,36 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
         "balance residual", e.residual_j
     );
     o
+}
+
+/// The table of maximum strokes per leg, in `unit` (`scale` metres each).
+fn strokes(o: &mut String, s: &Summary, scale: f64, unit: &str) {
+    let _ = writeln!(
+        o,
+        "\nmaximum strokes, {unit} (compression and tension positive)"
+    );
+    let _ = writeln!(
+        o,
+        "  leg  first contact   primary   3-1 compr  3-1 tension   4-1 compr  4-1 tension"
+    );
+    for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
+        let contact = match s.first_contact_s[i] {
+            Some(t) => format!("{t:9.4} s"),
+            None => "      never".to_string(),
+        };
+        let (c, t) = (
+            s.max_secondary_compression_m[i],
+            s.max_secondary_tension_m[i],
+        );
+        let _ = writeln!(
+            o,
+            "  {:>3}  {contact}  {:9.4}   {:9.4}    {:9.4}   {:9.4}    {:9.4}",
+            i + 1,
+            p / scale,
+            c[0] / scale,
+            t[0] / scale,
+            c[1] / scale,
+            t[1] / scale
+        );
+    }
 }

@@ -112,6 +112,27 @@ mod tests {
     }
 
     #[test]
+    fn transformations_are_orthogonal_and_mutually_inverse() {
+        let i = Matrix3::identity();
+        for th in [Vector3::new(0.3, -0.4, 1.1), Vector3::new(-2.0, 1.2, 0.4)] {
+            let t = t_bi(&th);
+            assert!(
+                (t * t.transpose() - i).abs().max() < 1e-14,
+                "T_BI orthogonal"
+            );
+            assert!((t.determinant() - 1.0).abs() < 1e-14, "a proper rotation");
+            // eq. (4): T_IB = T_BIᵀ takes inertial components back to body components.
+            let v = Vector3::new(0.2, -1.0, 3.0);
+            assert!((t.transpose() * (t * v) - v).norm() < 1e-14);
+        }
+        for alpha in [0.0, 0.087, -0.3] {
+            // eqs. (1)-(2): T_GI = T_IG⁻¹ = T_IGᵀ.
+            assert!((t_gi(alpha) * t_ig(alpha) - i).abs().max() < 1e-15);
+            assert!((t_ig(alpha).determinant() - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
     fn euler_angles_round_trip() {
         let th = Vector3::new(0.2, -0.7, 2.5);
         assert!((euler_from_t_bi(&t_bi(&th)) - th).abs().max() < 1e-12);
