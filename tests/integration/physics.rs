@@ -291,23 +291,22 @@ fn energy_closes_on_the_table_i_landings() {
     );
 }
 
-/// Eq. (96) corrected: the footpad receives −FPI = T_BI·FP. In a level drop on frictionless
-/// ground every compressing strut must push its footpad radially outward (with the printed
-/// +FPI it would pull it inward).
-#[test]
-fn sliding_footpads_are_pushed_outward() {
-    let sc = variant(
-        "flat-drop.toml",
-        "sliding",
-        r#"
+/// Flat ground on which the footpads slide without friction.
+const SLIDING_FRICTIONLESS: &str = r#"
 [surface]
 kind = "rigid"
 slope = 0.0
 hole = 0.0
 obstacle = -1.0
 friction = 0.0
-"#,
-    );
+"#;
+
+/// Eq. (96) corrected: the footpad receives −FPI = T_BI·FP. In a level drop on frictionless
+/// ground every compressing strut must push its footpad radially outward (with the printed
+/// +FPI it would pull it inward).
+#[test]
+fn sliding_footpads_are_pushed_outward() {
+    let sc = variant("flat-drop.toml", "sliding", SLIDING_FRICTIONLESS);
     let mut sim = Simulation::new(&sc).unwrap();
     for _ in 0..100 {
         sim.step().unwrap();
@@ -336,19 +335,16 @@ fn diverging_run_stops_with_a_diagnostic() {
     let sc = variant(
         "flat-drop.toml",
         "diverging",
-        r#"
-[surface]
-kind = "rigid"
-slope = 0.0
-hole = 0.0
-obstacle = -1.0
-friction = 0.0
+        &format!(
+            "{SLIDING_FRICTIONLESS}{}",
+            r#"
 [integrator]
 dist = 0.0014
 dt_min = 0.001
 dt_max = 0.001
 t_end = 1.0
-"#,
+"#
+        ),
     );
     match touchdown_core::run(&sc) {
         Err(touchdown_core::CoreError::Diverged {
