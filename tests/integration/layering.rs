@@ -10,9 +10,19 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("touchdown-laws", &["touchdown-scenario"]),
     // Engines: scenario and laws only; never another engine.
     ("touchdown-core", &["touchdown-scenario", "touchdown-laws"]),
+    // Comparison level: runs engines, never reached by them.
+    (
+        "touchdown-validation",
+        &["touchdown-scenario", "touchdown-core"],
+    ),
     (
         "touchdown-cli",
-        &["touchdown-scenario", "touchdown-laws", "touchdown-core"],
+        &[
+            "touchdown-scenario",
+            "touchdown-laws",
+            "touchdown-core",
+            "touchdown-validation",
+        ],
     ),
     (
         "touchdown-tests",

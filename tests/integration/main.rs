@@ -6,7 +6,8 @@
 //!   torque-free tumbling, a lander at rest carrying its weight, energy closure on Table I);
 //! * `allocation`: the core's step loop does not allocate;
 //! * `docs`: docs/scenario-format.md documents every scenario field;
-//! * `layering`: the crate dependency layers (engines never depend on each other).
+//! * `layering`: the crate dependency layers (engines never depend on each other);
+//! * `plots`: the validation plots regenerate from the committed data with the project's venv.
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
 //! `crates/cli/tests/`.
@@ -15,4 +16,5 @@ mod allocation;
 mod docs;
 mod layering;
 mod physics;
+mod plots;
 mod scenario_errors;

@@ -2,6 +2,7 @@
 
 mod history;
 mod report;
+mod validation;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -35,6 +36,72 @@ enum Command {
         #[arg(long, value_enum, default_value_t = Engine::Core)]
         engine: Engine,
     },
+    /// Run every Table I landing and the figure 25-26 landing against the report.
+    Validate {
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Workspace root holding reference/ and scenarios/.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+        /// Also write validation.json and fig-25-26-series.json (the data behind the plots) here.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Fit the estimated parameters to the calibration rows (reference/calibration-protocol.toml)
+    /// and write scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml.
+    Calibrate {
+        /// Table I rows to calibrate on, e.g. 3,7 (default: the protocol's).
+        #[arg(long, value_delimiter = ',')]
+        rows: Option<Vec<u32>>,
+        /// Workspace root holding reference/ and scenarios/.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+    },
+    /// How each estimated parameter (±fraction) moves each Table I stroke.
+    Sensitivity {
+        /// Relative change of each parameter.
+        #[arg(long, default_value_t = 0.2)]
+        fraction: f64,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Workspace root holding reference/ and scenarios/.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+    },
+    /// The report's stability-boundary search: for each descent speed, the horizontal speed at
+    /// which the landing turns unstable (velocities in the scenario's length unit per second;
+    /// the horizontal direction is the scenario's).
+    Boundary {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        /// Descent speeds FROM:TO:STEP (positive down).
+        #[arg(long)]
+        vv: String,
+        /// First horizontal speed tried.
+        #[arg(long, default_value_t = 0.0)]
+        vh_start: f64,
+        /// Horizontal-speed step while bracketing.
+        #[arg(long, default_value_t = 2.0)]
+        vh_step: f64,
+        /// Largest horizontal speed tried.
+        #[arg(long, default_value_t = 30.0)]
+        vh_max: f64,
+        /// Bisection tolerance on the horizontal speed.
+        #[arg(long, default_value_t = 0.05)]
+        tol: f64,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = TableFormat::Text)]
+        format: TableFormat,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum TableFormat {
+    Text,
+    Json,
+    Csv,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -91,6 +158,37 @@ fn run(cli: Cli) -> Result<()> {
                 Format::Json => println!("{}", report::json(&summary)?),
             }
             Ok(())
+        }
+        Command::Validate { format, root, out } => {
+            validation::validate(&root, matches!(format, Format::Json), out.as_deref())
+        }
+        Command::Calibrate { rows, root } => validation::calibrate(&root, rows),
+        Command::Sensitivity {
+            fraction,
+            format,
+            root,
+        } => validation::sensitivity(&root, fraction, matches!(format, Format::Json)),
+        Command::Boundary {
+            scenario,
+            vv,
+            vh_start,
+            vh_step,
+            vh_max,
+            tol,
+            format,
+        } => {
+            let settings = touchdown_validation::boundary::Settings {
+                vh_start,
+                vh_step,
+                vh_max,
+                tolerance: tol,
+            };
+            let format = match format {
+                TableFormat::Text => validation::BoundaryFormat::Text,
+                TableFormat::Json => validation::BoundaryFormat::Json,
+                TableFormat::Csv => validation::BoundaryFormat::Csv,
+            };
+            validation::boundary(&scenario, &vv, settings, format)
         }
     }
 }

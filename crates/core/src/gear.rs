@@ -108,7 +108,7 @@ pub fn evaluate(
     let fbr = pri.bearing.friction(fm_mag, c, c_dot)?;
     // eq. (49): primary viscous force (compression positive opposes extension: FVP = CP·sgn(ċ)|ċ|^γ)
     let fvp = pri.viscous.force(c_dot);
-    let fcp = pri.honeycomb.force(c, memory.primary);
+    let fcp = pri.stroke_force(c, memory.primary);
     // eq. (50)
     let f2p = fcp + fvp + fbr;
     // eqs. (64)-(65): force on the footpad

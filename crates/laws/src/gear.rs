@@ -1,7 +1,9 @@
 //! The strut laws of one landing-gear assembly, built from a resolved scenario. Every engine
 //! builds its laws here, so the mapping from scenario to law exists once.
 
-use crate::{Bearing, DoubleActingHoneycomb, Honeycomb, LawError, LoadStroke, Stage, Viscous};
+use crate::{
+    Bearing, CrushMemory, DoubleActingHoneycomb, Honeycomb, LawError, LoadStroke, Stage, Viscous,
+};
 use touchdown_scenario::{model, Scenario, ScenarioError};
 
 /// Primary-strut laws: compression honeycomb (trunnion-modified if a K_TP is given), viscous
@@ -14,6 +16,34 @@ pub struct PrimaryStrutLaw {
     pub viscous: Viscous,
     /// Bearing friction of eqs. (59)-(63).
     pub bearing: Bearing,
+}
+
+impl PrimaryStrutLaw {
+    /// Stroke-dependent force FCP(c), N (compression positive), at compression stroke `c`, m:
+    /// the honeycomb for c ≥ 0; for c < 0 the strut is past its full extension and its
+    /// extension stop pulls back elastically at the stroke-out rate (a tension force). The
+    /// report gives the primary no tension capacity beyond friction; without a stop a
+    /// laterally locked footpad lets the strut extend past its undeformed length
+    /// (docs/errata.md).
+    #[inline]
+    pub fn stroke_force(&self, c: f64, memory: CrushMemory) -> f64 {
+        if c >= 0.0 {
+            self.honeycomb.force(c, memory)
+        } else {
+            self.honeycomb.curve.stroke_out_rate() * c
+        }
+    }
+
+    /// Elastic energy at compression stroke `c`, J: the honeycomb's recoverable energy, or the
+    /// extension stop's ½·k·c².
+    #[inline]
+    pub fn stored_energy(&self, c: f64, memory: CrushMemory) -> f64 {
+        if c >= 0.0 {
+            self.honeycomb.stored_energy(c, memory)
+        } else {
+            0.5 * self.honeycomb.curve.stroke_out_rate() * c * c
+        }
+    }
 }
 
 /// Secondary-strut laws: double-acting honeycomb and viscous force, tension positive.

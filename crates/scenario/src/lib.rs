@@ -17,4 +17,5 @@ pub mod schema;
 pub mod units;
 
 pub use error::ScenarioError;
+pub use load::{merged_table, set_field};
 pub use model::Scenario;

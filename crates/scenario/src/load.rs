@@ -121,6 +121,46 @@ impl Scenario {
         resolve_layers(path.display().to_string(), load_merged(path, 0)?)
     }
 
+    /// Reads the scenario at `path` with some values replaced: each override is a field path
+    /// such as `primary_strut.compression.stages[0].crush_load` and a value in the file's own
+    /// units. The overrides form the top layer of the `extends` chain (named `overrides` in
+    /// messages); a path that does not exist in the merged file is an error.
+    pub fn load_with(
+        path: impl AsRef<Path>,
+        overrides: &[(&str, f64)],
+    ) -> Result<Scenario, ScenarioError> {
+        let path = path.as_ref();
+        let mut merged = load_merged(path, 0)?;
+        let mut layer = toml::Table::new();
+        for (field, value) in overrides {
+            set_path(&mut merged.table, field, *value)
+                .map_err(|m| ScenarioError::field("overrides", *field, m))?;
+            set_path_creating(&mut layer, field, *value);
+        }
+        merged.layers.insert(0, ("overrides".to_string(), layer));
+        resolve_layers(path.display().to_string(), merged)
+    }
+
+    /// A number of the merged file at a field path (file units), as [`Scenario::load_with`]
+    /// takes it; `None` if there is no number there.
+    pub fn value_at(path: impl AsRef<Path>, field: &str) -> Result<Option<f64>, ScenarioError> {
+        let merged = load_merged(path.as_ref(), 0)?;
+        let mut node = &toml::Value::Table(merged.table);
+        for (key, index) in path_keys(field) {
+            node = match node.get(key) {
+                Some(v) => v,
+                None => return Ok(None),
+            };
+            if let Some(i) = index {
+                node = match node.get(i) {
+                    Some(v) => v,
+                    None => return Ok(None),
+                };
+            }
+        }
+        Ok(node.as_float().or(node.as_integer().map(|i| i as f64)))
+    }
+
     /// Parses a scenario from TOML text (no `extends`); `source` names it in messages.
     pub fn from_toml(source: &str, text: &str) -> Result<Scenario, ScenarioError> {
         let table = toml::from_str::<toml::Table>(text).map_err(|e| ScenarioError::Syntax {
@@ -141,6 +181,75 @@ impl Scenario {
     pub fn file_of(&self, field: &str) -> &str {
         owner_of(&self.layers, field)
     }
+}
+
+/// The keys of a field path `a.b[2].c`: (key, optional array index) pairs.
+fn path_keys(field: &str) -> Vec<(&str, Option<usize>)> {
+    field
+        .split('.')
+        .map(|k| match k.split_once('[') {
+            Some((key, rest)) => (key, rest.trim_end_matches(']').parse().ok()),
+            None => (k, None),
+        })
+        .collect()
+}
+
+/// The merged table of a scenario file (its `extends` chain resolved), as TOML values in the
+/// file's units, without the schema check.
+pub fn merged_table(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError> {
+    load_merged(path.as_ref(), 0).map(|m| m.table)
+}
+
+/// Replaces the number at `field` (e.g. `primary_strut.compression.stages[0].crush_load`) in a
+/// scenario table; the path must exist and hold a number.
+pub fn set_field(table: &mut toml::Table, field: &str, value: f64) -> Result<(), String> {
+    set_path(table, field, value)
+}
+
+/// Replaces the number at `field` in `table`; the path must exist.
+fn set_path(table: &mut toml::Table, field: &str, value: f64) -> Result<(), String> {
+    let keys = path_keys(field);
+    let mut node = table;
+    for (n, (key, index)) in keys.iter().enumerate() {
+        let last = n + 1 == keys.len();
+        let entry = node
+            .get_mut(*key)
+            .ok_or_else(|| format!("no field `{key}` to override"))?;
+        let entry = match index {
+            Some(i) => entry
+                .get_mut(*i)
+                .ok_or_else(|| format!("no element {i} in `{key}`"))?,
+            None => entry,
+        };
+        if last {
+            if !(entry.is_float() || entry.is_integer()) {
+                return Err("the overridden field is not a number".into());
+            }
+            *entry = toml::Value::Float(value);
+            return Ok(());
+        }
+        node = entry
+            .as_table_mut()
+            .ok_or_else(|| format!("`{key}` is not a table"))?;
+    }
+    Err("empty field path".into())
+}
+
+/// Records an override in its own layer table (for naming the overrides in messages).
+fn set_path_creating(table: &mut toml::Table, field: &str, value: f64) {
+    let keys = path_keys(field);
+    let mut node = table;
+    for (key, _) in &keys[..keys.len() - 1] {
+        node = node
+            .entry(key.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .expect("created as a table");
+    }
+    node.insert(
+        keys[keys.len() - 1].0.to_string(),
+        toml::Value::Float(value),
+    );
 }
 
 /// Schema check (types, required and unknown fields), then resolution.

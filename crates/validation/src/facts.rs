@@ -1,0 +1,295 @@
+//! The facts the text states about the figure 25-26 landing, beside our run of it, and the
+//! time histories behind the figures (vertical acceleration, pitch rate, strokes).
+
+use crate::reference::{self, Paths};
+use crate::ValidationError;
+use serde::{Deserialize, Serialize};
+use touchdown_core::surface::ContactState;
+use touchdown_core::{Observer, Outcome, Simulation};
+use touchdown_scenario::Scenario;
+
+/// Specific force below which the vehicle is taken to be in free flight, g.
+const FREE_FLIGHT_G: f64 = 0.05;
+
+/// `reference/fig-25-26-facts.toml`.
+#[derive(Debug, Clone, Deserialize)]
+pub struct Facts {
+    /// Scenario of the landing (under `scenarios/`).
+    pub scenario: String,
+    free_flight: Quoted<Duration>,
+    downhill_strike: Quoted<Time>,
+    pitch_rate_drop: Quoted<PitchDrop>,
+    maximum_stroking: Quoted<ByTime>,
+    second_stage: Quoted<Depth>,
+    outcome: Quoted<Outcomes>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+struct Quoted<T> {
+    quote: String,
+    #[serde(flatten)]
+    value: T,
+}
+#[derive(Debug, Clone, Deserialize)]
+struct Duration {
+    duration_s: f64,
+}
+#[derive(Debug, Clone, Deserialize)]
+struct Time {
+    time_s: f64,
+}
+#[derive(Debug, Clone, Deserialize)]
+struct PitchDrop {
+    before_rad_s: f64,
+    after_rad_s: f64,
+}
+#[derive(Debug, Clone, Deserialize)]
+struct ByTime {
+    by_time_s: f64,
+}
+#[derive(Debug, Clone, Deserialize)]
+struct Depth {
+    depth_ft: f64,
+}
+#[derive(Debug, Clone, Deserialize)]
+struct Outcomes {
+    experiment: String,
+    report_analysis: String,
+}
+
+/// One fact: the report's words and value beside ours.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FactCheck {
+    /// Short name.
+    pub fact: String,
+    /// The report's sentence.
+    pub quote: String,
+    /// The report's value, as text with its unit.
+    pub report: String,
+    /// Our value.
+    pub ours: String,
+    /// Whether ours agrees within the stated tolerance.
+    pub agrees: bool,
+    /// The tolerance used for `agrees`.
+    pub tolerance: String,
+}
+
+/// Time histories of one landing (SI, plus g for the acceleration).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Series {
+    /// Time, s.
+    pub t: Vec<f64>,
+    /// Vertical specific force (acceleration less gravity along Z_G), g.
+    pub vertical_acceleration_g: Vec<f64>,
+    /// Pitch rate (about the inertial X axis), rad/s.
+    pub pitch_rate: Vec<f64>,
+    /// Primary compression stroke per leg, m.
+    pub primary_stroke: Vec<Vec<f64>>,
+    /// Largest secondary compression stroke per leg, m.
+    pub secondary_compression: Vec<Vec<f64>>,
+    /// Footpads in contact per sample (bit i set: leg i + 1).
+    pub contacts: Vec<u32>,
+}
+
+struct Recorder {
+    series: Series,
+    up_g: nalgebra::Vector3<f64>,
+    g: f64,
+}
+
+impl Observer for Recorder {
+    fn observe(&mut self, sim: &Simulation) {
+        let v = sim.vehicle();
+        let s = &mut self.series;
+        s.t.push(sim.time());
+        // Specific force along the upward vertical: (a − G)·ẑ_G, in g.
+        let specific = v.acceleration - self.up_g * (-self.g);
+        s.vertical_acceleration_g
+            .push(specific.dot(&self.up_g) / self.g);
+        s.pitch_rate.push(v.omega_inertial().x);
+        if s.primary_stroke.is_empty() {
+            s.primary_stroke = vec![Vec::new(); sim.gear().len()];
+            s.secondary_compression = vec![Vec::new(); sim.gear().len()];
+        }
+        for (i, g) in sim.gear().iter().enumerate() {
+            s.primary_stroke[i].push(g.primary_stroke);
+            s.secondary_compression[i].push(
+                (-g.secondary_stroke[0])
+                    .max(-g.secondary_stroke[1])
+                    .max(0.0),
+            );
+        }
+        let mask = sim
+            .footpads()
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.state == ContactState::Contact)
+            .fold(0u32, |m, (i, _)| m | (1 << i));
+        s.contacts.push(mask);
+    }
+}
+
+/// Runs a scenario recording its time histories; returns them with the summary.
+pub fn record(scenario: &Scenario) -> Result<(Series, touchdown_core::Summary), ValidationError> {
+    let mut sim = Simulation::new(scenario).map_err(|source| ValidationError::Run {
+        scenario: scenario.source.clone(),
+        source,
+    })?;
+    let alpha = scenario.surface.slope;
+    let up_g = touchdown_scenario::frames::t_gi(alpha) * nalgebra::Vector3::z();
+    let mut rec = Recorder {
+        series: Series::default(),
+        up_g,
+        g: scenario.vehicle.gravity,
+    };
+    let summary = sim.run(&mut rec).map_err(|source| ValidationError::Run {
+        scenario: scenario.source.clone(),
+        source,
+    })?;
+    Ok((rec.series, summary))
+}
+
+/// The fact checks and the series of our run of the figure 25-26 landing.
+pub struct FactsRun {
+    /// Fact by fact.
+    pub checks: Vec<FactCheck>,
+    /// Our time histories.
+    pub series: Series,
+    /// Our summary.
+    pub summary: touchdown_core::Summary,
+}
+
+/// Runs the figure 25-26 landing and checks the facts.
+pub fn check(paths: &Paths) -> Result<FactsRun, ValidationError> {
+    let facts: Facts = reference::read(&paths.reference("fig-25-26-facts.toml"))?;
+    let path = paths.scenario(&facts.scenario);
+    let sc = Scenario::load(&path)?;
+    let stage_one_end = sc.primary.compression.stages[0].1;
+    let (series, summary) = record(&sc)?;
+    let s = &series;
+    let n = s.t.len();
+    // The first acceleration pulse ends when the specific force first falls below the
+    // free-flight threshold; the second begins when it rises above it again.
+    let end1 = (1..n).find(|&k| {
+        s.vertical_acceleration_g[k - 1] > FREE_FLIGHT_G
+            && s.vertical_acceleration_g[k] <= FREE_FLIGHT_G
+    });
+    let start2 = end1.and_then(|e| (e..n).find(|&k| s.vertical_acceleration_g[k] > FREE_FLIGHT_G));
+    let free_flight = match (end1, start2) {
+        (Some(a), Some(b)) => s.t[b] - s.t[a],
+        _ => 0.0,
+    };
+    // The downhill footpads strike when a footpad first touches after the free flight.
+    let strike = end1.and_then(|e| (e + 1..n).find(|&k| s.contacts[k] & !s.contacts[k - 1] != 0));
+    let strike_t = strike.map(|k| s.t[k]).unwrap_or(f64::NAN);
+    // Maximum stroking: the time every strut with significant stroke (over a tenth of the
+    // largest) has come within 1 % of its largest stroke (ignoring slow creep afterwards).
+    let largest = s
+        .primary_stroke
+        .iter()
+        .chain(&s.secondary_compression)
+        .flatten()
+        .copied()
+        .fold(0.0, f64::max);
+    let reached = |x: &Vec<f64>| {
+        let top = x.iter().copied().fold(0.0, f64::max);
+        if top < 0.1 * largest {
+            return 0.0;
+        }
+        x.iter()
+            .position(|v| *v >= 0.99 * top)
+            .map(|k| s.t[k])
+            .unwrap_or(0.0)
+    };
+    let stroking_done = s
+        .primary_stroke
+        .iter()
+        .chain(&s.secondary_compression)
+        .map(reached)
+        .fold(0.0, f64::max);
+    let stroking_k =
+        s.t.iter()
+            .position(|t| *t >= stroking_done)
+            .unwrap_or(n - 1);
+    let before = strike.map(|k| s.pitch_rate[k]).unwrap_or(f64::NAN);
+    let after = s.pitch_rate[stroking_k];
+    let depth_ft = (summary
+        .max_primary_stroke_m
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        - stage_one_end)
+        / touchdown_scenario::units::FOOT;
+    let outcome = match summary.outcome {
+        Outcome::Stable => "stable",
+        Outcome::Unstable => "unstable",
+        Outcome::Undecided => "undecided",
+    };
+    let f = &facts;
+    let checks = vec![
+        FactCheck {
+            fact: "free flight between the two acceleration pulses".into(),
+            quote: f.free_flight.quote.clone(),
+            report: format!("{:.3} s", f.free_flight.value.duration_s),
+            ours: format!("{free_flight:.3} s"),
+            agrees: (free_flight - f.free_flight.value.duration_s).abs() <= 0.01,
+            tolerance: "±0.01 s".into(),
+        },
+        FactCheck {
+            fact: "downhill footpads strike".into(),
+            quote: f.downhill_strike.quote.clone(),
+            report: format!("{:.3} s", f.downhill_strike.value.time_s),
+            ours: format!("{strike_t:.3} s"),
+            agrees: (strike_t - f.downhill_strike.value.time_s).abs() <= 0.01,
+            tolerance: "±0.01 s".into(),
+        },
+        FactCheck {
+            fact: "pitch rate at the downhill strike".into(),
+            quote: f.pitch_rate_drop.quote.clone(),
+            report: format!("{:+.1} rad/s", f.pitch_rate_drop.value.before_rad_s),
+            ours: format!("{before:+.2} rad/s"),
+            agrees: (before - f.pitch_rate_drop.value.before_rad_s).abs() <= 1.0,
+            tolerance: "±1 rad/s".into(),
+        },
+        FactCheck {
+            fact: "pitch rate after the downhill impact (at maximum stroking)".into(),
+            quote: f.pitch_rate_drop.quote.clone(),
+            report: format!("{:+.1} rad/s", f.pitch_rate_drop.value.after_rad_s),
+            ours: format!("{after:+.2} rad/s"),
+            agrees: (after - f.pitch_rate_drop.value.after_rad_s).abs() <= 1.0,
+            tolerance: "±1 rad/s".into(),
+        },
+        FactCheck {
+            fact: "maximum stroking reached by".into(),
+            quote: f.maximum_stroking.quote.clone(),
+            report: format!("{:.2} s", f.maximum_stroking.value.by_time_s),
+            ours: format!("{stroking_done:.3} s"),
+            agrees: stroking_done <= f.maximum_stroking.value.by_time_s + 0.01,
+            tolerance: "by 0.12 s (+0.01 s)".into(),
+        },
+        FactCheck {
+            fact: "primary stroke into the second stage".into(),
+            quote: f.second_stage.quote.clone(),
+            report: format!("{:.3} ft", f.second_stage.value.depth_ft),
+            ours: format!("{depth_ft:+.3} ft"),
+            agrees: (depth_ft - f.second_stage.value.depth_ft).abs() <= 0.01,
+            tolerance: "±0.01 ft".into(),
+        },
+        FactCheck {
+            fact: "outcome".into(),
+            quote: f.outcome.quote.clone(),
+            report: format!(
+                "test {}, report's analysis {}",
+                f.outcome.value.experiment, f.outcome.value.report_analysis
+            ),
+            ours: outcome.to_string(),
+            agrees: outcome == f.outcome.value.experiment,
+            tolerance: "same as the test".into(),
+        },
+    ];
+    Ok(FactsRun {
+        checks,
+        series,
+        summary,
+    })
+}

@@ -1,0 +1,36 @@
+//! Validation of the report-faithful core against the 1/6-scale LM drop tests of NASA TN D-7045
+//! (issue 3): Table I with calibration rows and held-out rows, the sensitivity of every stroke to
+//! the estimated parameters, the facts the text states about the figure 25-26 landing, and the
+//! report's automatic stability-boundary search.
+//!
+//! The reference data and the protocol are files under `reference/` (each with provenance); the
+//! landings are the scenarios under `scenarios/`.
+
+pub mod boundary;
+pub mod calibrate;
+pub mod facts;
+pub mod reference;
+pub mod sensitivity;
+pub mod table;
+
+/// Errors of the validation tools.
+#[derive(Debug, thiserror::Error)]
+pub enum ValidationError {
+    /// A reference file is missing or malformed.
+    #[error("reference data: {0}")]
+    Reference(String),
+    /// A scenario failed to load.
+    #[error(transparent)]
+    Scenario(#[from] touchdown_scenario::ScenarioError),
+    /// A landing failed to run (the cause follows in the error chain).
+    #[error("{scenario}")]
+    Run {
+        /// The scenario.
+        scenario: String,
+        /// Why.
+        source: touchdown_core::CoreError,
+    },
+    /// The optimiser failed.
+    #[error("calibration: {0}")]
+    Calibration(String),
+}

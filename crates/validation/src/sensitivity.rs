@@ -1,0 +1,86 @@
+//! How each estimated parameter moves each Table I stroke: every estimate is scaled by
+//! 1 ± fraction (all its fields together) and every row is rerun.
+
+use crate::reference::{self, Estimates, Paths, TableI};
+use crate::table::{run_row, stroke_in};
+use crate::ValidationError;
+use rayon::prelude::*;
+use serde::Serialize;
+use touchdown_scenario::Scenario;
+
+/// Response of one row's stroke to one parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Response {
+    /// Table I row.
+    pub id: u32,
+    /// Stroke with the parameter at its value, in.
+    pub base_in: f64,
+    /// Relative stroke change with the parameter scaled by 1 − fraction, %.
+    pub minus_pct: f64,
+    /// Relative stroke change with the parameter scaled by 1 + fraction, %.
+    pub plus_pct: f64,
+}
+
+/// One estimated parameter's row of the sensitivity table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ParameterSensitivity {
+    /// The estimate.
+    pub parameter: String,
+    /// Its current value in the scenarios (calibrated if calibrated), file units.
+    pub value: f64,
+    /// One response per Table I row.
+    pub rows: Vec<Response>,
+}
+
+/// The sensitivity table for a relative change `fraction` (0.2 for ±20 %).
+pub fn sensitivity(
+    paths: &Paths,
+    fraction: f64,
+) -> Result<Vec<ParameterSensitivity>, ValidationError> {
+    let table: TableI = reference::read(&paths.reference("table-i.toml"))?;
+    let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
+    let base: Vec<f64> = table
+        .row
+        .par_iter()
+        .map(|r| run_row(paths, r, &[]).map(|s| stroke_in(&s, r.strut)))
+        .collect::<Result<_, _>>()?;
+    let mut out = Vec::with_capacity(estimates.parameter.len());
+    for p in &estimates.parameter {
+        let first = paths.scenario(&table.row[0].scenario);
+        let value = Scenario::value_at(&first, &p.fields[0])?.ok_or_else(|| {
+            ValidationError::Reference(format!("{}: no number at {}", first.display(), p.fields[0]))
+        })?;
+        let jobs: Vec<(usize, f64)> = (0..table.row.len())
+            .flat_map(|i| [(i, 1.0 - fraction), (i, 1.0 + fraction)])
+            .collect();
+        let strokes: Vec<f64> = jobs
+            .par_iter()
+            .map(|(i, factor)| {
+                let overrides: Vec<(&str, f64)> = p
+                    .fields
+                    .iter()
+                    .map(|f| (f.as_str(), value * factor))
+                    .collect();
+                let row = &table.row[*i];
+                run_row(paths, row, &overrides).map(|s| stroke_in(&s, row.strut))
+            })
+            .collect::<Result<_, _>>()?;
+        let rows = table
+            .row
+            .iter()
+            .enumerate()
+            .map(|(i, r)| Response {
+                id: r.id,
+                base_in: base[i],
+                minus_pct: 100.0 * (strokes[2 * i] - base[i]) / base[i],
+                plus_pct: 100.0 * (strokes[2 * i + 1] - base[i]) / base[i],
+            })
+            .collect();
+        out.push(ParameterSensitivity {
+            parameter: p.name.clone(),
+            value,
+            rows,
+        });
+    }
+    Ok(out)
+}
