@@ -74,6 +74,24 @@ pub struct FactCheck {
     pub tolerance: String,
 }
 
+fn fact(
+    name: &str,
+    quote: &str,
+    report: String,
+    ours: String,
+    agrees: bool,
+    tolerance: &str,
+) -> FactCheck {
+    FactCheck {
+        fact: name.into(),
+        quote: quote.into(),
+        report,
+        ours,
+        agrees,
+        tolerance: tolerance.into(),
+    }
+}
+
 /// Time histories of one landing (SI, plus g for the acceleration).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Series {
@@ -227,65 +245,65 @@ pub fn check(paths: &Paths) -> Result<FactsRun, ValidationError> {
     };
     let f = &facts;
     let checks = vec![
-        FactCheck {
-            fact: "free flight between the two acceleration pulses".into(),
-            quote: f.free_flight.quote.clone(),
-            report: format!("{:.3} s", f.free_flight.value.duration_s),
-            ours: format!("{free_flight:.3} s"),
-            agrees: (free_flight - f.free_flight.value.duration_s).abs() <= 0.01,
-            tolerance: "±0.01 s".into(),
-        },
-        FactCheck {
-            fact: "downhill footpads strike".into(),
-            quote: f.downhill_strike.quote.clone(),
-            report: format!("{:.3} s", f.downhill_strike.value.time_s),
-            ours: format!("{strike_t:.3} s"),
-            agrees: (strike_t - f.downhill_strike.value.time_s).abs() <= 0.01,
-            tolerance: "±0.01 s".into(),
-        },
-        FactCheck {
-            fact: "pitch rate at the downhill strike".into(),
-            quote: f.pitch_rate_drop.quote.clone(),
-            report: format!("{:+.1} rad/s", f.pitch_rate_drop.value.before_rad_s),
-            ours: format!("{before:+.2} rad/s"),
-            agrees: (before - f.pitch_rate_drop.value.before_rad_s).abs() <= 1.0,
-            tolerance: "±1 rad/s".into(),
-        },
-        FactCheck {
-            fact: "pitch rate after the downhill impact (at maximum stroking)".into(),
-            quote: f.pitch_rate_drop.quote.clone(),
-            report: format!("{:+.1} rad/s", f.pitch_rate_drop.value.after_rad_s),
-            ours: format!("{after:+.2} rad/s"),
-            agrees: (after - f.pitch_rate_drop.value.after_rad_s).abs() <= 1.0,
-            tolerance: "±1 rad/s".into(),
-        },
-        FactCheck {
-            fact: "maximum stroking reached by".into(),
-            quote: f.maximum_stroking.quote.clone(),
-            report: format!("{:.2} s", f.maximum_stroking.value.by_time_s),
-            ours: format!("{stroking_done:.3} s"),
-            agrees: stroking_done <= f.maximum_stroking.value.by_time_s + 0.01,
-            tolerance: "by 0.12 s (+0.01 s)".into(),
-        },
-        FactCheck {
-            fact: "primary stroke into the second stage".into(),
-            quote: f.second_stage.quote.clone(),
-            report: format!("{:.3} ft", f.second_stage.value.depth_ft),
-            ours: format!("{depth_ft:+.3} ft"),
-            agrees: (depth_ft - f.second_stage.value.depth_ft).abs() <= 0.01,
-            tolerance: "±0.01 ft".into(),
-        },
-        FactCheck {
-            fact: "outcome".into(),
-            quote: f.outcome.quote.clone(),
-            report: format!(
+        fact(
+            "free flight between the two acceleration pulses",
+            &f.free_flight.quote.clone(),
+            format!("{:.3} s", f.free_flight.value.duration_s),
+            format!("{free_flight:.3} s"),
+            (free_flight - f.free_flight.value.duration_s).abs() <= 0.01,
+            "±0.01 s",
+        ),
+        fact(
+            "downhill footpads strike",
+            &f.downhill_strike.quote.clone(),
+            format!("{:.3} s", f.downhill_strike.value.time_s),
+            format!("{strike_t:.3} s"),
+            (strike_t - f.downhill_strike.value.time_s).abs() <= 0.01,
+            "±0.01 s",
+        ),
+        fact(
+            "pitch rate at the downhill strike",
+            &f.pitch_rate_drop.quote.clone(),
+            format!("{:+.1} rad/s", f.pitch_rate_drop.value.before_rad_s),
+            format!("{before:+.2} rad/s"),
+            (before - f.pitch_rate_drop.value.before_rad_s).abs() <= 1.0,
+            "±1 rad/s",
+        ),
+        fact(
+            "pitch rate after the downhill impact (at maximum stroking)",
+            &f.pitch_rate_drop.quote.clone(),
+            format!("{:+.1} rad/s", f.pitch_rate_drop.value.after_rad_s),
+            format!("{after:+.2} rad/s"),
+            (after - f.pitch_rate_drop.value.after_rad_s).abs() <= 1.0,
+            "±1 rad/s",
+        ),
+        fact(
+            "maximum stroking reached by",
+            &f.maximum_stroking.quote.clone(),
+            format!("{:.2} s", f.maximum_stroking.value.by_time_s),
+            format!("{stroking_done:.3} s"),
+            stroking_done <= f.maximum_stroking.value.by_time_s + 0.01,
+            "by 0.12 s (+0.01 s)",
+        ),
+        fact(
+            "primary stroke into the second stage",
+            &f.second_stage.quote.clone(),
+            format!("{:.3} ft", f.second_stage.value.depth_ft),
+            format!("{depth_ft:+.3} ft"),
+            (depth_ft - f.second_stage.value.depth_ft).abs() <= 0.01,
+            "±0.01 ft",
+        ),
+        fact(
+            "outcome",
+            &f.outcome.quote.clone(),
+            format!(
                 "test {}, report's analysis {}",
                 f.outcome.value.experiment, f.outcome.value.report_analysis
             ),
-            ours: outcome.to_string(),
-            agrees: outcome == f.outcome.value.experiment,
-            tolerance: "same as the test".into(),
-        },
+            outcome.to_string(),
+            outcome == f.outcome.value.experiment,
+            "same as the test",
+        ),
     ];
     Ok(FactsRun {
         checks,
