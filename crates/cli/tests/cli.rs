@@ -165,3 +165,94 @@ fn bad_input_fails_with_the_file_and_field() {
     );
     assert!(out.stdout.is_empty(), "nothing is written on failure");
 }
+
+#[test]
+fn validate_json_carries_every_row_and_the_targets() {
+    let out = touchdown(&["validate", "--format", "json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 8);
+    for key in [
+        "id",
+        "landing",
+        "vv_ft_s",
+        "vh_ft_s",
+        "strut",
+        "experiment_in",
+        "analysis_in",
+        "ours_in",
+        "error_vs_experiment_pct",
+        "error_vs_analysis_pct",
+        "role",
+    ] {
+        assert!(rows[0].get(key).is_some(), "row field {key}");
+    }
+    assert!(v["held_out_ours"]["mean_abs_error_pct"].is_number());
+    assert!(v["held_out_report"]["mean_abs_error_pct"].is_number());
+    assert!(v["targets"]["held_out_within_10_pct"].is_boolean());
+    assert_eq!(v["facts"].as_array().unwrap().len(), 7);
+}
+
+#[test]
+fn boundary_prints_csv_and_json() {
+    let d = temp("boundary");
+    std::fs::create_dir_all(&d).unwrap();
+    let f = d.join("steep.toml");
+    let base = root().join("scenarios/fig-25-26.toml");
+    std::fs::write(
+        &f,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = \"steep\"\n[surface]\nkind = \"rigid\"\nslope = 15.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
+    let args = |fmt: &'static str| {
+        [
+            "boundary",
+            f.to_str().unwrap(),
+            "--vv",
+            "12:12:1",
+            "--vh-step",
+            "2",
+            "--vh-max",
+            "12",
+            "--tol",
+            "0.1",
+            "--format",
+            fmt,
+        ]
+        .map(String::from)
+    };
+    let csv = touchdown(&args("csv").iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(
+        csv.status.success(),
+        "{}",
+        String::from_utf8_lossy(&csv.stderr)
+    );
+    let text = String::from_utf8(csv.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("vv_descent,vh_boundary,vh_stable,vh_unstable,landings,undecided")
+    );
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(row[0], "12");
+    let vh: f64 = row[1].parse().expect("a boundary was found");
+    assert!(vh > 0.0 && vh < 12.0);
+    let json = touchdown(&args("json").iter().map(String::as_str).collect::<Vec<_>>());
+    let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert!(
+        (v[0]["vh"].as_f64().unwrap() - vh).abs() < 1e-12,
+        "csv and json agree"
+    );
+    // A bad range is a clear error.
+    let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv", "12:4:1"]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("FROM"));
+}
