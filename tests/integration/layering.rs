@@ -8,8 +8,17 @@ use std::collections::BTreeMap;
 const ALLOWED: &[(&str, &[&str])] = &[
     ("touchdown-scenario", &[]),
     ("touchdown-laws", &["touchdown-scenario"]),
-    // Engines: scenario and laws only; never another engine.
-    ("touchdown-core", &["touchdown-scenario", "touchdown-laws"]),
+    // What every engine reports (summary, history sample, stability criteria).
+    ("touchdown-record", &["touchdown-scenario"]),
+    // Engines: scenario, laws and record only; never another engine.
+    (
+        "touchdown-core",
+        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
+    ),
+    (
+        "touchdown-rapier",
+        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
+    ),
     // Comparison level: runs engines, never reached by them.
     (
         "touchdown-validation",
@@ -20,13 +29,21 @@ const ALLOWED: &[(&str, &[&str])] = &[
         &[
             "touchdown-scenario",
             "touchdown-laws",
+            "touchdown-record",
             "touchdown-core",
+            "touchdown-rapier",
             "touchdown-validation",
         ],
     ),
     (
         "touchdown-tests",
-        &["touchdown-scenario", "touchdown-laws", "touchdown-core"],
+        &[
+            "touchdown-scenario",
+            "touchdown-laws",
+            "touchdown-record",
+            "touchdown-core",
+            "touchdown-rapier",
+        ],
     ),
 ];
 

@@ -7,7 +7,8 @@
 //! * `allocation`: the core's step loop does not allocate;
 //! * `docs`: docs/scenario-format.md documents every scenario field;
 //! * `layering`: the crate dependency layers (engines never depend on each other);
-//! * `plots`: the validation plots regenerate from the committed data with the project's venv.
+//! * `plots`: the validation plots regenerate from the committed data with the project's venv;
+//! * `rapier`: the rapier rebuild's start state, impact bookkeeping and settings checks.
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
 //! `crates/cli/tests/`.
@@ -17,4 +18,5 @@ mod docs;
 mod layering;
 mod physics;
 mod plots;
+mod rapier;
 mod scenario_errors;

@@ -4,13 +4,14 @@ use anyhow::{Context, Result};
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::Path;
-use touchdown_core::{Observer, Simulation};
+use touchdown_record::Sample;
 
-/// Writes the time history of a landing as it runs.
+/// Writes the time history of a landing as it runs, one [`Sample`] a row, whatever the engine.
 pub struct Recorder {
     writer: csv::Writer<BufWriter<File>>,
     error: Option<csv::Error>,
     row: Vec<String>,
+    sample: Sample,
 }
 
 impl Recorder {
@@ -72,6 +73,7 @@ impl Recorder {
             writer,
             error: None,
             row: Vec::with_capacity(header.len()),
+            sample: Sample::new(legs),
         })
     }
 
@@ -95,46 +97,46 @@ fn num(x: f64) -> String {
     }
 }
 
-impl Observer for Recorder {
-    fn observe(&mut self, sim: &Simulation) {
+impl Recorder {
+    /// Writes `self.sample` as a row (the first write error is kept for [`Recorder::finish`]).
+    fn write(&mut self) {
         if self.error.is_some() {
             return;
         }
-        let v = sim.vehicle();
+        let s = &self.sample;
         let row = &mut self.row;
         row.clear();
-        row.push(num(sim.time()));
-        for x in v
+        row.push(num(s.t));
+        for x in s
             .position
             .iter()
-            .chain(v.velocity.iter())
-            .chain(v.theta.iter())
-            .chain(v.omega.iter())
+            .chain(s.velocity.iter())
+            .chain(s.theta.iter())
+            .chain(s.omega.iter())
         {
             row.push(num(*x));
         }
-        row.push(num(v.omega_inertial().x));
-        for (g, p) in sim.gear().iter().zip(sim.footpads()) {
-            let f = g.f_secondary();
+        row.push(num(s.pitch_rate));
+        for g in &s.legs {
             for x in [
                 g.primary_stroke,
-                g.f2p,
+                g.primary_force,
                 g.secondary_stroke[0],
-                f[0],
+                g.secondary_force[0],
                 g.secondary_stroke[1],
-                f[1],
-                p.position.x,
-                p.position.y,
-                p.position.z,
+                g.secondary_force[1],
+                g.pad_position.x,
+                g.pad_position.y,
+                g.pad_position.z,
             ] {
                 row.push(num(x));
             }
-            row.push(p.state.code().to_string());
+            row.push(g.contact.to_string());
         }
-        for sd in sim.stability_distances() {
+        for sd in &s.stability_distance {
             row.push(num(*sd));
         }
-        let e = sim.energy();
+        let e = &s.energy;
         for x in [
             e.kinetic_j,
             e.potential_change_j,
@@ -148,5 +150,19 @@ impl Observer for Recorder {
         if let Err(e) = self.writer.write_record(row.iter()) {
             self.error = Some(e);
         }
+    }
+}
+
+impl touchdown_core::Observer for Recorder {
+    fn observe(&mut self, sim: &touchdown_core::Simulation) {
+        sim.sample(&mut self.sample);
+        self.write();
+    }
+}
+
+impl touchdown_rapier::Observer for Recorder {
+    fn observe(&mut self, sim: &touchdown_rapier::RapierSimulation) {
+        sim.sample(&mut self.sample);
+        self.write();
     }
 }

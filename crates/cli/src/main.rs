@@ -35,6 +35,12 @@ enum Command {
         /// Engine to run.
         #[arg(long, value_enum, default_value_t = Engine::Core)]
         engine: Engine,
+        /// rapier engine: fixed time step, s (overrides engines.rapier.timestep).
+        #[arg(long)]
+        timestep: Option<f64>,
+        /// rapier engine: solver substeps per step (overrides engines.rapier.substeps).
+        #[arg(long)]
+        substeps: Option<u32>,
     },
     /// Run every Table I landing and the figure 25-26 landing against the report.
     Validate {
@@ -110,10 +116,12 @@ enum Format {
     Json,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, ValueEnum)]
 enum Engine {
     /// The report-faithful core.
     Core,
+    /// The rapier multibody rebuild (engine settings in [engines.rapier]).
+    Rapier,
 }
 
 fn main() -> std::process::ExitCode {
@@ -132,27 +140,61 @@ fn run(cli: Cli) -> Result<()> {
             scenario,
             format,
             out,
-            engine: Engine::Core,
+            engine,
+            timestep,
+            substeps,
         } => {
-            let sc = Scenario::load(&scenario)?;
-            let mut sim = touchdown_core::Simulation::new(&sc)?;
-            let summary = match &out {
+            let mut sc = Scenario::load(&scenario)?;
+            if timestep.is_some() || substeps.is_some() {
+                if engine != Engine::Rapier {
+                    anyhow::bail!(
+                        "--timestep and --substeps set the rapier engine; add --engine rapier"
+                    );
+                }
+                sc = sc.with_rapier(|r| {
+                    if let Some(t) = timestep {
+                        r.timestep = t;
+                    }
+                    if let Some(n) = substeps {
+                        r.substeps = n;
+                    }
+                })?;
+            }
+            let mut recorder = match &out {
                 Some(dir) => {
                     std::fs::create_dir_all(dir)
                         .with_context(|| format!("cannot create {}", dir.display()))?;
-                    let mut rec =
-                        history::Recorder::create(&dir.join("history.csv"), sc.legs.len())?;
-                    let summary = sim.run(&mut rec)?;
-                    rec.finish()?;
-                    std::fs::write(
-                        dir.join("scenario.resolved.toml"),
-                        report::resolved_scenario(&sc),
-                    )?;
-                    std::fs::write(dir.join("summary.json"), report::json(&summary)?)?;
-                    summary
+                    Some(history::Recorder::create(
+                        &dir.join("history.csv"),
+                        sc.legs.len(),
+                    )?)
                 }
-                None => sim.run(&mut ())?,
+                None => None,
             };
+            let summary = match engine {
+                Engine::Core => {
+                    let mut sim = touchdown_core::Simulation::new(&sc)?;
+                    match recorder.as_mut() {
+                        Some(r) => sim.run(r)?,
+                        None => sim.run(&mut ())?,
+                    }
+                }
+                Engine::Rapier => {
+                    let mut sim = touchdown_rapier::RapierSimulation::new(&sc)?;
+                    match recorder.as_mut() {
+                        Some(r) => sim.run(r)?,
+                        None => sim.run(&mut ())?,
+                    }
+                }
+            };
+            if let (Some(dir), Some(rec)) = (&out, recorder) {
+                rec.finish()?;
+                std::fs::write(
+                    dir.join("scenario.resolved.toml"),
+                    report::resolved_scenario(&sc),
+                )?;
+                std::fs::write(dir.join("summary.json"), report::json(&summary)?)?;
+            }
             match format {
                 Format::Text => print!("{}", report::text(&sc, &summary)),
                 Format::Json => println!("{}", report::json(&summary)?),

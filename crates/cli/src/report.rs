@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use std::fmt::Write;
-use touchdown_core::{Outcome, Summary};
+use touchdown_record::{Outcome, Summary};
 use touchdown_scenario::Scenario;
 
 /// The summary as pretty JSON (deterministic: fields in declaration order).

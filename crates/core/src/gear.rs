@@ -8,17 +8,8 @@
 //! the secondaries at point 1. FP is the force the gear exerts on the footpad.
 
 use nalgebra::Vector3;
-use touchdown_laws::{DoubleActingMemory, GearLaws, LawError};
+use touchdown_laws::{GearLaws, GearMemory, LawError};
 use touchdown_scenario::model::Leg;
-
-/// Committed hysteresis of one gear: primary compression and both secondaries.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct GearMemory {
-    /// Primary-strut compression memory.
-    pub primary: touchdown_laws::CrushMemory,
-    /// Secondary struts 3-1 and 4-1.
-    pub secondary: [DoubleActingMemory; 2],
-}
 
 /// Everything computed for one gear at one state.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -99,9 +90,8 @@ pub fn evaluate(
     let fv = [sec.viscous.force(s_dot[0]), sec.viscous.force(s_dot[1])];
     // eq. (52): FS, force of the primary on the secondaries at point 1
     let fs = u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]);
-    // eqs. (53)-(58) with eq. (54) corrected (MS = V21 × FS), in closed form:
-    // FM = −(L21/V2P)·(FS − (FS·V̂2P)·V̂2P)
-    let fm = -(fs - e * fs.dot(&e)) * (leg.l21 / len);
+    // eqs. (53)-(58) with eq. (54) corrected, closed form
+    let fm = touchdown_laws::side_load(&fs, &e, leg.l21, len);
     let fm_mag = fm.norm();
     // eqs. (59)-(63): bearing friction, opposing the stroking direction
     let pri = &laws.primary;
@@ -127,34 +117,6 @@ pub fn evaluate(
         fm: fm_mag,
         fp,
     })
-}
-
-/// Commits an accepted gear state into the hysteresis memory (honeycomb x_max per side).
-pub fn commit(laws: &GearLaws, state: &GearState, memory: &mut GearMemory) {
-    laws.primary
-        .honeycomb
-        .commit(state.primary_stroke, &mut memory.primary);
-    for i in 0..2 {
-        laws.secondary
-            .honeycomb
-            .commit(state.secondary_stroke[i], &mut memory.secondary[i]);
-    }
-}
-
-/// Elastic energy stored in the gear's honeycombs (recoverable along the backoff lines), J.
-pub fn stored_energy(laws: &GearLaws, state: &GearState, memory: &GearMemory) -> f64 {
-    let p = laws
-        .primary
-        .honeycomb
-        .stored_energy(state.primary_stroke, memory.primary);
-    let s: f64 = (0..2)
-        .map(|i| {
-            laws.secondary
-                .honeycomb
-                .stored_energy(state.secondary_stroke[i], memory.secondary[i])
-        })
-        .sum();
-    p + s
 }
 
 #[cfg(test)]

@@ -9,8 +9,10 @@
 //! | [`rigid_body`] | rigid-vehicle equations, eqs. (10)-(15) |
 //! | [`gear`] | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
 //! | [`surface`] | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
-//! | [`stability`] | stability distance, overturning velocity, eqs. (105)-(107) |
 //! | [`simulation`] | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
+//!
+//! The stability criteria (eqs. 105-107) and the summary are shared with the other engines in
+//! `touchdown_record`.
 //!
 //! Departures from the printed equations are listed with their derivations and tests in
 //! `docs/errata.md`.
@@ -19,13 +21,10 @@ pub mod gear;
 pub mod kinematics;
 pub mod rigid_body;
 pub mod simulation;
-pub mod stability;
-pub mod summary;
 pub mod surface;
 
 pub use simulation::{Observer, Simulation, VehicleState};
-pub use stability::Outcome;
-pub use summary::{EnergyReport, Summary};
+pub use touchdown_record::{EnergyReport, Outcome, Summary};
 
 /// Errors of the core engine.
 #[derive(Debug, thiserror::Error)]

@@ -15,18 +15,19 @@
 //!
 //! Nothing in the step allocates.
 
-use crate::gear::{self, GearMemory, GearState};
+use crate::gear::{self, GearState};
 use crate::kinematics::{euler_acceleration, t_eb, GIMBAL_LOCK_COS};
 use crate::rigid_body::MassProperties;
-use crate::stability::{overturn_velocity, stability_distance, Outcome};
-use crate::summary::{EnergyReport, Summary};
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
 use crate::CoreError;
 use nalgebra::{Matrix3, Vector2, Vector3};
-use touchdown_laws::{sliding_friction, GearLaws};
+use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
+use touchdown_record::{
+    EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
+};
 use touchdown_scenario::frames::{self, gravity_inertial};
-use touchdown_scenario::model::{Integrator, Leg, PadSurface, Stability};
-use touchdown_scenario::schema::{ReleaseRule, WallRule};
+use touchdown_scenario::model::{Integrator, Leg, PadSurface};
+use touchdown_scenario::schema::ReleaseRule;
 use touchdown_scenario::Scenario;
 
 /// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
@@ -89,31 +90,6 @@ struct Ledger {
     events: f64,
 }
 
-/// Stability tracking.
-#[derive(Debug, Clone, PartialEq)]
-struct StabilityTrack {
-    /// Current SD per wall (NaN where undefined), m.
-    sd: Vec<f64>,
-    /// Outward normals per wall.
-    normal: Vec<Vector3<f64>>,
-    /// Minimum over time of the smallest SD, m.
-    min_sd: f64,
-    /// Kinetic energy at first contact, J.
-    ke0: f64,
-    outcome: Option<(Outcome, f64)>,
-    overturn_velocity: Option<f64>,
-}
-
-/// Running extremes for the summary.
-#[derive(Debug, Clone, PartialEq)]
-struct Extremes {
-    primary: Vec<f64>,
-    sec_compression: Vec<[f64; 2]>,
-    sec_tension: Vec<[f64; 2]>,
-    pitch_rate: f64,
-    pitch_rate_time: f64,
-}
-
 /// A landing simulated by the report-faithful core.
 #[derive(Debug, Clone)]
 pub struct Simulation {
@@ -126,7 +102,6 @@ pub struct Simulation {
     footpad_mass: f64,
     release: ReleaseRule,
     integrator: Integrator,
-    criteria: Stability,
     // state
     t: f64,
     steps: u64,
@@ -140,8 +115,10 @@ pub struct Simulation {
     scratch: Vec<GearState>,
     ledger: Ledger,
     potential0: f64,
-    stability: StabilityTrack,
+    stability: StabilityTracker,
     extremes: Extremes,
+    /// Footpad views for the stability criteria (reused every step).
+    pad_views: Vec<PadView>,
 }
 
 /// Something that watches a landing after every accepted step (and at t = 0).
@@ -203,7 +180,6 @@ impl Simulation {
             footpad_mass: scenario.footpad.mass,
             release: scenario.surface.release,
             integrator: scenario.integrator.clone(),
-            criteria: scenario.stability.clone(),
             t: 0.0,
             steps: 0,
             evaluations: 0,
@@ -216,24 +192,13 @@ impl Simulation {
             scratch: vec![GearState::default(); n],
             ledger: Ledger::default(),
             potential0: 0.0,
-            stability: StabilityTrack {
-                sd: vec![f64::NAN; n],
-                normal: vec![Vector3::zeros(); n],
-                min_sd: f64::INFINITY,
-                ke0: 0.0,
-                outcome: None,
-                overturn_velocity: None,
-            },
-            extremes: Extremes {
-                primary: vec![0.0; n],
-                sec_compression: vec![[0.0; 2]; n],
-                sec_tension: vec![[0.0; 2]; n],
-                pitch_rate: 0.0,
-                pitch_rate_time: 0.0,
-            },
+            stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
+            extremes: Extremes::new(n),
+            pad_views: vec![PadView::default(); n],
         };
         sim.potential0 = sim.potential_energy();
-        sim.stability.ke0 = sim.kinetic_energy();
+        sim.stability =
+            StabilityTracker::new(&scenario.stability, gravity, n, sim.kinetic_energy());
         // First contact at t = 0, then the accepted state's forces and accelerations.
         let before = sim.footpad_energy();
         sim.contact_logic();
@@ -258,8 +223,7 @@ impl Simulation {
 
     /// Whether the run has ended (end time, or a decision with termination on).
     pub fn finished(&self) -> bool {
-        self.t >= self.integrator.t_end * (1.0 - 1e-12)
-            || (self.criteria.terminate_on_decision && self.stability.outcome.is_some())
+        self.t >= self.integrator.t_end * (1.0 - 1e-12) || self.stability.terminates()
     }
 
     /// Current time, s.
@@ -290,7 +254,7 @@ impl Simulation {
     /// Current stability distance per wall (wall i joins footpads i and i+1), m; NaN if the
     /// wall is undefined.
     pub fn stability_distances(&self) -> &[f64] {
-        &self.stability.sd
+        self.stability.distances()
     }
 
     /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
@@ -317,17 +281,21 @@ impl Simulation {
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
         let stored: f64 = (0..self.legs.len())
-            .map(|i| gear::stored_energy(&self.laws, &self.gear[i], &self.memory[i]))
+            .map(|i| {
+                let g = &self.gear[i];
+                self.laws
+                    .stored_energy(g.primary_stroke, g.secondary_stroke, &self.memory[i])
+            })
             .sum();
         let l = &self.ledger;
         let kinetic = self.kinetic_energy();
         let potential_change = self.potential_energy() - self.potential0;
         let footpads = self.footpad_energy();
         let absorbed = l.honeycomb + l.viscous + l.bearing + l.sliding;
-        let residual =
-            kinetic + potential_change + footpads + absorbed - l.events - self.stability.ke0;
+        let ke0 = self.stability.initial_kinetic_energy();
+        let residual = kinetic + potential_change + footpads + absorbed - l.events - ke0;
         EnergyReport {
-            kinetic_initial_j: self.stability.ke0,
+            kinetic_initial_j: ke0,
             kinetic_j: kinetic,
             potential_change_j: potential_change,
             footpad_j: footpads,
@@ -341,32 +309,61 @@ impl Simulation {
         }
     }
 
+    /// The integrator settings, for the summary.
+    fn settings(&self) -> serde_json::Map<String, serde_json::Value> {
+        let it = &self.integrator;
+        let mut m = serde_json::Map::new();
+        m.insert(
+            "scheme".into(),
+            "report predictor-corrector, eqs. (20)-(25)".into(),
+        );
+        m.insert("dist_m".into(), it.dist.into());
+        m.insert("dt_min_s".into(), it.dt_min.into());
+        m.insert("dt_max_s".into(), it.dt_max.into());
+        m.insert("energy_tolerance".into(), it.energy_tolerance.into());
+        m
+    }
+
     /// The summary at the current state.
     pub fn summary(&self) -> Summary {
-        let (outcome, decision) = match self.stability.outcome {
-            Some((o, t)) => (o, Some(t)),
-            None => (Outcome::Undecided, None),
-        };
-        let energy = self.energy();
-        Summary {
-            engine: "core".to_string(),
-            scenario: self.name.clone(),
-            outcome,
-            decision_time_s: decision,
-            t_end_s: self.t,
+        let progress = Progress {
+            t: self.t,
             steps: self.steps,
             force_evaluations: self.evaluations,
-            max_primary_stroke_m: self.extremes.primary.clone(),
-            max_secondary_compression_m: self.extremes.sec_compression.clone(),
-            max_secondary_tension_m: self.extremes.sec_tension.clone(),
-            peak_pitch_rate_rad_s: self.extremes.pitch_rate,
-            peak_pitch_rate_time_s: self.extremes.pitch_rate_time,
-            min_stability_distance_m: self.stability.min_sd,
-            overturn_velocity_m_s: self.stability.overturn_velocity,
             first_contact_s: self.pads.iter().map(|p| p.first_contact).collect(),
-            energy_residual_j: energy.residual_j,
-            energy,
+        };
+        Summary::new(
+            "core",
+            &self.name,
+            self.settings(),
+            progress,
+            &self.stability,
+            &self.extremes,
+            self.energy(),
+        )
+    }
+
+    /// Writes the current state into `out` (a sample made for as many legs), allocating
+    /// nothing.
+    pub fn sample(&self, out: &mut Sample) {
+        let v = &self.vehicle;
+        out.t = self.t;
+        out.position = v.position;
+        out.velocity = v.velocity;
+        out.theta = v.theta;
+        out.omega = v.omega;
+        out.pitch_rate = v.omega_inertial().x;
+        for ((slot, g), p) in out.legs.iter_mut().zip(&self.gear).zip(&self.pads) {
+            slot.primary_stroke = g.primary_stroke;
+            slot.primary_force = g.f2p;
+            slot.secondary_stroke = g.secondary_stroke;
+            slot.secondary_force = g.f_secondary();
+            slot.pad_position = p.position;
+            slot.contact = p.state.code();
         }
+        out.stability_distance
+            .copy_from_slice(self.stability.distances());
+        out.energy = self.energy();
     }
 
     /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], shortened so that an
@@ -570,7 +567,9 @@ impl Simulation {
         // 7. commit hysteresis at the accepted state
         for i in 0..self.legs.len() {
             if self.pads[i].state == ContactState::Contact {
-                gear::commit(&self.laws, &self.gear[i], &mut self.memory[i]);
+                let g = &self.gear[i];
+                self.laws
+                    .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
                 let bp = new.t_bi.transpose() * (self.pads[i].position - new.position);
                 self.pads[i].bp = bp;
             }
@@ -702,73 +701,27 @@ impl Simulation {
     }
 
     /// Stability distances, the unstable crossing and the four stable conditions
-    /// (eqs. 105-107 and the text after them). `old` is the previous accepted vehicle state.
+    /// (eqs. 105-107, `touchdown_record::stability`). `old` is the previous accepted vehicle
+    /// state.
     fn update_stability(&mut self, old: Option<&VehicleState>) {
-        let v = self.vehicle;
-        let n = self.pads.len();
-        let mut min_now = f64::INFINITY;
-        let mut min_wall = usize::MAX;
-        let mut crossing: Option<(usize, f64)> = None;
-        for i in 0..n {
-            let j = (i + 1) % n;
-            let counted = match self.criteria.walls {
-                WallRule::All => true,
-                WallRule::TouchedDown => {
-                    self.pads[i].first_contact.is_some() && self.pads[j].first_contact.is_some()
-                }
+        for i in 0..self.pads.len() {
+            let p = &self.pads[i];
+            self.pad_views[i] = PadView {
+                position: self.pad_position(i),
+                in_contact: p.state == ContactState::Contact,
+                touched: p.first_contact.is_some(),
             };
-            let a = self.pad_position(i);
-            let b = self.pad_position(j);
-            let prev = self.stability.sd[i];
-            match stability_distance(&self.gravity, &v.position, &a, &b) {
-                Some((sd, normal)) => {
-                    self.stability.sd[i] = sd;
-                    self.stability.normal[i] = normal;
-                    if counted && sd < min_now {
-                        min_now = sd;
-                        min_wall = i;
-                    }
-                    if counted && sd < 0.0 && crossing.is_none() {
-                        // Fraction of the step at which SD crossed zero.
-                        let f = if prev.is_finite() && prev > 0.0 {
-                            prev / (prev - sd)
-                        } else {
-                            1.0
-                        };
-                        crossing = Some((i, f));
-                    }
-                }
-                None => self.stability.sd[i] = f64::NAN,
-            }
-        }
-        if min_now < self.stability.min_sd {
-            self.stability.min_sd = min_now;
-        }
-        if self.stability.outcome.is_some() {
-            return;
-        }
-        if let Some((wall, f)) = crossing {
-            let v_cross = match old {
-                Some(o) => o.velocity + (v.velocity - o.velocity) * f,
-                None => v.velocity,
-            };
-            self.stability.overturn_velocity =
-                Some(overturn_velocity(&v_cross, &self.stability.normal[wall]));
-            self.stability.outcome = Some((Outcome::Unstable, self.t));
-            return;
-        }
-        if min_wall == usize::MAX {
-            return;
         }
         let ke = self.kinetic_energy();
-        let j = (min_wall + 1) % n;
-        let stable = ke < self.criteria.kinetic_energy_fraction * self.stability.ke0 // 1
-            && min_now > 0.0 // 2
-            && self.pads[min_wall].state == ContactState::Contact && self.pads[j].state == ContactState::Contact // 3
-            && -v.velocity.dot(&self.stability.normal[min_wall]) >= self.criteria.min_separation_velocity; // 4
-        if stable {
-            self.stability.outcome = Some((Outcome::Stable, self.t));
-        }
+        let v = &self.vehicle;
+        self.stability.update(
+            self.t,
+            &v.position,
+            &v.velocity,
+            old.map(|o| &o.velocity),
+            ke,
+            &self.pad_views,
+        );
     }
 
     /// Inertial position of footpad `i`, m.
@@ -782,20 +735,13 @@ impl Simulation {
     }
 
     /// Running maxima of strokes and the pitch rate (angular velocity about the inertial X
-    /// axis, the cross-slope axis normal to the plane of a planar landing).
+    /// axis).
     fn update_extremes(&mut self) {
-        let x = &mut self.extremes;
         for (i, g) in self.gear.iter().enumerate() {
-            x.primary[i] = x.primary[i].max(g.primary_stroke);
-            for j in 0..2 {
-                x.sec_tension[i][j] = x.sec_tension[i][j].max(g.secondary_stroke[j]);
-                x.sec_compression[i][j] = x.sec_compression[i][j].max(-g.secondary_stroke[j]);
-            }
+            self.extremes
+                .update_leg(i, g.primary_stroke, g.secondary_stroke);
         }
-        let q = self.vehicle.omega_inertial().x;
-        if q.abs() > x.pitch_rate.abs() {
-            x.pitch_rate = q;
-            x.pitch_rate_time = self.t;
-        }
+        self.extremes
+            .update_pitch_rate(self.t, self.vehicle.omega_inertial().x);
     }
 }

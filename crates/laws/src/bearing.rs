@@ -7,6 +7,16 @@
 //! `D2 = D2_0 + c` (review A10).
 
 use crate::LawError;
+use nalgebra::Vector3;
+
+/// Side load FM at the footpad, N, eqs. (53)-(58) with eq. (54) corrected (MS = V21 × FS), in
+/// closed form: `FM = −(L21/V2P)·(FS − (FS·V̂2P)·V̂2P)`. `fs` is the force of the primary on the
+/// secondaries at point 1 (eq. 52), `axis` the unit primary direction V̂2P (trunnion to pad),
+/// `l21` the trunnion-to-point-1 distance and `length` the current primary length V2P, m.
+#[inline]
+pub fn side_load(fs: &Vector3<f64>, axis: &Vector3<f64>, l21: f64, length: f64) -> Vector3<f64> {
+    -(fs - axis * fs.dot(axis)) * (l21 / length) // eq. (54) corrected, (55)-(58)
+}
 
 /// Primary-strut bearing: geometry and friction coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,12 +73,21 @@ impl Bearing {
         compression_stroke: f64,
         compression_rate: f64,
     ) -> Result<f64, LawError> {
-        if self.friction_coefficient == 0.0 || fm == 0.0 || compression_rate == 0.0 {
+        if compression_rate == 0.0 {
+            return Ok(0.0);
+        }
+        Ok(self.friction_bound(fm, compression_stroke)? * compression_rate.signum())
+    }
+
+    /// Magnitude of the bearing friction, N, eq. (63): `μB·(F1 + F2)` for a side load `fm` (N)
+    /// at compression stroke `compression_stroke` (m). A multibody engine uses it as the bound
+    /// of a dry-friction constraint on the stroke joint.
+    pub fn friction_bound(&self, fm: f64, compression_stroke: f64) -> Result<f64, LawError> {
+        if self.friction_coefficient == 0.0 || fm == 0.0 {
             return Ok(0.0);
         }
         let l = self.loads(fm, compression_stroke)?;
-        Ok(self.friction_coefficient * (l.f1 + l.f2) * compression_rate.signum())
-        // eq. (63)
+        Ok(self.friction_coefficient * (l.f1 + l.f2)) // eq. (63)
     }
 }
 

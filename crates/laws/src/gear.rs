@@ -2,7 +2,8 @@
 //! builds its laws here, so the mapping from scenario to law exists once.
 
 use crate::{
-    Bearing, CrushMemory, DoubleActingHoneycomb, Honeycomb, LawError, LoadStroke, Stage, Viscous,
+    Bearing, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LawError,
+    LoadStroke, Stage, Viscous,
 };
 use touchdown_scenario::{model, Scenario, ScenarioError};
 
@@ -55,6 +56,15 @@ pub struct SecondaryStrutLaw {
     pub viscous: Viscous,
 }
 
+/// Committed hysteresis of one gear: primary compression and both secondaries.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GearMemory {
+    /// Primary-strut compression memory.
+    pub primary: CrushMemory,
+    /// Secondary struts 3-1 and 4-1.
+    pub secondary: [DoubleActingMemory; 2],
+}
+
 /// Laws of one gear assembly (identical for every leg).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GearLaws {
@@ -102,6 +112,26 @@ fn viscous(v: &model::Viscous) -> Viscous {
 }
 
 impl GearLaws {
+    /// Commits an accepted state into the memory (honeycomb x_max per side): primary
+    /// compression stroke `c` and secondary strokes `s` (tension positive), m.
+    pub fn commit(&self, c: f64, s: [f64; 2], memory: &mut GearMemory) {
+        self.primary.honeycomb.commit(c, &mut memory.primary);
+        for (s, m) in s.into_iter().zip(&mut memory.secondary) {
+            self.secondary.honeycomb.commit(s, m);
+        }
+    }
+
+    /// Elastic energy stored in the gear's honeycombs and stops (recoverable), J, at primary
+    /// compression stroke `c` and secondary strokes `s`, m.
+    pub fn stored_energy(&self, c: f64, s: [f64; 2], memory: &GearMemory) -> f64 {
+        let secondary: f64 = s
+            .into_iter()
+            .zip(&memory.secondary)
+            .map(|(s, m)| self.secondary.honeycomb.stored_energy(s, *m))
+            .sum();
+        self.primary.stored_energy(c, memory.primary) + secondary
+    }
+
     /// Builds and checks the laws of a scenario's gear. Stage tables out of order, and a bearing
     /// that would leave its domain (D2 ≥ D1) within the primary stroke capacity, are reported
     /// against the scenario field.

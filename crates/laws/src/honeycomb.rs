@@ -120,6 +120,19 @@ impl LoadStroke {
         self.f[self.n - 1] + self.stroke_out_rate * (x - self.x[self.n - 1])
     }
 
+    /// The crush load, N, if stroke `x` (m) lies on a plateau of the curve (a stage crushing at
+    /// constant load, x > 0 and not past the capacity); `None` on an onset ramp or beyond.
+    #[inline]
+    pub fn plateau(&self, x: f64) -> Option<f64> {
+        if x <= 0.0 {
+            return None;
+        }
+        (1..self.n)
+            .find(|&i| x <= self.x[i])
+            .filter(|&i| self.f[i] == self.f[i - 1])
+            .map(|i| self.f[i])
+    }
+
     /// Stroke at which the last stage is exhausted (bottoming begins), m.
     pub fn capacity(&self) -> f64 {
         self.x[self.n - 1]
@@ -197,6 +210,18 @@ impl Honeycomb {
             self.curve.force(x)
         } else {
             (self.curve.force(m) - self.backoff_rate * (m - x)).max(0.0)
+        }
+    }
+
+    /// The crush load, N, if the honeycomb is crushing at stroke `x` (m): on its virgin curve
+    /// (`x` at or past the committed x_max) and on a plateau. A multibody engine holds such a
+    /// stroke with a one-sided velocity motor bounded by this load.
+    #[inline]
+    pub fn crush_load(&self, x: f64, memory: CrushMemory) -> Option<f64> {
+        if x >= memory.max_stroke {
+            self.curve.plateau(x)
+        } else {
+            None
         }
     }
 
@@ -332,6 +357,24 @@ mod tests {
         assert!((c.force(0.15) - 3000.0).abs() < 1e-9, "second plateau");
         assert!((c.force(0.201) - 13000.0).abs() < 1e-6, "stroke-out");
         assert_eq!(c.capacity(), 0.2);
+    }
+
+    #[test]
+    fn crushing_only_on_a_plateau_of_the_virgin_curve() {
+        let h = primary();
+        let fresh = CrushMemory::default();
+        assert_eq!(h.crush_load(0.005, fresh), None, "onset ramp is elastic");
+        assert_eq!(h.crush_load(0.05, fresh), Some(1000.0));
+        assert_eq!(h.crush_load(0.11, fresh), None, "ramp to the second stage");
+        assert_eq!(h.crush_load(0.15, fresh), Some(3000.0));
+        assert_eq!(h.crush_load(0.201, fresh), None, "bottoming is elastic");
+        let crushed = CrushMemory { max_stroke: 0.06 };
+        assert_eq!(h.crush_load(0.05, crushed), None, "rebound line");
+        assert_eq!(
+            h.crush_load(0.06, crushed),
+            Some(1000.0),
+            "back at the front"
+        );
     }
 
     #[test]

@@ -17,8 +17,8 @@ pub mod honeycomb;
 pub mod sliding;
 pub mod viscous;
 
-pub use bearing::{Bearing, BearingLoads};
-pub use gear::{GearLaws, PrimaryStrutLaw, SecondaryStrutLaw};
+pub use bearing::{side_load, Bearing, BearingLoads};
+pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryStrutLaw};
 pub use honeycomb::{
     CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
 };

@@ -269,6 +269,48 @@ fn resolve_layers(source: String, merged: Merged) -> Result<Scenario, ScenarioEr
     resolve(&source, merged.layers, file)
 }
 
+/// The rapier engine's settings in SI.
+fn resolve_rapier(
+    c: &Check,
+    r: &schema::Rapier,
+    u: &Units,
+) -> Result<model::Rapier, ScenarioError> {
+    if r.substeps == 0 {
+        return Err(c.err("engines.rapier.substeps", "expected at least 1 substep"));
+    }
+    Ok(model::Rapier {
+        timestep: c.positive("engines.rapier.timestep", r.timestep)? * u.time(),
+        substeps: r.substeps,
+        contact_frequency: c.positive("engines.rapier.contact_frequency", r.contact_frequency)?
+            / u.time(),
+        contact_damping_ratio: c.non_negative(
+            "engines.rapier.contact_damping_ratio",
+            r.contact_damping_ratio,
+        )?,
+        outer_cylinder_mass_ratio: c.positive(
+            "engines.rapier.outer_cylinder_mass_ratio",
+            r.outer_cylinder_mass_ratio,
+        )?,
+        link_radius_ratio: c.positive("engines.rapier.link_radius_ratio", r.link_radius_ratio)?,
+    })
+}
+
+impl Scenario {
+    /// The scenario with its rapier settings changed by `change` (command-line flags), checked
+    /// as the file's own would be; the resolved scenario written out shows the new values.
+    pub fn with_rapier(
+        mut self,
+        change: impl FnOnce(&mut schema::Rapier),
+    ) -> Result<Scenario, ScenarioError> {
+        change(&mut self.file.engines.rapier);
+        let c = Check {
+            layers: &self.layers,
+        };
+        self.rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.file.units)?;
+        Ok(self)
+    }
+}
+
 /// Field checker bound to one file and the chain it extends: an error names the file that
 /// sets the field.
 struct Check<'a> {
@@ -676,6 +718,7 @@ fn resolve(
         walls: st.walls,
         terminate_on_decision: st.terminate_on_decision,
     };
+    let rapier = resolve_rapier(&c, &file.engines.rapier, &u)?;
     Ok(Scenario {
         source: source.to_string(),
         layers,
@@ -690,5 +733,6 @@ fn resolve(
         touchdown,
         integrator,
         stability,
+        rapier,
     })
 }

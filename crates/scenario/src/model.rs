@@ -30,6 +30,8 @@ pub struct Scenario {
     pub integrator: Integrator,
     /// Stability criteria.
     pub stability: Stability,
+    /// Settings of the rapier multibody rebuild.
+    pub rapier: Rapier,
     /// The files of the `extends` chain with their own tables (this file first), to name the
     /// file that sets a field in messages.
     pub(crate) layers: Vec<(String, toml::Table)>,
@@ -236,4 +238,21 @@ pub struct Stability {
     pub walls: WallRule,
     /// End the run on a decision.
     pub terminate_on_decision: bool,
+}
+
+/// Settings of the rapier multibody rebuild, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rapier {
+    /// Fixed time step, s.
+    pub timestep: f64,
+    /// Solver substeps per step.
+    pub substeps: u32,
+    /// Contact natural frequency, Hz.
+    pub contact_frequency: f64,
+    /// Contact damping ratio.
+    pub contact_damping_ratio: f64,
+    /// Outer-cylinder link mass / effective footpad mass.
+    pub outer_cylinder_mass_ratio: f64,
+    /// Link inertia radius / L2P.
+    pub link_radius_ratio: f64,
 }

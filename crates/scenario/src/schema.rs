@@ -48,6 +48,9 @@ pub struct ScenarioFile {
     /// Stability criteria, eqs. (105)-(107).
     #[serde(default)]
     pub stability: Stability,
+    /// Settings of the engines other than the core (ignored by the core).
+    #[serde(default)]
+    pub engines: Engines,
 }
 
 /// The idealised rigid vehicle (report M, I, g).
@@ -467,6 +470,77 @@ impl Default for Stability {
             min_separation_velocity: 0.0,
             walls: default_walls(),
             terminate_on_decision: true,
+        }
+    }
+}
+
+/// Settings of the engines other than the core, one table each.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Engines {
+    /// The rapier multibody rebuild (`touchdown run --engine rapier`).
+    #[serde(default)]
+    pub rapier: Rapier,
+}
+
+fn default_rapier_timestep() -> f64 {
+    2.0e-5
+}
+fn default_rapier_substeps() -> u32 {
+    1
+}
+fn default_contact_frequency() -> f64 {
+    5000.0
+}
+fn one() -> f64 {
+    1.0
+}
+fn default_outer_cylinder_mass_ratio() -> f64 {
+    0.1
+}
+fn default_link_radius_ratio() -> f64 {
+    0.03
+}
+
+/// The rapier multibody rebuild (docs/engines.md): solver settings and the masses it adds to the
+/// report's massless gear. Every default is in seconds or dimensionless.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rapier {
+    /// Fixed time step; time. The strut laws are applied explicitly once per step, so keep
+    /// ω·timestep well below 2 for the stiffest strut mode (checked at start-up).
+    #[serde(default = "default_rapier_timestep")]
+    pub timestep: f64,
+    /// Solver substeps per time step (rapier's `num_solver_iterations`); dimensionless.
+    #[serde(default = "default_rapier_substeps")]
+    pub substeps: u32,
+    /// Natural frequency of the footpad contact constraint (rapier's contact softness, used for
+    /// both its moving-body and fixed-body settings); 1/time (Hz). High, so that the footpads do
+    /// not sink: the contact must be much stiffer than the stiffest strut law.
+    #[serde(default = "default_contact_frequency")]
+    pub contact_frequency: f64,
+    /// Damping ratio of the footpad contact constraint; dimensionless.
+    #[serde(default = "one")]
+    pub contact_damping_ratio: f64,
+    /// Mass of each primary outer-cylinder link as a fraction of the effective footpad mass;
+    /// dimensionless (the report's gear is massless; the link needs some mass).
+    #[serde(default = "default_outer_cylinder_mass_ratio")]
+    pub outer_cylinder_mass_ratio: f64,
+    /// Radius of the gear links' solid-cylinder inertia as a fraction of the primary strut
+    /// length L2P; dimensionless.
+    #[serde(default = "default_link_radius_ratio")]
+    pub link_radius_ratio: f64,
+}
+
+impl Default for Rapier {
+    fn default() -> Self {
+        Rapier {
+            timestep: default_rapier_timestep(),
+            substeps: default_rapier_substeps(),
+            contact_frequency: default_contact_frequency(),
+            contact_damping_ratio: one(),
+            outer_cylinder_mass_ratio: default_outer_cylinder_mass_ratio(),
+            link_radius_ratio: default_link_radius_ratio(),
         }
     }
 }

@@ -1,0 +1,394 @@
+//! The lander as a rapier multibody, built from a scenario.
+//!
+//! - Vehicle: the multibody root (free joint), mass M and the full inertia tensor J at its centre
+//!   of mass, no collider, sleeping off.
+//! - Per gear: a spherical joint at the primary trunnion B2 to the outer-cylinder link; a
+//!   prismatic joint along the undeformed strut axis V̂2P to the inner cylinder, whose origin is
+//!   the footpad ball joint BP (joint coordinate q = extension, so the compression stroke is
+//!   c = −q); the inner body carries the effective footpad mass PMASS and a ball collider of the
+//!   footpad radius PR.
+//! - Ground: one fixed body with one half-space per footpad, lowered by PR below the footpad's
+//!   plane Z = −HOLE so that the ball joint BP sits on the plane when the ball touches;
+//!   collision groups pair each footpad with its own plane only.
+//! - The multibody's default joint damping is removed.
+
+use crate::RapierError;
+use nalgebra::{Matrix3, Vector3};
+use rapier3d_f64::prelude::*;
+use touchdown_scenario::frames::{self, gravity_inertial};
+use touchdown_scenario::schema::Arrangement;
+use touchdown_scenario::Scenario;
+
+/// Friction coefficient that stands for an obstacle lock (OBST > 0): the footpad sticks
+/// laterally while it bears on its plane, as the core's locked footpad does while in contact.
+pub const LOCK_FRICTION: f64 = 1.0e6;
+
+/// Radius of the footpad's contact sphere as a fraction of the primary strut length L2P. The
+/// footpad body turns with the strut (the report's ball joint is not modelled), so its contact
+/// sphere rolls as the strut rotates; a small sphere keeps that rolling, which moves the ball
+/// joint by radius × rotation, negligible (about 0.3 mm on the 1/6-scale model).
+pub const CONTACT_RADIUS_RATIO: f64 = 0.002;
+
+/// Damping of the plateau velocity motor, N/(m/s): large enough that the motor is a hard
+/// velocity constraint up to its force bound.
+const MOTOR_DAMPING: f64 = 1.0e12;
+
+/// nalgebra → rapier vector.
+pub(crate) fn to_rapier(v: &Vector3<f64>) -> Vector {
+    Vector::new(v.x, v.y, v.z)
+}
+
+/// rapier → nalgebra vector.
+pub(crate) fn to_na(v: Vector) -> Vector3<f64> {
+    Vector3::new(v.x, v.y, v.z)
+}
+
+/// nalgebra → rapier 3×3 matrix.
+fn matrix(m: &Matrix3<f64>) -> Matrix {
+    Matrix::from_cols(
+        to_rapier(&m.column(0).into()),
+        to_rapier(&m.column(1).into()),
+        to_rapier(&m.column(2).into()),
+    )
+}
+
+/// Inertia tensor, kg·m², of a gear link of mass `m`: a solid cylinder's transverse moment
+/// about its centre (radius `r`, length `l`) about every axis. The spin about the strut axis is
+/// a degree of freedom the report's gear does not have; giving it the transverse moment, not a
+/// thin rod's tiny axial one, keeps the link's gyroscopic term ω × Jω zero, which rapier's
+/// multibody integrates explicitly and which turns unstable for slender links.
+fn link_inertia(m: f64, r: f64, l: f64) -> Matrix3<f64> {
+    Matrix3::identity() * (m * (3.0 * r * r + l * l) / 12.0)
+}
+
+/// Pose and velocity of a body of the multibody, read from the multibody itself (rapier writes
+/// its links' rigid-body poses and velocities back lazily, at the start of the next step).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyState {
+    /// Pose of the body frame (origin at the centre of mass).
+    pub pose: Pose,
+    /// Velocity of the centre of mass, m/s.
+    pub linvel: Vector3<f64>,
+    /// Angular velocity, rad/s, inertial axes.
+    pub angvel: Vector3<f64>,
+}
+
+impl BodyState {
+    /// Inertial position of a point given in the body frame, m.
+    pub fn point(&self, local: &Vector3<f64>) -> Vector3<f64> {
+        to_na(self.pose.transform_point(to_rapier(local)))
+    }
+
+    /// Inertial velocity of an inertial point `p` moving with the body, m/s.
+    pub fn velocity_at(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        self.linvel + self.angvel.cross(&(p - to_na(self.pose.translation)))
+    }
+
+    /// Rotation body → inertial.
+    pub fn rotation(&self) -> Matrix3<f64> {
+        let r = Matrix::from_quat(self.pose.rotation);
+        Matrix3::from_columns(&[to_na(r.x_axis), to_na(r.y_axis), to_na(r.z_axis)])
+    }
+}
+
+/// The current state of `body`, a link of the lander's multibody.
+pub fn body_state(world: &PhysicsWorld, body: RigidBodyHandle) -> BodyState {
+    let link = world.multibody_joints.rigid_body_link(body).and_then(|id| {
+        let mb = world.multibody_joints.get_multibody(id.multibody)?;
+        Some((mb, mb.link(id.id)?))
+    });
+    match link {
+        Some((mb, link)) => {
+            let v = mb.body_jacobian(link.link_id()) * mb.generalized_velocity();
+            BodyState {
+                pose: *link.local_to_world(),
+                linvel: Vector3::new(v[0], v[1], v[2]),
+                angvel: Vector3::new(v[3], v[4], v[5]),
+            }
+        }
+        None => {
+            let rb = &world.bodies[body];
+            BodyState {
+                pose: *rb.position(),
+                linvel: to_na(rb.linvel()),
+                angvel: to_na(rb.angvel()),
+            }
+        }
+    }
+}
+
+/// Mass, kg, and inertia tensor about the centre of mass in the body frame, kg·m², of a body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inertia {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Inertia tensor, body frame, kg·m².
+    pub tensor: Matrix3<f64>,
+}
+
+impl Inertia {
+    /// Kinetic energy of a body in state `s`, J.
+    pub fn kinetic_energy(&self, s: &BodyState) -> f64 {
+        let w = s.rotation().transpose() * s.angvel;
+        0.5 * self.mass * s.linvel.norm_squared() + 0.5 * w.dot(&(self.tensor * w))
+    }
+}
+
+/// One gear's bodies, joints and fixed geometry.
+#[derive(Debug, Clone, Copy)]
+pub struct GearBodies {
+    /// Outer-cylinder link.
+    pub outer: RigidBodyHandle,
+    /// Inner cylinder with the footpad (origin at BP).
+    pub footpad: RigidBodyHandle,
+    /// Footpad ball collider.
+    pub footpad_collider: ColliderHandle,
+    /// The footpad's ground plane.
+    pub plane_collider: ColliderHandle,
+    /// Prismatic (stroke) joint.
+    pub stroke_joint: MultibodyJointHandle,
+    /// Index of the stroke degree of freedom in the multibody's generalised coordinates.
+    pub stroke_dof: usize,
+    /// Point 1 (secondary attachment) in the outer link's local frame, m.
+    pub point1_local: Vector3<f64>,
+    /// Strut axis V̂2P in the outer link's local frame (unit).
+    pub axis_local: Vector3<f64>,
+    /// The outer link's centre of mass in vehicle body axes at touchdown, m.
+    pub outer_com_body: Vector3<f64>,
+    /// Outer link's mass and inertia.
+    pub outer_inertia: Inertia,
+    /// Footpad body's mass and inertia.
+    pub footpad_inertia: Inertia,
+}
+
+/// Masses the rebuild adds to the report's massless gear, kg.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkMasses {
+    /// Each outer-cylinder link, kg.
+    pub outer_cylinder: f64,
+    /// Each inner cylinder with footpad (the effective footpad mass PMASS), kg.
+    pub footpad: f64,
+    /// Length of the outer-cylinder link (trunnion to gland bearing), m.
+    pub outer_cylinder_length: f64,
+    /// Radius of the links' solid-cylinder inertia, m.
+    pub link_radius: f64,
+    /// Radius of the footpad's contact sphere, m.
+    pub contact_radius: f64,
+}
+
+/// The built world.
+pub struct Assembly {
+    /// rapier's world.
+    pub world: PhysicsWorld,
+    /// Vehicle (multibody root).
+    pub vehicle: RigidBodyHandle,
+    /// Per gear.
+    pub gears: Vec<GearBodies>,
+    /// Added masses.
+    pub masses: LinkMasses,
+}
+
+/// Builds the multibody, ground planes and solver settings of a scenario at its touchdown
+/// state (eq. 19 as corrected, shared with the core through `touchdown_scenario::frames`).
+pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
+    if sc.arrangement == Arrangement::Tripod {
+        return Err(RapierError::Unsupported {
+            file: sc.file_of("gear.arrangement").to_string(),
+            field: "gear.arrangement".into(),
+            message: "the inverted tripod (secondaries at the footpad) is not built; only the cantilever gear".into(),
+        });
+    }
+    let rs = &sc.rapier;
+    let init = frames::initial_state(sc);
+    let r_bi = init.t_bi;
+    let rotation = Rotation::from_mat3(&matrix(&r_bi));
+    let pose_of = |body_point: &Vector3<f64>| {
+        Pose::from_parts(to_rapier(&(init.position + r_bi * body_point)), rotation)
+    };
+    let omega_world = r_bi * init.omega;
+    let velocity_of = |body_point: &Vector3<f64>| {
+        to_rapier(&(init.velocity + omega_world.cross(&(r_bi * body_point))))
+    };
+
+    let mut world = PhysicsWorld::new();
+    world.gravity = to_rapier(&gravity_inertial(sc.vehicle.gravity, sc.surface.slope));
+    let p = &mut world.integration_parameters;
+    p.dt = rs.timestep;
+    p.num_solver_iterations = rs.substeps as usize;
+    p.contact_softness = SpringCoefficients::new(rs.contact_frequency, rs.contact_damping_ratio);
+    p.static_contact_softness = p.contact_softness;
+    p.length_unit = 1.0;
+
+    let vehicle = world.bodies.insert(
+        RigidBodyBuilder::dynamic()
+            .pose(pose_of(&Vector3::zeros()))
+            .additional_mass_properties(MassProperties::with_inertia_matrix(
+                Vector::ZERO,
+                sc.vehicle.mass,
+                matrix(&sc.vehicle.inertia),
+            ))
+            .linvel(to_rapier(&init.velocity))
+            .angvel(to_rapier(&omega_world))
+            .can_sleep(false),
+    );
+    let ground = world.bodies.insert(RigidBodyBuilder::fixed());
+
+    let pmass = sc.footpad.mass;
+    let prim = &sc.primary;
+    let m_outer = rs.outer_cylinder_mass_ratio * pmass;
+    let mut masses = LinkMasses {
+        outer_cylinder: m_outer,
+        footpad: pmass,
+        outer_cylinder_length: 0.0,
+        link_radius: 0.0,
+        contact_radius: 0.0,
+    };
+    let mut gears = Vec::with_capacity(sc.legs.len());
+    for (i, (leg, surface)) in sc.legs.iter().zip(&sc.surface.pads).enumerate() {
+        let axis = (leg.bp - leg.b2) / leg.l2p;
+        // Outer cylinder: trunnion B2 to the gland bearing at D1 − D2 above the footpad.
+        let l_outer = (leg.l2p - prim.inner_cylinder_length + prim.initial_overlap).max(leg.l21);
+        let radius = rs.link_radius_ratio * leg.l2p;
+        let pr = CONTACT_RADIUS_RATIO * leg.l2p;
+        masses.contact_radius = pr;
+        masses.outer_cylinder_length = l_outer;
+        masses.link_radius = radius;
+        let outer_com = leg.b2 + axis * (0.5 * l_outer);
+        let outer_inertia = Inertia {
+            mass: m_outer,
+            tensor: link_inertia(m_outer, radius, l_outer),
+        };
+        let footpad_inertia = Inertia {
+            mass: pmass,
+            tensor: link_inertia(pmass, radius, prim.inner_cylinder_length),
+        };
+        let outer = world.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .pose(pose_of(&outer_com))
+                .additional_mass_properties(MassProperties::with_inertia_matrix(
+                    Vector::ZERO,
+                    m_outer,
+                    matrix(&outer_inertia.tensor),
+                ))
+                .linvel(velocity_of(&outer_com))
+                .angvel(to_rapier(&omega_world))
+                .can_sleep(false),
+        );
+        let footpad = world.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .pose(pose_of(&leg.bp))
+                .additional_mass_properties(MassProperties::with_inertia_matrix(
+                    Vector::ZERO,
+                    pmass,
+                    matrix(&footpad_inertia.tensor),
+                ))
+                .linvel(velocity_of(&leg.bp))
+                .angvel(to_rapier(&omega_world))
+                .can_sleep(false),
+        );
+        let group = Group::from_bits_truncate(1 << i);
+        let groups = InteractionGroups::new(group, group, InteractionTestMode::And);
+        let friction = if surface.locked() {
+            LOCK_FRICTION
+        } else {
+            surface.friction
+        };
+        let footpad_collider = world.colliders.insert_with_parent(
+            ColliderBuilder::ball(pr)
+                .density(0.0)
+                .friction(friction)
+                .friction_combine_rule(CoefficientCombineRule::Max)
+                .restitution(0.0)
+                .restitution_combine_rule(CoefficientCombineRule::Min)
+                .collision_groups(groups),
+            footpad,
+            &mut world.bodies,
+        );
+        let plane_collider = world.colliders.insert_with_parent(
+            ColliderBuilder::halfspace(nalgebra::Unit::new_unchecked(Vector::Z))
+                .translation(Vector::new(0.0, 0.0, surface.plane() - pr))
+                .friction(0.0)
+                .friction_combine_rule(CoefficientCombineRule::Max)
+                .restitution(0.0)
+                .collision_groups(groups),
+            ground,
+            &mut world.bodies,
+        );
+        let trunnion = SphericalJointBuilder::new()
+            .local_anchor1(to_rapier(&leg.b2))
+            .local_anchor2(to_rapier(&(leg.b2 - outer_com)));
+        world
+            .multibody_joints
+            .insert(vehicle, outer, trunnion, true)
+            .ok_or_else(|| unsupported(sc, "the trunnion joint could not be inserted"))?;
+        let stroke = PrismaticJointBuilder::new(to_rapier(&axis))
+            .local_anchor1(to_rapier(&(leg.bp - outer_com)))
+            .local_anchor2(Vector::ZERO)
+            .motor_model(MotorModel::ForceBased)
+            .motor_velocity(0.0, MOTOR_DAMPING)
+            .motor_max_force(0.0);
+        let stroke_joint = world
+            .multibody_joints
+            .insert(outer, footpad, stroke, true)
+            .ok_or_else(|| unsupported(sc, "the stroke joint could not be inserted"))?;
+        let (mb, link) = world
+            .multibody_joints
+            .get(stroke_joint)
+            .ok_or_else(|| unsupported(sc, "the stroke joint is not in a multibody"))?;
+        let stroke_dof = mb.link(link).map(|l| l.assembly_id()).unwrap_or(0);
+        gears.push(GearBodies {
+            outer,
+            footpad,
+            footpad_collider,
+            plane_collider,
+            stroke_joint,
+            stroke_dof,
+            point1_local: leg.b1() - outer_com,
+            axis_local: axis,
+            outer_com_body: outer_com,
+            outer_inertia,
+            footpad_inertia,
+        });
+    }
+    // Remove rapier's default joint damping; start every joint at rest relative to the vehicle,
+    // and the root with the touchdown velocity.
+    let handle = gears[0].stroke_joint;
+    if let Some((mb, _)) = world.multibody_joints.get_mut(handle) {
+        mb.damping_mut().fill(0.0);
+        let mut v = mb.generalized_velocity_mut();
+        v.fill(0.0);
+        let (lin, ang) = (init.velocity, omega_world);
+        for k in 0..3 {
+            v[k] = lin[k];
+            v[3 + k] = ang[k];
+        }
+    }
+    // The stroke DOF index is only final once every link is in.
+    for g in &mut gears {
+        if let Some((mb, link)) = world.multibody_joints.get(g.stroke_joint) {
+            if let Some(l) = mb.link(link) {
+                g.stroke_dof = l.assembly_id();
+            }
+        }
+    }
+    // A step of zero length applies the set-up (mass properties, contacts) without moving
+    // anything.
+    let dt = world.integration_parameters.dt;
+    world.integration_parameters.dt = 0.0;
+    world.step();
+    world.integration_parameters.dt = dt;
+    Ok(Assembly {
+        world,
+        vehicle,
+        gears,
+        masses,
+    })
+}
+
+fn unsupported(sc: &Scenario, message: &str) -> RapierError {
+    RapierError::Unsupported {
+        file: sc.source.clone(),
+        field: "gear".into(),
+        message: message.into(),
+    }
+}

@@ -1,0 +1,56 @@
+//! The TN D-7045 lander rebuilt as a rapier multibody (`rapier3d-f64`), driven by the same force
+//! laws as the core (`touchdown_laws`), to show where an idealised massless-gear model and a
+//! multibody model agree and where they part (docs/engines.md).
+//!
+//! | module | content |
+//! |---|---|
+//! | [`assembly`] | the multibody: vehicle root, per gear a spherical trunnion joint, outer-cylinder link, prismatic stroke joint, inner cylinder with footpad; one ground plane per footpad |
+//! | [`struts`] | the shared laws applied to the joints: honeycomb (explicit elastic, plateau as a one-sided velocity motor), viscous, bearing friction as per-DOF dry friction, secondary struts as massless two-force members |
+//! | [`simulation`] | the fixed-step run, energy ledger, stability criteria (`touchdown_record`), divergence checks |
+//!
+//! Frames: rapier's world frame is the report's inertial (surface) frame, Z normal to the surface,
+//! so the slope is a tilted gravity vector; every body's local axes are the vehicle's body axes
+//! at touchdown (the gear links start aligned with the vehicle).
+
+pub mod assembly;
+pub mod simulation;
+pub mod struts;
+
+pub use simulation::{Observer, RapierSimulation};
+
+/// Errors of the rapier engine.
+#[derive(Debug, thiserror::Error)]
+pub enum RapierError {
+    /// The scenario is invalid (names the file and field).
+    #[error(transparent)]
+    Scenario(#[from] touchdown_scenario::ScenarioError),
+    /// The scenario asks for something this engine does not model.
+    #[error("{file}: {field}: not supported by the rapier engine: {message}")]
+    Unsupported {
+        /// Scenario file.
+        file: String,
+        /// Field.
+        field: String,
+        /// What is missing.
+        message: String,
+    },
+    /// The simulation diverged or left the domain of a law; the run was stopped.
+    #[error("simulation stopped at t = {time:.6} s in {law}: {message}; state: {state}")]
+    Diverged {
+        /// Time of the failure, s.
+        time: f64,
+        /// The law or mechanism involved.
+        law: String,
+        /// What happened.
+        message: String,
+        /// Vehicle state at the failure.
+        state: String,
+    },
+}
+
+/// Runs a scenario to its end on the rapier engine and returns its summary.
+pub fn run(
+    scenario: &touchdown_scenario::Scenario,
+) -> Result<touchdown_record::Summary, RapierError> {
+    RapierSimulation::new(scenario)?.run(&mut ())
+}

@@ -1,0 +1,588 @@
+//! One landing on the rapier multibody: fixed steps, the strut laws applied before each step,
+//! hysteresis committed after it, an energy ledger, the shared stability criteria and
+//! divergence checks.
+//!
+//! Step:
+//! 1. read every gear's strokes and rates, evaluate the laws with the committed memories, apply
+//!    the explicit forces and set the motor and friction bounds (`struts`);
+//! 2. let rapier step (contacts, joints, motors and dry friction are solved implicitly);
+//! 3. book the work of each law over the step (explicit forces and bounds × the stroke
+//!    increments), the work of the contact impulses, commit the honeycomb memories at the new
+//!    strokes, update the stability criteria and the extremes, and check for divergence.
+
+use crate::assembly::{
+    self, body_state, to_na, Assembly, BodyState, Inertia, LinkMasses, LOCK_FRICTION,
+};
+use crate::struts::{self, StrutForces, StrutKinematics};
+use crate::RapierError;
+use nalgebra::Vector3;
+use rapier3d_f64::prelude::*;
+use touchdown_laws::{GearLaws, GearMemory};
+use touchdown_record::{
+    EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
+};
+use touchdown_scenario::frames;
+use touchdown_scenario::model::{Leg, PadSurface};
+use touchdown_scenario::Scenario;
+
+/// Something that watches a landing after every step (and at t = 0).
+pub trait Observer {
+    /// Called with the simulation after a step.
+    fn observe(&mut self, sim: &RapierSimulation);
+}
+
+impl Observer for () {
+    fn observe(&mut self, _: &RapierSimulation) {}
+}
+
+/// Energy ledger: work absorbed by each mechanism since touchdown, J.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Ledger {
+    honeycomb: f64,
+    viscous: f64,
+    bearing: f64,
+    sliding: f64,
+    /// Work of the normal contact impulses and of the obstacle locks on the footpads.
+    events: f64,
+}
+
+/// Contact state of one footpad.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct PadContact {
+    in_contact: bool,
+    first_contact: Option<f64>,
+}
+
+/// A landing simulated on the rapier multibody.
+pub struct RapierSimulation {
+    name: String,
+    assembly: Assembly,
+    legs: Vec<Leg>,
+    surfaces: Vec<PadSurface>,
+    laws: GearLaws,
+    /// Vehicle, then per gear outer link and footpad: handle, mass and inertia.
+    bodies: Vec<(RigidBodyHandle, Inertia)>,
+    gravity: Vector3<f64>,
+    t_end: f64,
+    energy_tolerance: f64,
+    settings: serde_json::Map<String, serde_json::Value>,
+    // state
+    t: f64,
+    steps: u64,
+    memory: Vec<GearMemory>,
+    kin: Vec<StrutKinematics>,
+    forces: Vec<StrutForces>,
+    contacts: Vec<PadContact>,
+    ledger: Ledger,
+    /// Vehicle and link positions at touchdown (for potential energies).
+    position0: Vec<Vector3<f64>>,
+    /// Kinetic energy of the gear links at touchdown, J.
+    links_kinetic0: f64,
+    max_penetration: f64,
+    stability: StabilityTracker,
+    extremes: Extremes,
+    pad_views: Vec<PadView>,
+}
+
+/// ω·Δt above which an explicit strut law is refused (symplectic Euler is stable below 2).
+const MAX_OMEGA_DT: f64 = 1.0;
+
+impl RapierSimulation {
+    /// Builds the multibody of a scenario at its touchdown state.
+    pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RapierError> {
+        let laws = GearLaws::from_scenario(scenario)?;
+        let assembly = assembly::build(scenario)?;
+        check_timestep(scenario, &laws, &assembly.masses)?;
+        let n = scenario.legs.len();
+        let gravity = frames::gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
+        let settings = settings(scenario, &assembly.masses);
+        let mut sim = RapierSimulation {
+            name: scenario.file.name.clone(),
+            legs: scenario.legs.clone(),
+            surfaces: scenario.surface.pads.clone(),
+            laws,
+            bodies: std::iter::once((
+                assembly.vehicle,
+                Inertia {
+                    mass: scenario.vehicle.mass,
+                    tensor: scenario.vehicle.inertia,
+                },
+            ))
+            .chain(
+                assembly
+                    .gears
+                    .iter()
+                    .flat_map(|g| [(g.outer, g.outer_inertia), (g.footpad, g.footpad_inertia)]),
+            )
+            .collect(),
+            gravity,
+            t_end: scenario.integrator.t_end,
+            energy_tolerance: scenario.integrator.energy_tolerance,
+            settings,
+            t: 0.0,
+            steps: 0,
+            memory: vec![GearMemory::default(); n],
+            kin: vec![StrutKinematics::default(); n],
+            forces: vec![StrutForces::default(); n],
+            contacts: vec![PadContact::default(); n],
+            ledger: Ledger::default(),
+            position0: Vec::new(),
+            links_kinetic0: 0.0,
+            max_penetration: 0.0,
+            stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
+            extremes: Extremes::new(n),
+            pad_views: vec![PadView::default(); n],
+            assembly,
+        };
+        sim.position0 = sim.body_positions();
+        sim.links_kinetic0 = sim.gear_energy();
+        sim.stability =
+            StabilityTracker::new(&scenario.stability, gravity, n, sim.kinetic_energy());
+        sim.read_kinematics();
+        sim.evaluate()?;
+        sim.update_stability(None);
+        Ok(sim)
+    }
+
+    /// Runs to a decision (if the scenario terminates on one) or to the end time.
+    pub fn run(&mut self, observer: &mut impl Observer) -> Result<Summary, RapierError> {
+        observer.observe(self);
+        while !self.finished() {
+            self.step()?;
+            observer.observe(self);
+        }
+        Ok(self.summary())
+    }
+
+    /// Whether the run has ended.
+    pub fn finished(&self) -> bool {
+        self.t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
+    }
+
+    /// Current time, s.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// The masses the rebuild adds to the report's model.
+    pub fn link_masses(&self) -> LinkMasses {
+        self.assembly.masses
+    }
+
+    /// Deepest footpad penetration into its plane so far, m.
+    pub fn max_penetration(&self) -> f64 {
+        self.max_penetration
+    }
+
+    fn state(&self, body: RigidBodyHandle) -> BodyState {
+        body_state(&self.assembly.world, body)
+    }
+
+    fn body_positions(&self) -> Vec<Vector3<f64>> {
+        self.bodies
+            .iter()
+            .map(|(h, _)| self.state(*h).point(&Vector3::zeros()))
+            .collect()
+    }
+
+    fn vehicle(&self) -> BodyState {
+        self.state(self.assembly.vehicle)
+    }
+
+    /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
+    pub fn kinetic_energy(&self) -> f64 {
+        self.bodies[0].1.kinetic_energy(&self.vehicle())
+    }
+
+    /// Kinetic energy plus potential energy of body `i` relative to touchdown position, J.
+    fn body_energy(&self, i: usize) -> f64 {
+        let (h, inertia) = &self.bodies[i];
+        let s = self.state(*h);
+        inertia.kinetic_energy(&s)
+            - inertia.mass
+                * self
+                    .gravity
+                    .dot(&(s.point(&Vector3::zeros()) - self.position0[i]))
+    }
+
+    /// Kinetic energy plus potential-energy change of the gear links since touchdown, J.
+    fn gear_energy(&self) -> f64 {
+        (1..self.bodies.len())
+            .map(|i| self.body_energy(i))
+            .sum::<f64>()
+            - self.links_kinetic0
+    }
+
+    /// Energy report at the current state.
+    pub fn energy(&self) -> EnergyReport {
+        let stored: f64 = self
+            .kin
+            .iter()
+            .zip(&self.memory)
+            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
+            .sum();
+        let l = &self.ledger;
+        let kinetic = self.kinetic_energy();
+        let potential_change = self.body_energy(0) - kinetic;
+        let gear = self.gear_energy();
+        let ke0 = self.stability.initial_kinetic_energy();
+        let residual =
+            kinetic + potential_change + gear + l.honeycomb + l.viscous + l.bearing + l.sliding
+                - l.events
+                - ke0;
+        EnergyReport {
+            kinetic_initial_j: ke0,
+            kinetic_j: kinetic,
+            potential_change_j: potential_change,
+            footpad_j: gear,
+            honeycomb_stored_j: stored,
+            honeycomb_dissipated_j: l.honeycomb - stored,
+            viscous_j: l.viscous,
+            bearing_friction_j: l.bearing,
+            sliding_friction_j: l.sliding,
+            contact_events_j: l.events,
+            residual_j: residual,
+        }
+    }
+
+    /// The summary at the current state.
+    pub fn summary(&self) -> Summary {
+        let mut settings = self.settings.clone();
+        settings.insert(
+            "max_footpad_penetration_m".into(),
+            self.max_penetration.into(),
+        );
+        let progress = Progress {
+            t: self.t,
+            steps: self.steps,
+            force_evaluations: self.steps,
+            first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
+        };
+        Summary::new(
+            "rapier",
+            &self.name,
+            settings,
+            progress,
+            &self.stability,
+            &self.extremes,
+            self.energy(),
+        )
+    }
+
+    /// Writes the current state into `out` (a sample made for as many legs).
+    pub fn sample(&self, out: &mut Sample) {
+        let v = self.vehicle();
+        let r = v.rotation();
+        let w = v.angvel;
+        out.t = self.t;
+        out.position = v.point(&Vector3::zeros());
+        out.velocity = v.linvel;
+        out.theta = frames::euler_from_t_bi(&r);
+        out.omega = r.transpose() * w;
+        out.pitch_rate = w.x;
+        for (i, slot) in out.legs.iter_mut().enumerate() {
+            let (k, f, c) = (&self.kin[i], &self.forces[i], &self.contacts[i]);
+            slot.primary_stroke = k.c;
+            slot.primary_force = f.primary(k.c_dot);
+            slot.secondary_stroke = k.s;
+            slot.secondary_force = f.secondary();
+            slot.pad_position = k.footpad;
+            slot.contact = match (c.in_contact, c.first_contact) {
+                (true, _) => 1,
+                (false, Some(_)) => 2,
+                (false, None) => 0,
+            };
+        }
+        out.stability_distance
+            .copy_from_slice(self.stability.distances());
+        out.energy = self.energy();
+    }
+
+    fn read_kinematics(&mut self) {
+        for (i, (g, leg)) in self.assembly.gears.iter().zip(&self.legs).enumerate() {
+            self.kin[i] = struts::kinematics(&self.assembly.world, self.assembly.vehicle, g, leg);
+        }
+    }
+
+    /// Evaluates the laws at the current kinematics (nothing applied yet).
+    fn evaluate(&mut self) -> Result<(), RapierError> {
+        for i in 0..self.legs.len() {
+            self.forces[i] =
+                struts::forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
+                    .map_err(|e| self.diverged(e.to_string(), "bearing friction", Some(i)))?;
+        }
+        Ok(())
+    }
+
+    /// One fixed step (see the module documentation).
+    pub fn step(&mut self) -> Result<(), RapierError> {
+        let dt = self.assembly.world.integration_parameters.dt;
+        for (h, _) in &self.bodies {
+            self.assembly.world.bodies[*h].reset_forces(false);
+        }
+        for i in 0..self.legs.len() {
+            let g = self.assembly.gears[i];
+            struts::apply(
+                &mut self.assembly.world,
+                self.assembly.vehicle,
+                &g,
+                &self.kin[i],
+                &self.forces[i],
+            );
+        }
+        let before: Vec<StrutKinematics> = self.kin.clone();
+        let pad_velocity: Vec<Vector3<f64>> = self
+            .assembly
+            .gears
+            .iter()
+            .map(|g| {
+                let pad = self.state(g.footpad);
+                let r = Vector3::new(0.0, 0.0, -self.assembly.masses.contact_radius);
+                pad.linvel + pad.angvel.cross(&r)
+            })
+            .collect();
+        let old_velocity = self.vehicle().linvel;
+        self.assembly.world.step();
+        self.t += dt;
+        self.steps += 1;
+        self.read_kinematics();
+        let steps = before.iter().zip(&self.kin).zip(&self.forces);
+        for (((a, b), f), memory) in steps.zip(&mut self.memory) {
+            let dc = b.c - a.c;
+            let l = &mut self.ledger;
+            l.honeycomb += (f.honeycomb + f.crush_load) * dc;
+            l.viscous += f.viscous * dc;
+            l.bearing += f.bearing_bound * dc.abs();
+            for j in 0..2 {
+                let ds = b.s[j] - a.s[j];
+                l.honeycomb += f.secondary_honeycomb[j] * ds;
+                l.viscous += f.secondary_viscous[j] * ds;
+            }
+            self.laws.commit(b.c, b.s, memory);
+        }
+        self.book_contacts(&pad_velocity);
+        self.evaluate()?;
+        self.check_divergence()?;
+        self.update_stability(Some(&old_velocity));
+        for (i, k) in self.kin.iter().enumerate() {
+            self.extremes.update_leg(i, k.c, k.s);
+        }
+        let q = self.vehicle().angvel.x;
+        self.extremes.update_pitch_rate(self.t, q);
+        Ok(())
+    }
+
+    /// Contact states, penetration and the work of the contact impulses over the last step:
+    /// normal impulses (and locked footpads' lateral impulses) into the contact-event account,
+    /// sliding friction into the sliding account. `pad_velocity` is each footpad's velocity
+    /// before the step; the impulse works on the mean of the velocities before and after.
+    fn book_contacts(&mut self, pad_velocity: &[Vector3<f64>]) {
+        let world = &self.assembly.world;
+        for (i, g) in self.assembly.gears.iter().enumerate() {
+            let mut impulse = Vector3::zeros();
+            let mut depth: f64 = 0.0;
+            let mut active = false;
+            if let Some(pair) = world
+                .narrow_phase
+                .contact_pair(g.footpad_collider, g.plane_collider)
+            {
+                active = pair.has_any_active_contact();
+                let sign = if pair.collider1 == g.footpad_collider {
+                    1.0
+                } else {
+                    -1.0
+                };
+                for m in pair.manifolds() {
+                    let normal = to_na(m.data.normal);
+                    for p in &m.points {
+                        depth = depth.max(-p.dist);
+                        impulse += (normal * p.data.impulse
+                            + to_na(p.data.warmstart_tangent_world))
+                            * sign;
+                    }
+                }
+            }
+            // Velocity of the contact point, the bottom of the contact sphere.
+            let r = Vector3::new(0.0, 0.0, -self.assembly.masses.contact_radius);
+            let pad = body_state(world, g.footpad);
+            let v_mean = 0.5 * (pad_velocity[i] + pad.linvel + pad.angvel.cross(&r));
+            // The impulse on the footpad pushes it up out of its plane.
+            let impulse = if impulse.z < 0.0 { -impulse } else { impulse };
+            let normal_work = impulse.z * v_mean.z;
+            let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
+            self.ledger.events += normal_work;
+            if self.surfaces[i].locked() {
+                self.ledger.events += lateral_work;
+            } else {
+                self.ledger.sliding -= lateral_work;
+            }
+            self.max_penetration = self.max_penetration.max(depth);
+            let c = &mut self.contacts[i];
+            c.in_contact = active && impulse.z > 0.0;
+            if c.in_contact && c.first_contact.is_none() {
+                c.first_contact = Some(self.t);
+            }
+        }
+    }
+
+    fn update_stability(&mut self, old_velocity: Option<&Vector3<f64>>) {
+        for i in 0..self.legs.len() {
+            self.pad_views[i] = PadView {
+                position: self.kin[i].footpad,
+                in_contact: self.contacts[i].in_contact,
+                touched: self.contacts[i].first_contact.is_some(),
+            };
+        }
+        let ke = self.kinetic_energy();
+        let v = self.vehicle();
+        let (x, u) = (v.point(&Vector3::zeros()), v.linvel);
+        self.stability
+            .update(self.t, &x, &u, old_velocity, ke, &self.pad_views);
+    }
+
+    fn diverged(&self, message: String, law: &str, leg: Option<usize>) -> RapierError {
+        let v = self.vehicle();
+        let (x, u, w) = (v.point(&Vector3::zeros()), v.linvel, v.angvel);
+        RapierError::Diverged {
+            time: self.t,
+            law: match leg {
+                Some(i) => format!("{law} (leg {})", i + 1),
+                None => law.to_string(),
+            },
+            message,
+            state: format!(
+                "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
+                x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
+            ),
+        }
+    }
+
+    /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
+    /// scenario's tolerance.
+    fn check_divergence(&self) -> Result<(), RapierError> {
+        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
+            let checks = [
+                ("primary honeycomb", f.honeycomb + f.crush_load),
+                ("primary viscous", f.viscous),
+                ("bearing friction", f.bearing_bound),
+                (
+                    "secondary honeycomb",
+                    f.secondary_honeycomb[0] + f.secondary_honeycomb[1],
+                ),
+                (
+                    "secondary viscous",
+                    f.secondary_viscous[0] + f.secondary_viscous[1],
+                ),
+                ("gear geometry", k.c + k.s[0] + k.s[1] + k.footpad.norm()),
+            ];
+            if let Some((law, value)) = checks.iter().find(|(_, x)| !x.is_finite()) {
+                return Err(self.diverged(format!("non-finite value {value}"), law, Some(i)));
+            }
+        }
+        let finite = self.bodies.iter().all(|(h, _)| {
+            let s = self.state(*h);
+            s.pose.translation.is_finite()
+                && s.linvel
+                    .iter()
+                    .chain(s.angvel.iter())
+                    .all(|x| x.is_finite())
+        });
+        if !finite {
+            return Err(self.diverged("non-finite body state".into(), "equations of motion", None));
+        }
+        let e = self.energy();
+        let l = &self.ledger;
+        let scale = e.kinetic_initial_j
+            + e.potential_change_j.abs()
+            + l.honeycomb.abs()
+            + l.viscous.abs()
+            + l.bearing.abs()
+            + l.sliding.abs()
+            + l.events.abs();
+        if e.residual_j.abs() > self.energy_tolerance * scale.max(f64::MIN_POSITIVE) {
+            return Err(self.diverged(
+                format!(
+                    "energy balance residual {:.4e} J exceeds {} of the energy scale {:.4e} J (time step too large for the stiffest strut law, or contact too soft?)",
+                    e.residual_j, self.energy_tolerance, scale
+                ),
+                "energy balance",
+                None,
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The engine's settings as used, for the summary (names carry their units).
+fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde_json::Value> {
+    let r = &sc.rapier;
+    let mut m = serde_json::Map::new();
+    m.insert("rapier3d_f64".into(), "0.36.1".into());
+    m.insert("timestep_s".into(), r.timestep.into());
+    m.insert("substeps".into(), r.substeps.into());
+    m.insert("contact_frequency_hz".into(), r.contact_frequency.into());
+    m.insert(
+        "contact_damping_ratio".into(),
+        r.contact_damping_ratio.into(),
+    );
+    m.insert(
+        "secondary_struts".into(),
+        "massless two-force members".into(),
+    );
+    m.insert("obstacle_lock_friction".into(), LOCK_FRICTION.into());
+    m.insert(
+        "outer_cylinder_mass_kg".into(),
+        masses.outer_cylinder.into(),
+    );
+    m.insert(
+        "outer_cylinder_length_m".into(),
+        masses.outer_cylinder_length.into(),
+    );
+    m.insert("footpad_body_mass_kg".into(), masses.footpad.into());
+    m.insert("link_radius_m".into(), masses.link_radius.into());
+    m.insert("contact_radius_m".into(), masses.contact_radius.into());
+    m
+}
+
+/// Refuses a time step too large for the stiffest explicit strut law: the primary's rates on
+/// the footpad body, the secondaries' rates on the outer link's rotation about the trunnion.
+fn check_timestep(sc: &Scenario, laws: &GearLaws, masses: &LinkMasses) -> Result<(), RapierError> {
+    let dt = sc.rapier.timestep;
+    let stiffest = |h: &touchdown_laws::Honeycomb| {
+        h.backoff_rate
+            .max(h.curve.stroke_out_rate())
+            .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
+    };
+    let k_primary = stiffest(&laws.primary.honeycomb);
+    let sec = &laws.secondary.honeycomb;
+    let k_secondary = stiffest(&sec.tension).max(stiffest(&sec.compression));
+    let leg = &sc.legs[0];
+    let l_outer = masses.outer_cylinder_length;
+    // Rotation about the trunnion seen at point 1: I_B2 / L21².
+    let i_b2 = masses.outer_cylinder * l_outer * l_outer / 3.0 + masses.footpad * leg.l2p * leg.l2p;
+    let m_point1 = i_b2 / (leg.l21 * leg.l21);
+    let modes = [
+        (
+            "primary strut on the footpad body",
+            (k_primary / masses.footpad).sqrt(),
+        ),
+        (
+            "secondary struts on the gear's rotation about its trunnion",
+            (k_secondary / m_point1).sqrt(),
+        ),
+    ];
+    for (what, omega) in modes {
+        if omega * dt > MAX_OMEGA_DT {
+            return Err(RapierError::Unsupported {
+                file: sc.file_of("engines.rapier.timestep").to_string(),
+                field: "engines.rapier.timestep".into(),
+                message: format!(
+                    "time step {dt:.3e} s is too large for the stiffest explicit strut law ({what}: ω = {omega:.4e} rad/s, ω·Δt = {:.3}); expected ω·Δt ≤ {MAX_OMEGA_DT}, i.e. a time step ≤ {:.3e} s",
+                    omega * dt,
+                    MAX_OMEGA_DT / omega
+                ),
+            });
+        }
+    }
+    Ok(())
+}

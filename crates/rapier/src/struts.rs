@@ -1,0 +1,199 @@
+//! The shared strut laws (`touchdown_laws`) applied to the multibody's joints and links.
+//!
+//! - Primary strut, along the prismatic joint: the honeycomb's elastic branches (onset, rebound,
+//!   bottoming, extension stop) and the viscous force are explicit forces, equal and opposite on
+//!   the inner and outer cylinders along the strut axis; a honeycomb crushing on a plateau
+//!   (compressing on its virgin curve) is a velocity motor with target 0 whose force bound is
+//!   the crush load, engaged only while the strut compresses, so that it can stop the stroke but
+//!   never drive it (one-sided); bearing friction is the joint's dry friction (rapier's
+//!   per-DOF `frictionloss`) bounded by μB·(F1 + F2) from the report's statics (eqs. 53-63),
+//!   with the side load FM of the massless-strut closed form.
+//! - Secondary struts: massless two-force members between their trunnions on the vehicle and
+//!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws; explicit.
+
+use crate::assembly::{body_state, to_na, to_rapier, GearBodies};
+use nalgebra::Vector3;
+use rapier3d_f64::prelude::*;
+use touchdown_laws::{side_load, GearLaws, GearMemory, LawError};
+use touchdown_scenario::model::Leg;
+
+/// Geometry and rates of one gear at one state (inertial axes).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StrutKinematics {
+    /// Primary compression stroke c = −q, m.
+    pub c: f64,
+    /// Compression rate ċ, m/s.
+    pub c_dot: f64,
+    /// Secondary strokes (tension positive), m.
+    pub s: [f64; 2],
+    /// Secondary stroking rates, m/s.
+    pub s_dot: [f64; 2],
+    /// Unit vectors trunnion → point 1 of the secondaries.
+    pub u: [Vector3<f64>; 2],
+    /// Secondary trunnions B3, B4, m.
+    pub trunnion: [Vector3<f64>; 2],
+    /// Point 1 on the outer cylinder, m.
+    pub point1: Vector3<f64>,
+    /// Strut axis V̂2P (trunnion to footpad, unit).
+    pub axis: Vector3<f64>,
+    /// Footpad ball joint BP, m.
+    pub footpad: Vector3<f64>,
+}
+
+/// Reads a gear's strokes and rates from the world.
+pub fn kinematics(
+    world: &PhysicsWorld,
+    vehicle: RigidBodyHandle,
+    gear: &GearBodies,
+    leg: &Leg,
+) -> StrutKinematics {
+    let v = body_state(world, vehicle);
+    let outer = body_state(world, gear.outer);
+    let pad = body_state(world, gear.footpad);
+    let (q, q_dot) = match world.multibody_joints.get(gear.stroke_joint) {
+        Some((mb, link)) => (
+            mb.link(link).map(|l| l.joint().coords()[0]).unwrap_or(0.0),
+            mb.generalized_velocity()[gear.stroke_dof],
+        ),
+        None => (0.0, 0.0),
+    };
+    let point1 = outer.point(&gear.point1_local);
+    let point1_velocity = outer.velocity_at(&point1);
+    let mut k = StrutKinematics {
+        c: -q,
+        c_dot: -q_dot,
+        point1,
+        axis: outer.rotation() * gear.axis_local,
+        footpad: to_na(pad.pose.translation),
+        ..Default::default()
+    };
+    for (j, (b, l0)) in [(leg.b3, leg.l31), (leg.b4, leg.l41)]
+        .into_iter()
+        .enumerate()
+    {
+        let trunnion = v.point(&b);
+        let d = point1 - trunnion;
+        let len = d.norm();
+        let u = d / len;
+        k.trunnion[j] = trunnion;
+        k.u[j] = u;
+        k.s[j] = len - l0;
+        k.s_dot[j] = u.dot(&(point1_velocity - v.velocity_at(&trunnion)));
+    }
+    k
+}
+
+/// The forces of one gear for a step, from its kinematics and committed memory.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StrutForces {
+    /// Explicit primary honeycomb force (elastic branches, stops), N, compression positive;
+    /// zero while the plateau motor holds the strut.
+    pub honeycomb: f64,
+    /// Force bound of the plateau motor, N (zero when disengaged).
+    pub crush_load: f64,
+    /// Primary viscous force FVP, N, compression positive.
+    pub viscous: f64,
+    /// Bearing-friction bound μB·(F1 + F2), N.
+    pub bearing_bound: f64,
+    /// Secondary honeycomb forces FC31, FC41, N, tension positive.
+    pub secondary_honeycomb: [f64; 2],
+    /// Secondary viscous forces FV31, FV41, N, tension positive.
+    pub secondary_viscous: [f64; 2],
+}
+
+impl StrutForces {
+    /// Secondary axial forces F31, F41, N, tension positive (eq. 51).
+    pub fn secondary(&self) -> [f64; 2] {
+        [
+            self.secondary_honeycomb[0] + self.secondary_viscous[0],
+            self.secondary_honeycomb[1] + self.secondary_viscous[1],
+        ]
+    }
+
+    /// The primary axial force F2P, N, compression positive (eq. 50), with the motor at its
+    /// bound while engaged and the bearing friction at its bound against the stroking rate.
+    pub fn primary(&self, c_dot: f64) -> f64 {
+        let friction = if c_dot == 0.0 {
+            0.0
+        } else {
+            self.bearing_bound * c_dot.signum()
+        };
+        self.honeycomb + self.crush_load + self.viscous + friction
+    }
+}
+
+/// The shared laws at one gear state (eqs. 49-63).
+pub fn forces(
+    laws: &GearLaws,
+    memory: &GearMemory,
+    leg: &Leg,
+    k: &StrutKinematics,
+) -> Result<StrutForces, LawError> {
+    let sec = &laws.secondary;
+    let fc = [
+        sec.honeycomb.force(k.s[0], memory.secondary[0]),
+        sec.honeycomb.force(k.s[1], memory.secondary[1]),
+    ]; // eq. (49)
+    let fv = [sec.viscous.force(k.s_dot[0]), sec.viscous.force(k.s_dot[1])]; // eq. (49)
+    let fs = k.u[0] * (fc[0] + fv[0]) + k.u[1] * (fc[1] + fv[1]); // eq. (52)
+    let length = leg.l2p - k.c;
+    let fm = side_load(&fs, &k.axis, leg.l21, length).norm(); // eqs. (53)-(58)
+    let p = &laws.primary;
+    let bearing_bound = p.bearing.friction_bound(fm, k.c)?; // eqs. (59)-(63)
+    let crushing = if k.c_dot > 0.0 {
+        p.honeycomb.crush_load(k.c, memory.primary)
+    } else {
+        None
+    };
+    let (honeycomb, crush_load) = match crushing {
+        Some(load) => (0.0, load),
+        None => (p.stroke_force(k.c, memory.primary), 0.0),
+    };
+    Ok(StrutForces {
+        honeycomb,
+        crush_load,
+        viscous: p.viscous.force(k.c_dot), // eq. (49)
+        bearing_bound,
+        secondary_honeycomb: fc,
+        secondary_viscous: fv,
+    })
+}
+
+/// Applies a gear's forces for the coming step: explicit forces on the links and the vehicle,
+/// the plateau motor's bound and the bearing-friction bound on the stroke joint.
+pub fn apply(
+    world: &mut PhysicsWorld,
+    vehicle: RigidBodyHandle,
+    gear: &GearBodies,
+    k: &StrutKinematics,
+    f: &StrutForces,
+) {
+    // Primary: compression-positive force pushes the footpad away from the trunnion.
+    let primary = k.axis * (f.honeycomb + f.viscous);
+    push(world, gear.footpad, &primary, &k.footpad);
+    push(world, gear.outer, &-primary, &k.footpad);
+    // Secondaries: a tension pulls the trunnion and point 1 together.
+    for (j, force) in f.secondary().into_iter().enumerate() {
+        let on_vehicle = k.u[j] * force;
+        push(world, vehicle, &on_vehicle, &k.trunnion[j]);
+        push(world, gear.outer, &-on_vehicle, &k.point1);
+    }
+    if let Some((mb, link)) = world.multibody_joints.get_mut(gear.stroke_joint) {
+        mb.frictions_mut()[gear.stroke_dof] = f.bearing_bound;
+        if let Some(l) = mb.link_mut(link) {
+            l.joint
+                .data
+                .set_motor_max_force(JointAxis::LinX, f.crush_load);
+        }
+    }
+}
+
+/// Adds a force `f` (N) acting at the inertial point `at` (m) to `body`, with its moment about
+/// the body's current centre of mass (rapier's own conversion would use the centre of mass of
+/// the previous step for multibody links).
+fn push(world: &mut PhysicsWorld, body: RigidBodyHandle, f: &Vector3<f64>, at: &Vector3<f64>) {
+    let com = to_na(body_state(world, body).pose.translation);
+    let rb = &mut world.bodies[body];
+    rb.add_force(to_rapier(f), false);
+    rb.add_torque(to_rapier(&(at - com).cross(f)), false);
+}

@@ -1,0 +1,296 @@
+//! Stability distance, overturning velocity and the stable-landing conditions, eqs. (105)-(107)
+//! and the text after them (review A16), shared by every engine so that they decide alike.
+//!
+//! Walls are vertical planes (parallel to G) through adjacent footpads, in leg order, which the
+//! scenario guarantees is counter-clockwise seen from above. With ACM = r_A − r_CM and
+//! n̂ = G×AB/|G×AB| (the outward normal), SD = ACM·n̂ is positive while the centre of mass is
+//! inside the wall.
+
+use nalgebra::Vector3;
+use serde::Serialize;
+use touchdown_scenario::model::Stability;
+use touchdown_scenario::schema::WallRule;
+
+/// Landing outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    /// All four conditions of a stable landing held at one instant.
+    Stable,
+    /// The centre of mass crossed a stability wall.
+    Unstable,
+    /// Neither before the end time.
+    Undecided,
+}
+
+/// Stability distance of the centre of mass `cm` to the wall through footpads `a` → `b`, m,
+/// and the wall's outward unit normal, eq. (105). `None` if the wall is parallel to G.
+pub fn stability_distance(
+    gravity: &Vector3<f64>,
+    cm: &Vector3<f64>,
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+) -> Option<(f64, Vector3<f64>)> {
+    let ab = b - a;
+    let n = gravity.cross(&ab);
+    let len = n.norm();
+    if len <= 1e-12 * gravity.norm() * ab.norm() {
+        return None;
+    }
+    let n = n / len;
+    Some(((a - cm).dot(&n), n)) // eq. (105); eq. (106): SD_vec = SD·n̂
+}
+
+/// Overturning velocity, m/s, eq. (107) with n̂ in place of the 0/0 direction ŜD at the
+/// crossing: V_o = V·n̂_out (positive: moving out of the footprint).
+pub fn overturn_velocity(v: &Vector3<f64>, n_out: &Vector3<f64>) -> f64 {
+    v.dot(n_out) // eq. (107)
+}
+
+/// What the criteria need of one footpad.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PadView {
+    /// Footpad position (the ball joint), inertial, m.
+    pub position: Vector3<f64>,
+    /// In contact with its surface now.
+    pub in_contact: bool,
+    /// Has touched its surface at least once.
+    pub touched: bool,
+}
+
+/// Stability distances over time and the decision of eqs. (105)-(107).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilityTracker {
+    criteria: Stability,
+    gravity: Vector3<f64>,
+    /// Current SD per wall (NaN where undefined), m.
+    sd: Vec<f64>,
+    /// Outward normals per wall.
+    normal: Vec<Vector3<f64>>,
+    /// Minimum over time of the smallest counted SD, m.
+    min_sd: f64,
+    /// Vehicle kinetic energy at first contact, J.
+    ke0: f64,
+    outcome: Option<(Outcome, f64)>,
+    overturn_velocity: Option<f64>,
+}
+
+impl StabilityTracker {
+    /// A tracker for `legs` footpads under `gravity` (inertial, m/s²), with the vehicle's
+    /// kinetic energy at first contact `ke0`, J.
+    pub fn new(
+        criteria: &Stability,
+        gravity: Vector3<f64>,
+        legs: usize,
+        ke0: f64,
+    ) -> StabilityTracker {
+        StabilityTracker {
+            criteria: criteria.clone(),
+            gravity,
+            sd: vec![f64::NAN; legs],
+            normal: vec![Vector3::zeros(); legs],
+            min_sd: f64::INFINITY,
+            ke0,
+            outcome: None,
+            overturn_velocity: None,
+        }
+    }
+
+    /// Updates the distances and, until a decision is made, the unstable crossing and the four
+    /// stable conditions, at time `t` (s) with the centre of mass at `cm` (m) moving at
+    /// `velocity` (m/s; `previous_velocity` at the previous accepted state, to interpolate the
+    /// velocity at a crossing), the vehicle's kinetic energy `kinetic_energy` (J) and the
+    /// footpads `pads`. Allocates nothing.
+    pub fn update(
+        &mut self,
+        t: f64,
+        cm: &Vector3<f64>,
+        velocity: &Vector3<f64>,
+        previous_velocity: Option<&Vector3<f64>>,
+        kinetic_energy: f64,
+        pads: &[PadView],
+    ) {
+        let n = pads.len();
+        let mut min_now = f64::INFINITY;
+        let mut min_wall = usize::MAX;
+        let mut crossing: Option<(usize, f64)> = None;
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let counted = match self.criteria.walls {
+                WallRule::All => true,
+                WallRule::TouchedDown => pads[i].touched && pads[j].touched,
+            };
+            let prev = self.sd[i];
+            match stability_distance(&self.gravity, cm, &pads[i].position, &pads[j].position) {
+                Some((sd, normal)) => {
+                    self.sd[i] = sd;
+                    self.normal[i] = normal;
+                    if counted && sd < min_now {
+                        min_now = sd;
+                        min_wall = i;
+                    }
+                    if counted && sd < 0.0 && crossing.is_none() {
+                        // Fraction of the step at which SD crossed zero.
+                        let f = if prev.is_finite() && prev > 0.0 {
+                            prev / (prev - sd)
+                        } else {
+                            1.0
+                        };
+                        crossing = Some((i, f));
+                    }
+                }
+                None => self.sd[i] = f64::NAN,
+            }
+        }
+        if min_now < self.min_sd {
+            self.min_sd = min_now;
+        }
+        if self.outcome.is_some() {
+            return;
+        }
+        if let Some((wall, f)) = crossing {
+            let v_cross = match previous_velocity {
+                Some(o) => o + (velocity - o) * f,
+                None => *velocity,
+            };
+            self.overturn_velocity = Some(overturn_velocity(&v_cross, &self.normal[wall]));
+            self.outcome = Some((Outcome::Unstable, t));
+            return;
+        }
+        if min_wall == usize::MAX {
+            return;
+        }
+        let j = (min_wall + 1) % n;
+        let stable = kinetic_energy < self.criteria.kinetic_energy_fraction * self.ke0 // 1
+            && min_now > 0.0 // 2
+            && pads[min_wall].in_contact && pads[j].in_contact // 3
+            && -velocity.dot(&self.normal[min_wall]) >= self.criteria.min_separation_velocity; // 4
+        if stable {
+            self.outcome = Some((Outcome::Stable, t));
+        }
+    }
+
+    /// Current stability distance per wall (wall i joins footpads i and i+1), m; NaN where the
+    /// wall is undefined.
+    pub fn distances(&self) -> &[f64] {
+        &self.sd
+    }
+
+    /// Minimum over time of the smallest counted stability distance, m.
+    pub fn min_distance(&self) -> f64 {
+        self.min_sd
+    }
+
+    /// Vehicle kinetic energy at first contact, J.
+    pub fn initial_kinetic_energy(&self) -> f64 {
+        self.ke0
+    }
+
+    /// The decision and its time, s, if one was made.
+    pub fn decision(&self) -> Option<(Outcome, f64)> {
+        self.outcome
+    }
+
+    /// Overturning velocity at the wall crossing, m/s (unstable landings only).
+    pub fn overturn_velocity(&self) -> Option<f64> {
+        self.overturn_velocity
+    }
+
+    /// Whether the run should end now: a decision was made and the criteria end runs on one.
+    pub fn terminates(&self) -> bool {
+        self.criteria.terminate_on_decision && self.outcome.is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> [Vector3<f64>; 4] {
+        [
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.0),
+            Vector3::new(-1.0, 0.0, 0.0),
+            Vector3::new(0.0, -1.0, 0.0),
+        ]
+    }
+
+    #[test]
+    fn inside_is_positive_for_counter_clockwise_pads() {
+        let g = Vector3::new(0.0, 0.0, -9.81);
+        let pads = square();
+        let cm = Vector3::new(0.1, 0.2, 1.0);
+        for i in 0..4 {
+            let (sd, n) = stability_distance(&g, &cm, &pads[i], &pads[(i + 1) % 4]).unwrap();
+            assert!(sd > 0.0);
+            // n points away from the footprint centre.
+            assert!(n.dot(&((pads[i] + pads[(i + 1) % 4]) * 0.5)) > 0.0);
+        }
+        // Moving the CM outside wall 0-1 makes its SD negative, by the distance outside.
+        let out = Vector3::new(1.0, 1.0, 0.5);
+        let (sd, n) = stability_distance(&g, &out, &pads[0], &pads[1]).unwrap();
+        assert!((sd + (2.0f64).sqrt() / 2.0).abs() < 1e-12);
+        assert!(overturn_velocity(&Vector3::new(1.0, 1.0, 0.0), &n) > 0.0);
+    }
+
+    fn tracker() -> StabilityTracker {
+        let criteria = Stability {
+            kinetic_energy_fraction: 0.1,
+            min_separation_velocity: 0.0,
+            walls: WallRule::All,
+            terminate_on_decision: true,
+        };
+        StabilityTracker::new(&criteria, Vector3::new(0.0, 0.0, -9.81), 4, 100.0)
+    }
+
+    fn pads(in_contact: bool) -> [PadView; 4] {
+        square().map(|position| PadView {
+            position,
+            in_contact,
+            touched: true,
+        })
+    }
+
+    #[test]
+    fn crossing_a_wall_is_unstable_with_the_interpolated_velocity() {
+        let mut t = tracker();
+        let v0 = Vector3::new(1.0, 1.0, 0.0);
+        t.update(
+            0.0,
+            &Vector3::new(0.4, 0.4, 1.0),
+            &v0,
+            None,
+            50.0,
+            &pads(true),
+        );
+        assert_eq!(t.decision(), None);
+        // From SD = +0.1/√2 to −0.1/√2: the crossing is halfway, at the mean velocity.
+        let v1 = Vector3::new(3.0, 3.0, 0.0);
+        t.update(
+            0.1,
+            &Vector3::new(0.6, 0.6, 1.0),
+            &v1,
+            Some(&v0),
+            50.0,
+            &pads(true),
+        );
+        assert_eq!(t.decision(), Some((Outcome::Unstable, 0.1)));
+        let expected: f64 = Vector3::new(2.0, 2.0, 0.0).norm();
+        assert!((t.overturn_velocity().unwrap() - expected).abs() < 1e-12);
+        assert!(t.terminates());
+    }
+
+    #[test]
+    fn stable_needs_low_energy_and_both_critical_pads_down() {
+        let mut t = tracker();
+        let cm = Vector3::new(0.0, 0.0, 1.0);
+        let v = Vector3::zeros();
+        t.update(0.0, &cm, &v, None, 20.0, &pads(true));
+        assert_eq!(t.decision(), None, "kinetic energy above 10 %");
+        t.update(0.1, &cm, &v, None, 5.0, &pads(false));
+        assert_eq!(t.decision(), None, "critical footpads off the surface");
+        t.update(0.2, &cm, &v, None, 5.0, &pads(true));
+        assert_eq!(t.decision(), Some((Outcome::Stable, 0.2)));
+        assert!((t.min_distance() - (0.5f64).sqrt()).abs() < 1e-12);
+    }
+}
