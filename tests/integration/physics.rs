@@ -347,12 +347,12 @@ t_end = 1.0
         ),
     );
     match touchdown_core::run(&sc) {
-        Err(touchdown_core::CoreError::Diverged {
+        Err(touchdown_core::CoreError::Diverged(touchdown_record::Divergence {
             time,
             law,
             message,
             state,
-        }) => {
+        })) => {
             assert!(time > 0.0 && time < 1.0, "{time}");
             assert!(!law.is_empty() && !message.is_empty());
             assert!(

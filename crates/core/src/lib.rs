@@ -33,17 +33,8 @@ pub enum CoreError {
     #[error(transparent)]
     Scenario(#[from] touchdown_scenario::ScenarioError),
     /// The simulation diverged or left the domain of a law; the run was stopped.
-    #[error("simulation stopped at t = {time:.6} s in {law}: {message}; state: {state}")]
-    Diverged {
-        /// Time of the failure, s.
-        time: f64,
-        /// The law or equation involved.
-        law: String,
-        /// What happened.
-        message: String,
-        /// Vehicle state at the failure.
-        state: String,
-    },
+    #[error(transparent)]
+    Diverged(#[from] touchdown_record::Divergence),
 }
 
 /// Runs a scenario to its end with no observer and returns its summary.

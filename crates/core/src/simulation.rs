@@ -23,7 +23,7 @@ use crate::CoreError;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
 use touchdown_record::{
-    EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
+    Divergence, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, PadSurface};
@@ -621,7 +621,7 @@ impl Simulation {
 
     /// A divergence diagnostic at state `v`; `leg` is usize::MAX when no leg is involved.
     fn diverged(&self, v: &VehicleState, message: String, law: &str, leg: usize) -> CoreError {
-        CoreError::Diverged {
+        CoreError::Diverged(Divergence {
             time: self.t,
             law: if leg == usize::MAX { law.to_string() } else { format!("{law} (leg {})", leg + 1) },
             message,
@@ -629,7 +629,7 @@ impl Simulation {
                 "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, θ = [{:.6e}, {:.6e}, {:.6e}] rad, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s",
                 v.position.x, v.position.y, v.position.z, v.velocity.x, v.velocity.y, v.velocity.z, v.theta.x, v.theta.y, v.theta.z, v.omega.x, v.omega.y, v.omega.z
             ),
-        }
+        })
     }
 
     /// Stops a run whose state is not finite or whose energy balance has drifted beyond the

@@ -153,8 +153,6 @@ pub struct GearBodies {
     pub point1_local: Vector3<f64>,
     /// Strut axis V̂2P in the outer link's local frame (unit).
     pub axis_local: Vector3<f64>,
-    /// The outer link's centre of mass in vehicle body axes at touchdown, m.
-    pub outer_com_body: Vector3<f64>,
     /// Outer link's mass and inertia.
     pub outer_inertia: Inertia,
     /// Footpad body's mass and inertia.
@@ -331,21 +329,15 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
             .multibody_joints
             .insert(outer, footpad, stroke, true)
             .ok_or_else(|| unsupported(sc, "the stroke joint could not be inserted"))?;
-        let (mb, link) = world
-            .multibody_joints
-            .get(stroke_joint)
-            .ok_or_else(|| unsupported(sc, "the stroke joint is not in a multibody"))?;
-        let stroke_dof = mb.link(link).map(|l| l.assembly_id()).unwrap_or(0);
         gears.push(GearBodies {
             outer,
             footpad,
             footpad_collider,
             plane_collider,
             stroke_joint,
-            stroke_dof,
+            stroke_dof: 0, // set below, once every link is in
             point1_local: leg.b1() - outer_com,
             axis_local: axis,
-            outer_com_body: outer_com,
             outer_inertia,
             footpad_inertia,
         });
@@ -363,7 +355,13 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
             v[3 + k] = ang[k];
         }
     }
-    // The stroke DOF index is only final once every link is in.
+    // A step of zero length applies the set-up (mass properties, contacts) without moving
+    // anything.
+    let dt = world.integration_parameters.dt;
+    world.integration_parameters.dt = 0.0;
+    world.step();
+    world.integration_parameters.dt = dt;
+    // The stroke DOF index into the generalised coordinates, final once every link is in.
     for g in &mut gears {
         if let Some((mb, link)) = world.multibody_joints.get(g.stroke_joint) {
             if let Some(l) = mb.link(link) {
@@ -371,12 +369,6 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
             }
         }
     }
-    // A step of zero length applies the set-up (mass properties, contacts) without moving
-    // anything.
-    let dt = world.integration_parameters.dt;
-    world.integration_parameters.dt = 0.0;
-    world.step();
-    world.integration_parameters.dt = dt;
     Ok(Assembly {
         world,
         vehicle,

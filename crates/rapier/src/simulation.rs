@@ -19,7 +19,7 @@ use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
-    EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
+    Divergence, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
 };
 use touchdown_scenario::frames;
 use touchdown_scenario::model::{Leg, PadSurface};
@@ -71,6 +71,10 @@ pub struct RapierSimulation {
     steps: u64,
     memory: Vec<GearMemory>,
     kin: Vec<StrutKinematics>,
+    /// Kinematics before the current step (reused every step).
+    previous: Vec<StrutKinematics>,
+    /// Footpad contact-point velocities before the current step, m/s (reused every step).
+    pad_velocity: Vec<Vector3<f64>>,
     forces: Vec<StrutForces>,
     contacts: Vec<PadContact>,
     ledger: Ledger,
@@ -123,6 +127,8 @@ impl RapierSimulation {
             steps: 0,
             memory: vec![GearMemory::default(); n],
             kin: vec![StrutKinematics::default(); n],
+            previous: vec![StrutKinematics::default(); n],
+            pad_velocity: vec![Vector3::zeros(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
             ledger: Ledger::default(),
@@ -330,23 +336,16 @@ impl RapierSimulation {
                 &self.forces[i],
             );
         }
-        let before: Vec<StrutKinematics> = self.kin.clone();
-        let pad_velocity: Vec<Vector3<f64>> = self
-            .assembly
-            .gears
-            .iter()
-            .map(|g| {
-                let pad = self.state(g.footpad);
-                let r = Vector3::new(0.0, 0.0, -self.assembly.masses.contact_radius);
-                pad.linvel + pad.angvel.cross(&r)
-            })
-            .collect();
+        self.previous.copy_from_slice(&self.kin);
+        for i in 0..self.legs.len() {
+            self.pad_velocity[i] = self.contact_velocity(self.assembly.gears[i].footpad);
+        }
         let old_velocity = self.vehicle().linvel;
         self.assembly.world.step();
         self.t += dt;
         self.steps += 1;
         self.read_kinematics();
-        let steps = before.iter().zip(&self.kin).zip(&self.forces);
+        let steps = self.previous.iter().zip(&self.kin).zip(&self.forces);
         for (((a, b), f), memory) in steps.zip(&mut self.memory) {
             let dc = b.c - a.c;
             let l = &mut self.ledger;
@@ -360,7 +359,7 @@ impl RapierSimulation {
             }
             self.laws.commit(b.c, b.s, memory);
         }
-        self.book_contacts(&pad_velocity);
+        self.book_contacts();
         self.evaluate()?;
         self.check_divergence()?;
         self.update_stability(Some(&old_velocity));
@@ -372,11 +371,18 @@ impl RapierSimulation {
         Ok(())
     }
 
+    /// Velocity of a footpad's contact point (the bottom of its contact sphere), m/s.
+    fn contact_velocity(&self, footpad: RigidBodyHandle) -> Vector3<f64> {
+        let pad = self.state(footpad);
+        let r = Vector3::new(0.0, 0.0, -self.assembly.masses.contact_radius);
+        pad.linvel + pad.angvel.cross(&r)
+    }
+
     /// Contact states, penetration and the work of the contact impulses over the last step:
     /// normal impulses (and locked footpads' lateral impulses) into the contact-event account,
-    /// sliding friction into the sliding account. `pad_velocity` is each footpad's velocity
-    /// before the step; the impulse works on the mean of the velocities before and after.
-    fn book_contacts(&mut self, pad_velocity: &[Vector3<f64>]) {
+    /// sliding friction into the sliding account. Each impulse works on the mean of the contact
+    /// point's velocities before the step (`pad_velocity`) and after it.
+    fn book_contacts(&mut self) {
         let world = &self.assembly.world;
         for (i, g) in self.assembly.gears.iter().enumerate() {
             let mut impulse = Vector3::zeros();
@@ -402,10 +408,7 @@ impl RapierSimulation {
                     }
                 }
             }
-            // Velocity of the contact point, the bottom of the contact sphere.
-            let r = Vector3::new(0.0, 0.0, -self.assembly.masses.contact_radius);
-            let pad = body_state(world, g.footpad);
-            let v_mean = 0.5 * (pad_velocity[i] + pad.linvel + pad.angvel.cross(&r));
+            let v_mean = 0.5 * (self.pad_velocity[i] + self.contact_velocity(g.footpad));
             // The impulse on the footpad pushes it up out of its plane.
             let impulse = if impulse.z < 0.0 { -impulse } else { impulse };
             let normal_work = impulse.z * v_mean.z;
@@ -443,7 +446,7 @@ impl RapierSimulation {
     fn diverged(&self, message: String, law: &str, leg: Option<usize>) -> RapierError {
         let v = self.vehicle();
         let (x, u, w) = (v.point(&Vector3::zeros()), v.linvel, v.angvel);
-        RapierError::Diverged {
+        RapierError::Diverged(Divergence {
             time: self.t,
             law: match leg {
                 Some(i) => format!("{law} (leg {})", i + 1),
@@ -454,7 +457,7 @@ impl RapierSimulation {
                 "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
                 x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
             ),
-        }
+        })
     }
 
     /// Stops a run whose state is not finite or whose energy balance has drifted beyond the

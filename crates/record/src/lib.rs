@@ -18,3 +18,29 @@ pub mod summary;
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyReport, Extremes, Progress, Summary};
+
+/// A run stopped because it diverged or left the domain of a law: where and why, so that the
+/// user can tell which law or mechanism failed (every engine reports it the same way).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Divergence {
+    /// Time of the failure, s.
+    pub time: f64,
+    /// The law or mechanism involved (with the leg, where one is).
+    pub law: String,
+    /// What happened.
+    pub message: String,
+    /// Vehicle state at the failure.
+    pub state: String,
+}
+
+impl std::fmt::Display for Divergence {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "simulation stopped at t = {:.6} s in {}: {}; state: {}",
+            self.time, self.law, self.message, self.state
+        )
+    }
+}
+
+impl std::error::Error for Divergence {}
