@@ -1,6 +1,9 @@
 //! Shared helpers for the workspace-level tests.
 
+use nalgebra::Vector3;
 use std::path::PathBuf;
+use touchdown_laws::{GearLaws, LoadStroke};
+use touchdown_scenario::Scenario;
 
 /// The workspace root.
 pub fn root() -> PathBuf {
@@ -13,4 +16,80 @@ pub fn root() -> PathBuf {
 /// A scenario file under `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)
+}
+
+/// Area under a virgin load-stroke curve from 0 to x (J): work of monotonic loading.
+fn area(curve: &LoadStroke, x: f64) -> f64 {
+    if x <= 0.0 {
+        return 0.0;
+    }
+    let mut a = 0.0;
+    let mut prev = (0.0, 0.0);
+    for (xi, fi) in curve.vertices().skip(1) {
+        if x <= xi {
+            let f = prev.1 + (fi - prev.1) * (x - prev.0) / (xi - prev.0);
+            return a + 0.5 * (prev.1 + f) * (x - prev.0);
+        }
+        a += 0.5 * (prev.1 + fi) * (xi - prev.0);
+        prev = (xi, fi);
+    }
+    let f = curve.force(x);
+    a + 0.5 * (prev.1 + f) * (x - prev.0)
+}
+
+/// Maximum primary stroke, m, of a symmetric vertical drop on flat ground with locked
+/// footpads, frictionless and without viscous forces, computed independently of any engine: at
+/// maximum stroke the vehicle is at rest, so its initial kinetic energy plus the potential
+/// energy released by the drop h equals the work of monotonic loading of every strut. The
+/// balance is solved for h (pure translation: the footpad fixed in space moves up by h in body
+/// axes). Gear masses are left out (the report's gear is massless).
+pub fn analytic_drop_stroke(sc: &Scenario) -> f64 {
+    assert_eq!(sc.primary.bearing_friction, 0.0);
+    assert_eq!(sc.primary.viscous.coefficient, 0.0);
+    let laws = GearLaws::from_scenario(sc).unwrap();
+    let m = sc.vehicle.mass;
+    let g = sc.vehicle.gravity;
+    let v = sc.touchdown.velocity_g.norm();
+    let strokes = |h: f64| -> Vec<(f64, f64, f64)> {
+        sc.legs
+            .iter()
+            .map(|leg| {
+                let bp = leg.bp + Vector3::new(0.0, 0.0, h);
+                let v2p = bp - leg.b2;
+                let b1 = leg.b2 + v2p.normalize() * leg.l21;
+                (
+                    leg.l2p - v2p.norm(),
+                    (b1 - leg.b3).norm() - leg.l31,
+                    (b1 - leg.b4).norm() - leg.l41,
+                )
+            })
+            .collect()
+    };
+    let secondary_area = |s: f64| {
+        if s >= 0.0 {
+            area(&laws.secondary.honeycomb.tension.curve, s)
+        } else {
+            area(&laws.secondary.honeycomb.compression.curve, -s)
+        }
+    };
+    let work = |h: f64| -> f64 {
+        strokes(h)
+            .iter()
+            .map(|(c, s3, s4)| {
+                area(&laws.primary.honeycomb.curve, *c) + secondary_area(*s3) + secondary_area(*s4)
+            })
+            .sum()
+    };
+    let balance = |h: f64| 0.5 * m * v * v + m * g * h - work(h);
+    let (mut lo, mut hi) = (0.0, 0.3);
+    assert!(balance(lo) > 0.0 && balance(hi) < 0.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if balance(mid) > 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    strokes(lo)[0].0
 }

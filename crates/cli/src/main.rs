@@ -38,9 +38,6 @@ enum Command {
         /// rapier engine: fixed time step, s (overrides engines.rapier.timestep).
         #[arg(long)]
         timestep: Option<f64>,
-        /// rapier engine: solver substeps per step (overrides engines.rapier.substeps).
-        #[arg(long)]
-        substeps: Option<u32>,
     },
     /// Run every Table I landing and the figure 25-26 landing against the report.
     Validate {
@@ -142,23 +139,13 @@ fn run(cli: Cli) -> Result<()> {
             out,
             engine,
             timestep,
-            substeps,
         } => {
             let mut sc = Scenario::load(&scenario)?;
-            if timestep.is_some() || substeps.is_some() {
+            if let Some(t) = timestep {
                 if engine != Engine::Rapier {
-                    anyhow::bail!(
-                        "--timestep and --substeps set the rapier engine; add --engine rapier"
-                    );
+                    anyhow::bail!("--timestep sets the rapier engine's step; add --engine rapier");
                 }
-                sc = sc.with_rapier(|r| {
-                    if let Some(t) = timestep {
-                        r.timestep = t;
-                    }
-                    if let Some(n) = substeps {
-                        r.substeps = n;
-                    }
-                })?;
+                sc = sc.with_rapier(|r| r.timestep = t)?;
             }
             let mut recorder = match &out {
                 Some(dir) => {

@@ -26,36 +26,40 @@ fn temp(name: &str) -> PathBuf {
 
 #[test]
 fn same_scenario_same_binary_byte_identical_outputs() {
-    let (a, b) = (temp("a"), temp("b"));
-    for d in [&a, &b] {
-        let out = touchdown(&[
-            "run",
-            "scenarios/fig-25-26.toml",
-            "--format",
-            "json",
-            "--out",
-            d.to_str().unwrap(),
-        ]);
+    for engine in ["core", "rapier"] {
+        let (a, b) = (temp(&format!("{engine}-a")), temp(&format!("{engine}-b")));
+        for d in [&a, &b] {
+            let out = touchdown(&[
+                "run",
+                "scenarios/fig-25-26.toml",
+                "--engine",
+                engine,
+                "--format",
+                "json",
+                "--out",
+                d.to_str().unwrap(),
+            ]);
+            assert!(
+                out.status.success(),
+                "{engine}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        for f in ["summary.json", "history.csv", "scenario.resolved.toml"] {
+            let (x, y) = (
+                std::fs::read(a.join(f)).unwrap(),
+                std::fs::read(b.join(f)).unwrap(),
+            );
+            assert!(!x.is_empty(), "{engine}: {f} is empty");
+            assert!(x == y, "{engine}: {f} differs between two runs");
+        }
+        let history = std::fs::read_to_string(a.join("history.csv")).unwrap();
         assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+            !history.contains("NaN") && !history.contains("inf"),
+            "{engine}: no NaN or infinity in the history"
         );
+        assert!(history.lines().count() > 500);
     }
-    for f in ["summary.json", "history.csv", "scenario.resolved.toml"] {
-        let (x, y) = (
-            std::fs::read(a.join(f)).unwrap(),
-            std::fs::read(b.join(f)).unwrap(),
-        );
-        assert!(!x.is_empty(), "{f} is empty");
-        assert!(x == y, "{f} differs between two runs");
-    }
-    let history = std::fs::read_to_string(a.join("history.csv")).unwrap();
-    assert!(
-        !history.contains("NaN") && !history.contains("inf"),
-        "no NaN or infinity in the history"
-    );
-    assert!(history.lines().count() > 500);
 }
 
 #[test]

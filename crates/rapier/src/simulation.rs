@@ -323,8 +323,11 @@ impl RapierSimulation {
     /// One fixed step (see the module documentation).
     pub fn step(&mut self) -> Result<(), RapierError> {
         let dt = self.assembly.world.integration_parameters.dt;
+        // User forces and torques persist in rapier until cleared, and are cleared separately.
         for (h, _) in &self.bodies {
-            self.assembly.world.bodies[*h].reset_forces(false);
+            let rb = &mut self.assembly.world.bodies[*h];
+            rb.reset_forces(false);
+            rb.reset_torques(false);
         }
         for i in 0..self.legs.len() {
             let g = self.assembly.gears[i];
@@ -393,6 +396,10 @@ impl RapierSimulation {
                 .contact_pair(g.footpad_collider, g.plane_collider)
             {
                 active = pair.has_any_active_contact();
+                // rapier's multibody contact constraint pushes collider 1 along −n̂·λn and
+                // along its friction impulse as stored (with one solver substep per step, the
+                // last substep's `warmstart_tangent_world` is the step's); the footpad gets that
+                // impulse or its opposite.
                 let sign = if pair.collider1 == g.footpad_collider {
                     1.0
                 } else {
@@ -402,15 +409,13 @@ impl RapierSimulation {
                     let normal = to_na(m.data.normal);
                     for p in &m.points {
                         depth = depth.max(-p.dist);
-                        impulse += (normal * p.data.impulse
-                            + to_na(p.data.warmstart_tangent_world))
-                            * sign;
+                        let on_collider1 =
+                            -normal * p.data.impulse + to_na(p.data.warmstart_tangent_world);
+                        impulse += on_collider1 * sign;
                     }
                 }
             }
             let v_mean = 0.5 * (self.pad_velocity[i] + self.contact_velocity(g.footpad));
-            // The impulse on the footpad pushes it up out of its plane.
-            let impulse = if impulse.z < 0.0 { -impulse } else { impulse };
             let normal_work = impulse.z * v_mean.z;
             let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
             self.ledger.events += normal_work;
@@ -522,7 +527,7 @@ fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde
     let mut m = serde_json::Map::new();
     m.insert("rapier3d_f64".into(), "0.36.1".into());
     m.insert("timestep_s".into(), r.timestep.into());
-    m.insert("substeps".into(), r.substeps.into());
+    m.insert("solver_substeps".into(), 1.into());
     m.insert("contact_frequency_hz".into(), r.contact_frequency.into());
     m.insert(
         "contact_damping_ratio".into(),

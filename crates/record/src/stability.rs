@@ -11,6 +11,12 @@ use serde::Serialize;
 use touchdown_scenario::model::Stability;
 use touchdown_scenario::schema::WallRule;
 
+/// Rounding allowance on condition 4, m/s: a centre of mass that does not move across the
+/// critical wall at all (a symmetric landing) has an outward velocity of rounding noise, about
+/// 1e-15 m/s in the core and 1e-11 m/s in the rapier multibody, of either sign. Without the
+/// allowance the default threshold 0 would turn on the sign of that noise.
+pub const SEPARATION_VELOCITY_ROUNDING: f64 = 1.0e-9;
+
 /// Landing outcome.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -164,7 +170,8 @@ impl StabilityTracker {
         let stable = kinetic_energy < self.criteria.kinetic_energy_fraction * self.ke0 // 1
             && min_now > 0.0 // 2
             && pads[min_wall].in_contact && pads[j].in_contact // 3
-            && -velocity.dot(&self.normal[min_wall]) >= self.criteria.min_separation_velocity; // 4
+            && -velocity.dot(&self.normal[min_wall])
+                >= self.criteria.min_separation_velocity - SEPARATION_VELOCITY_ROUNDING; // 4
         if stable {
             self.outcome = Some((Outcome::Stable, t));
         }
@@ -292,5 +299,20 @@ mod tests {
         t.update(0.2, &cm, &v, None, 5.0, &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.2)));
         assert!((t.min_distance() - (0.5f64).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rounding_noise_across_the_critical_wall_does_not_block_a_stable_decision() {
+        let cm = Vector3::new(0.0, 0.0, 1.0);
+        // Wall 0 (pads 0-1) has outward normal (1, 1, 0)/√2: noise toward it, then a real
+        // velocity toward it.
+        let noise = Vector3::new(1e-11, 1e-11, 0.0);
+        let mut t = tracker();
+        t.update(0.0, &cm, &noise, None, 5.0, &pads(true));
+        assert_eq!(t.decision(), Some((Outcome::Stable, 0.0)));
+        let mut t = tracker();
+        let toward = Vector3::new(1e-3, 1e-3, 0.0);
+        t.update(0.0, &cm, &toward, None, 5.0, &pads(true));
+        assert_eq!(t.decision(), None, "moving toward the critical wall");
     }
 }

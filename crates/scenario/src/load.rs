@@ -275,12 +275,8 @@ fn resolve_rapier(
     r: &schema::Rapier,
     u: &Units,
 ) -> Result<model::Rapier, ScenarioError> {
-    if r.substeps == 0 {
-        return Err(c.err("engines.rapier.substeps", "expected at least 1 substep"));
-    }
     Ok(model::Rapier {
         timestep: c.positive("engines.rapier.timestep", r.timestep)? * u.time(),
-        substeps: r.substeps,
         contact_frequency: c.positive("engines.rapier.contact_frequency", r.contact_frequency)?
             / u.time(),
         contact_damping_ratio: c.non_negative(

@@ -245,8 +245,6 @@ pub struct Stability {
 pub struct Rapier {
     /// Fixed time step, s.
     pub timestep: f64,
-    /// Solver substeps per step.
-    pub substeps: u32,
     /// Contact natural frequency, Hz.
     pub contact_frequency: f64,
     /// Contact damping ratio.

@@ -486,9 +486,6 @@ pub struct Engines {
 fn default_rapier_timestep() -> f64 {
     2.0e-5
 }
-fn default_rapier_substeps() -> u32 {
-    1
-}
 fn default_contact_frequency() -> f64 {
     5000.0
 }
@@ -511,9 +508,6 @@ pub struct Rapier {
     /// ω·timestep well below 2 for the stiffest strut mode (checked at start-up).
     #[serde(default = "default_rapier_timestep")]
     pub timestep: f64,
-    /// Solver substeps per time step (rapier's `num_solver_iterations`); dimensionless.
-    #[serde(default = "default_rapier_substeps")]
-    pub substeps: u32,
     /// Natural frequency of the footpad contact constraint (rapier's contact softness, used for
     /// both its moving-body and fixed-body settings); 1/time (Hz). High, so that the footpads do
     /// not sink: the contact must be much stiffer than the stiffest strut law.
@@ -536,7 +530,6 @@ impl Default for Rapier {
     fn default() -> Self {
         Rapier {
             timestep: default_rapier_timestep(),
-            substeps: default_rapier_substeps(),
             contact_frequency: default_contact_frequency(),
             contact_damping_ratio: one(),
             outer_cylinder_mass_ratio: default_outer_cylinder_mass_ratio(),
