@@ -13,6 +13,19 @@ pub fn root() -> PathBuf {
         .to_path_buf()
 }
 
+/// The interpreter of the project's pinned Python environment (`.venv`, made by
+/// `scripts/setup-python`, which `scripts/test` runs). Panics, with the command that creates
+/// it, if it is missing: a test that needs it fails, it is never skipped.
+pub fn python() -> PathBuf {
+    let python = root().join(".venv/bin/python");
+    assert!(
+        python.exists(),
+        "the project's Python environment is missing ({}): run `scripts/setup-python` (scripts/test runs it)",
+        python.display()
+    );
+    python
+}
+
 /// A scenario file under `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)

@@ -19,6 +19,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
         "touchdown-rapier",
         &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
     ),
+    ("touchdown-mujoco", &["touchdown-scenario"]),
     // Comparison level: runs engines, never reached by them.
     (
         "touchdown-validation",
@@ -32,6 +33,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "touchdown-record",
             "touchdown-core",
             "touchdown-rapier",
+            "touchdown-mujoco",
             "touchdown-validation",
         ],
     ),
@@ -43,6 +45,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "touchdown-record",
             "touchdown-core",
             "touchdown-rapier",
+            "touchdown-mujoco",
         ],
     ),
 ];

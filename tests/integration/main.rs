@@ -8,7 +8,10 @@
 //! * `docs`: docs/scenario-format.md documents every scenario field;
 //! * `layering`: the crate dependency layers (engines never depend on each other);
 //! * `plots`: the validation plots regenerate from the committed data with the project's venv;
-//! * `rapier`: the rapier rebuild's start state, impact bookkeeping and settings checks.
+//! * `rapier`: the rapier rebuild against the core: start state, energy balance, outcomes, and
+//!   the two mechanisms that part them;
+//! * `mujoco`: every scenario exports to MJCF that the pinned MuJoCo loads, in the touchdown
+//!   state.
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
 //! `crates/cli/tests/`.
@@ -16,6 +19,7 @@
 mod allocation;
 mod docs;
 mod layering;
+mod mujoco;
 mod physics;
 mod plots;
 mod rapier;

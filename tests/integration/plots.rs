@@ -8,12 +8,7 @@ use std::process::Command;
 #[test]
 fn validation_plots_regenerate_from_the_committed_data() {
     let root = touchdown_tests::root();
-    let python = root.join(".venv/bin/python");
-    assert!(
-        python.exists(),
-        "the project's Python environment is missing ({}): run `scripts/setup-python` (scripts/test runs it)",
-        python.display()
-    );
+    let python = touchdown_tests::python();
     let out: PathBuf = std::env::temp_dir().join(format!("touchdown-plots-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let status = Command::new(&python)

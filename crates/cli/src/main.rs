@@ -39,6 +39,15 @@ enum Command {
         #[arg(long)]
         timestep: Option<f64>,
     },
+    /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
+    /// how to open it in MuJoCo's viewer.
+    ExportMjcf {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        /// Output file (MJCF XML).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Run every Table I landing and the figure 25-26 landing against the report.
     Validate {
         /// Output format.
@@ -186,6 +195,13 @@ fn run(cli: Cli) -> Result<()> {
                 Format::Text => print!("{}", report::text(&sc, &summary)),
                 Format::Json => println!("{}", report::json(&summary)?),
             }
+            Ok(())
+        }
+        Command::ExportMjcf { scenario, output } => {
+            let sc = Scenario::load(&scenario)?;
+            let xml = touchdown_mujoco::export(&sc)?;
+            std::fs::write(&output, xml)
+                .with_context(|| format!("cannot write {}", output.display()))?;
             Ok(())
         }
         Command::Validate { format, root, out } => {

@@ -260,3 +260,37 @@ fn boundary_prints_csv_and_json() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("FROM"));
 }
+
+#[test]
+fn export_mjcf_writes_a_standalone_model() {
+    let dir = temp("mjcf");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("lander.xml");
+    let out = touchdown(&[
+        "export-mjcf",
+        "scenarios/flat-drop.toml",
+        "-o",
+        file.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let xml = std::fs::read_to_string(&file).unwrap();
+    assert!(
+        xml.starts_with("<!-- Touchdown MJCF export"),
+        "{}",
+        &xml[..80]
+    );
+    assert!(xml.trim_end().ends_with("</mujoco>"));
+    for name in [
+        "vehicle",
+        "leg4_footpad",
+        "leg4_stroke",
+        "leg4_s41",
+        "touchdown",
+    ] {
+        assert!(xml.contains(&format!("name=\"{name}\"")), "{name} missing");
+    }
+}

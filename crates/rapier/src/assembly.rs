@@ -23,12 +23,6 @@ use touchdown_scenario::Scenario;
 /// laterally while it bears on its plane, as the core's locked footpad does while in contact.
 pub const LOCK_FRICTION: f64 = 1.0e6;
 
-/// Radius of the footpad's contact sphere as a fraction of the primary strut length L2P. The
-/// footpad body turns with the strut (the report's ball joint is not modelled), so its contact
-/// sphere rolls as the strut rotates; a small sphere keeps that rolling, which moves the ball
-/// joint by radius × rotation, negligible (about 0.3 mm on the 1/6-scale model).
-pub const CONTACT_RADIUS_RATIO: f64 = 0.002;
-
 /// Damping of the plateau velocity motor, N/(m/s): large enough that the motor is a hard
 /// velocity constraint up to its force bound.
 const MOTOR_DAMPING: f64 = 1.0e12;
@@ -50,15 +44,6 @@ fn matrix(m: &Matrix3<f64>) -> Matrix {
         to_rapier(&m.column(1).into()),
         to_rapier(&m.column(2).into()),
     )
-}
-
-/// Inertia tensor, kg·m², of a gear link of mass `m`: a solid cylinder's transverse moment
-/// about its centre (radius `r`, length `l`) about every axis. The spin about the strut axis is
-/// a degree of freedom the report's gear does not have; giving it the transverse moment, not a
-/// thin rod's tiny axial one, keeps the link's gyroscopic term ω × Jω zero, which rapier's
-/// multibody integrates explicitly and which turns unstable for slender links.
-fn link_inertia(m: f64, r: f64, l: f64) -> Matrix3<f64> {
-    Matrix3::identity() * (m * (3.0 * r * r + l * l) / 12.0)
 }
 
 /// Pose and velocity of a body of the multibody, read from the multibody itself (rapier writes
@@ -236,7 +221,7 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
 
     let pmass = sc.footpad.mass;
     let prim = &sc.primary;
-    let m_outer = rs.outer_cylinder_mass_ratio * pmass;
+    let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
     let mut masses = LinkMasses {
         outer_cylinder: m_outer,
         footpad: pmass,
@@ -248,20 +233,20 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
     for (i, (leg, surface)) in sc.legs.iter().zip(&sc.surface.pads).enumerate() {
         let axis = (leg.bp - leg.b2) / leg.l2p;
         // Outer cylinder: trunnion B2 to the gland bearing at D1 − D2 above the footpad.
-        let l_outer = (leg.l2p - prim.inner_cylinder_length + prim.initial_overlap).max(leg.l21);
-        let radius = rs.link_radius_ratio * leg.l2p;
-        let pr = CONTACT_RADIUS_RATIO * leg.l2p;
+        let l_outer = sc.links.outer_cylinder_length(leg, prim);
+        let radius = sc.links.radius(leg);
+        let pr = sc.links.contact_radius(leg);
         masses.contact_radius = pr;
         masses.outer_cylinder_length = l_outer;
         masses.link_radius = radius;
         let outer_com = leg.b2 + axis * (0.5 * l_outer);
         let outer_inertia = Inertia {
             mass: m_outer,
-            tensor: link_inertia(m_outer, radius, l_outer),
+            tensor: Matrix3::identity() * sc.links.moment(leg, m_outer, l_outer),
         };
         let footpad_inertia = Inertia {
             mass: pmass,
-            tensor: link_inertia(pmass, radius, prim.inner_cylinder_length),
+            tensor: Matrix3::identity() * sc.links.moment(leg, pmass, prim.inner_cylinder_length),
         };
         let outer = world.bodies.insert(
             RigidBodyBuilder::dynamic()

@@ -283,11 +283,45 @@ fn resolve_rapier(
             "engines.rapier.contact_damping_ratio",
             r.contact_damping_ratio,
         )?,
-        outer_cylinder_mass_ratio: c.positive(
-            "engines.rapier.outer_cylinder_mass_ratio",
-            r.outer_cylinder_mass_ratio,
+    })
+}
+
+/// The MuJoCo export's settings in SI.
+fn resolve_mujoco(
+    c: &Check,
+    m: &schema::Mujoco,
+    u: &Units,
+) -> Result<model::Mujoco, ScenarioError> {
+    let timestep = c.positive("engines.mujoco.timestep", m.timestep)? * u.time();
+    let contact_timeconst =
+        c.positive("engines.mujoco.contact_timeconst", m.contact_timeconst)? * u.time();
+    if contact_timeconst < 2.0 * timestep {
+        return Err(c.err(
+            "engines.mujoco.contact_timeconst",
+            format!(
+                "expected at least twice engines.mujoco.timestep, {} in the file's time unit (MuJoCo would silently raise it)",
+                2.0 * m.timestep
+            ),
+        ));
+    }
+    Ok(model::Mujoco {
+        timestep,
+        contact_timeconst,
+        contact_damping_ratio: c.non_negative(
+            "engines.mujoco.contact_damping_ratio",
+            m.contact_damping_ratio,
         )?,
-        link_radius_ratio: c.positive("engines.rapier.link_radius_ratio", r.link_radius_ratio)?,
+    })
+}
+
+/// The multibody engines' gear links.
+fn resolve_links(c: &Check, l: &schema::GearLinks) -> Result<model::GearLinks, ScenarioError> {
+    Ok(model::GearLinks {
+        outer_cylinder_mass_ratio: c.positive(
+            "engines.links.outer_cylinder_mass_ratio",
+            l.outer_cylinder_mass_ratio,
+        )?,
+        link_radius_ratio: c.positive("engines.links.link_radius_ratio", l.link_radius_ratio)?,
     })
 }
 
@@ -715,6 +749,8 @@ fn resolve(
         terminate_on_decision: st.terminate_on_decision,
     };
     let rapier = resolve_rapier(&c, &file.engines.rapier, &u)?;
+    let mujoco = resolve_mujoco(&c, &file.engines.mujoco, &u)?;
+    let links = resolve_links(&c, &file.engines.links)?;
     Ok(Scenario {
         source: source.to_string(),
         layers,
@@ -730,5 +766,7 @@ fn resolve(
         integrator,
         stability,
         rapier,
+        mujoco,
+        links,
     })
 }

@@ -32,6 +32,10 @@ pub struct Scenario {
     pub stability: Stability,
     /// Settings of the rapier multibody rebuild.
     pub rapier: Rapier,
+    /// Settings of the MuJoCo export.
+    pub mujoco: Mujoco,
+    /// The gear links of the multibody engines.
+    pub links: GearLinks,
     /// The files of the `extends` chain with their own tables (this file first), to name the
     /// file that sets a field in messages.
     pub(crate) layers: Vec<(String, toml::Table)>,
@@ -249,8 +253,56 @@ pub struct Rapier {
     pub contact_frequency: f64,
     /// Contact damping ratio.
     pub contact_damping_ratio: f64,
+}
+
+/// Settings of the MuJoCo export, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mujoco {
+    /// Fixed time step, s.
+    pub timestep: f64,
+    /// Contact time constant (solref[0]), s.
+    pub contact_timeconst: f64,
+    /// Contact damping ratio (solref[1]).
+    pub contact_damping_ratio: f64,
+}
+
+/// The gear links the multibody engines add.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GearLinks {
     /// Outer-cylinder link mass / effective footpad mass.
     pub outer_cylinder_mass_ratio: f64,
     /// Link inertia radius / L2P.
     pub link_radius_ratio: f64,
+}
+
+impl GearLinks {
+    /// Length of a gear's outer-cylinder link, m: trunnion B2 to the gland bearing at D1 − D2
+    /// above the footpad (at least L21, so that point 1 is on it).
+    pub fn outer_cylinder_length(&self, leg: &Leg, primary: &PrimaryStrut) -> f64 {
+        (leg.l2p - primary.inner_cylinder_length + primary.initial_overlap).max(leg.l21)
+    }
+
+    /// Radius of a footpad's contact sphere, m: 0.002 L2P. The footpad body turns with the
+    /// strut (the report's ball joint is not modelled), so its contact sphere rolls as the
+    /// strut rotates; a small sphere keeps that rolling, which moves the ball joint by radius ×
+    /// rotation, negligible (about 0.3 mm on the 1/6-scale model).
+    pub fn contact_radius(&self, leg: &Leg) -> f64 {
+        0.002 * leg.l2p
+    }
+
+    /// Radius of a gear's links for their inertia, m.
+    pub fn radius(&self, leg: &Leg) -> f64 {
+        self.link_radius_ratio * leg.l2p
+    }
+
+    /// Moment of inertia, kg·m², of a gear link of mass `mass` (kg) and length `length` (m): a
+    /// solid cylinder's transverse moment about its centre, used about every axis. The spin
+    /// about the strut axis is a degree of freedom the report's gear does not have; giving it
+    /// the transverse moment, not a thin rod's tiny axial one, keeps the gyroscopic term
+    /// ω × Jω zero, which multibody engines integrate explicitly and which turns unstable for
+    /// slender links.
+    pub fn moment(&self, leg: &Leg, mass: f64, length: f64) -> f64 {
+        let r = self.radius(leg);
+        mass * (3.0 * r * r + length * length) / 12.0
+    }
 }

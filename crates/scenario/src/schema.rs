@@ -481,8 +481,15 @@ pub struct Engines {
     /// The rapier multibody rebuild (`touchdown run --engine rapier`).
     #[serde(default)]
     pub rapier: Rapier,
+    /// The MuJoCo export (`touchdown export-mjcf`, `touchdown run --engine mujoco`).
+    #[serde(default)]
+    pub mujoco: Mujoco,
+    /// The gear links the multibody engines (rapier, MuJoCo) add to the report's massless gear.
+    #[serde(default)]
+    pub links: GearLinks,
 }
 
+/// Default fixed time step of the multibody engines, s.
 fn default_rapier_timestep() -> f64 {
     2.0e-5
 }
@@ -516,6 +523,23 @@ pub struct Rapier {
     /// Damping ratio of the footpad contact constraint; dimensionless.
     #[serde(default = "one")]
     pub contact_damping_ratio: f64,
+}
+
+impl Default for Rapier {
+    fn default() -> Self {
+        Rapier {
+            timestep: default_rapier_timestep(),
+            contact_frequency: default_contact_frequency(),
+            contact_damping_ratio: one(),
+        }
+    }
+}
+
+/// The gear links of the multibody engines: the masses they add to the report's massless gear
+/// (stated in every multibody summary). Dimensionless.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GearLinks {
     /// Mass of each primary outer-cylinder link as a fraction of the effective footpad mass;
     /// dimensionless (the report's gear is massless; the link needs some mass).
     #[serde(default = "default_outer_cylinder_mass_ratio")]
@@ -526,14 +550,42 @@ pub struct Rapier {
     pub link_radius_ratio: f64,
 }
 
-impl Default for Rapier {
+impl Default for GearLinks {
     fn default() -> Self {
-        Rapier {
-            timestep: default_rapier_timestep(),
-            contact_frequency: default_contact_frequency(),
-            contact_damping_ratio: one(),
+        GearLinks {
             outer_cylinder_mass_ratio: default_outer_cylinder_mass_ratio(),
             link_radius_ratio: default_link_radius_ratio(),
+        }
+    }
+}
+
+fn default_mujoco_contact_timeconst() -> f64 {
+    4.0e-5
+}
+
+/// The MuJoCo export (docs/engines.md). Every default is in seconds or dimensionless.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mujoco {
+    /// Fixed time step (`option/timestep`); time. The strut laws are applied explicitly once
+    /// per step, as in the rapier rebuild.
+    #[serde(default = "default_rapier_timestep")]
+    pub timestep: f64,
+    /// Time constant of the footpad contacts (`solref[0]`, on both geoms of every pair); time.
+    /// Small, so that footpads do not sink; MuJoCo needs it at least twice the time step.
+    #[serde(default = "default_mujoco_contact_timeconst")]
+    pub contact_timeconst: f64,
+    /// Damping ratio of the footpad contacts (`solref[1]`); dimensionless.
+    #[serde(default = "one")]
+    pub contact_damping_ratio: f64,
+}
+
+impl Default for Mujoco {
+    fn default() -> Self {
+        Mujoco {
+            timestep: default_rapier_timestep(),
+            contact_timeconst: default_mujoco_contact_timeconst(),
+            contact_damping_ratio: one(),
         }
     }
 }

@@ -1,0 +1,261 @@
+//! The MJCF document of a scenario's lander.
+//!
+//! - Vehicle: a free body with its inertial frame at the centre of mass (mass M, full inertia
+//!   tensor J), posed and moving as at touchdown through the keyframe `touchdown` (eq. 19 as
+//!   corrected, shared with the other engines through `touchdown_scenario::frames`).
+//! - Per gear n: body `legN_outer` at the primary trunnion B2 with a universal joint (two hinges
+//!   `legN_trunnion_1`, `legN_trunnion_2`, both normal to the strut axis V̂2P, so the strut
+//!   cannot spin about itself), the outer-cylinder link's mass; body `legN_footpad` at the
+//!   footpad ball joint BP on the slide joint `legN_stroke` along V̂2P (joint coordinate
+//!   q = extension, so the compression stroke is c = −q), with the effective footpad mass PMASS
+//!   and a small contact sphere; the secondary struts are massless spatial tendons
+//!   `legN_s31`, `legN_s41` from the trunnions B3, B4 on the vehicle to point 1 on the outer
+//!   cylinder (two-force members: a tendon carries force along itself only).
+//! - Actuators, all driven by the runner from the shared laws: `legN_primary` (force along the
+//!   stroke joint, N, positive extends), `legN_plateau` (a one-sided velocity actuator whose
+//!   force range the runner sets to [0, crush load] while the honeycomb crushes on a plateau),
+//!   `legN_s31`, `legN_s41` (tendon forces, N, positive lengthens). Bearing friction is the
+//!   stroke joint's `frictionloss`, set every step.
+//! - One ground plane per footpad at its HOLE depth (lowered by the contact radius), paired
+//!   with its footpad only by collision bitmasks (bit n on both), with the same contact
+//!   settings on both geoms of the pair.
+//!
+//! Only what the scene needs is written: a frictionless footpad gets a frictionless contact
+//! (`condim` 1), no lock is written for a surface without obstacles.
+
+use crate::MujocoError;
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use sha2::{Digest, Sha256};
+use std::fmt::Write;
+use touchdown_scenario::frames::{gravity_inertial, initial_state};
+use touchdown_scenario::schema::Arrangement;
+use touchdown_scenario::Scenario;
+
+/// Contact friction that stands for an obstacle lock (OBST > 0): the footpad sticks laterally
+/// while it bears on its plane and the lateral load stays below 100 times the normal load.
+pub const LOCK_FRICTION: f64 = 100.0;
+
+/// `solimp` of the footpad contacts: impedance 0.99 at zero penetration rising to 0.999 over
+/// 0.1 mm (dimensionless, dimensionless, m), i.e. nearly a hard contact, so that footpads do not
+/// sink.
+pub const CONTACT_SOLIMP: [f64; 3] = [0.99, 0.999, 1.0e-4];
+
+/// Velocity gain of the plateau actuator times the time step over the footpad mass; large,
+/// so that within its force range the actuator holds the stroke rate at zero.
+pub const PLATEAU_GAIN: f64 = 1.0e3;
+
+/// Version of this generator, written into every exported file.
+pub const GENERATOR: &str = concat!("touchdown-mujoco ", env!("CARGO_PKG_VERSION"));
+
+/// SHA-256 of the resolved scenario (`Scenario::to_toml`), hex.
+pub fn scenario_hash(sc: &Scenario) -> String {
+    Sha256::digest(sc.to_toml().as_bytes())
+        .iter()
+        .fold(String::with_capacity(64), |mut s, b| {
+            let _ = write!(s, "{b:02x}");
+            s
+        })
+}
+
+/// Space-separated numbers (shortest round-trip form).
+fn nums(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{}", if *x == 0.0 { 0.0 } else { *x }))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn vec3(v: &Vector3<f64>) -> String {
+    nums(&[v.x, v.y, v.z])
+}
+
+/// Two unit vectors normal to `axis` and to each other: the universal joint's hinge axes.
+fn hinge_axes(axis: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let helper = if axis.z.abs() < 0.9 {
+        Vector3::z()
+    } else {
+        Vector3::x()
+    };
+    let e1 = axis.cross(&helper).normalize();
+    (e1, axis.cross(&e1))
+}
+
+/// The MJCF document of `sc`'s lander, standalone (loads in MuJoCo and opens in its viewer).
+pub fn export(sc: &Scenario) -> Result<String, MujocoError> {
+    if sc.arrangement == Arrangement::Tripod {
+        return Err(MujocoError::Unsupported {
+            file: sc.file_of("gear.arrangement").to_string(),
+            field: "gear.arrangement".into(),
+            message: "the inverted tripod (secondaries at the footpad) is not exported; only the cantilever gear".into(),
+        });
+    }
+    let mj = &sc.mujoco;
+    let init = initial_state(sc);
+    let gravity = gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+    let pmass = sc.footpad.mass;
+    let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
+    let solref = nums(&[mj.contact_timeconst, mj.contact_damping_ratio]);
+    let solimp = nums(&CONTACT_SOLIMP);
+    let quat = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(init.t_bi));
+    let j: &Matrix3<f64> = &sc.vehicle.inertia;
+
+    let mut x = String::new();
+    let w = &mut x;
+    let _ = writeln!(
+        w,
+        "<!-- Touchdown MJCF export of the scenario \"{}\".\n     scenario sha256 (resolved scenario TOML): {}\n     generator: {GENERATOR}\n     Units: SI (m, kg, s, N, rad). World frame: the report's inertial (surface) frame, Z normal\n     to the surface; the slope is in the gravity vector. Load the keyframe \"touchdown\" for the\n     touchdown state (docs/engines.md). -->",
+        xml_text(&sc.file.name),
+        scenario_hash(sc)
+    );
+    let _ = writeln!(
+        w,
+        "<mujoco model=\"touchdown: {}\">",
+        xml_text(&sc.file.name)
+    );
+    let _ = writeln!(
+        w,
+        "  <compiler angle=\"radian\" autolimits=\"true\" inertiafromgeom=\"false\"/>"
+    );
+    let _ = writeln!(
+        w,
+        "  <!-- implicitfast: velocity-dependent forces (the plateau actuator) implicit; elliptic cones: isotropic Coulomb friction -->"
+    );
+    let _ = writeln!(
+        w,
+        "  <option timestep=\"{}\" gravity=\"{}\" integrator=\"implicitfast\" cone=\"elliptic\"/>",
+        nums(&[mj.timestep]),
+        vec3(&gravity)
+    );
+    let _ = writeln!(
+        w,
+        "  <default>\n    <!-- Geoms collide only where a bitmask says so; the links' inertias are given explicitly. -->\n    <geom contype=\"0\" conaffinity=\"0\" mass=\"0\"/>\n    <joint damping=\"0\" armature=\"0\" frictionloss=\"0\"/>\n  </default>"
+    );
+    let _ = writeln!(w, "  <worldbody>");
+    for (i, (leg, pad)) in sc.legs.iter().zip(&sc.surface.pads).enumerate() {
+        let r = sc.links.contact_radius(leg);
+        let _ = writeln!(
+            w,
+            "    <!-- leg {n}'s ground plane: Z = -HOLE = {} m, lowered by the contact radius so that BP is on it when the sphere touches -->\n    <geom name=\"leg{n}_plane\" type=\"plane\" pos=\"0 0 {}\" size=\"0 0 1\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{}/>",
+            nums(&[pad.plane()]),
+            nums(&[pad.plane() - r]),
+            contact_friction(pad.locked(), pad.friction),
+            n = i + 1,
+            bit = 1u32 << i,
+        );
+    }
+    let _ = writeln!(
+        w,
+        "    <body name=\"vehicle\" pos=\"{}\" quat=\"{}\">\n      <freejoint name=\"vehicle\"/>\n      <!-- mass M, kg; inertia J about the centre of mass, body axes, kg m^2 (fullinertia: Ixx Iyy Izz Ixy Ixz Iyz entries of the tensor) -->\n      <inertial pos=\"0 0 0\" mass=\"{}\" fullinertia=\"{}\"/>",
+        vec3(&init.position),
+        nums(&[quat.w, quat.i, quat.j, quat.k]),
+        nums(&[sc.vehicle.mass]),
+        nums(&[j[(0, 0)], j[(1, 1)], j[(2, 2)], j[(0, 1)], j[(0, 2)], j[(1, 2)]])
+    );
+    for (i, (leg, pad)) in sc.legs.iter().zip(&sc.surface.pads).enumerate() {
+        let n = i + 1;
+        let axis = (leg.bp - leg.b2) / leg.l2p;
+        let (e1, e2) = hinge_axes(&axis);
+        let prim = &sc.primary;
+        let l_outer = sc.links.outer_cylinder_length(leg, prim);
+        let radius = sc.links.radius(leg);
+        let i_outer = sc.links.moment(leg, m_outer, l_outer);
+        let i_pad = sc.links.moment(leg, pmass, prim.inner_cylinder_length);
+        let r = sc.links.contact_radius(leg);
+        let _ = writeln!(
+            w,
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        <site name=\"leg{n}_point1\" pos=\"{}\"/>\n        <body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          <geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            vec3(&leg.b3),
+            vec3(&leg.b4),
+            vec3(&leg.b2),
+            vec3(&e1),
+            vec3(&e2),
+            nums(&[l_outer]),
+            nums(&[m_outer]),
+            vec3(&(axis * (0.5 * l_outer))),
+            nums(&[m_outer]),
+            nums(&[i_outer, i_outer, i_outer]),
+            vec3(&(axis * l_outer)),
+            nums(&[radius]),
+            vec3(&(leg.b1() - leg.b2)),
+            vec3(&(leg.bp - leg.b2)),
+            vec3(&axis),
+            nums(&[pmass]),
+            nums(&[i_pad, i_pad, i_pad]),
+            nums(&[r]),
+            contact_friction(pad.locked(), pad.friction),
+            bit = 1u32 << i,
+        );
+    }
+    let _ = writeln!(w, "    </body>\n  </worldbody>");
+    let _ = writeln!(w, "  <tendon>");
+    for n in 1..=sc.legs.len() {
+        for (name, trunnion) in [("s31", "b3"), ("s41", "b4")] {
+            let _ = writeln!(
+                w,
+                "    <spatial name=\"leg{n}_{name}\" width=\"0.002\"><site site=\"leg{n}_{trunnion}\"/><site site=\"leg{n}_point1\"/></spatial>"
+            );
+        }
+    }
+    let _ = writeln!(w, "  </tendon>");
+    let kv = PLATEAU_GAIN * pmass / mj.timestep;
+    let _ = writeln!(
+        w,
+        "  <actuator>\n    <!-- Forces in N set every step by the runner from the shared laws; the plateau's force range is set to [0, crush load] while the honeycomb crushes, else [0, 0]. -->"
+    );
+    for n in 1..=sc.legs.len() {
+        let _ = writeln!(
+            w,
+            "    <motor name=\"leg{n}_primary\" joint=\"leg{n}_stroke\"/>\n    <velocity name=\"leg{n}_plateau\" joint=\"leg{n}_stroke\" kv=\"{}\" forcerange=\"0 0\"/>\n    <motor name=\"leg{n}_s31\" tendon=\"leg{n}_s31\"/>\n    <motor name=\"leg{n}_s41\" tendon=\"leg{n}_s41\"/>",
+            nums(&[kv])
+        );
+    }
+    let _ = writeln!(w, "  </actuator>");
+    let mut qpos = vec![
+        init.position.x,
+        init.position.y,
+        init.position.z,
+        quat.w,
+        quat.i,
+        quat.j,
+        quat.k,
+    ];
+    qpos.extend(std::iter::repeat_n(0.0, 3 * sc.legs.len()));
+    // Free joint: linear velocity in world axes, angular velocity in body axes.
+    let mut qvel = vec![
+        init.velocity.x,
+        init.velocity.y,
+        init.velocity.z,
+        init.omega.x,
+        init.omega.y,
+        init.omega.z,
+    ];
+    qvel.extend(std::iter::repeat_n(0.0, 3 * sc.legs.len()));
+    let _ = writeln!(
+        w,
+        "  <keyframe>\n    <!-- the touchdown state: the first footpad on its plane, the gear at rest relative to the vehicle -->\n    <key name=\"touchdown\" qpos=\"{}\" qvel=\"{}\"/>\n  </keyframe>\n</mujoco>",
+        nums(&qpos),
+        nums(&qvel)
+    );
+    Ok(x)
+}
+
+/// `condim` and `friction` attributes of a footpad contact: frictionless (condim 1) when the
+/// surface has neither friction nor an obstacle, Coulomb friction U otherwise, the lock friction
+/// on a surface with obstacles.
+fn contact_friction(locked: bool, friction: f64) -> String {
+    let mu = if locked { LOCK_FRICTION } else { friction };
+    if mu == 0.0 {
+        " condim=\"1\"".into()
+    } else {
+        format!(" condim=\"3\" friction=\"{} 0 0\"", nums(&[mu]))
+    }
+}
+
+/// Text safe inside an XML attribute or comment.
+fn xml_text(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace("--", "- -")
+}
