@@ -199,7 +199,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
-            let xml = touchdown_mujoco::export(&sc)?;
+            let xml = touchdown_mujoco::export(&sc);
             std::fs::write(&output, xml)
                 .with_context(|| format!("cannot write {}", output.display()))?;
             Ok(())

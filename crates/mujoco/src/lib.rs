@@ -11,18 +11,3 @@
 pub mod mjcf;
 
 pub use mjcf::export;
-
-/// Errors of the MuJoCo export.
-#[derive(Debug, thiserror::Error)]
-pub enum MujocoError {
-    /// The scenario asks for something the export does not model.
-    #[error("{file}: {field}: not supported by the MuJoCo export: {message}")]
-    Unsupported {
-        /// Scenario file.
-        file: String,
-        /// Field.
-        field: String,
-        /// What is missing.
-        message: String,
-    },
-}

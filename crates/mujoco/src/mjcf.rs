@@ -21,14 +21,13 @@
 //!   settings on both geoms of the pair.
 //!
 //! Only what the scene needs is written: a frictionless footpad gets a frictionless contact
-//! (`condim` 1), no lock is written for a surface without obstacles.
+//! (`condim` 1), no lock is written for a surface without obstacles. (The scenario loader
+//! refuses the tripod arrangement, so only the cantilever gear is exported.)
 
-use crate::MujocoError;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use sha2::{Digest, Sha256};
 use std::fmt::Write;
 use touchdown_scenario::frames::{gravity_inertial, initial_state};
-use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::Scenario;
 
 /// Contact friction that stands for an obstacle lock (OBST > 0): the footpad sticks laterally
@@ -81,14 +80,7 @@ fn hinge_axes(axis: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
 }
 
 /// The MJCF document of `sc`'s lander, standalone (loads in MuJoCo and opens in its viewer).
-pub fn export(sc: &Scenario) -> Result<String, MujocoError> {
-    if sc.arrangement == Arrangement::Tripod {
-        return Err(MujocoError::Unsupported {
-            file: sc.file_of("gear.arrangement").to_string(),
-            field: "gear.arrangement".into(),
-            message: "the inverted tripod (secondaries at the footpad) is not exported; only the cantilever gear".into(),
-        });
-    }
+pub fn export(sc: &Scenario) -> String {
     let mj = &sc.mujoco;
     let init = initial_state(sc);
     let gravity = gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
@@ -236,7 +228,7 @@ pub fn export(sc: &Scenario) -> Result<String, MujocoError> {
         nums(&qpos),
         nums(&qvel)
     );
-    Ok(x)
+    x
 }
 
 /// `condim` and `friction` attributes of a footpad contact: frictionless (condim 1) when the

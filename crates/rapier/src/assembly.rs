@@ -16,7 +16,6 @@ use crate::RapierError;
 use nalgebra::{Matrix3, Vector3};
 use rapier3d_f64::prelude::*;
 use touchdown_scenario::frames::{self, gravity_inertial};
-use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::Scenario;
 
 /// Friction coefficient that stands for an obstacle lock (OBST > 0): the footpad sticks
@@ -174,13 +173,6 @@ pub struct Assembly {
 /// Builds the multibody, ground planes and solver settings of a scenario at its touchdown
 /// state (eq. 19 as corrected, shared with the core through `touchdown_scenario::frames`).
 pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
-    if sc.arrangement == Arrangement::Tripod {
-        return Err(RapierError::Unsupported {
-            file: sc.file_of("gear.arrangement").to_string(),
-            field: "gear.arrangement".into(),
-            message: "the inverted tripod (secondaries at the footpad) is not built; only the cantilever gear".into(),
-        });
-    }
     let rs = &sc.rapier;
     let init = frames::initial_state(sc);
     let r_bi = init.t_bi;

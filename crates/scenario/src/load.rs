@@ -756,7 +756,6 @@ fn resolve(
         layers,
         file,
         vehicle,
-        arrangement: schema::Arrangement::Cantilever,
         legs,
         primary,
         secondary,

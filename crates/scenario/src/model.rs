@@ -1,6 +1,6 @@
 //! The resolved scenario: every value in SI, geometry derived, ready for an engine.
 
-use crate::schema::{self, Arrangement, AttitudeReference, ReleaseRule, ScenarioFile, WallRule};
+use crate::schema::{self, AttitudeReference, ReleaseRule, ScenarioFile, WallRule};
 use nalgebra::{Matrix3, Vector3};
 
 /// A validated scenario in SI units (m, kg, N, s, rad).
@@ -12,8 +12,6 @@ pub struct Scenario {
     pub file: ScenarioFile,
     /// Rigid vehicle.
     pub vehicle: Vehicle,
-    /// Gear arrangement.
-    pub arrangement: Arrangement,
     /// Legs in counter-clockwise order seen from above.
     pub legs: Vec<Leg>,
     /// Primary strut.
