@@ -23,7 +23,8 @@ use crate::CoreError;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
+    Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, PadSurface};
@@ -76,20 +77,6 @@ impl VehicleState {
     }
 }
 
-/// Energy ledger: work absorbed by each mechanism since touchdown, J.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Ledger {
-    /// Work done on the honeycombs (stored + dissipated).
-    honeycomb: f64,
-    viscous: f64,
-    bearing: f64,
-    /// Dissipated by sliding friction and by sliding footpads stopping.
-    sliding: f64,
-    /// Energy added by contact-state changes (footpad velocity set on touchdown, removed on
-    /// lift-off).
-    events: f64,
-}
-
 /// A landing simulated by the report-faithful core.
 #[derive(Debug, Clone)]
 pub struct Simulation {
@@ -113,7 +100,7 @@ pub struct Simulation {
     trial: Vec<GearState>,
     previous: Vec<GearState>,
     scratch: Vec<GearState>,
-    ledger: Ledger,
+    ledger: EnergyLedger,
     potential0: f64,
     stability: StabilityTracker,
     extremes: Extremes,
@@ -190,7 +177,7 @@ impl Simulation {
             trial: vec![GearState::default(); n],
             previous: vec![GearState::default(); n],
             scratch: vec![GearState::default(); n],
-            ledger: Ledger::default(),
+            ledger: EnergyLedger::default(),
             potential0: 0.0,
             stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
             extremes: Extremes::new(n),
@@ -287,26 +274,13 @@ impl Simulation {
                     .stored_energy(g.primary_stroke, g.secondary_stroke, &self.memory[i])
             })
             .sum();
-        let l = &self.ledger;
-        let kinetic = self.kinetic_energy();
-        let potential_change = self.potential_energy() - self.potential0;
-        let footpads = self.footpad_energy();
-        let absorbed = l.honeycomb + l.viscous + l.bearing + l.sliding;
-        let ke0 = self.stability.initial_kinetic_energy();
-        let residual = kinetic + potential_change + footpads + absorbed - l.events - ke0;
-        EnergyReport {
-            kinetic_initial_j: ke0,
-            kinetic_j: kinetic,
-            potential_change_j: potential_change,
-            footpad_j: footpads,
-            honeycomb_stored_j: stored,
-            honeycomb_dissipated_j: l.honeycomb - stored,
-            viscous_j: l.viscous,
-            bearing_friction_j: l.bearing,
-            sliding_friction_j: l.sliding,
-            contact_events_j: l.events,
-            residual_j: residual,
-        }
+        self.ledger.report(
+            self.stability.initial_kinetic_energy(),
+            self.kinetic_energy(),
+            self.potential_energy() - self.potential0,
+            self.footpad_energy(),
+            stored,
+        )
     }
 
     /// The integrator settings, for the summary.
@@ -677,27 +651,13 @@ impl Simulation {
             ));
         }
         let e = self.energy();
-        let l = &self.ledger;
-        let scale = e.kinetic_initial_j
-            + e.potential_change_j.abs()
-            + l.honeycomb.abs()
-            + l.viscous.abs()
-            + l.bearing.abs()
-            + l.sliding.abs()
-            + l.events.abs();
-        if e.residual_j.abs() > self.integrator.energy_tolerance * scale.max(f64::MIN_POSITIVE) {
-            return Err(self.diverged(
-                v,
-                format!(
-                    "energy balance residual {:.4e} J exceeds {} of the energy scale {:.4e} J (step too large for the stiffest mode?); \
-                     exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J",
-                    e.residual_j, self.integrator.energy_tolerance, scale, l.honeycomb, l.viscous, l.bearing, l.sliding, l.events
-                ),
-                "energy balance",
-                usize::MAX,
-            ));
-        }
-        Ok(())
+        self.ledger
+            .check_balance(
+                &e,
+                self.integrator.energy_tolerance,
+                "step too large for the stiffest mode?",
+            )
+            .map_err(|message| self.diverged(v, message, "energy balance", usize::MAX))
     }
 
     /// Stability distances, the unstable crossing and the four stable conditions

@@ -19,7 +19,8 @@ use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker, Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
+    Summary,
 };
 use touchdown_scenario::frames;
 use touchdown_scenario::model::{Leg, PadSurface};
@@ -33,17 +34,6 @@ pub trait Observer {
 
 impl Observer for () {
     fn observe(&mut self, _: &RapierSimulation) {}
-}
-
-/// Energy ledger: work absorbed by each mechanism since touchdown, J.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Ledger {
-    honeycomb: f64,
-    viscous: f64,
-    bearing: f64,
-    sliding: f64,
-    /// Work of the normal contact impulses and of the obstacle locks on the footpads.
-    events: f64,
 }
 
 /// Contact state of one footpad.
@@ -77,7 +67,7 @@ pub struct RapierSimulation {
     pad_velocity: Vec<Vector3<f64>>,
     forces: Vec<StrutForces>,
     contacts: Vec<PadContact>,
-    ledger: Ledger,
+    ledger: EnergyLedger,
     /// Vehicle and link positions at touchdown (for potential energies).
     position0: Vec<Vector3<f64>>,
     /// Kinetic energy of the gear links at touchdown, J.
@@ -131,7 +121,7 @@ impl RapierSimulation {
             pad_velocity: vec![Vector3::zeros(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
-            ledger: Ledger::default(),
+            ledger: EnergyLedger::default(),
             position0: Vec::new(),
             links_kinetic0: 0.0,
             max_penetration: 0.0,
@@ -227,28 +217,14 @@ impl RapierSimulation {
             .zip(&self.memory)
             .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
             .sum();
-        let l = &self.ledger;
         let kinetic = self.kinetic_energy();
-        let potential_change = self.body_energy(0) - kinetic;
-        let gear = self.gear_energy();
-        let ke0 = self.stability.initial_kinetic_energy();
-        let residual =
-            kinetic + potential_change + gear + l.honeycomb + l.viscous + l.bearing + l.sliding
-                - l.events
-                - ke0;
-        EnergyReport {
-            kinetic_initial_j: ke0,
-            kinetic_j: kinetic,
-            potential_change_j: potential_change,
-            footpad_j: gear,
-            honeycomb_stored_j: stored,
-            honeycomb_dissipated_j: l.honeycomb - stored,
-            viscous_j: l.viscous,
-            bearing_friction_j: l.bearing,
-            sliding_friction_j: l.sliding,
-            contact_events_j: l.events,
-            residual_j: residual,
-        }
+        self.ledger.report(
+            self.stability.initial_kinetic_energy(),
+            kinetic,
+            self.body_energy(0) - kinetic,
+            self.gear_energy(),
+            stored,
+        )
     }
 
     /// The summary at the current state.
@@ -499,25 +475,13 @@ impl RapierSimulation {
             return Err(self.diverged("non-finite body state".into(), "equations of motion", None));
         }
         let e = self.energy();
-        let l = &self.ledger;
-        let scale = e.kinetic_initial_j
-            + e.potential_change_j.abs()
-            + l.honeycomb.abs()
-            + l.viscous.abs()
-            + l.bearing.abs()
-            + l.sliding.abs()
-            + l.events.abs();
-        if e.residual_j.abs() > self.energy_tolerance * scale.max(f64::MIN_POSITIVE) {
-            return Err(self.diverged(
-                format!(
-                    "energy balance residual {:.4e} J exceeds {} of the energy scale {:.4e} J (time step too large for the stiffest strut law, or contact too soft?)",
-                    e.residual_j, self.energy_tolerance, scale
-                ),
-                "energy balance",
-                None,
-            ));
-        }
-        Ok(())
+        self.ledger
+            .check_balance(
+                &e,
+                self.energy_tolerance,
+                "time step too large for the stiffest strut law, or contact too soft?",
+            )
+            .map_err(|message| self.diverged(message, "energy balance", None))
     }
 }
 

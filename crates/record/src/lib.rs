@@ -17,7 +17,7 @@ pub mod summary;
 
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
-pub use summary::{EnergyReport, Extremes, Progress, Summary};
+pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};
 
 /// A run stopped because it diverged or left the domain of a law: where and why, so that the
 /// user can tell which law or mechanism failed (every engine reports it the same way).

@@ -36,6 +36,80 @@ pub struct EnergyReport {
     pub residual_j: f64,
 }
 
+/// Work exchanged with each mechanism since touchdown, J: the accounts every engine books,
+/// step by step, in its own way.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EnergyLedger {
+    /// Work done on the honeycombs (stored + dissipated), J.
+    pub honeycomb: f64,
+    /// Dissipated by the viscous strut forces, J.
+    pub viscous: f64,
+    /// Dissipated by primary-strut bearing friction, J.
+    pub bearing: f64,
+    /// Dissipated by footpad sliding friction (and sliding footpads stopping), J.
+    pub sliding: f64,
+    /// Given to the footpads by contact events, J (`EnergyReport::contact_events_j`).
+    pub events: f64,
+}
+
+impl EnergyLedger {
+    /// The energy report of a state with vehicle kinetic energy `kinetic` (J; `kinetic_initial`
+    /// at first contact), potential-energy change `potential_change` (J), gear energy
+    /// `footpad` (J, `EnergyReport::footpad_j`) and honeycomb elastic energy `honeycomb_stored`
+    /// (J), with this ledger's accounts and the balance's residual.
+    pub fn report(
+        &self,
+        kinetic_initial: f64,
+        kinetic: f64,
+        potential_change: f64,
+        footpad: f64,
+        honeycomb_stored: f64,
+    ) -> EnergyReport {
+        let absorbed = self.honeycomb + self.viscous + self.bearing + self.sliding;
+        EnergyReport {
+            kinetic_initial_j: kinetic_initial,
+            kinetic_j: kinetic,
+            potential_change_j: potential_change,
+            footpad_j: footpad,
+            honeycomb_stored_j: honeycomb_stored,
+            honeycomb_dissipated_j: self.honeycomb - honeycomb_stored,
+            viscous_j: self.viscous,
+            bearing_friction_j: self.bearing,
+            sliding_friction_j: self.sliding,
+            contact_events_j: self.events,
+            residual_j: kinetic + potential_change + footpad + absorbed
+                - self.events
+                - kinetic_initial,
+        }
+    }
+
+    /// The divergence guard on the balance: an error message if the residual of `e` (this
+    /// ledger's report) exceeds `tolerance` of the energy scale (touchdown kinetic energy plus
+    /// every exchange's magnitude). `hint` names the likely cause for this engine.
+    pub fn check_balance(
+        &self,
+        e: &EnergyReport,
+        tolerance: f64,
+        hint: &str,
+    ) -> Result<(), String> {
+        let scale = e.kinetic_initial_j
+            + e.potential_change_j.abs()
+            + self.honeycomb.abs()
+            + self.viscous.abs()
+            + self.bearing.abs()
+            + self.sliding.abs()
+            + self.events.abs();
+        if e.residual_j.abs() <= tolerance * scale.max(f64::MIN_POSITIVE) {
+            return Ok(());
+        }
+        Err(format!(
+            "energy balance residual {:.4e} J exceeds {tolerance} of the energy scale {scale:.4e} J ({hint}); \
+             exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J",
+            e.residual_j, self.honeycomb, self.viscous, self.bearing, self.sliding, self.events
+        ))
+    }
+}
+
 /// Running extremes of the strokes and the pitch rate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Extremes {
@@ -187,5 +261,28 @@ mod tests {
         x.update_pitch_rate(0.2, -0.7);
         x.update_pitch_rate(0.3, 0.6);
         assert_eq!((x.pitch_rate, x.pitch_rate_time), (-0.7, 0.2));
+    }
+
+    #[test]
+    fn the_ledger_closes_a_balanced_state_and_flags_a_drifting_one() {
+        // 100 J at touchdown: 10 J left, 5 J of potential released, 80 J into the honeycombs
+        // (3 J of it stored), 10 J viscous, 4 J bearing friction, 1 J taken by an impact.
+        let l = EnergyLedger {
+            honeycomb: 80.0,
+            viscous: 10.0,
+            bearing: 4.0,
+            sliding: 0.0,
+            events: -1.0,
+        };
+        let e = l.report(100.0, 10.0, -5.0, 0.0, 3.0);
+        assert_eq!(e.residual_j, 0.0);
+        assert_eq!(e.honeycomb_dissipated_j, 77.0);
+        assert!(l.check_balance(&e, 0.01, "hint").is_ok());
+        let drifting = l.report(100.0, 13.0, -5.0, 0.0, 3.0);
+        assert_eq!(drifting.residual_j, 3.0);
+        let message = l
+            .check_balance(&drifting, 0.01, "step too large")
+            .unwrap_err();
+        assert!(message.contains("step too large") && message.contains("honeycomb 8.0000e1 J"));
     }
 }
