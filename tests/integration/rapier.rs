@@ -9,30 +9,29 @@ use touchdown_record::Sample;
 use touchdown_scenario::{frames, Scenario};
 use touchdown_tests::scenario;
 
-/// The history of a landing on one engine, one sample per step.
-struct History(Vec<Sample>);
+/// The history of a landing on one engine, one sample per step (a template sample sized for
+/// the scenario's legs, then the samples).
+struct History(Sample, Vec<Sample>);
 
 impl touchdown_core::Observer for History {
     fn observe(&mut self, sim: &Simulation) {
-        let mut s = Sample::new(self.0.first().map_or(4, |s| s.legs.len()));
-        sim.sample(&mut s);
-        self.0.push(s);
+        sim.sample(&mut self.0);
+        self.1.push(self.0.clone());
     }
 }
 
 impl touchdown_rapier::Observer for History {
     fn observe(&mut self, sim: &RapierSimulation) {
-        let mut s = Sample::new(self.0.first().map_or(4, |s| s.legs.len()));
-        sim.sample(&mut s);
-        self.0.push(s);
+        sim.sample(&mut self.0);
+        self.1.push(self.0.clone());
     }
 }
 
 fn histories(name: &str) -> (History, History) {
     let sc = Scenario::load(scenario(name)).unwrap();
-    let mut core = History(Vec::new());
+    let mut core = History(Sample::new(sc.legs.len()), Vec::new());
     Simulation::new(&sc).unwrap().run(&mut core).unwrap();
-    let mut rapier = History(Vec::new());
+    let mut rapier = History(Sample::new(sc.legs.len()), Vec::new());
     RapierSimulation::new(&sc)
         .unwrap()
         .run(&mut rapier)
@@ -42,8 +41,8 @@ fn histories(name: &str) -> (History, History) {
 
 /// The sample of `h` nearest after time `t`.
 fn at(h: &History, t: f64) -> &Sample {
-    let i = h.0.partition_point(|s| s.t < t).min(h.0.len() - 1);
-    &h.0[i]
+    let i = h.1.partition_point(|s| s.t < t).min(h.1.len() - 1);
+    &h.1[i]
 }
 
 fn flat_drop() -> Scenario {
@@ -159,7 +158,7 @@ fn every_table_i_landing_closes_its_balance_and_agrees_on_the_outcome() {
 fn the_reports_contact_rule_holds_a_footpad_down_under_tension() {
     let (core, rapier) = histories("table-i-2-2-vv4.toml");
     let held: Vec<&Sample> = core
-        .0
+        .1
         .iter()
         .filter(|s| s.legs[2].contact == 1 && s.legs[2].primary_force < -1000.0)
         .collect();
@@ -185,7 +184,7 @@ fn a_detached_gear_is_frozen_in_the_core_and_swings_in_the_rebuild() {
     // footpad also bounces for a few steps at its impact).
     let detached_range = |h: &History| {
         let mut longest: &[Sample] = &[];
-        for stretch in h.0.chunk_by(|a, b| a.legs[3].contact == b.legs[3].contact) {
+        for stretch in h.1.chunk_by(|a, b| a.legs[3].contact == b.legs[3].contact) {
             if stretch[0].legs[3].contact == 2 && stretch.len() > longest.len() {
                 longest = stretch;
             }
