@@ -19,7 +19,10 @@ const ALLOWED: &[(&str, &[&str])] = &[
         "touchdown-rapier",
         &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
     ),
-    ("touchdown-mujoco", &["touchdown-scenario"]),
+    (
+        "touchdown-mujoco",
+        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
+    ),
     // Comparison level: runs engines, never reached by them.
     (
         "touchdown-validation",

@@ -1,10 +1,32 @@
-//! The MuJoCo export (issue 5): every scenario in `scenarios/` exports to MJCF that the pinned
-//! MuJoCo (`mujoco-core` in the project's venv) loads, and the model's keyframe is the shared
-//! touchdown state. A missing venv fails with the command that creates it.
+//! The MuJoCo export and runner (issue 5): every scenario in `scenarios/` exports to MJCF that
+//! the pinned MuJoCo (`mujoco-core` in the project's venv) loads, the model's keyframe is the
+//! shared touchdown state, and the law-driven run (python/mujoco/run.py with the touchdown C
+//! library) reproduces the analytic drop, closes its energy balance, and agrees with the core's
+//! outcomes and with the other multibody (the rapier rebuild) on the strokes. A missing venv
+//! fails with the command that creates it.
 
+use std::path::Path;
 use std::process::Command;
+use touchdown_mujoco::landing::{GearIndex, MjArrays, ModelSizes};
+use touchdown_mujoco::{Launch, MujocoError, MujocoLanding};
+use touchdown_record::{Outcome, Summary};
 use touchdown_scenario::{frames, Scenario};
-use touchdown_tests::{python, root, scenario};
+use touchdown_tests::{analytic_drop_stroke, python, root, scenario};
+
+/// A landing on the MuJoCo engine, end to end through the Python runner.
+fn mujoco(path: &Path) -> Summary {
+    let out = std::env::temp_dir().join(format!(
+        "touchdown-mujoco-{}-{}",
+        std::process::id(),
+        path.file_stem().unwrap().to_string_lossy()
+    ));
+    let launch = Launch::locate().unwrap_or_else(|e| panic!("{e}"));
+    let summary = launch
+        .run(path, None, &out, false)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let _ = std::fs::remove_dir_all(&out);
+    summary
+}
 
 #[test]
 fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
@@ -51,7 +73,7 @@ fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
             .map(|a| a.as_str().unwrap())
             .collect();
         let expected: Vec<String> = (1..=n)
-            .flat_map(|i| ["primary", "plateau", "s31", "s41"].map(|a| format!("leg{i}_{a}")))
+            .flat_map(|i| ["primary", "s31", "s41"].map(|a| format!("leg{i}_{a}")))
             .collect();
         assert_eq!(actuators, expected, "{name}: stable actuator names");
         // The secondary tendons start at the struts' lengths L31, L41.
@@ -103,4 +125,177 @@ fn the_export_is_deterministic_and_names_its_scenario() {
     assert!(a.contains(&hash) && a.contains(touchdown_mujoco::mjcf::GENERATOR));
     let other = Scenario::load(scenario("table-i-2-2-vv8.toml")).unwrap();
     assert_ne!(touchdown_mujoco::mjcf::scenario_hash(&other), hash);
+}
+
+#[test]
+fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
+    let path = scenario("flat-drop.toml");
+    let sc = Scenario::load(&path).unwrap();
+    let expected = analytic_drop_stroke(&sc);
+    let s = mujoco(&path);
+    assert_eq!(s.engine, "mujoco");
+    for (i, c) in s.max_primary_stroke_m.iter().enumerate() {
+        assert!(
+            (c - expected).abs() < 0.01 * expected,
+            "leg {}: {c} m vs analytic {expected} m",
+            i + 1
+        );
+    }
+    let e = &s.energy;
+    assert!(
+        e.residual_j.abs() < 2e-3 * e.kinetic_initial_j,
+        "balance residual {} J of {} J",
+        e.residual_j,
+        e.kinetic_initial_j
+    );
+    assert_eq!(s.outcome, Outcome::Stable);
+}
+
+#[test]
+fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier() {
+    let mut names: Vec<String> = std::fs::read_dir(scenario(""))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("table-i-") || n.starts_with("fig-25-26"))
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 9, "{names:?}");
+    // The landings on which the multibody gear and the report's massless gear agree
+    // (docs/engines.md, "Where the rebuilds part from the core"): the fast ones.
+    let fast = [
+        "fig-25-26.toml",
+        "table-i-2-2-vv8.toml",
+        "table-i-2-2-vv10.toml",
+        "table-i-1-2-1-vv13.toml",
+    ];
+    for name in names {
+        let path = scenario(&name);
+        let sc = Scenario::load(&path).unwrap();
+        let core = touchdown_core::run(&sc).unwrap();
+        let rapier = touchdown_rapier::run(&sc).unwrap();
+        let mj = mujoco(&path);
+        let e = &mj.energy;
+        assert!(
+            e.residual_j.abs() < 0.01 * e.kinetic_initial_j,
+            "{name}: residual {} J of {} J",
+            e.residual_j,
+            e.kinetic_initial_j
+        );
+        assert_eq!(mj.outcome, core.outcome, "{name}: outcome");
+        let largest = core
+            .max_primary_stroke_m
+            .iter()
+            .cloned()
+            .fold(0.0, f64::max);
+        for (i, ((m, c), r)) in mj
+            .max_primary_stroke_m
+            .iter()
+            .zip(&core.max_primary_stroke_m)
+            .zip(&rapier.max_primary_stroke_m)
+            .enumerate()
+        {
+            // Both multibody engines carry the same gear: they agree with each other.
+            assert!(
+                (m - r).abs() < 0.03 * largest,
+                "{name} leg {}: mujoco {m} m, rapier {r} m",
+                i + 1
+            );
+            if fast.contains(&name.as_str()) {
+                assert!(
+                    (m - c).abs() < 0.05 * c.max(0.1 * largest),
+                    "{name} leg {}: mujoco {m} m, core {c} m",
+                    i + 1
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_time_step_too_large_for_the_stiffest_law_is_refused_by_the_mujoco_engine() {
+    let sc = Scenario::load(scenario("flat-drop.toml"))
+        .unwrap()
+        .with_mujoco(|m| {
+            m.timestep = 1e-3;
+            m.contact_timeconst = 2e-3;
+        })
+        .unwrap();
+    match MujocoLanding::new(&sc, Vec::new(), ModelSizes::default(), "test", None) {
+        Err(MujocoError::Unsupported { field, message, .. }) => {
+            assert_eq!(field, "engines.mujoco.timestep");
+            assert!(message.contains("ω·Δt"), "{message}");
+        }
+        Err(e) => panic!("unexpected error {e}"),
+        Ok(_) => panic!("a 1 ms step was accepted"),
+    }
+}
+
+#[test]
+fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
+    // MuJoCo answers a bad acceleration by resetting the state and counting a warning: the
+    // landing must stop there, naming the warning, rather than go on from the reset state.
+    let sc = Scenario::load(scenario("flat-drop.toml")).unwrap();
+    let n = sc.legs.len();
+    let index: Vec<GearIndex> = (0..n as i32)
+        .map(|i| GearIndex {
+            stroke_qpos: 7 + 3 * i + 2,
+            stroke_dof: 6 + 3 * i + 2,
+            tendon: [2 * i, 2 * i + 1],
+            primary: 3 * i,
+            secondary: [3 * i + 1, 3 * i + 2],
+            trunnion: [2 * i, 2 * i + 1],
+            point1: 2 * n as i32 + i,
+            outer: 1 + 2 * i,
+            footpad: 2 + 2 * i,
+            contact: 10 * i,
+            pad_velocity: 10 * i + 4,
+            pad_rate: 10 * i + 7,
+        })
+        .collect();
+    let sizes = ModelSizes {
+        nq: 7 + 3 * n as i32,
+        nv: 6 + 3 * n as i32,
+        nu: 3 * n as i32,
+        ntendon: 2 * n as i32,
+        nsite: 3 * n as i32,
+        nbody: 1 + 2 * n as i32,
+        nsensordata: 10 * n as i32,
+    };
+    let mut landing = MujocoLanding::new(&sc, index, sizes, "test", None).unwrap();
+    let mut qpos = vec![0.0; sizes.nq as usize];
+    qpos[3] = 1.0;
+    let qvel = vec![0.0; sizes.nv as usize];
+    let tendons = vec![1.0; 2 * n];
+    let sites = vec![0.0; 9 * n];
+    let mut xpos = vec![0.0; 3 * (1 + 2 * n)];
+    for i in 0..n {
+        xpos[3 * (2 + 2 * i) + 2] = -1.0; // footpads below their trunnions
+    }
+    let sensors = vec![0.0; 10 * n];
+    let energy = [0.0; 2];
+    let mut warnings = [0; 7];
+    warnings[5] = 1; // mjWARN_BADQACC
+    let mut ctrl = vec![0.0; 3 * n];
+    let mut friction = vec![0.0; sizes.nv as usize];
+    let mut arrays = MjArrays {
+        qpos: &qpos,
+        qvel: &qvel,
+        ten_length: &tendons,
+        ten_velocity: &tendons,
+        site_xpos: &sites,
+        xpos: &xpos,
+        sensordata: &sensors,
+        energy: &energy,
+        warnings: &warnings,
+        ctrl: &mut ctrl,
+        dof_frictionloss: &mut friction,
+    };
+    match landing.advance(&mut arrays) {
+        Err(MujocoError::Diverged(d)) => {
+            assert_eq!(d.law, "MuJoCo solver");
+            assert!(d.message.contains("bad qacc"), "{}", d.message);
+        }
+        Err(e) => panic!("unexpected error {e}"),
+        Ok(_) => panic!("a MuJoCo warning went unnoticed"),
+    }
 }

@@ -6,7 +6,8 @@ mod validation;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use touchdown_record::History;
 use touchdown_scenario::Scenario;
 
 #[derive(Parser)]
@@ -35,7 +36,8 @@ enum Command {
         /// Engine to run.
         #[arg(long, value_enum, default_value_t = Engine::Core)]
         engine: Engine,
-        /// rapier engine: fixed time step, s (overrides engines.rapier.timestep).
+        /// rapier and MuJoCo engines: fixed time step, s (overrides engines.rapier.timestep or
+        /// engines.mujoco.timestep).
         #[arg(long)]
         timestep: Option<f64>,
     },
@@ -128,6 +130,9 @@ enum Engine {
     Core,
     /// The rapier multibody rebuild (engine settings in [engines.rapier]).
     Rapier,
+    /// The MuJoCo export, run by the pinned `mujoco` in the project's Python environment with
+    /// the shared laws (engine settings in [engines.mujoco]; set up by scripts/setup-python).
+    Mujoco,
 }
 
 fn main() -> std::process::ExitCode {
@@ -148,55 +153,7 @@ fn run(cli: Cli) -> Result<()> {
             out,
             engine,
             timestep,
-        } => {
-            let mut sc = Scenario::load(&scenario)?;
-            if let Some(t) = timestep {
-                if engine != Engine::Rapier {
-                    anyhow::bail!("--timestep sets the rapier engine's step; add --engine rapier");
-                }
-                sc = sc.with_rapier(|r| r.timestep = t)?;
-            }
-            let mut recorder = match &out {
-                Some(dir) => {
-                    std::fs::create_dir_all(dir)
-                        .with_context(|| format!("cannot create {}", dir.display()))?;
-                    Some(history::Recorder::create(
-                        &dir.join("history.csv"),
-                        sc.legs.len(),
-                    )?)
-                }
-                None => None,
-            };
-            let summary = match engine {
-                Engine::Core => {
-                    let mut sim = touchdown_core::Simulation::new(&sc)?;
-                    match recorder.as_mut() {
-                        Some(r) => sim.run(r)?,
-                        None => sim.run(&mut ())?,
-                    }
-                }
-                Engine::Rapier => {
-                    let mut sim = touchdown_rapier::RapierSimulation::new(&sc)?;
-                    match recorder.as_mut() {
-                        Some(r) => sim.run(r)?,
-                        None => sim.run(&mut ())?,
-                    }
-                }
-            };
-            if let (Some(dir), Some(rec)) = (&out, recorder) {
-                rec.finish()?;
-                std::fs::write(
-                    dir.join("scenario.resolved.toml"),
-                    report::resolved_scenario(&sc),
-                )?;
-                std::fs::write(dir.join("summary.json"), report::json(&summary)?)?;
-            }
-            match format {
-                Format::Text => print!("{}", report::text(&sc, &summary)),
-                Format::Json => println!("{}", report::json(&summary)?),
-            }
-            Ok(())
-        }
+        } => run_landing(&scenario, format, out.as_deref(), engine, timestep),
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
             let xml = touchdown_mujoco::export(&sc);
@@ -236,4 +193,94 @@ fn run(cli: Cli) -> Result<()> {
             validation::boundary(&scenario, &vv, settings, format)
         }
     }
+}
+
+/// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
+/// summary.json, history.csv and scenario.resolved.toml in that folder.
+fn run_landing(
+    scenario: &Path,
+    format: Format,
+    out: Option<&Path>,
+    engine: Engine,
+    timestep: Option<f64>,
+) -> Result<()> {
+    let mut sc = Scenario::load(scenario)?;
+    if let Some(t) = timestep {
+        sc = match engine {
+            Engine::Core => anyhow::bail!(
+                "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"
+            ),
+            Engine::Rapier => sc.with_rapier(|r| r.timestep = t)?,
+            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = t)?,
+        };
+    }
+    if let Some(dir) = out {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let recorder = || -> Result<Option<history::Recorder>> {
+        match out {
+            Some(dir) => Ok(Some(history::Recorder(History::create(
+                &dir.join("history.csv"),
+                sc.legs.len(),
+            )?))),
+            None => Ok(None),
+        }
+    };
+    let summary = match engine {
+        Engine::Core => {
+            let mut sim = touchdown_core::Simulation::new(&sc)?;
+            let mut rec = recorder()?;
+            let summary = match rec.as_mut() {
+                Some(r) => sim.run(r)?,
+                None => sim.run(&mut ())?,
+            };
+            rec.map(|r| r.0.finish()).transpose()?;
+            summary
+        }
+        Engine::Rapier => {
+            let mut sim = touchdown_rapier::RapierSimulation::new(&sc)?;
+            let mut rec = recorder()?;
+            let summary = match rec.as_mut() {
+                Some(r) => sim.run(r)?,
+                None => sim.run(&mut ())?,
+            };
+            rec.map(|r| r.0.finish()).transpose()?;
+            summary
+        }
+        Engine::Mujoco => {
+            let launch = touchdown_mujoco::Launch::locate()?;
+            match out {
+                Some(dir) => launch.run(scenario, timestep, dir, true)?,
+                None => {
+                    let dir = scratch_dir()?;
+                    let summary = launch.run(scenario, timestep, &dir, false);
+                    std::fs::remove_dir_all(&dir).ok();
+                    summary?
+                }
+            }
+        }
+    };
+    if let Some(dir) = out {
+        std::fs::write(
+            dir.join("scenario.resolved.toml"),
+            report::resolved_scenario(&sc),
+        )?;
+        std::fs::write(dir.join("summary.json"), summary.to_json())?;
+    }
+    match format {
+        Format::Text => print!("{}", report::text(&sc, &summary)),
+        Format::Json => println!("{}", summary.to_json()),
+    }
+    Ok(())
+}
+
+/// A fresh folder for a run's files that the user did not ask to keep.
+fn scratch_dir() -> Result<PathBuf> {
+    let stamp = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_nanos())
+        .unwrap_or(0);
+    let dir = std::env::temp_dir().join(format!("touchdown-run-{}-{stamp}", std::process::id()));
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    Ok(dir)
 }

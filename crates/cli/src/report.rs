@@ -1,14 +1,8 @@
 //! Text and JSON summaries.
 
-use anyhow::Result;
 use std::fmt::Write;
 use touchdown_record::{Outcome, Summary};
 use touchdown_scenario::Scenario;
-
-/// The summary as pretty JSON (deterministic: fields in declaration order).
-pub fn json(summary: &Summary) -> Result<String> {
-    Ok(serde_json::to_string_pretty(summary)?)
-}
 
 /// The resolved scenario (every default written out), with a provenance header.
 pub fn resolved_scenario(sc: &Scenario) -> String {

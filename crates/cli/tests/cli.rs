@@ -26,7 +26,8 @@ fn temp(name: &str) -> PathBuf {
 
 #[test]
 fn same_scenario_same_binary_byte_identical_outputs() {
-    for engine in ["core", "rapier"] {
+    let mut headers = Vec::new();
+    for engine in ["core", "rapier", "mujoco"] {
         let (a, b) = (temp(&format!("{engine}-a")), temp(&format!("{engine}-b")));
         for d in [&a, &b] {
             let out = touchdown(&[
@@ -59,7 +60,51 @@ fn same_scenario_same_binary_byte_identical_outputs() {
             "{engine}: no NaN or infinity in the history"
         );
         assert!(history.lines().count() > 500);
+        headers.push(history.lines().next().unwrap().to_string());
     }
+    assert!(
+        headers.iter().all(|h| *h == headers[0]),
+        "every engine writes the same history columns"
+    );
+}
+
+/// `touchdown run --engine mujoco` with `python` as the interpreter.
+fn run_mujoco_with(python: &Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_touchdown"))
+        .args(["run", "scenarios/flat-drop.toml", "--engine", "mujoco"])
+        .env("TOUCHDOWN_PYTHON", python)
+        .current_dir(root())
+        .output()
+        .expect("the touchdown binary runs")
+}
+
+#[test]
+fn mujoco_without_the_python_environment_fails_with_the_setup_command() {
+    let out = run_mujoco_with(Path::new("/nonexistent/.venv/bin/python"));
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("not set up") && err.contains("scripts/setup-python"),
+        "{err}"
+    );
+}
+
+#[test]
+fn mujoco_without_the_mujoco_package_fails_with_the_setup_command() {
+    // An interpreter that cannot see any installed package (python3 -S: no site-packages).
+    let d = temp("no-mujoco");
+    std::fs::create_dir_all(&d).unwrap();
+    let python = d.join("python");
+    std::fs::write(&python, "#!/bin/sh\nexec python3 -S \"$@\"\n").unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&python, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let out = run_mujoco_with(&python);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("cannot be imported") && err.contains("scripts/setup-python"),
+        "{err}"
+    );
 }
 
 #[test]

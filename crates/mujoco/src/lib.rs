@@ -1,13 +1,59 @@
-//! The TN D-7045 lander as a MuJoCo model (MJCF), generated from a scenario (docs/engines.md,
-//! "The MuJoCo export").
+//! The TN D-7045 lander as a MuJoCo model (MJCF), generated from a scenario, and the runtime that
+//! drives it from Python with the shared force laws (docs/engines.md, "The MuJoCo export").
 //!
 //! | module | content |
 //! |---|---|
-//! | [`mjcf`] | the MJCF document: vehicle, gear links, joints, secondary tendons, actuators, footpad planes, touchdown keyframe |
+//! | [`mjcf`] | the MJCF document: vehicle, gear links, joints, secondary tendons, actuators, sensors, footpad planes, touchdown keyframe |
+//! | [`landing`] | one law-driven landing over MuJoCo's arrays: kinematics in, strut laws out (`touchdown_laws::multibody`), hysteresis committed once per step, energy ledger, stability criteria, history |
+//! | [`ffi`] | the C ABI of [`landing`] (this crate is also built as a `cdylib`), loaded with ctypes by the Python runner `python/mujoco/run.py` |
+//! | [`launch`] | runs a scenario end to end: the project's Python environment, the runner and this library |
 //!
 //! Frames: MuJoCo's world frame is the report's inertial (surface) frame, Z normal to the
 //! surface, so the slope is a tilted gravity vector, as in the other engines.
+//!
+//! One step of the runner: `mj_step1` (positions, velocities, tendons, sensors of the state),
+//! then [`landing::MujocoLanding::advance`] (book the last step, commit the honeycombs, evaluate
+//! the laws, write the actuator controls, force ranges and bearing friction), then `mj_step2`
+//! (forces, constraints, integration).
 
+pub mod ffi;
+pub mod landing;
+pub mod launch;
 pub mod mjcf;
 
+pub use landing::MujocoLanding;
+pub use launch::Launch;
 pub use mjcf::export;
+
+/// Errors of the MuJoCo engine.
+#[derive(Debug, thiserror::Error)]
+pub enum MujocoError {
+    /// The scenario is invalid (names the file and field).
+    #[error(transparent)]
+    Scenario(#[from] touchdown_scenario::ScenarioError),
+    /// The scenario asks for something this engine does not model.
+    #[error("{file}: {field}: not supported by the MuJoCo engine: {message}")]
+    Unsupported {
+        /// Scenario file.
+        file: String,
+        /// Field.
+        field: String,
+        /// What is missing.
+        message: String,
+    },
+    /// The simulation diverged, left the domain of a law, or MuJoCo warned; the run was stopped.
+    #[error(transparent)]
+    Diverged(#[from] touchdown_record::Divergence),
+    /// The runner passed arrays or indices that do not fit the model.
+    #[error("MuJoCo runner: {0}")]
+    Binding(String),
+    /// Python, the project's venv, the pinned `mujoco` or this library is missing.
+    #[error("MuJoCo engine not set up: {0}")]
+    Setup(String),
+    /// The Python runner failed (its message).
+    #[error("MuJoCo runner failed: {0}")]
+    Runner(String),
+    /// Reading or writing a file.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+}

@@ -12,10 +12,15 @@
 //!   `legN_s31`, `legN_s41` from the trunnions B3, B4 on the vehicle to point 1 on the outer
 //!   cylinder (two-force members: a tendon carries force along itself only).
 //! - Actuators, all driven by the runner from the shared laws: `legN_primary` (force along the
-//!   stroke joint, N, positive extends), `legN_plateau` (a one-sided velocity actuator whose
-//!   force range the runner sets to [0, crush load] while the honeycomb crushes on a plateau),
-//!   `legN_s31`, `legN_s41` (tendon forces, N, positive lengthens). Bearing friction is the
-//!   stroke joint's `frictionloss`, set every step.
+//!   stroke joint, N, positive extends), `legN_s31`, `legN_s41` (tendon forces, N, positive
+//!   lengthens). The stroke joint's dry friction (`frictionloss`, set every step) is the bearing
+//!   friction bound plus, while the honeycomb crushes on a plateau, the crush load: a bound that
+//!   can stop the stroke but never drive it, solved by MuJoCo's constraint solver with the
+//!   contacts' stiffness.
+//! - Sensors for the runner, per gear: `legN_contact` (the net force of the plane on the
+//!   footpad, world axes, and the number of contacts), `legN_pad_velocity`, `legN_pad_rate`
+//!   (the footpad's velocity and angular velocity, world axes); MuJoCo's energy computation is
+//!   enabled for the runner's energy balance.
 //! - One ground plane per footpad at its HOLE depth (lowered by the contact radius), paired
 //!   with its footpad only by collision bitmasks (bit n on both), with the same contact
 //!   settings on both geoms of the pair.
@@ -38,10 +43,6 @@ pub const LOCK_FRICTION: f64 = 100.0;
 /// 0.1 mm (dimensionless, dimensionless, m), i.e. nearly a hard contact, so that footpads do not
 /// sink.
 pub const CONTACT_SOLIMP: [f64; 3] = [0.99, 0.999, 1.0e-4];
-
-/// Velocity gain of the plateau actuator times the time step over the footpad mass; large,
-/// so that within its force range the actuator holds the stroke rate at zero.
-pub const PLATEAU_GAIN: f64 = 1.0e3;
 
 /// Version of this generator, written into every exported file.
 pub const GENERATOR: &str = concat!("touchdown-mujoco ", env!("CARGO_PKG_VERSION"));
@@ -110,11 +111,11 @@ pub fn export(sc: &Scenario) -> String {
     );
     let _ = writeln!(
         w,
-        "  <!-- implicitfast: velocity-dependent forces (the plateau actuator) implicit; elliptic cones: isotropic Coulomb friction -->"
+        "  <!-- implicitfast: velocity-dependent forces (none: the strut laws are explicit forces set by the runner); elliptic cones: isotropic Coulomb friction -->"
     );
     let _ = writeln!(
         w,
-        "  <option timestep=\"{}\" gravity=\"{}\" integrator=\"implicitfast\" cone=\"elliptic\"/>",
+        "  <!-- energy: MuJoCo's kinetic and potential energies, for the runner's energy balance -->\n  <option timestep=\"{}\" gravity=\"{}\" integrator=\"implicitfast\" cone=\"elliptic\">\n    <flag energy=\"enable\"/>\n  </option>",
         nums(&[mj.timestep]),
         vec3(&gravity)
     );
@@ -155,7 +156,7 @@ pub fn export(sc: &Scenario) -> String {
         let r = sc.links.contact_radius(leg);
         let _ = writeln!(
             w,
-            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        <site name=\"leg{n}_point1\" pos=\"{}\"/>\n        <body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          <geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        <site name=\"leg{n}_point1\" pos=\"{}\"/>\n        <body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the contacts -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          <geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
             vec3(&leg.b3),
             vec3(&leg.b4),
             vec3(&leg.b2),
@@ -189,19 +190,28 @@ pub fn export(sc: &Scenario) -> String {
         }
     }
     let _ = writeln!(w, "  </tendon>");
-    let kv = PLATEAU_GAIN * pmass / mj.timestep;
     let _ = writeln!(
         w,
-        "  <actuator>\n    <!-- Forces in N set every step by the runner from the shared laws; the plateau's force range is set to [0, crush load] while the honeycomb crushes, else [0, 0]. -->"
+        "  <actuator>\n    <!-- Forces in N set every step by the runner from the shared laws. -->"
     );
     for n in 1..=sc.legs.len() {
         let _ = writeln!(
             w,
-            "    <motor name=\"leg{n}_primary\" joint=\"leg{n}_stroke\"/>\n    <velocity name=\"leg{n}_plateau\" joint=\"leg{n}_stroke\" kv=\"{}\" forcerange=\"0 0\"/>\n    <motor name=\"leg{n}_s31\" tendon=\"leg{n}_s31\"/>\n    <motor name=\"leg{n}_s41\" tendon=\"leg{n}_s41\"/>",
-            nums(&[kv])
+            "    <motor name=\"leg{n}_primary\" joint=\"leg{n}_stroke\"/>\n    <motor name=\"leg{n}_s31\" tendon=\"leg{n}_s31\"/>\n    <motor name=\"leg{n}_s41\" tendon=\"leg{n}_s41\"/>"
         );
     }
     let _ = writeln!(w, "  </actuator>");
+    let _ = writeln!(
+        w,
+        "  <sensor>\n    <!-- For the runner's contact states and energy ledger: the net force of each plane on its footpad (N, world axes; found = number of contacts), and the footpad's velocity (m/s) and angular velocity (rad/s), world axes. -->"
+    );
+    for n in 1..=sc.legs.len() {
+        let _ = writeln!(
+            w,
+            "    <contact name=\"leg{n}_contact\" geom1=\"leg{n}_plane\" geom2=\"leg{n}_footpad\" data=\"found force\" reduce=\"netforce\"/>\n    <framelinvel name=\"leg{n}_pad_velocity\" objtype=\"body\" objname=\"leg{n}_footpad\"/>\n    <frameangvel name=\"leg{n}_pad_rate\" objtype=\"body\" objname=\"leg{n}_footpad\"/>"
+        );
+    }
+    let _ = writeln!(w, "  </sensor>");
     let mut qpos = vec![
         init.position.x,
         init.position.y,

@@ -13,10 +13,13 @@
 use crate::assembly::{
     self, body_state, to_na, Assembly, BodyState, Inertia, LinkMasses, LOCK_FRICTION,
 };
-use crate::struts::{self, StrutForces, StrutKinematics};
+use crate::struts;
 use crate::RapierError;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
+use touchdown_laws::multibody::{
+    check_explicit_timestep, strut_forces, StrutForces, StrutKinematics,
+};
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
     Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
@@ -78,15 +81,12 @@ pub struct RapierSimulation {
     pad_views: Vec<PadView>,
 }
 
-/// ω·Δt above which an explicit strut law is refused (symplectic Euler is stable below 2).
-const MAX_OMEGA_DT: f64 = 1.0;
-
 impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RapierError> {
         let laws = GearLaws::from_scenario(scenario)?;
         let assembly = assembly::build(scenario)?;
-        check_timestep(scenario, &laws, &assembly.masses)?;
+        check_timestep(scenario, &laws)?;
         let n = scenario.legs.len();
         let gravity = frames::gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
         let settings = settings(scenario, &assembly.masses);
@@ -289,9 +289,8 @@ impl RapierSimulation {
     /// Evaluates the laws at the current kinematics (nothing applied yet).
     fn evaluate(&mut self) -> Result<(), RapierError> {
         for i in 0..self.legs.len() {
-            self.forces[i] =
-                struts::forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
-                    .map_err(|e| self.diverged(e.to_string(), "bearing friction", Some(i)))?;
+            self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
+                .map_err(|e| self.diverged(e.to_string(), "bearing friction", Some(i)))?;
         }
         Ok(())
     }
@@ -326,16 +325,10 @@ impl RapierSimulation {
         self.read_kinematics();
         let steps = self.previous.iter().zip(&self.kin).zip(&self.forces);
         for (((a, b), f), memory) in steps.zip(&mut self.memory) {
-            let dc = b.c - a.c;
-            let l = &mut self.ledger;
-            l.honeycomb += (f.honeycomb + f.crush_load) * dc;
-            l.viscous += f.viscous * dc;
-            l.bearing += f.bearing_bound * dc.abs();
-            for j in 0..2 {
-                let ds = b.s[j] - a.s[j];
-                l.honeycomb += f.secondary_honeycomb[j] * ds;
-                l.viscous += f.secondary_viscous[j] * ds;
-            }
+            let w = f.work(a, b);
+            self.ledger.honeycomb += w.honeycomb;
+            self.ledger.viscous += w.viscous;
+            self.ledger.bearing += w.bearing;
             self.laws.commit(b.c, b.s, memory);
         }
         self.book_contacts();
@@ -445,21 +438,11 @@ impl RapierSimulation {
     /// scenario's tolerance.
     fn check_divergence(&self) -> Result<(), RapierError> {
         for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
-            let checks = [
-                ("primary honeycomb", f.honeycomb + f.crush_load),
-                ("primary viscous", f.viscous),
-                ("bearing friction", f.bearing_bound),
-                (
-                    "secondary honeycomb",
-                    f.secondary_honeycomb[0] + f.secondary_honeycomb[1],
-                ),
-                (
-                    "secondary viscous",
-                    f.secondary_viscous[0] + f.secondary_viscous[1],
-                ),
-                ("gear geometry", k.c + k.s[0] + k.s[1] + k.footpad.norm()),
-            ];
-            if let Some((law, value)) = checks.iter().find(|(_, x)| !x.is_finite()) {
+            let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm();
+            let bad = f
+                .non_finite()
+                .or_else(|| (!geometry.is_finite()).then_some(("gear geometry", geometry)));
+            if let Some((law, value)) = bad {
                 return Err(self.diverged(format!("non-finite value {value}"), law, Some(i)));
             }
         }
@@ -516,45 +499,13 @@ fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde
     m
 }
 
-/// Refuses a time step too large for the stiffest explicit strut law: the primary's rates on
-/// the footpad body, the secondaries' rates on the outer link's rotation about the trunnion.
-fn check_timestep(sc: &Scenario, laws: &GearLaws, masses: &LinkMasses) -> Result<(), RapierError> {
-    let dt = sc.rapier.timestep;
-    let stiffest = |h: &touchdown_laws::Honeycomb| {
-        h.backoff_rate
-            .max(h.curve.stroke_out_rate())
-            .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
-    };
-    let k_primary = stiffest(&laws.primary.honeycomb);
-    let sec = &laws.secondary.honeycomb;
-    let k_secondary = stiffest(&sec.tension).max(stiffest(&sec.compression));
-    let leg = &sc.legs[0];
-    let l_outer = masses.outer_cylinder_length;
-    // Rotation about the trunnion seen at point 1: I_B2 / L21².
-    let i_b2 = masses.outer_cylinder * l_outer * l_outer / 3.0 + masses.footpad * leg.l2p * leg.l2p;
-    let m_point1 = i_b2 / (leg.l21 * leg.l21);
-    let modes = [
-        (
-            "primary strut on the footpad body",
-            (k_primary / masses.footpad).sqrt(),
-        ),
-        (
-            "secondary struts on the gear's rotation about its trunnion",
-            (k_secondary / m_point1).sqrt(),
-        ),
-    ];
-    for (what, omega) in modes {
-        if omega * dt > MAX_OMEGA_DT {
-            return Err(RapierError::Unsupported {
-                file: sc.file_of("engines.rapier.timestep").to_string(),
-                field: "engines.rapier.timestep".into(),
-                message: format!(
-                    "time step {dt:.3e} s is too large for the stiffest explicit strut law ({what}: ω = {omega:.4e} rad/s, ω·Δt = {:.3}); expected ω·Δt ≤ {MAX_OMEGA_DT}, i.e. a time step ≤ {:.3e} s",
-                    omega * dt,
-                    MAX_OMEGA_DT / omega
-                ),
-            });
+/// Refuses a time step too large for the stiffest explicit strut law.
+fn check_timestep(sc: &Scenario, laws: &GearLaws) -> Result<(), RapierError> {
+    check_explicit_timestep(sc, laws, sc.rapier.timestep).map_err(|message| {
+        RapierError::Unsupported {
+            file: sc.file_of("engines.rapier.timestep").to_string(),
+            field: "engines.rapier.timestep".into(),
+            message,
         }
-    }
-    Ok(())
+    })
 }

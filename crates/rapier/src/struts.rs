@@ -1,4 +1,5 @@
-//! The shared strut laws (`touchdown_laws`) applied to the multibody's joints and links.
+//! The shared strut laws (`touchdown_laws::multibody`) applied to the rapier multibody's joints
+//! and links.
 //!
 //! - Primary strut, along the prismatic joint: the honeycomb's elastic branches (onset, rebound,
 //!   bottoming, extension stop) and the viscous force are explicit forces, equal and opposite on
@@ -14,31 +15,8 @@
 use crate::assembly::{body_state, to_na, to_rapier, GearBodies};
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_laws::{side_load, GearLaws, GearMemory, LawError};
+use touchdown_laws::multibody::{StrutForces, StrutKinematics};
 use touchdown_scenario::model::Leg;
-
-/// Geometry and rates of one gear at one state (inertial axes).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct StrutKinematics {
-    /// Primary compression stroke c = −q, m.
-    pub c: f64,
-    /// Compression rate ċ, m/s.
-    pub c_dot: f64,
-    /// Secondary strokes (tension positive), m.
-    pub s: [f64; 2],
-    /// Secondary stroking rates, m/s.
-    pub s_dot: [f64; 2],
-    /// Unit vectors trunnion → point 1 of the secondaries.
-    pub u: [Vector3<f64>; 2],
-    /// Secondary trunnions B3, B4, m.
-    pub trunnion: [Vector3<f64>; 2],
-    /// Point 1 on the outer cylinder, m.
-    pub point1: Vector3<f64>,
-    /// Strut axis V̂2P (trunnion to footpad, unit).
-    pub axis: Vector3<f64>,
-    /// Footpad ball joint BP, m.
-    pub footpad: Vector3<f64>,
-}
 
 /// Reads a gear's strokes and rates from the world.
 pub fn kinematics(
@@ -81,82 +59,6 @@ pub fn kinematics(
         k.s_dot[j] = u.dot(&(point1_velocity - v.velocity_at(&trunnion)));
     }
     k
-}
-
-/// The forces of one gear for a step, from its kinematics and committed memory.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct StrutForces {
-    /// Explicit primary honeycomb force (elastic branches, stops), N, compression positive;
-    /// zero while the plateau motor holds the strut.
-    pub honeycomb: f64,
-    /// Force bound of the plateau motor, N (zero when disengaged).
-    pub crush_load: f64,
-    /// Primary viscous force FVP, N, compression positive.
-    pub viscous: f64,
-    /// Bearing-friction bound μB·(F1 + F2), N.
-    pub bearing_bound: f64,
-    /// Secondary honeycomb forces FC31, FC41, N, tension positive.
-    pub secondary_honeycomb: [f64; 2],
-    /// Secondary viscous forces FV31, FV41, N, tension positive.
-    pub secondary_viscous: [f64; 2],
-}
-
-impl StrutForces {
-    /// Secondary axial forces F31, F41, N, tension positive (eq. 51).
-    pub fn secondary(&self) -> [f64; 2] {
-        [
-            self.secondary_honeycomb[0] + self.secondary_viscous[0],
-            self.secondary_honeycomb[1] + self.secondary_viscous[1],
-        ]
-    }
-
-    /// The primary axial force F2P, N, compression positive (eq. 50), with the motor at its
-    /// bound while engaged and the bearing friction at its bound against the stroking rate.
-    pub fn primary(&self, c_dot: f64) -> f64 {
-        let friction = if c_dot == 0.0 {
-            0.0
-        } else {
-            self.bearing_bound * c_dot.signum()
-        };
-        self.honeycomb + self.crush_load + self.viscous + friction
-    }
-}
-
-/// The shared laws at one gear state (eqs. 49-63).
-pub fn forces(
-    laws: &GearLaws,
-    memory: &GearMemory,
-    leg: &Leg,
-    k: &StrutKinematics,
-) -> Result<StrutForces, LawError> {
-    let sec = &laws.secondary;
-    let fc = [
-        sec.honeycomb.force(k.s[0], memory.secondary[0]),
-        sec.honeycomb.force(k.s[1], memory.secondary[1]),
-    ]; // eq. (49)
-    let fv = [sec.viscous.force(k.s_dot[0]), sec.viscous.force(k.s_dot[1])]; // eq. (49)
-    let fs = k.u[0] * (fc[0] + fv[0]) + k.u[1] * (fc[1] + fv[1]); // eq. (52)
-    let length = leg.l2p - k.c;
-    let fm = side_load(&fs, &k.axis, leg.l21, length).norm(); // eqs. (53)-(58)
-    let p = &laws.primary;
-    let bearing_bound = p.bearing.friction_bound(fm, k.c)?; // eqs. (59)-(63)
-    let crushing = if k.c_dot > 0.0 {
-        p.honeycomb.crush_load(k.c, memory.primary)
-    } else {
-        None
-    };
-    let (honeycomb, crush_load) = match crushing {
-        Some(load) => (0.0, load),
-        None => (p.stroke_force(k.c, memory.primary), 0.0),
-    };
-    Ok(StrutForces {
-        honeycomb,
-        crush_load,
-        viscous: p.viscous.force(k.c_dot), // eq. (49)
-        bearing_bound,
-        secondary_honeycomb: fc,
-        secondary_viscous: fv,
-    })
 }
 
 /// Applies a gear's forces for the coming step: explicit forces on the links and the vehicle,

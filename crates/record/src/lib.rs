@@ -5,16 +5,19 @@
 //! |---|---|
 //! | [`stability`] | stability distance, overturning velocity and the stable-landing conditions, eqs. (105)-(107) |
 //! | [`summary`] | the landing summary, the energy report and the running extremes behind them |
-//! | [`sample`] | one row of the time history (`history.csv`) |
+//! | [`sample`] | one row of the time history |
+//! | [`history`] | the time-history file `history.csv` |
 //!
 //! An engine feeds a [`stability::StabilityTracker`] and an [`summary::Extremes`] after every
 //! accepted step, fills a [`sample::Sample`] when asked, and builds its [`summary::Summary`] with
 //! [`summary::Summary::new`].
 
+pub mod history;
 pub mod sample;
 pub mod stability;
 pub mod summary;
 
+pub use history::History;
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};

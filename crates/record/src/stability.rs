@@ -7,7 +7,7 @@
 //! inside the wall.
 
 use nalgebra::Vector3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use touchdown_scenario::model::Stability;
 use touchdown_scenario::schema::WallRule;
 
@@ -18,7 +18,7 @@ use touchdown_scenario::schema::WallRule;
 pub const SEPARATION_VELOCITY_ROUNDING: f64 = 1.0e-9;
 
 /// Landing outcome.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Outcome {
     /// All four conditions of a stable landing held at one instant.

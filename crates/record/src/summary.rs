@@ -1,12 +1,12 @@
 //! The landing summary every engine reports (same fields, same signs, SI units).
 
 use crate::stability::{Outcome, StabilityTracker};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Energy bookkeeping since touchdown, J. The balance
 /// `kinetic + potential_change + footpad + honeycomb_stored + honeycomb_dissipated + viscous +
 /// bearing_friction + sliding_friction − contact_events − kinetic_initial` is `residual`.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct EnergyReport {
     /// Vehicle kinetic energy at first contact, J.
     pub kinetic_initial_j: f64,
@@ -153,7 +153,7 @@ impl Extremes {
 }
 
 /// Summary of one landing.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
     /// Engine that produced it ("core", "rapier").
     pub engine: String,
@@ -208,6 +208,11 @@ pub struct Progress {
 }
 
 impl Summary {
+    /// The summary as pretty JSON (`summary.json`; deterministic: fields in declaration order).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("a summary serialises: plain numbers and strings")
+    }
+
     /// The summary of a run by `engine` on `scenario`.
     pub fn new(
         engine: &str,

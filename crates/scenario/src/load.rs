@@ -339,6 +339,20 @@ impl Scenario {
         self.rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.file.units)?;
         Ok(self)
     }
+
+    /// The scenario with its MuJoCo settings changed by `change` (command-line flags), checked
+    /// as the file's own would be; the resolved scenario written out shows the new values.
+    pub fn with_mujoco(
+        mut self,
+        change: impl FnOnce(&mut schema::Mujoco),
+    ) -> Result<Scenario, ScenarioError> {
+        change(&mut self.file.engines.mujoco);
+        let c = Check {
+            layers: &self.layers,
+        };
+        self.mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.file.units)?;
+        Ok(self)
+    }
 }
 
 /// Field checker bound to one file and the chain it extends: an error names the file that

@@ -1,0 +1,210 @@
+//! The strut laws at one state of a multibody gear (a massive outer cylinder on a trunnion
+//! joint, a stroke joint, a footpad link), shared by the multibody engines (the rapier rebuild
+//! and the MuJoCo runner) so that both apply the same forces to the same joints:
+//!
+//! - primary strut: the honeycomb's elastic branches (onset, rebound, bottoming, extension stop)
+//!   and the viscous force are explicit axial forces; a honeycomb crushing on a plateau
+//!   (compressing on its virgin curve) is a one-sided force bound, the crush load, that the
+//!   engine's joint motor may use to stop the stroke but never to drive it; bearing friction is
+//!   a dry-friction bound μB·(F1 + F2) from the report's statics (eqs. 53-63), with the side load
+//!   FM of the massless-strut closed form;
+//! - secondary struts: massless two-force members between their trunnions on the vehicle and
+//!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
+
+use crate::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
+use nalgebra::Vector3;
+use touchdown_scenario::model::Leg;
+use touchdown_scenario::Scenario;
+
+/// Geometry and rates of one gear at one state (inertial axes).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StrutKinematics {
+    /// Primary compression stroke c = −q (q: the stroke joint's extension), m.
+    pub c: f64,
+    /// Compression rate ċ, m/s.
+    pub c_dot: f64,
+    /// Secondary strokes S31, S41 (tension positive), m.
+    pub s: [f64; 2],
+    /// Secondary stroking rates, m/s.
+    pub s_dot: [f64; 2],
+    /// Unit vectors trunnion → point 1 of the secondaries.
+    pub u: [Vector3<f64>; 2],
+    /// Secondary trunnions B3, B4, m.
+    pub trunnion: [Vector3<f64>; 2],
+    /// Point 1 on the outer cylinder, m.
+    pub point1: Vector3<f64>,
+    /// Strut axis V̂2P (trunnion to footpad, unit).
+    pub axis: Vector3<f64>,
+    /// Footpad ball joint BP, m.
+    pub footpad: Vector3<f64>,
+}
+
+/// The forces of one gear for a step, from its kinematics and committed memory.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StrutForces {
+    /// Explicit primary honeycomb force (elastic branches, stops), N, compression positive;
+    /// zero while the plateau bound holds the strut.
+    pub honeycomb: f64,
+    /// Plateau force bound (the crush load), N; zero unless crushing.
+    pub crush_load: f64,
+    /// Primary viscous force FVP, N, compression positive.
+    pub viscous: f64,
+    /// Bearing-friction bound μB·(F1 + F2), N.
+    pub bearing_bound: f64,
+    /// Secondary honeycomb forces FC31, FC41, N, tension positive.
+    pub secondary_honeycomb: [f64; 2],
+    /// Secondary viscous forces FV31, FV41, N, tension positive.
+    pub secondary_viscous: [f64; 2],
+}
+
+/// Work done on each law over one step, J (positive: absorbed by the gear).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StrutWork {
+    /// On the honeycombs (primary and secondaries), J.
+    pub honeycomb: f64,
+    /// On the viscous forces, J.
+    pub viscous: f64,
+    /// On the bearing friction, J.
+    pub bearing: f64,
+}
+
+impl StrutForces {
+    /// Secondary axial forces F31, F41, N, tension positive (eq. 51).
+    pub fn secondary(&self) -> [f64; 2] {
+        [
+            self.secondary_honeycomb[0] + self.secondary_viscous[0],
+            self.secondary_honeycomb[1] + self.secondary_viscous[1],
+        ]
+    }
+
+    /// The primary axial force F2P, N, compression positive (eq. 50), with the plateau at its
+    /// bound while engaged and the bearing friction at its bound against the stroking rate.
+    pub fn primary(&self, c_dot: f64) -> f64 {
+        let friction = if c_dot == 0.0 {
+            0.0
+        } else {
+            self.bearing_bound * c_dot.signum()
+        };
+        self.honeycomb + self.crush_load + self.viscous + friction
+    }
+
+    /// The work these forces, held over a step, do on the gear between the states `a` and `b`:
+    /// explicit forces and bounds times the stroke increments (the plateau and the bearing
+    /// friction at their bounds).
+    pub fn work(&self, a: &StrutKinematics, b: &StrutKinematics) -> StrutWork {
+        let dc = b.c - a.c;
+        let mut w = StrutWork {
+            honeycomb: (self.honeycomb + self.crush_load) * dc,
+            viscous: self.viscous * dc,
+            bearing: self.bearing_bound * dc.abs(),
+        };
+        for j in 0..2 {
+            let ds = b.s[j] - a.s[j];
+            w.honeycomb += self.secondary_honeycomb[j] * ds;
+            w.viscous += self.secondary_viscous[j] * ds;
+        }
+        w
+    }
+
+    /// The first non-finite force, named by its law, if any.
+    pub fn non_finite(&self) -> Option<(&'static str, f64)> {
+        [
+            ("primary honeycomb", self.honeycomb + self.crush_load),
+            ("primary viscous", self.viscous),
+            ("bearing friction", self.bearing_bound),
+            (
+                "secondary honeycomb",
+                self.secondary_honeycomb[0] + self.secondary_honeycomb[1],
+            ),
+            (
+                "secondary viscous",
+                self.secondary_viscous[0] + self.secondary_viscous[1],
+            ),
+        ]
+        .into_iter()
+        .find(|(_, x)| !x.is_finite())
+    }
+}
+
+/// The shared laws at one gear state (eqs. 49-63).
+pub fn strut_forces(
+    laws: &GearLaws,
+    memory: &GearMemory,
+    leg: &Leg,
+    k: &StrutKinematics,
+) -> Result<StrutForces, LawError> {
+    let sec = &laws.secondary;
+    let fc = [
+        sec.honeycomb.force(k.s[0], memory.secondary[0]),
+        sec.honeycomb.force(k.s[1], memory.secondary[1]),
+    ]; // eq. (49)
+    let fv = [sec.viscous.force(k.s_dot[0]), sec.viscous.force(k.s_dot[1])]; // eq. (49)
+    let fs = k.u[0] * (fc[0] + fv[0]) + k.u[1] * (fc[1] + fv[1]); // eq. (52)
+    let length = leg.l2p - k.c;
+    let fm = side_load(&fs, &k.axis, leg.l21, length).norm(); // eqs. (53)-(58)
+    let p = &laws.primary;
+    let bearing_bound = p.bearing.friction_bound(fm, k.c)?; // eqs. (59)-(63)
+    let crushing = if k.c_dot > 0.0 {
+        p.honeycomb.crush_load(k.c, memory.primary)
+    } else {
+        None
+    };
+    let (honeycomb, crush_load) = match crushing {
+        Some(load) => (0.0, load),
+        None => (p.stroke_force(k.c, memory.primary), 0.0),
+    };
+    Ok(StrutForces {
+        honeycomb,
+        crush_load,
+        viscous: p.viscous.force(k.c_dot), // eq. (49)
+        bearing_bound,
+        secondary_honeycomb: fc,
+        secondary_viscous: fv,
+    })
+}
+
+/// ω·Δt above which a multibody engine refuses an explicit strut law (symplectic Euler is
+/// stable below 2).
+pub const MAX_OMEGA_DT: f64 = 1.0;
+
+/// Checks a multibody engine's fixed time step `dt` (s) against the stiffest explicit strut
+/// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
+/// link's rotation about its trunnion (links as in `sc.links`). The error says which mode is too
+/// stiff and the largest step allowed.
+pub fn check_explicit_timestep(sc: &Scenario, laws: &GearLaws, dt: f64) -> Result<(), String> {
+    let stiffest = |h: &Honeycomb| {
+        h.backoff_rate
+            .max(h.curve.stroke_out_rate())
+            .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
+    };
+    let k_primary = stiffest(&laws.primary.honeycomb);
+    let sec = &laws.secondary.honeycomb;
+    let k_secondary = stiffest(&sec.tension).max(stiffest(&sec.compression));
+    let leg = &sc.legs[0];
+    let pmass = sc.footpad.mass;
+    let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
+    let l_outer = sc.links.outer_cylinder_length(leg, &sc.primary);
+    // Rotation about the trunnion seen at point 1: I_B2 / L21².
+    let i_b2 = m_outer * l_outer * l_outer / 3.0 + pmass * leg.l2p * leg.l2p;
+    let m_point1 = i_b2 / (leg.l21 * leg.l21);
+    let modes = [
+        (
+            "primary strut on the footpad mass",
+            (k_primary / pmass).sqrt(),
+        ),
+        (
+            "secondary struts on the gear's rotation about its trunnion",
+            (k_secondary / m_point1).sqrt(),
+        ),
+    ];
+    for (what, omega) in modes {
+        if omega * dt > MAX_OMEGA_DT {
+            return Err(format!(
+                "time step {dt:.3e} s is too large for the stiffest explicit strut law ({what}: ω = {omega:.4e} rad/s, ω·Δt = {:.3}); expected ω·Δt ≤ {MAX_OMEGA_DT}, i.e. a time step ≤ {:.3e} s",
+                omega * dt,
+                MAX_OMEGA_DT / omega
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,300 @@
+//! The C ABI through which the Python runner (`python/mujoco/run.py`, ctypes) drives a
+//! [`MujocoLanding`]: the force laws, hysteresis, energy ledger, stability criteria and outputs
+//! stay in Rust, in one implementation; Python owns MuJoCo and calls `mj_step1`/`mj_step2`.
+//!
+//! Calls, in order: [`touchdown_mujoco_open`] (scenario → runner and MJCF), then
+//! [`touchdown_mujoco_model_xml`] (the model to load), [`touchdown_mujoco_bind`] (MuJoCo's
+//! arrays), [`touchdown_mujoco_advance`] once per step between `mj_step1` and `mj_step2`,
+//! [`touchdown_mujoco_finish`] (summary.json), [`touchdown_mujoco_close`]. A call that fails
+//! returns a negative status (or null) and leaves its message for [`touchdown_mujoco_error`].
+//! No call panics across the boundary: a panic becomes an error message.
+
+use crate::landing::{GearIndex, MjArrays, ModelSizes, MujocoLanding, MUJOCO_WARNINGS};
+use crate::MujocoError;
+use std::ffi::{c_char, CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+use touchdown_record::History;
+use touchdown_scenario::Scenario;
+
+/// Pointers to MuJoCo's arrays (`MjData` and `MjModel` fields of the model loaded from
+/// [`touchdown_mujoco_model_xml`]); they stay valid as long as that `MjModel`/`MjData` live.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct MjPointers {
+    /// `data.qpos`.
+    pub qpos: *const f64,
+    /// `data.qvel`.
+    pub qvel: *const f64,
+    /// `data.ten_length`.
+    pub ten_length: *const f64,
+    /// `data.ten_velocity`.
+    pub ten_velocity: *const f64,
+    /// `data.site_xpos`.
+    pub site_xpos: *const f64,
+    /// `data.xpos`.
+    pub xpos: *const f64,
+    /// `data.sensordata`.
+    pub sensordata: *const f64,
+    /// `data.energy`.
+    pub energy: *const f64,
+    /// `data.warning[0].number`.
+    pub warning_number: *const i32,
+    /// Distance between two warnings' `number`, in `i32` elements (2 for `mjWarningStat`).
+    pub warning_stride: i32,
+    /// `data.ctrl`.
+    pub ctrl: *mut f64,
+    /// `model.dof_frictionloss`.
+    pub dof_frictionloss: *mut f64,
+}
+
+/// A runner's state behind the C ABI.
+pub struct Runner {
+    scenario: Option<Scenario>,
+    xml: Option<CString>,
+    landing: Option<MujocoLanding>,
+    pointers: Option<MjPointers>,
+    error: Option<CString>,
+}
+
+impl Runner {
+    fn fail(&mut self, message: String) -> i32 {
+        self.error = Some(CString::new(message.replace('\0', " ")).unwrap_or_default());
+        -1
+    }
+
+    /// Runs `f`, turning an error or a panic into this runner's error message and status −1.
+    fn guard(&mut self, f: impl FnOnce(&mut Runner) -> Result<i32, MujocoError>) -> i32 {
+        self.error = None;
+        match catch_unwind(AssertUnwindSafe(|| f(self))) {
+            Ok(Ok(status)) => status,
+            Ok(Err(e)) => self.fail(e.to_string()),
+            Err(_) => self.fail("internal error (panic) in the touchdown MuJoCo library".into()),
+        }
+    }
+
+    fn advance(&mut self) -> Result<i32, MujocoError> {
+        let (Some(landing), Some(p)) = (self.landing.as_mut(), self.pointers) else {
+            return Err(MujocoError::Binding(
+                "advance before a successful bind".into(),
+            ));
+        };
+        let s = landing.sizes();
+        let n = |x: i32| x as usize;
+        let mut warnings = [0i32; MUJOCO_WARNINGS.len()];
+        // SAFETY: the runner passed MuJoCo's arrays of the model whose sizes it gave to bind
+        // (checked there against the scenario); they live as long as its MjModel/MjData, and
+        // nothing else touches them during this call (MuJoCo is between mj_step1 and mj_step2).
+        let mut arrays = unsafe {
+            for (k, w) in warnings.iter_mut().enumerate() {
+                *w = *p.warning_number.add(k * n(p.warning_stride));
+            }
+            MjArrays {
+                qpos: std::slice::from_raw_parts(p.qpos, n(s.nq)),
+                qvel: std::slice::from_raw_parts(p.qvel, n(s.nv)),
+                ten_length: std::slice::from_raw_parts(p.ten_length, n(s.ntendon)),
+                ten_velocity: std::slice::from_raw_parts(p.ten_velocity, n(s.ntendon)),
+                site_xpos: std::slice::from_raw_parts(p.site_xpos, 3 * n(s.nsite)),
+                xpos: std::slice::from_raw_parts(p.xpos, 3 * n(s.nbody)),
+                sensordata: std::slice::from_raw_parts(p.sensordata, n(s.nsensordata)),
+                energy: std::slice::from_raw_parts(p.energy, 2),
+                warnings: &warnings,
+                ctrl: std::slice::from_raw_parts_mut(p.ctrl, n(s.nu)),
+                dof_frictionloss: std::slice::from_raw_parts_mut(p.dof_frictionloss, n(s.nv)),
+            }
+        };
+        Ok(i32::from(landing.advance(&mut arrays)?))
+    }
+}
+
+/// A string argument, or an error naming it.
+///
+/// # Safety
+/// `s` is null or a NUL-terminated string.
+unsafe fn text<'a>(s: *const c_char, what: &str) -> Result<&'a str, MujocoError> {
+    if s.is_null() {
+        return Err(MujocoError::Binding(format!("{what} is null")));
+    }
+    CStr::from_ptr(s)
+        .to_str()
+        .map_err(|_| MujocoError::Binding(format!("{what} is not UTF-8")))
+}
+
+/// Loads the scenario file `scenario` (with the MuJoCo time step `timestep`, s, if it is
+/// positive) and exports its model. Always returns a runner (free it with
+/// [`touchdown_mujoco_close`]); on failure its error is set and it has no model.
+///
+/// # Safety
+/// `scenario` is null or a NUL-terminated path.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_open(
+    scenario: *const c_char,
+    timestep: f64,
+) -> *mut Runner {
+    let mut runner = Runner {
+        scenario: None,
+        xml: None,
+        landing: None,
+        pointers: None,
+        error: None,
+    };
+    runner.guard(|r| {
+        let path = text(scenario, "scenario path")?;
+        let mut sc = Scenario::load(Path::new(path))?;
+        if timestep > 0.0 {
+            sc = sc.with_mujoco(|m| m.timestep = timestep)?;
+        }
+        r.xml = Some(
+            CString::new(crate::export(&sc))
+                .map_err(|_| MujocoError::Binding("model text contains NUL".into()))?,
+        );
+        r.scenario = Some(sc);
+        Ok(0)
+    });
+    Box::into_raw(Box::new(runner))
+}
+
+/// The runner's last error message, or null if the last call succeeded. Valid until the next
+/// call on this runner.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was not closed.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_error(runner: *const Runner) -> *const c_char {
+    match runner.as_ref().and_then(|r| r.error.as_ref()) {
+        Some(e) => e.as_ptr(),
+        None => std::ptr::null(),
+    }
+}
+
+/// The MJCF model of the scenario (`mjcf::export`), or null if opening failed. Valid until the
+/// runner is closed.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was not closed.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_model_xml(runner: *const Runner) -> *const c_char {
+    match runner.as_ref().and_then(|r| r.xml.as_ref()) {
+        Some(x) => x.as_ptr(),
+        None => std::ptr::null(),
+    }
+}
+
+/// Binds the landing to MuJoCo's arrays: `legs` gear indices at `index`, the model's `sizes`,
+/// the array `pointers`, MuJoCo's version (for the summary) and, unless null, the path of the
+/// history file to write (`history.csv`). Returns 0, or −1 with the error set.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`]; `index` points to `legs` entries; `sizes` and
+/// `pointers` are valid and describe the model loaded from [`touchdown_mujoco_model_xml`];
+/// strings are NUL-terminated.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_bind(
+    runner: *mut Runner,
+    index: *const GearIndex,
+    legs: usize,
+    sizes: *const ModelSizes,
+    pointers: *const MjPointers,
+    mujoco_version: *const c_char,
+    history: *const c_char,
+) -> i32 {
+    let Some(runner) = runner.as_mut() else {
+        return -1;
+    };
+    runner.guard(|r| {
+        let sc = r
+            .scenario
+            .as_ref()
+            .ok_or_else(|| MujocoError::Binding("bind after a failed open".into()))?;
+        if index.is_null() || sizes.is_null() || pointers.is_null() {
+            return Err(MujocoError::Binding("null index, sizes or pointers".into()));
+        }
+        let p = *pointers;
+        let fields = [
+            p.qpos,
+            p.qvel,
+            p.ten_length,
+            p.ten_velocity,
+            p.site_xpos,
+            p.xpos,
+            p.sensordata,
+            p.energy,
+            p.ctrl,
+            p.dof_frictionloss,
+        ];
+        if fields.iter().any(|f| f.is_null()) || p.warning_number.is_null() {
+            return Err(MujocoError::Binding(
+                "a MuJoCo array pointer is null".into(),
+            ));
+        }
+        if p.warning_stride < 1 {
+            return Err(MujocoError::Binding(format!(
+                "warning stride {} (expected ≥ 1)",
+                p.warning_stride
+            )));
+        }
+        let version = text(mujoco_version, "MuJoCo version")?;
+        let history = if history.is_null() {
+            None
+        } else {
+            let path = text(history, "history path")?;
+            Some(History::create(Path::new(path), sc.legs.len())?)
+        };
+        let index = std::slice::from_raw_parts(index, legs).to_vec();
+        r.landing = Some(MujocoLanding::new(sc, index, *sizes, version, history)?);
+        r.pointers = Some(p);
+        Ok(0)
+    })
+}
+
+/// One step's work between `mj_step1` and `mj_step2` ([`MujocoLanding::advance`]): 0 to go
+/// on stepping, 1 when the run has ended (no forces written), −1 on an error or a divergence
+/// (the message says when, where and which law).
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was bound; MuJoCo's arrays are alive.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_advance(runner: *mut Runner) -> i32 {
+    match runner.as_mut() {
+        Some(r) => r.guard(Runner::advance),
+        None => -1,
+    }
+}
+
+/// Ends the run: flushes the history and writes the summary (`summary.json`) to `summary`.
+/// Returns 0, or −1 with the error set.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was bound; `summary` is a NUL-terminated
+/// path.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_finish(
+    runner: *mut Runner,
+    summary: *const c_char,
+) -> i32 {
+    let Some(runner) = runner.as_mut() else {
+        return -1;
+    };
+    runner.guard(|r| {
+        let path = text(summary, "summary path")?;
+        let landing = r
+            .landing
+            .as_mut()
+            .ok_or_else(|| MujocoError::Binding("finish before a successful bind".into()))?;
+        landing.finish_history()?;
+        std::fs::write(path, landing.summary().to_json())
+            .map_err(|e| std::io::Error::new(e.kind(), format!("cannot write {path}: {e}")))?;
+        Ok(0)
+    })
+}
+
+/// Frees a runner.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and is not used afterwards.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_close(runner: *mut Runner) {
+    if !runner.is_null() {
+        drop(Box::from_raw(runner));
+    }
+}

@@ -1,0 +1,670 @@
+//! One landing on the MuJoCo model, driven by the shared strut laws.
+//!
+//! The Python runner owns MuJoCo's `MjModel`/`MjData` and calls [`MujocoLanding::advance`]
+//! between `mj_step1` and `mj_step2` of every step, handing over MuJoCo's own arrays
+//! ([`MjArrays`]) located by the element names of the export ([`GearIndex`]). At state n:
+//! 1. read the vehicle's state, every gear's strokes and rates (stroke joint, secondary tendons,
+//!    sites) and the footpads' velocities (sensors);
+//! 2. book the step n−1 → n: the work of the forces applied over it on the stroke increments
+//!    (`StrutForces::work`), the work of the contact forces MuJoCo applied (contact sensors) on
+//!    the mean of the contact point's velocities; commit the honeycomb memories at state n;
+//! 3. evaluate the laws at state n with the committed memories, check for divergence, update the
+//!    stability criteria, the extremes and the history;
+//! 4. unless the run has ended, write the forces for the step n → n+1: the explicit primary
+//!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
+//!    joint's dry friction `frictionloss`: the bearing bound plus, while the honeycomb crushes
+//!    on a plateau, the crush load (a bound that stops the stroke but never drives it; it is
+//!    engaged only while the strut compresses, like the rapier rebuild's plateau motor).
+
+use crate::MujocoError;
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
+use touchdown_laws::multibody::{
+    check_explicit_timestep, strut_forces, StrutForces, StrutKinematics,
+};
+use touchdown_laws::{GearLaws, GearMemory};
+use touchdown_record::{
+    Divergence, EnergyLedger, EnergyReport, Extremes, History, PadView, Progress, Sample,
+    StabilityTracker, Summary,
+};
+use touchdown_scenario::frames;
+use touchdown_scenario::model::{Leg, PadSurface, Stability};
+use touchdown_scenario::Scenario;
+
+/// Where one gear's quantities are in MuJoCo's arrays: ids and addresses the runner resolves
+/// from the export's element names (`legN_*`). `repr(C)`: 15 `i32` in this order.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct GearIndex {
+    /// `qpos` address of the stroke joint `legN_stroke`.
+    pub stroke_qpos: i32,
+    /// `qvel` (dof) address of the stroke joint.
+    pub stroke_dof: i32,
+    /// Tendon ids of `legN_s31`, `legN_s41`.
+    pub tendon: [i32; 2],
+    /// Actuator id of `legN_primary`.
+    pub primary: i32,
+    /// Actuator ids of `legN_s31`, `legN_s41`.
+    pub secondary: [i32; 2],
+    /// Site ids of the secondary trunnions `legN_b3`, `legN_b4`.
+    pub trunnion: [i32; 2],
+    /// Site id of point 1, `legN_point1`.
+    pub point1: i32,
+    /// Body id of the outer cylinder `legN_outer` (origin at the trunnion B2).
+    pub outer: i32,
+    /// Body id of the footpad `legN_footpad` (origin at the ball joint BP).
+    pub footpad: i32,
+    /// `sensordata` address of `legN_contact` (found, Fx, Fy, Fz).
+    pub contact: i32,
+    /// `sensordata` address of `legN_pad_velocity` (3).
+    pub pad_velocity: i32,
+    /// `sensordata` address of `legN_pad_rate` (3).
+    pub pad_rate: i32,
+}
+
+/// Sizes of the loaded model, to check indices against.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ModelSizes {
+    /// Position coordinates.
+    pub nq: i32,
+    /// Degrees of freedom.
+    pub nv: i32,
+    /// Actuators.
+    pub nu: i32,
+    /// Tendons.
+    pub ntendon: i32,
+    /// Sites.
+    pub nsite: i32,
+    /// Bodies.
+    pub nbody: i32,
+    /// Sensor data length.
+    pub nsensordata: i32,
+}
+
+/// MuJoCo's warnings (`mjtWarning` order), named for a diagnostic.
+pub const MUJOCO_WARNINGS: [&str; 7] = [
+    "near-singular inertia",
+    "contact buffer full",
+    "constraint buffer full",
+    "bad qpos (MuJoCo resets the state)",
+    "bad qvel (MuJoCo resets the state)",
+    "bad qacc (MuJoCo resets the state)",
+    "bad ctrl",
+];
+
+/// MuJoCo's arrays at one call (after `mj_step1`), and the model fields the laws drive.
+pub struct MjArrays<'a> {
+    /// `qpos` (nq): vehicle position (m) and quaternion (w, x, y, z), then per gear the two
+    /// trunnion angles (rad) and the stroke extension q (m).
+    pub qpos: &'a [f64],
+    /// `qvel` (nv): vehicle velocity (m/s, world) and angular velocity (rad/s, body axes), then
+    /// per gear the joint rates.
+    pub qvel: &'a [f64],
+    /// `ten_length` (ntendon), m.
+    pub ten_length: &'a [f64],
+    /// `ten_velocity` (ntendon), m/s.
+    pub ten_velocity: &'a [f64],
+    /// `site_xpos` (nsite × 3), m, world.
+    pub site_xpos: &'a [f64],
+    /// `xpos` (nbody × 3), m, world.
+    pub xpos: &'a [f64],
+    /// `sensordata` (nsensordata).
+    pub sensordata: &'a [f64],
+    /// `energy` (2): potential and kinetic energy of the whole model, J.
+    pub energy: &'a [f64],
+    /// Number of times each MuJoCo warning has been raised (`MUJOCO_WARNINGS` order).
+    pub warnings: &'a [i32],
+    /// `ctrl` (nu), written: N.
+    pub ctrl: &'a mut [f64],
+    /// `dof_frictionloss` (nv) of the model, written: N.
+    pub dof_frictionloss: &'a mut [f64],
+}
+
+/// Contact state of one footpad.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct PadContact {
+    in_contact: bool,
+    first_contact: Option<f64>,
+}
+
+/// The vehicle's state read from `qpos`/`qvel`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Vehicle {
+    /// Centre of mass, m (inertial).
+    position: Vector3<f64>,
+    /// Body → inertial rotation.
+    rotation: Matrix3<f64>,
+    /// Velocity, m/s (inertial).
+    velocity: Vector3<f64>,
+    /// Angular velocity, rad/s, body axes.
+    omega: Vector3<f64>,
+}
+
+impl Default for Vehicle {
+    fn default() -> Vehicle {
+        Vehicle {
+            position: Vector3::zeros(),
+            rotation: Matrix3::identity(),
+            velocity: Vector3::zeros(),
+            omega: Vector3::zeros(),
+        }
+    }
+}
+
+/// A landing driven on MuJoCo's arrays (see the module documentation).
+pub struct MujocoLanding {
+    name: String,
+    legs: Vec<Leg>,
+    surfaces: Vec<PadSurface>,
+    laws: GearLaws,
+    index: Vec<GearIndex>,
+    sizes: ModelSizes,
+    mass: f64,
+    inertia: Matrix3<f64>,
+    gravity: Vector3<f64>,
+    contact_radius: Vec<f64>,
+    criteria: Stability,
+    dt: f64,
+    t_end: f64,
+    energy_tolerance: f64,
+    settings: serde_json::Map<String, serde_json::Value>,
+    // state
+    started: bool,
+    t: f64,
+    steps: u64,
+    vehicle: Vehicle,
+    /// Vehicle velocity before the current step, m/s.
+    old_velocity: Vector3<f64>,
+    memory: Vec<GearMemory>,
+    kin: Vec<StrutKinematics>,
+    previous: Vec<StrutKinematics>,
+    /// Footpad contact-point velocities at this state and before the last step, m/s.
+    pad_velocity: Vec<Vector3<f64>>,
+    old_pad_velocity: Vec<Vector3<f64>>,
+    forces: Vec<StrutForces>,
+    contacts: Vec<PadContact>,
+    ledger: EnergyLedger,
+    /// Vehicle position at touchdown, m.
+    position0: Vector3<f64>,
+    /// Kinetic plus potential energy of the gear links (MuJoCo's total minus the vehicle's), J.
+    gear_energy: f64,
+    gear_energy0: f64,
+    max_penetration: f64,
+    stability: StabilityTracker,
+    extremes: Extremes,
+    pad_views: Vec<PadView>,
+    history: Option<History>,
+}
+
+/// Index of a `GearIndex` field against its array length.
+fn check(what: &str, leg: usize, id: i32, len: i32) -> Result<usize, MujocoError> {
+    if id < 0 || id >= len {
+        return Err(MujocoError::Binding(format!(
+            "leg {}: {what} = {id} is outside the model's range 0..{len}",
+            leg + 1
+        )));
+    }
+    Ok(id as usize)
+}
+
+impl MujocoLanding {
+    /// A landing of `sc` on the model exported from it (`mjcf::export`), whose arrays the
+    /// runner located with `index` (one entry per gear) in a model of `sizes`; MuJoCo's version
+    /// is recorded in the summary; with `history`, one row per step goes into that file.
+    pub fn new(
+        sc: &Scenario,
+        index: Vec<GearIndex>,
+        sizes: ModelSizes,
+        mujoco_version: &str,
+        history: Option<History>,
+    ) -> Result<MujocoLanding, MujocoError> {
+        let laws = GearLaws::from_scenario(sc)?;
+        check_explicit_timestep(sc, &laws, sc.mujoco.timestep).map_err(|message| {
+            MujocoError::Unsupported {
+                file: sc.file_of("engines.mujoco.timestep").to_string(),
+                field: "engines.mujoco.timestep".into(),
+                message,
+            }
+        })?;
+        let n = sc.legs.len();
+        if index.len() != n {
+            return Err(MujocoError::Binding(format!(
+                "{} gear indices for a scenario with {n} legs",
+                index.len()
+            )));
+        }
+        let expected = (7 + 3 * n as i32, 6 + 3 * n as i32, 3 * n as i32);
+        if (sizes.nq, sizes.nv, sizes.nu) != expected {
+            return Err(MujocoError::Binding(format!(
+                "model sizes nq, nv, nu = {}, {}, {}; expected {}, {}, {} for {n} legs (was the model exported from this scenario?)",
+                sizes.nq, sizes.nv, sizes.nu, expected.0, expected.1, expected.2
+            )));
+        }
+        for (i, g) in index.iter().enumerate() {
+            check("stroke_qpos", i, g.stroke_qpos, sizes.nq)?;
+            check("stroke_dof", i, g.stroke_dof, sizes.nv)?;
+            for j in 0..2 {
+                check("tendon", i, g.tendon[j], sizes.ntendon)?;
+                check("secondary actuator", i, g.secondary[j], sizes.nu)?;
+                check("trunnion site", i, g.trunnion[j], sizes.nsite)?;
+            }
+            check("primary actuator", i, g.primary, sizes.nu)?;
+            check("point1 site", i, g.point1, sizes.nsite)?;
+            check("outer body", i, g.outer, sizes.nbody)?;
+            check("footpad body", i, g.footpad, sizes.nbody)?;
+            check("contact sensor", i, g.contact + 3, sizes.nsensordata)?;
+            check("velocity sensor", i, g.pad_velocity + 2, sizes.nsensordata)?;
+            check("rate sensor", i, g.pad_rate + 2, sizes.nsensordata)?;
+        }
+        let gravity = frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+        Ok(MujocoLanding {
+            name: sc.file.name.clone(),
+            legs: sc.legs.clone(),
+            surfaces: sc.surface.pads.clone(),
+            laws,
+            index,
+            sizes,
+            mass: sc.vehicle.mass,
+            inertia: sc.vehicle.inertia,
+            gravity,
+            contact_radius: sc.legs.iter().map(|l| sc.links.contact_radius(l)).collect(),
+            criteria: sc.stability.clone(),
+            dt: sc.mujoco.timestep,
+            t_end: sc.integrator.t_end,
+            energy_tolerance: sc.integrator.energy_tolerance,
+            settings: settings(sc, mujoco_version),
+            started: false,
+            t: 0.0,
+            steps: 0,
+            vehicle: Vehicle::default(),
+            old_velocity: Vector3::zeros(),
+            memory: vec![GearMemory::default(); n],
+            kin: vec![StrutKinematics::default(); n],
+            previous: vec![StrutKinematics::default(); n],
+            pad_velocity: vec![Vector3::zeros(); n],
+            old_pad_velocity: vec![Vector3::zeros(); n],
+            forces: vec![StrutForces::default(); n],
+            contacts: vec![PadContact::default(); n],
+            ledger: EnergyLedger::default(),
+            position0: Vector3::zeros(),
+            gear_energy: 0.0,
+            gear_energy0: 0.0,
+            max_penetration: 0.0,
+            stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
+            extremes: Extremes::new(n),
+            pad_views: vec![PadView::default(); n],
+            history,
+        })
+    }
+
+    /// The model sizes the landing was bound to.
+    pub fn sizes(&self) -> ModelSizes {
+        self.sizes
+    }
+
+    /// Current time, s.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Whether the run has ended (a decision, if the scenario terminates on one, or the end
+    /// time).
+    pub fn finished(&self) -> bool {
+        self.t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
+    }
+
+    /// One call per step, between `mj_step1` and `mj_step2` (module documentation). Returns
+    /// whether the run has ended (then nothing is written and the runner stops stepping).
+    pub fn advance(&mut self, mj: &mut MjArrays) -> Result<bool, MujocoError> {
+        self.check_warnings(mj)?;
+        self.read_state(mj);
+        if self.started {
+            self.t += self.dt;
+            self.steps += 1;
+            for i in 0..self.legs.len() {
+                let w = self.forces[i].work(&self.previous[i], &self.kin[i]);
+                self.ledger.honeycomb += w.honeycomb;
+                self.ledger.viscous += w.viscous;
+                self.ledger.bearing += w.bearing;
+                let k = &self.kin[i];
+                self.laws.commit(k.c, k.s, &mut self.memory[i]);
+            }
+            self.book_contacts(mj);
+        } else {
+            self.started = true;
+            self.position0 = self.vehicle.position;
+            self.gear_energy0 = self.gear_energy;
+            let ke = self.kinetic_energy();
+            self.stability =
+                StabilityTracker::new(&self.criteria, self.gravity, self.legs.len(), ke);
+        }
+        self.evaluate()?;
+        self.check_divergence()?;
+        self.update_stability();
+        if self.steps > 0 {
+            for (i, k) in self.kin.iter().enumerate() {
+                self.extremes.update_leg(i, k.c, k.s);
+            }
+            let q = (self.vehicle.rotation * self.vehicle.omega).x;
+            self.extremes.update_pitch_rate(self.t, q);
+        }
+        self.record();
+        self.previous.copy_from_slice(&self.kin);
+        self.old_pad_velocity.copy_from_slice(&self.pad_velocity);
+        self.old_velocity = self.vehicle.velocity;
+        if self.finished() {
+            return Ok(true);
+        }
+        self.apply(mj);
+        Ok(false)
+    }
+
+    fn check_warnings(&self, mj: &MjArrays) -> Result<(), MujocoError> {
+        match mj
+            .warnings
+            .iter()
+            .zip(MUJOCO_WARNINGS)
+            .find(|(n, _)| **n > 0)
+        {
+            Some((n, what)) => Err(self.diverged(
+                format!("MuJoCo warned: {what} ({n} times); the step is not trustworthy"),
+                "MuJoCo solver",
+                None,
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn read_state(&mut self, mj: &MjArrays) {
+        let q = mj.qpos;
+        let v = mj.qvel;
+        let quat = UnitQuaternion::from_quaternion(Quaternion::new(q[3], q[4], q[5], q[6]));
+        self.vehicle = Vehicle {
+            position: Vector3::new(q[0], q[1], q[2]),
+            rotation: quat.to_rotation_matrix().into_inner(),
+            velocity: Vector3::new(v[0], v[1], v[2]),
+            omega: Vector3::new(v[3], v[4], v[5]),
+        };
+        let point = |a: &[f64], id: i32| {
+            let k = 3 * id as usize;
+            Vector3::new(a[k], a[k + 1], a[k + 2])
+        };
+        let sensor = |adr: i32| point(&mj.sensordata[adr as usize..], 0);
+        for (i, (g, leg)) in self.index.iter().zip(&self.legs).enumerate() {
+            let b2 = point(mj.xpos, g.outer);
+            let footpad = point(mj.xpos, g.footpad);
+            let point1 = point(mj.site_xpos, g.point1);
+            let mut k = StrutKinematics {
+                c: -q[g.stroke_qpos as usize],
+                c_dot: -v[g.stroke_dof as usize],
+                point1,
+                axis: (footpad - b2).normalize(),
+                footpad,
+                ..Default::default()
+            };
+            for (j, l0) in [leg.l31, leg.l41].into_iter().enumerate() {
+                let trunnion = point(mj.site_xpos, g.trunnion[j]);
+                let t = g.tendon[j] as usize;
+                k.trunnion[j] = trunnion;
+                k.u[j] = (point1 - trunnion).normalize();
+                k.s[j] = mj.ten_length[t] - l0;
+                k.s_dot[j] = mj.ten_velocity[t];
+            }
+            self.kin[i] = k;
+            // The contact point: the bottom of the footpad's contact sphere.
+            let r = Vector3::new(0.0, 0.0, -self.contact_radius[i]);
+            self.pad_velocity[i] = sensor(g.pad_velocity) + sensor(g.pad_rate).cross(&r);
+        }
+        let total = mj.energy[0] + mj.energy[1];
+        self.gear_energy =
+            total - self.kinetic_energy() + self.mass * self.gravity.dot(&self.vehicle.position);
+    }
+
+    /// Contact states, penetration and the work of the contact forces over the last step:
+    /// normal forces (and locked footpads' lateral forces) into the contact-event account,
+    /// sliding friction into the sliding account, each on the mean of the contact point's
+    /// velocities before and after the step.
+    fn book_contacts(&mut self, mj: &MjArrays) {
+        for (i, g) in self.index.iter().enumerate() {
+            let adr = g.contact as usize;
+            let found = mj.sensordata[adr];
+            let force = Vector3::new(
+                mj.sensordata[adr + 1],
+                mj.sensordata[adr + 2],
+                mj.sensordata[adr + 3],
+            );
+            let impulse = force * self.dt;
+            let v_mean = 0.5 * (self.old_pad_velocity[i] + self.pad_velocity[i]);
+            let normal_work = impulse.z * v_mean.z;
+            let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
+            self.ledger.events += normal_work;
+            if self.surfaces[i].locked() {
+                self.ledger.events += lateral_work;
+            } else {
+                self.ledger.sliding -= lateral_work;
+            }
+            // The contact sphere is centred on BP; its plane is lowered by its radius.
+            let depth = self.surfaces[i].plane() - self.kin[i].footpad.z;
+            self.max_penetration = self.max_penetration.max(depth);
+            let c = &mut self.contacts[i];
+            c.in_contact = found > 0.0 && force.z > 0.0;
+            if c.in_contact && c.first_contact.is_none() {
+                c.first_contact = Some(self.t);
+            }
+        }
+    }
+
+    /// Evaluates the laws at the current kinematics with the committed memories.
+    fn evaluate(&mut self) -> Result<(), MujocoError> {
+        for i in 0..self.legs.len() {
+            self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
+                .map_err(|e| self.diverged(e.to_string(), "bearing friction", Some(i)))?;
+        }
+        Ok(())
+    }
+
+    /// Writes the forces for the coming step (overwriting the last step's).
+    fn apply(&self, mj: &mut MjArrays) {
+        for (g, f) in self.index.iter().zip(&self.forces) {
+            // A compression-positive strut force pushes the footpad away: it extends q.
+            mj.ctrl[g.primary as usize] = f.honeycomb + f.viscous;
+            // A tension pulls the tendon shorter.
+            for (j, force) in f.secondary().into_iter().enumerate() {
+                mj.ctrl[g.secondary[j] as usize] = -force;
+            }
+            mj.dof_frictionloss[g.stroke_dof as usize] = f.bearing_bound + f.crush_load;
+        }
+    }
+
+    fn update_stability(&mut self) {
+        for i in 0..self.legs.len() {
+            self.pad_views[i] = PadView {
+                position: self.kin[i].footpad,
+                in_contact: self.contacts[i].in_contact,
+                touched: self.contacts[i].first_contact.is_some(),
+            };
+        }
+        let ke = self.kinetic_energy();
+        let old = self.steps.gt(&0).then_some(&self.old_velocity);
+        self.stability.update(
+            self.t,
+            &self.vehicle.position,
+            &self.vehicle.velocity,
+            old,
+            ke,
+            &self.pad_views,
+        );
+    }
+
+    /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
+    pub fn kinetic_energy(&self) -> f64 {
+        let v = &self.vehicle;
+        0.5 * self.mass * v.velocity.norm_squared() + 0.5 * v.omega.dot(&(self.inertia * v.omega))
+    }
+
+    /// Energy report at the current state.
+    pub fn energy(&self) -> EnergyReport {
+        let stored: f64 = self
+            .kin
+            .iter()
+            .zip(&self.memory)
+            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
+            .sum();
+        let potential = -self.mass * self.gravity.dot(&(self.vehicle.position - self.position0));
+        self.ledger.report(
+            self.stability.initial_kinetic_energy(),
+            self.kinetic_energy(),
+            potential,
+            self.gear_energy - self.gear_energy0,
+            stored,
+        )
+    }
+
+    /// The summary at the current state.
+    pub fn summary(&self) -> Summary {
+        let mut settings = self.settings.clone();
+        settings.insert(
+            "max_footpad_penetration_m".into(),
+            self.max_penetration.into(),
+        );
+        let progress = Progress {
+            t: self.t,
+            steps: self.steps,
+            force_evaluations: self.steps,
+            first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
+        };
+        Summary::new(
+            "mujoco",
+            &self.name,
+            settings,
+            progress,
+            &self.stability,
+            &self.extremes,
+            self.energy(),
+        )
+    }
+
+    /// Flushes the history file, if any (reporting a write error met while running).
+    pub fn finish_history(&mut self) -> std::io::Result<()> {
+        match self.history.take() {
+            Some(h) => h.finish(),
+            None => Ok(()),
+        }
+    }
+
+    /// Writes the current state into `out` (a sample made for as many legs).
+    pub fn sample(&self, out: &mut Sample) {
+        let v = &self.vehicle;
+        out.t = self.t;
+        out.position = v.position;
+        out.velocity = v.velocity;
+        out.theta = frames::euler_from_t_bi(&v.rotation);
+        out.omega = v.omega;
+        out.pitch_rate = (v.rotation * v.omega).x;
+        for (i, slot) in out.legs.iter_mut().enumerate() {
+            let (k, f, c) = (&self.kin[i], &self.forces[i], &self.contacts[i]);
+            slot.primary_stroke = k.c;
+            slot.primary_force = f.primary(k.c_dot);
+            slot.secondary_stroke = k.s;
+            slot.secondary_force = f.secondary();
+            slot.pad_position = k.footpad;
+            slot.contact = match (c.in_contact, c.first_contact) {
+                (true, _) => 1,
+                (false, Some(_)) => 2,
+                (false, None) => 0,
+            };
+        }
+        out.stability_distance
+            .copy_from_slice(self.stability.distances());
+        out.energy = self.energy();
+    }
+
+    fn record(&mut self) {
+        if let Some(mut h) = self.history.take() {
+            self.sample(h.sample_mut());
+            h.write();
+            self.history = Some(h);
+        }
+    }
+
+    fn diverged(&self, message: String, law: &str, leg: Option<usize>) -> MujocoError {
+        let v = &self.vehicle;
+        let (x, u, w) = (v.position, v.velocity, v.rotation * v.omega);
+        MujocoError::Diverged(Divergence {
+            time: self.t,
+            law: match leg {
+                Some(i) => format!("{law} (leg {})", i + 1),
+                None => law.to_string(),
+            },
+            message,
+            state: format!(
+                "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
+                x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
+            ),
+        })
+    }
+
+    /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
+    /// scenario's tolerance.
+    fn check_divergence(&self) -> Result<(), MujocoError> {
+        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
+            let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm() + k.axis.norm();
+            let bad = f
+                .non_finite()
+                .or_else(|| (!geometry.is_finite()).then_some(("gear geometry", geometry)));
+            if let Some((law, value)) = bad {
+                return Err(self.diverged(format!("non-finite value {value}"), law, Some(i)));
+            }
+        }
+        let v = &self.vehicle;
+        let state = v.position.norm() + v.velocity.norm() + v.omega.norm() + self.gear_energy;
+        if !state.is_finite() {
+            return Err(self.diverged("non-finite body state".into(), "equations of motion", None));
+        }
+        let e = self.energy();
+        self.ledger
+            .check_balance(
+                &e,
+                self.energy_tolerance,
+                "time step too large for the stiffest strut law, or contact too soft?",
+            )
+            .map_err(|message| self.diverged(message, "energy balance", None))
+    }
+}
+
+/// The engine's settings as used, for the summary (names carry their units).
+fn settings(sc: &Scenario, mujoco_version: &str) -> serde_json::Map<String, serde_json::Value> {
+    let mj = &sc.mujoco;
+    let l = &sc.links;
+    let leg = &sc.legs[0];
+    let mut m = serde_json::Map::new();
+    m.insert("mujoco".into(), mujoco_version.into());
+    m.insert("generator".into(), crate::mjcf::GENERATOR.into());
+    m.insert("timestep_s".into(), mj.timestep.into());
+    m.insert("integrator".into(), "implicitfast".into());
+    m.insert("contact_timeconst_s".into(), mj.contact_timeconst.into());
+    m.insert(
+        "contact_damping_ratio".into(),
+        mj.contact_damping_ratio.into(),
+    );
+    m.insert(
+        "secondary_struts".into(),
+        "massless two-force members (spatial tendons)".into(),
+    );
+    m.insert(
+        "obstacle_lock_friction".into(),
+        crate::mjcf::LOCK_FRICTION.into(),
+    );
+    m.insert(
+        "outer_cylinder_mass_kg".into(),
+        (l.outer_cylinder_mass_ratio * sc.footpad.mass).into(),
+    );
+    m.insert(
+        "outer_cylinder_length_m".into(),
+        l.outer_cylinder_length(leg, &sc.primary).into(),
+    );
+    m.insert("footpad_body_mass_kg".into(), sc.footpad.mass.into());
+    m.insert("link_radius_m".into(), l.radius(leg).into());
+    m.insert("contact_radius_m".into(), l.contact_radius(leg).into());
+    m
+}

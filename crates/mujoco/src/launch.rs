@@ -1,0 +1,151 @@
+//! Runs a scenario on MuJoCo end to end: the project's Python environment (`.venv`, made by
+//! `scripts/setup-python` with the pinned `mujoco`), the runner `python/mujoco/run.py` and this
+//! crate's C library, which cargo builds next to every binary that depends on this crate
+//! (`target/<profile>/deps/`).
+//!
+//! Nothing is skipped silently: a missing interpreter, venv, `mujoco` package or library is a
+//! [`MujocoError::Setup`] that names the command to run.
+
+use crate::MujocoError;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use touchdown_record::Summary;
+
+/// The workspace this crate was built from (holds `.venv/`, `python/` and `scripts/`).
+pub const WORKSPACE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+
+/// The command that sets up the Python environment.
+pub const SETUP_COMMAND: &str = "scripts/setup-python";
+
+/// Exit status of the runner when `mujoco` cannot be imported.
+pub const RUNNER_SETUP_STATUS: i32 = 3;
+
+/// File name of this crate's C library on this platform.
+pub fn library_name() -> String {
+    format!(
+        "{}touchdown_mujoco{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    )
+}
+
+/// What a MuJoCo run needs: the interpreter, the runner script and the library.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Launch {
+    /// Python interpreter (the venv's).
+    pub python: PathBuf,
+    /// The runner script.
+    pub runner: PathBuf,
+    /// This crate's C library.
+    pub library: PathBuf,
+}
+
+fn setup_error(what: String) -> MujocoError {
+    MujocoError::Setup(format!(
+        "{what}; run `{SETUP_COMMAND}` in {} (it creates .venv with the pinned mujoco and matplotlib)",
+        workspace().display()
+    ))
+}
+
+fn workspace() -> PathBuf {
+    let p = PathBuf::from(WORKSPACE);
+    p.canonicalize().unwrap_or(p)
+}
+
+impl Launch {
+    /// Finds the interpreter (`$TOUCHDOWN_PYTHON`, else the workspace's `.venv`), the runner and
+    /// the library (`$TOUCHDOWN_MUJOCO_LIBRARY`, else next to the running executable or in its
+    /// `deps/`), or says which is missing and how to set it up.
+    pub fn locate() -> Result<Launch, MujocoError> {
+        let root = workspace();
+        let python = match std::env::var_os("TOUCHDOWN_PYTHON") {
+            Some(p) => PathBuf::from(p),
+            None => root.join(".venv").join("bin").join("python"),
+        };
+        if !python.is_file() {
+            return Err(setup_error(format!(
+                "the MuJoCo engine needs the project's Python environment, and {} does not exist",
+                python.display()
+            )));
+        }
+        let runner = root.join("python").join("mujoco").join("run.py");
+        if !runner.is_file() {
+            return Err(MujocoError::Setup(format!(
+                "the runner {} is missing from the workspace",
+                runner.display()
+            )));
+        }
+        let library = match std::env::var_os("TOUCHDOWN_MUJOCO_LIBRARY") {
+            Some(p) => PathBuf::from(p),
+            None => find_library()?,
+        };
+        Ok(Launch {
+            python,
+            runner,
+            library,
+        })
+    }
+
+    /// Runs `scenario` (with the MuJoCo time step `timestep`, s, if given) and writes
+    /// `summary.json`, and with `history` also `history.csv`, into `out`; returns the summary.
+    pub fn run(
+        &self,
+        scenario: &Path,
+        timestep: Option<f64>,
+        out: &Path,
+        history: bool,
+    ) -> Result<Summary, MujocoError> {
+        let mut cmd = Command::new(&self.python);
+        cmd.arg(&self.runner)
+            .arg(scenario)
+            .arg("--out")
+            .arg(out)
+            .arg("--library")
+            .arg(&self.library);
+        if let Some(t) = timestep {
+            cmd.arg("--timestep").arg(format!("{t:e}"));
+        }
+        if history {
+            cmd.arg("--history");
+        }
+        let output = cmd
+            .output()
+            .map_err(|e| setup_error(format!("cannot start {}: {e}", self.python.display())))?;
+        let stderr = String::from_utf8_lossy(&output.stderr).trim().to_string();
+        match output.status.code() {
+            Some(0) => {}
+            Some(RUNNER_SETUP_STATUS) => return Err(setup_error(stderr)),
+            _ => return Err(MujocoError::Runner(stderr)),
+        }
+        let path = out.join("summary.json");
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            std::io::Error::new(e.kind(), format!("cannot read {}: {e}", path.display()))
+        })?;
+        serde_json::from_str(&text)
+            .map_err(|e| MujocoError::Runner(format!("{}: not a summary: {e}", path.display())))
+    }
+}
+
+/// The library next to the running executable (a binary in `target/<profile>/`, or a test or
+/// bench in `target/<profile>/deps/`).
+fn find_library() -> Result<PathBuf, MujocoError> {
+    let name = library_name();
+    let exe = std::env::current_exe()?;
+    let dir = exe.parent().unwrap_or(Path::new("."));
+    let candidates = [dir.join("deps").join(&name), dir.join(&name)];
+    candidates
+        .iter()
+        .find(|p| p.is_file())
+        .cloned()
+        .ok_or_else(|| {
+            MujocoError::Setup(format!(
+                "the touchdown MuJoCo library {name} is not next to {} (looked in {}); build it with `cargo build -p touchdown-mujoco`, or set TOUCHDOWN_MUJOCO_LIBRARY",
+                exe.display(),
+                candidates
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
+        })
+}

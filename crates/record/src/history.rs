@@ -1,0 +1,160 @@
+//! `history.csv`: one row per accepted step, the same columns for every engine (SI units, named
+//! in the header).
+
+use crate::Sample;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::Path;
+
+/// Writes the time history of a landing as it runs, one [`Sample`] a row, whatever the engine.
+pub struct History {
+    writer: csv::Writer<BufWriter<File>>,
+    error: Option<csv::Error>,
+    row: Vec<String>,
+    sample: Sample,
+}
+
+impl History {
+    /// Creates `path` and writes the header for `legs` legs.
+    pub fn create(path: &Path, legs: usize) -> std::io::Result<History> {
+        let file = File::create(path).map_err(|e| {
+            std::io::Error::new(e.kind(), format!("cannot create {}: {e}", path.display()))
+        })?;
+        let mut writer = csv::Writer::from_writer(BufWriter::new(file));
+        let mut header: Vec<String> = [
+            "t_s",
+            "x_m",
+            "y_m",
+            "z_m",
+            "vx_m_s",
+            "vy_m_s",
+            "vz_m_s",
+            "theta_x_rad",
+            "theta_y_rad",
+            "theta_z_rad",
+            "omega_x_rad_s",
+            "omega_y_rad_s",
+            "omega_z_rad_s",
+            "pitch_rate_rad_s",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        for i in 1..=legs {
+            for c in [
+                "primary_stroke_m",
+                "primary_force_n",
+                "sec31_stroke_m",
+                "sec31_force_n",
+                "sec41_stroke_m",
+                "sec41_force_n",
+                "pad_x_m",
+                "pad_y_m",
+                "pad_z_m",
+                "contact",
+            ] {
+                header.push(format!("leg{i}_{c}"));
+            }
+        }
+        for i in 1..=legs {
+            header.push(format!("sd_wall{i}{}_m", i % legs + 1));
+        }
+        for c in [
+            "kinetic_j",
+            "potential_change_j",
+            "honeycomb_dissipated_j",
+            "honeycomb_stored_j",
+            "friction_j",
+            "residual_j",
+        ] {
+            header.push(c.to_string());
+        }
+        writer.write_record(&header)?;
+        Ok(History {
+            writer,
+            error: None,
+            row: Vec::with_capacity(header.len()),
+            sample: Sample::new(legs),
+        })
+    }
+
+    /// Flushes the file, reporting any write error met while running.
+    pub fn finish(mut self) -> std::io::Result<()> {
+        if let Some(e) = self.error.take() {
+            return Err(e.into());
+        }
+        self.writer.flush()?;
+        Ok(())
+    }
+}
+
+/// A number for the CSV; a non-finite value (an undefined stability wall) is an empty cell,
+/// never NaN.
+fn num(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.9e}")
+    } else {
+        String::new()
+    }
+}
+
+impl History {
+    /// The sample to fill before [`History::write`] (made for the file's number of legs).
+    pub fn sample_mut(&mut self) -> &mut Sample {
+        &mut self.sample
+    }
+
+    /// Writes the sample as a row (the first write error is kept for [`History::finish`]).
+    pub fn write(&mut self) {
+        if self.error.is_some() {
+            return;
+        }
+        let s = &self.sample;
+        let row = &mut self.row;
+        row.clear();
+        row.push(num(s.t));
+        for x in s
+            .position
+            .iter()
+            .chain(s.velocity.iter())
+            .chain(s.theta.iter())
+            .chain(s.omega.iter())
+        {
+            row.push(num(*x));
+        }
+        row.push(num(s.pitch_rate));
+        for g in &s.legs {
+            for x in [
+                g.primary_stroke,
+                g.primary_force,
+                g.secondary_stroke[0],
+                g.secondary_force[0],
+                g.secondary_stroke[1],
+                g.secondary_force[1],
+                g.pad_position.x,
+                g.pad_position.y,
+                g.pad_position.z,
+            ] {
+                row.push(num(x));
+            }
+            row.push(g.contact.to_string());
+        }
+        for sd in &s.stability_distance {
+            row.push(num(*sd));
+        }
+        let e = &s.energy;
+        for x in [
+            e.kinetic_j,
+            e.potential_change_j,
+            e.honeycomb_dissipated_j,
+            e.honeycomb_stored_j,
+            e.viscous_j + e.bearing_friction_j + e.sliding_friction_j,
+            e.residual_j,
+        ] {
+            row.push(num(x));
+        }
+        if let Err(e) = self.writer.write_record(row.iter()) {
+            self.error = Some(e);
+        }
+    }
+}

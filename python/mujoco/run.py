@@ -1,0 +1,325 @@
+"""Runs a Touchdown scenario on MuJoCo, driven by the shared Rust force laws.
+
+Usage:
+  run.py SCENARIO --out DIR --library LIB [--timestep S] [--history] [--profile] [--viewer]
+
+The Rust library LIB (crate touchdown-mujoco, built by cargo as
+target/<profile>/deps/libtouchdown_mujoco.so) loads the scenario, generates the MJCF model
+(the same as `touchdown export-mjcf`), and owns everything but MuJoCo itself: the strut laws,
+hysteresis, energy ledger, stability criteria, summary.json and history.csv. This script loads the
+model with the pinned `mujoco` package and steps it:
+
+    mj_step1   positions, velocities, tendons and sensors of the state
+    advance    (Rust) book the last step, commit the honeycombs, evaluate the laws, write
+               ctrl and the stroke joint's dry friction (bearing friction + plateau)
+    mj_step2   forces, constraints, integration
+
+Options:
+  --history   also write DIR/history.csv (one row per step)
+  --profile   print a JSON line with the wall time spent in MuJoCo, in the Rust library and in
+              this Python loop (the loop's own overhead), per landing and per step
+  --viewer    watch the law-driven run in MuJoCo's passive viewer (needs a display and the
+              `glfw` package, which the full `mujoco` package brings; see docs/engines.md)
+
+Exit status: 0 done; 1 the run failed or diverged (the message on stderr says when, where and
+which law); 2 bad arguments or library; 3 `mujoco` is not installed in this interpreter.
+"""
+
+import argparse
+import ctypes
+import json
+import os
+import sys
+import time
+
+SETUP_STATUS = 3
+
+
+def fail(message, status=1):
+    print(f"run.py: {message}", file=sys.stderr)
+    sys.exit(status)
+
+
+try:
+    import mujoco
+except ImportError as e:
+    fail(
+        f"the pinned MuJoCo (python/requirements.txt) cannot be imported by {sys.executable}: {e}; "
+        "run scripts/setup-python",
+        SETUP_STATUS,
+    )
+
+LEG_FIELDS = 15  # GearIndex: 15 int32 per leg (crates/mujoco/src/landing.rs)
+
+
+class MjPointers(ctypes.Structure):
+    """Mirror of touchdown_mujoco::ffi::MjPointers."""
+
+    _fields_ = [
+        ("qpos", ctypes.c_void_p),
+        ("qvel", ctypes.c_void_p),
+        ("ten_length", ctypes.c_void_p),
+        ("ten_velocity", ctypes.c_void_p),
+        ("site_xpos", ctypes.c_void_p),
+        ("xpos", ctypes.c_void_p),
+        ("sensordata", ctypes.c_void_p),
+        ("energy", ctypes.c_void_p),
+        ("warning_number", ctypes.c_void_p),
+        ("warning_stride", ctypes.c_int32),
+        ("ctrl", ctypes.c_void_p),
+        ("dof_frictionloss", ctypes.c_void_p),
+    ]
+
+
+class ModelSizes(ctypes.Structure):
+    """Mirror of touchdown_mujoco::landing::ModelSizes."""
+
+    _fields_ = [
+        (name, ctypes.c_int32)
+        for name in ("nq", "nv", "nu", "ntendon", "nsite", "nbody", "nsensordata")
+    ]
+
+
+def load_library(path):
+    try:
+        lib = ctypes.CDLL(path)
+    except OSError as e:
+        fail(f"cannot load the touchdown MuJoCo library {path}: {e}", 2)
+    p = ctypes.c_void_p
+    lib.touchdown_mujoco_open.argtypes = [ctypes.c_char_p, ctypes.c_double]
+    lib.touchdown_mujoco_open.restype = p
+    lib.touchdown_mujoco_error.argtypes = [p]
+    lib.touchdown_mujoco_error.restype = ctypes.c_char_p
+    lib.touchdown_mujoco_model_xml.argtypes = [p]
+    lib.touchdown_mujoco_model_xml.restype = ctypes.c_char_p
+    lib.touchdown_mujoco_bind.argtypes = [
+        p,
+        ctypes.POINTER(ctypes.c_int32),
+        ctypes.c_size_t,
+        ctypes.POINTER(ModelSizes),
+        ctypes.POINTER(MjPointers),
+        ctypes.c_char_p,
+        ctypes.c_char_p,
+    ]
+    lib.touchdown_mujoco_bind.restype = ctypes.c_int32
+    lib.touchdown_mujoco_advance.argtypes = [p]
+    lib.touchdown_mujoco_advance.restype = ctypes.c_int32
+    lib.touchdown_mujoco_finish.argtypes = [p, ctypes.c_char_p]
+    lib.touchdown_mujoco_finish.restype = ctypes.c_int32
+    lib.touchdown_mujoco_close.argtypes = [p]
+    lib.touchdown_mujoco_close.restype = None
+    return lib
+
+
+def gear_index(model, legs):
+    """Per leg, the GearIndex entries located by the export's element names."""
+
+    def ident(kind, name):
+        i = mujoco.mj_name2id(model, kind, name)
+        if i < 0:
+            fail(f"the model has no {kind.name[6:].lower()} named {name!r}", 2)
+        return i
+
+    obj = mujoco.mjtObj
+    table = []
+    for n in range(1, legs + 1):
+        stroke = ident(obj.mjOBJ_JOINT, f"leg{n}_stroke")
+        sensor = [
+            int(model.sensor_adr[ident(obj.mjOBJ_SENSOR, f"leg{n}_{s}")])
+            for s in ("contact", "pad_velocity", "pad_rate")
+        ]
+        table += [
+            int(model.jnt_qposadr[stroke]),
+            int(model.jnt_dofadr[stroke]),
+            ident(obj.mjOBJ_TENDON, f"leg{n}_s31"),
+            ident(obj.mjOBJ_TENDON, f"leg{n}_s41"),
+            ident(obj.mjOBJ_ACTUATOR, f"leg{n}_primary"),
+            ident(obj.mjOBJ_ACTUATOR, f"leg{n}_s31"),
+            ident(obj.mjOBJ_ACTUATOR, f"leg{n}_s41"),
+            ident(obj.mjOBJ_SITE, f"leg{n}_b3"),
+            ident(obj.mjOBJ_SITE, f"leg{n}_b4"),
+            ident(obj.mjOBJ_SITE, f"leg{n}_point1"),
+            ident(obj.mjOBJ_BODY, f"leg{n}_outer"),
+            ident(obj.mjOBJ_BODY, f"leg{n}_footpad"),
+            *sensor,
+        ]
+    assert len(table) == LEG_FIELDS * legs
+    return (ctypes.c_int32 * len(table))(*table)
+
+
+def pointer(array, dtype):
+    """The address of a MuJoCo array (a view into MuJoCo's own memory, never a copy)."""
+    if array.dtype != dtype or not array.flags["C_CONTIGUOUS"]:
+        fail(f"unexpected MuJoCo array layout {array.dtype} {array.strides}", 2)
+    return array.ctypes.data
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scenario")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--library", required=True)
+    ap.add_argument("--timestep", type=float, default=0.0)
+    ap.add_argument("--history", action="store_true")
+    ap.add_argument("--profile", action="store_true")
+    ap.add_argument("--viewer", action="store_true")
+    args = ap.parse_args(argv)
+
+    lib = load_library(args.library)
+    h = lib.touchdown_mujoco_open(args.scenario.encode(), args.timestep)
+
+    def check(status):
+        if status < 0:
+            message = lib.touchdown_mujoco_error(h)
+            fail(message.decode() if message else "unknown error")
+        return status
+
+    try:
+        xml = lib.touchdown_mujoco_model_xml(h)
+        if not xml:
+            check(-1)
+        model = mujoco.MjModel.from_xml_string(xml.decode())
+        data = mujoco.MjData(model)
+        key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "touchdown")
+        mujoco.mj_resetDataKeyframe(model, data, key)
+        legs = int(model.nu) // 3
+        index = gear_index(model, legs)
+        sizes = ModelSizes(
+            model.nq, model.nv, model.nu, model.ntendon, model.nsite, model.nbody, model.nsensordata
+        )
+        f64 = data.qpos.dtype
+        warnings = data.warning.number
+        ptrs = MjPointers(
+            pointer(data.qpos, f64),
+            pointer(data.qvel, f64),
+            pointer(data.ten_length, f64),
+            pointer(data.ten_velocity, f64),
+            pointer(data.site_xpos, f64),
+            pointer(data.xpos, f64),
+            pointer(data.sensordata, f64),
+            pointer(data.energy, f64),
+            warnings.ctypes.data,
+            warnings.strides[0] // warnings.itemsize,
+            pointer(data.ctrl, f64),
+            pointer(model.dof_frictionloss, f64),
+        )
+        os.makedirs(args.out, exist_ok=True)
+        history = os.path.join(args.out, "history.csv").encode() if args.history else None
+        check(
+            lib.touchdown_mujoco_bind(
+                h, index, legs, ctypes.byref(sizes), ctypes.byref(ptrs),
+                mujoco.__version__.encode(), history,
+            )
+        )
+        if args.viewer:
+            status, steps = run_with_viewer(lib, h, model, data)
+            timing = None
+        elif args.profile:
+            status, steps, timing = run_profiled(lib, h, model, data)
+        else:
+            status, steps = run(lib, h, model, data)
+            timing = None
+        check(status)
+        check(lib.touchdown_mujoco_finish(h, os.path.join(args.out, "summary.json").encode()))
+        if timing is not None:
+            print(json.dumps(timing))
+    finally:
+        lib.touchdown_mujoco_close(h)
+
+
+def run(lib, h, model, data):
+    """The plain loop: as little Python per step as the split step allows."""
+    step1, step2, advance = mujoco.mj_step1, mujoco.mj_step2, lib.touchdown_mujoco_advance
+    steps = 0
+    while True:
+        step1(model, data)
+        status = advance(h)
+        if status != 0:
+            return status, steps
+        step2(model, data)
+        steps += 1
+
+
+def run_profiled(lib, h, model, data):
+    """The loop with a clock around each call; the clock's own cost is measured and removed."""
+    clock = time.perf_counter_ns
+    step1, step2, advance = mujoco.mj_step1, mujoco.mj_step2, lib.touchdown_mujoco_advance
+    reads = 100000
+    t0 = clock()
+    for _ in range(reads):
+        clock()
+    per_read = (clock() - t0) / reads
+    t_mujoco = t_rust = 0
+    steps = 0
+    start = clock()
+    while True:
+        a = clock()
+        step1(model, data)
+        b = clock()
+        status = advance(h)
+        c = clock()
+        t_mujoco += b - a
+        t_rust += c - b
+        if status != 0:
+            break
+        a = clock()
+        step2(model, data)
+        t_mujoco += clock() - a
+        steps += 1
+    total = clock() - start
+    # Per step: 5 clock reads, of which about one is inside each of the 3 timed spans.
+    calls = steps + 1
+    t_mujoco -= per_read * (2 * calls)
+    t_rust -= per_read * calls
+    clocks = per_read * 5 * calls
+    python = total - t_mujoco - t_rust - clocks
+    return status, steps, {
+        "steps": steps,
+        "loop_s": (total - clocks) * 1e-9,
+        "mujoco_s": t_mujoco * 1e-9,
+        "rust_s": t_rust * 1e-9,
+        "python_s": python * 1e-9,
+        "per_step_us": {
+            "total": (total - clocks) * 1e-3 / max(steps, 1),
+            "mujoco": t_mujoco * 1e-3 / max(steps, 1),
+            "rust": t_rust * 1e-3 / max(steps, 1),
+            "python": python * 1e-3 / max(steps, 1),
+        },
+    }
+
+
+def run_with_viewer(lib, h, model, data):
+    """The loop with MuJoCo's passive viewer, slowed so that 1 s of landing takes 20 s."""
+    try:
+        import mujoco.viewer
+    except ImportError as e:
+        fail(
+            f"the viewer needs the full `mujoco` package or `glfw` in {sys.executable} ({e}); "
+            "see docs/engines.md, 'Watching the law-driven run'",
+            2,
+        )
+    slow = 20.0
+    frame = 1.0 / 60.0
+    steps = 0
+    with mujoco.viewer.launch_passive(model, data) as viewer:
+        wall = time.perf_counter()
+        while viewer.is_running():
+            mujoco.mj_step1(model, data)
+            status = lib.touchdown_mujoco_advance(h)
+            if status != 0:
+                break
+            mujoco.mj_step2(model, data)
+            steps += 1
+            if data.time * slow >= time.perf_counter() - wall + frame:
+                viewer.sync()
+                time.sleep(frame)
+        else:
+            status = 1
+        while viewer.is_running():
+            viewer.sync()
+            time.sleep(frame)
+    return status, steps
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
