@@ -31,6 +31,24 @@ pub fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)
 }
 
+/// The file names of the nine validation landings under `scenarios/` (the eight Table I
+/// landings and the figure 25-26 landing), sorted.
+pub fn validation_landings() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(scenario(""))
+        .expect("scenarios/ is readable")
+        .map(|e| {
+            e.expect("a directory entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .filter(|n| n.starts_with("table-i-") || n.starts_with("fig-25-26"))
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 9, "{names:?}");
+    names
+}
+
 /// Area under a virgin load-stroke curve from 0 to x (J): work of monotonic loading.
 fn area(curve: &LoadStroke, x: f64) -> f64 {
     if x <= 0.0 {

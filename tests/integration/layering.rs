@@ -1,4 +1,5 @@
-//! Crate layers: scenario format → force laws → engines (never depending on each other) →
+//! Crate layers: scenario format → force laws, record → multibody bookkeeping → engines (never
+//! depending on each other) →
 //! comparison → CLI. Every workspace crate must be listed here; a new crate or a new internal
 //! dependency that breaks the layers fails this test.
 
@@ -10,18 +11,35 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("touchdown-laws", &["touchdown-scenario"]),
     // What every engine reports (summary, history sample, stability criteria).
     ("touchdown-record", &["touchdown-scenario"]),
-    // Engines: scenario, laws and record only; never another engine.
+    // What the multibody engines share around their own stepping (strut laws at a multibody
+    // gear state, bookkeeping).
+    (
+        "touchdown-multibody",
+        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
+    ),
+    // Engines: scenario, laws, record (and multibody for the multibody engines) only; never
+    // another engine.
     (
         "touchdown-core",
         &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
     ),
     (
         "touchdown-rapier",
-        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
+        &[
+            "touchdown-scenario",
+            "touchdown-laws",
+            "touchdown-record",
+            "touchdown-multibody",
+        ],
     ),
     (
         "touchdown-mujoco",
-        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
+        &[
+            "touchdown-scenario",
+            "touchdown-laws",
+            "touchdown-record",
+            "touchdown-multibody",
+        ],
     ),
     // Comparison level: runs engines, never reached by them.
     (

@@ -11,7 +11,7 @@ use touchdown_mujoco::landing::{GearIndex, MjArrays, ModelSizes};
 use touchdown_mujoco::{Launch, MujocoError, MujocoLanding};
 use touchdown_record::{Outcome, Summary};
 use touchdown_scenario::{frames, Scenario};
-use touchdown_tests::{analytic_drop_stroke, python, root, scenario};
+use touchdown_tests::{analytic_drop_stroke, python, root, scenario, validation_landings};
 
 /// A landing on the MuJoCo engine, end to end through the Python runner.
 fn mujoco(path: &Path) -> Summary {
@@ -153,13 +153,6 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
 
 #[test]
 fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier() {
-    let mut names: Vec<String> = std::fs::read_dir(scenario(""))
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with("table-i-") || n.starts_with("fig-25-26"))
-        .collect();
-    names.sort();
-    assert_eq!(names.len(), 9, "{names:?}");
     // The landings on which the multibody gear and the report's massless gear agree
     // (docs/engines.md, "Where the rebuilds part from the core"): the fast ones.
     let fast = [
@@ -168,7 +161,7 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
         "table-i-2-2-vv10.toml",
         "table-i-1-2-1-vv13.toml",
     ];
-    for name in names {
+    for name in validation_landings() {
         let path = scenario(&name);
         let sc = Scenario::load(&path).unwrap();
         let core = touchdown_core::run(&sc).unwrap();

@@ -7,7 +7,7 @@ use touchdown_core::Simulation;
 use touchdown_rapier::{RapierError, RapierSimulation};
 use touchdown_record::Sample;
 use touchdown_scenario::{frames, Scenario};
-use touchdown_tests::scenario;
+use touchdown_tests::{scenario, validation_landings};
 
 /// The history of a landing on one engine, one sample per step (a template sample sized for
 /// the scenario's legs, then the samples).
@@ -127,14 +127,7 @@ fn engine_settings_are_checked_like_file_fields() {
 
 #[test]
 fn every_table_i_landing_closes_its_balance_and_agrees_on_the_outcome() {
-    let mut names: Vec<String> = std::fs::read_dir(scenario(""))
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with("table-i-") || n.starts_with("fig-25-26"))
-        .collect();
-    names.sort();
-    assert_eq!(names.len(), 9, "{names:?}");
-    for name in names {
+    for name in validation_landings() {
         let sc = Scenario::load(scenario(&name)).unwrap();
         let core = touchdown_core::run(&sc).unwrap();
         let rapier = touchdown_rapier::run(&sc).unwrap_or_else(|e| panic!("{name}: {e}"));

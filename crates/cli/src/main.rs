@@ -217,35 +217,28 @@ fn run_landing(
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
-    let recorder = || -> Result<Option<history::Recorder>> {
-        match out {
-            Some(dir) => Ok(Some(history::Recorder(History::create(
-                &dir.join("history.csv"),
-                sc.legs.len(),
-            )?))),
-            None => Ok(None),
-        }
+    // The MuJoCo runner writes its own history.csv.
+    let mut recorder = match out {
+        Some(dir) if engine != Engine::Mujoco => Some(history::Recorder(History::create(
+            &dir.join("history.csv"),
+            sc.legs.len(),
+        )?)),
+        _ => None,
     };
     let summary = match engine {
         Engine::Core => {
             let mut sim = touchdown_core::Simulation::new(&sc)?;
-            let mut rec = recorder()?;
-            let summary = match rec.as_mut() {
+            match recorder.as_mut() {
                 Some(r) => sim.run(r)?,
                 None => sim.run(&mut ())?,
-            };
-            rec.map(|r| r.0.finish()).transpose()?;
-            summary
+            }
         }
         Engine::Rapier => {
             let mut sim = touchdown_rapier::RapierSimulation::new(&sc)?;
-            let mut rec = recorder()?;
-            let summary = match rec.as_mut() {
+            match recorder.as_mut() {
                 Some(r) => sim.run(r)?,
                 None => sim.run(&mut ())?,
-            };
-            rec.map(|r| r.0.finish()).transpose()?;
-            summary
+            }
         }
         Engine::Mujoco => {
             let launch = touchdown_mujoco::Launch::locate()?;
@@ -260,6 +253,9 @@ fn run_landing(
             }
         }
     };
+    if let Some(r) = recorder {
+        r.0.finish()?;
+    }
     if let Some(dir) = out {
         std::fs::write(
             dir.join("scenario.resolved.toml"),

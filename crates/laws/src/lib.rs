@@ -9,13 +9,11 @@
 //! | [`honeycomb`] | Figs. 8, 9; eqs. 35-39 | crushable honeycomb load-stroke with elastic onset, plateaus, rebound (backoff) and permanent set; trunnion-spring modification |
 //! | [`viscous`] | eq. 49 | stroking-velocity force `C·sgn(v)·|v|^γ` |
 //! | [`bearing`] | eqs. 59-63 | primary-strut bearing normal loads and Coulomb bearing friction |
-//! | [`multibody`] | eqs. 49-63 | the strut laws at one state of a multibody gear (explicit forces, plateau and bearing-friction bounds), for the multibody engines |
 //! | [`sliding`] | eqs. 85, 96 | Coulomb sliding friction on the footpad bottom |
 
 pub mod bearing;
 pub mod gear;
 pub mod honeycomb;
-pub mod multibody;
 pub mod sliding;
 pub mod viscous;
 

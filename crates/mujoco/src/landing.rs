@@ -18,16 +18,10 @@
 
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
-use touchdown_laws::multibody::{
-    check_explicit_timestep, strut_forces, StrutForces, StrutKinematics,
+use touchdown_multibody::{
+    check_explicit_timestep, Fault, GearBook, StrutKinematics, VehicleState,
 };
-use touchdown_laws::{GearLaws, GearMemory};
-use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, History, PadView, Progress, Sample,
-    StabilityTracker, Summary,
-};
-use touchdown_scenario::frames;
-use touchdown_scenario::model::{Leg, PadSurface, Stability};
+use touchdown_record::{EnergyReport, History, Sample, Summary};
 use touchdown_scenario::Scenario;
 
 /// Where one gear's quantities are in MuJoCo's arrays: ids and addresses the runner resolves
@@ -120,50 +114,16 @@ pub struct MjArrays<'a> {
     pub dof_frictionloss: &'a mut [f64],
 }
 
-/// Contact state of one footpad.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct PadContact {
-    in_contact: bool,
-    first_contact: Option<f64>,
-}
-
-/// The vehicle's state read from `qpos`/`qvel`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Vehicle {
-    /// Centre of mass, m (inertial).
-    position: Vector3<f64>,
-    /// Body → inertial rotation.
-    rotation: Matrix3<f64>,
-    /// Velocity, m/s (inertial).
-    velocity: Vector3<f64>,
-    /// Angular velocity, rad/s, body axes.
-    omega: Vector3<f64>,
-}
-
-impl Default for Vehicle {
-    fn default() -> Vehicle {
-        Vehicle {
-            position: Vector3::zeros(),
-            rotation: Matrix3::identity(),
-            velocity: Vector3::zeros(),
-            omega: Vector3::zeros(),
-        }
-    }
-}
-
 /// A landing driven on MuJoCo's arrays (see the module documentation).
 pub struct MujocoLanding {
     name: String,
-    legs: Vec<Leg>,
-    surfaces: Vec<PadSurface>,
-    laws: GearLaws,
+    /// The gear's laws, memories, kinematics, contacts, ledger, stability and extremes.
+    book: GearBook,
     index: Vec<GearIndex>,
     sizes: ModelSizes,
     mass: f64,
     inertia: Matrix3<f64>,
-    gravity: Vector3<f64>,
     contact_radius: Vec<f64>,
-    criteria: Stability,
     dt: f64,
     t_end: f64,
     energy_tolerance: f64,
@@ -172,27 +132,19 @@ pub struct MujocoLanding {
     started: bool,
     t: f64,
     steps: u64,
-    vehicle: Vehicle,
+    vehicle: VehicleState,
+    /// Angular velocity in body axes, rad/s (MuJoCo's free-joint rates).
+    omega_body: Vector3<f64>,
     /// Vehicle velocity before the current step, m/s.
     old_velocity: Vector3<f64>,
-    memory: Vec<GearMemory>,
-    kin: Vec<StrutKinematics>,
-    previous: Vec<StrutKinematics>,
     /// Footpad contact-point velocities at this state and before the last step, m/s.
     pad_velocity: Vec<Vector3<f64>>,
     old_pad_velocity: Vec<Vector3<f64>>,
-    forces: Vec<StrutForces>,
-    contacts: Vec<PadContact>,
-    ledger: EnergyLedger,
     /// Vehicle position at touchdown, m.
     position0: Vector3<f64>,
     /// Kinetic plus potential energy of the gear links (MuJoCo's total minus the vehicle's), J.
     gear_energy: f64,
     gear_energy0: f64,
-    max_penetration: f64,
-    stability: StabilityTracker,
-    extremes: Extremes,
-    pad_views: Vec<PadView>,
     history: Option<History>,
 }
 
@@ -218,8 +170,8 @@ impl MujocoLanding {
         mujoco_version: &str,
         history: Option<History>,
     ) -> Result<MujocoLanding, MujocoError> {
-        let laws = GearLaws::from_scenario(sc)?;
-        check_explicit_timestep(sc, &laws, sc.mujoco.timestep).map_err(|message| {
+        let book = GearBook::new(sc)?;
+        check_explicit_timestep(sc, &book.laws, sc.mujoco.timestep).map_err(|message| {
             MujocoError::Unsupported {
                 file: sc.file_of("engines.mujoco.timestep").to_string(),
                 field: "engines.mujoco.timestep".into(),
@@ -256,19 +208,14 @@ impl MujocoLanding {
             check("velocity sensor", i, g.pad_velocity + 2, sizes.nsensordata)?;
             check("rate sensor", i, g.pad_rate + 2, sizes.nsensordata)?;
         }
-        let gravity = frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         Ok(MujocoLanding {
             name: sc.file.name.clone(),
-            legs: sc.legs.clone(),
-            surfaces: sc.surface.pads.clone(),
-            laws,
+            book,
             index,
             sizes,
             mass: sc.vehicle.mass,
             inertia: sc.vehicle.inertia,
-            gravity,
             contact_radius: sc.legs.iter().map(|l| sc.links.contact_radius(l)).collect(),
-            criteria: sc.stability.clone(),
             dt: sc.mujoco.timestep,
             t_end: sc.integrator.t_end,
             energy_tolerance: sc.integrator.energy_tolerance,
@@ -276,23 +223,19 @@ impl MujocoLanding {
             started: false,
             t: 0.0,
             steps: 0,
-            vehicle: Vehicle::default(),
+            vehicle: VehicleState {
+                position: Vector3::zeros(),
+                rotation: Matrix3::identity(),
+                velocity: Vector3::zeros(),
+                angular_velocity: Vector3::zeros(),
+            },
+            omega_body: Vector3::zeros(),
             old_velocity: Vector3::zeros(),
-            memory: vec![GearMemory::default(); n],
-            kin: vec![StrutKinematics::default(); n],
-            previous: vec![StrutKinematics::default(); n],
             pad_velocity: vec![Vector3::zeros(); n],
             old_pad_velocity: vec![Vector3::zeros(); n],
-            forces: vec![StrutForces::default(); n],
-            contacts: vec![PadContact::default(); n],
-            ledger: EnergyLedger::default(),
             position0: Vector3::zeros(),
             gear_energy: 0.0,
             gear_energy0: 0.0,
-            max_penetration: 0.0,
-            stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
-            extremes: Extremes::new(n),
-            pad_views: vec![PadView::default(); n],
             history,
         })
     }
@@ -310,46 +253,36 @@ impl MujocoLanding {
     /// Whether the run has ended (a decision, if the scenario terminates on one, or the end
     /// time).
     pub fn finished(&self) -> bool {
-        self.t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
+        self.t >= self.t_end * (1.0 - 1e-12) || self.book.stability.terminates()
     }
 
     /// One call per step, between `mj_step1` and `mj_step2` (module documentation). Returns
     /// whether the run has ended (then nothing is written and the runner stops stepping).
     pub fn advance(&mut self, mj: &mut MjArrays) -> Result<bool, MujocoError> {
         self.check_warnings(mj)?;
+        self.book.begin_step();
         self.read_state(mj);
         if self.started {
             self.t += self.dt;
             self.steps += 1;
-            for i in 0..self.legs.len() {
-                let w = self.forces[i].work(&self.previous[i], &self.kin[i]);
-                self.ledger.honeycomb += w.honeycomb;
-                self.ledger.viscous += w.viscous;
-                self.ledger.bearing += w.bearing;
-                let k = &self.kin[i];
-                self.laws.commit(k.c, k.s, &mut self.memory[i]);
-            }
+            self.book.book_struts();
             self.book_contacts(mj);
         } else {
             self.started = true;
             self.position0 = self.vehicle.position;
             self.gear_energy0 = self.gear_energy;
             let ke = self.kinetic_energy();
-            self.stability =
-                StabilityTracker::new(&self.criteria, self.gravity, self.legs.len(), ke);
+            self.book.start(ke);
         }
-        self.evaluate()?;
+        self.book.evaluate().map_err(|f| self.diverged(f))?;
         self.check_divergence()?;
-        self.update_stability();
+        let ke = self.kinetic_energy();
+        let old = (self.steps > 0).then_some(&self.old_velocity);
+        self.book.update_stability(self.t, &self.vehicle, old, ke);
         if self.steps > 0 {
-            for (i, k) in self.kin.iter().enumerate() {
-                self.extremes.update_leg(i, k.c, k.s);
-            }
-            let q = (self.vehicle.rotation * self.vehicle.omega).x;
-            self.extremes.update_pitch_rate(self.t, q);
+            self.book.update_extremes(self.t, &self.vehicle);
         }
         self.record();
-        self.previous.copy_from_slice(&self.kin);
         self.old_pad_velocity.copy_from_slice(&self.pad_velocity);
         self.old_velocity = self.vehicle.velocity;
         if self.finished() {
@@ -366,11 +299,11 @@ impl MujocoLanding {
             .zip(MUJOCO_WARNINGS)
             .find(|(n, _)| **n > 0)
         {
-            Some((n, what)) => Err(self.diverged(
-                format!("MuJoCo warned: {what} ({n} times); the step is not trustworthy"),
-                "MuJoCo solver",
-                None,
-            )),
+            Some((n, what)) => Err(self.diverged(Fault {
+                law: "MuJoCo solver",
+                leg: None,
+                message: format!("MuJoCo warned: {what} ({n} times); the step is not trustworthy"),
+            })),
             None => Ok(()),
         }
     }
@@ -379,18 +312,20 @@ impl MujocoLanding {
         let q = mj.qpos;
         let v = mj.qvel;
         let quat = UnitQuaternion::from_quaternion(Quaternion::new(q[3], q[4], q[5], q[6]));
-        self.vehicle = Vehicle {
+        let rotation = quat.to_rotation_matrix().into_inner();
+        self.omega_body = Vector3::new(v[3], v[4], v[5]);
+        self.vehicle = VehicleState {
             position: Vector3::new(q[0], q[1], q[2]),
-            rotation: quat.to_rotation_matrix().into_inner(),
+            rotation,
             velocity: Vector3::new(v[0], v[1], v[2]),
-            omega: Vector3::new(v[3], v[4], v[5]),
+            angular_velocity: rotation * self.omega_body,
         };
         let point = |a: &[f64], id: i32| {
             let k = 3 * id as usize;
             Vector3::new(a[k], a[k + 1], a[k + 2])
         };
         let sensor = |adr: i32| point(&mj.sensordata[adr as usize..], 0);
-        for (i, (g, leg)) in self.index.iter().zip(&self.legs).enumerate() {
+        for (i, (g, leg)) in self.index.iter().zip(&self.book.legs).enumerate() {
             let b2 = point(mj.xpos, g.outer);
             let footpad = point(mj.xpos, g.footpad);
             let point1 = point(mj.site_xpos, g.point1);
@@ -410,14 +345,14 @@ impl MujocoLanding {
                 k.s[j] = mj.ten_length[t] - l0;
                 k.s_dot[j] = mj.ten_velocity[t];
             }
-            self.kin[i] = k;
+            self.book.kin[i] = k;
             // The contact point: the bottom of the footpad's contact sphere.
             let r = Vector3::new(0.0, 0.0, -self.contact_radius[i]);
             self.pad_velocity[i] = sensor(g.pad_velocity) + sensor(g.pad_rate).cross(&r);
         }
         let total = mj.energy[0] + mj.energy[1];
-        self.gear_energy =
-            total - self.kinetic_energy() + self.mass * self.gravity.dot(&self.vehicle.position);
+        self.gear_energy = total - self.kinetic_energy()
+            + self.mass * self.book.gravity().dot(&self.vehicle.position);
     }
 
     /// Contact states, penetration and the work of the contact forces over the last step:
@@ -435,37 +370,16 @@ impl MujocoLanding {
             );
             let impulse = force * self.dt;
             let v_mean = 0.5 * (self.old_pad_velocity[i] + self.pad_velocity[i]);
-            let normal_work = impulse.z * v_mean.z;
-            let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
-            self.ledger.events += normal_work;
-            if self.surfaces[i].locked() {
-                self.ledger.events += lateral_work;
-            } else {
-                self.ledger.sliding -= lateral_work;
-            }
             // The contact sphere is centred on BP; its plane is lowered by its radius.
-            let depth = self.surfaces[i].plane() - self.kin[i].footpad.z;
-            self.max_penetration = self.max_penetration.max(depth);
-            let c = &mut self.contacts[i];
-            c.in_contact = found > 0.0 && force.z > 0.0;
-            if c.in_contact && c.first_contact.is_none() {
-                c.first_contact = Some(self.t);
-            }
+            let depth = self.book.surfaces[i].plane() - self.book.kin[i].footpad.z;
+            self.book
+                .book_contact(i, self.t, &impulse, &v_mean, depth, found > 0.0);
         }
-    }
-
-    /// Evaluates the laws at the current kinematics with the committed memories.
-    fn evaluate(&mut self) -> Result<(), MujocoError> {
-        for i in 0..self.legs.len() {
-            self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
-                .map_err(|e| self.diverged(e.to_string(), "bearing friction", Some(i)))?;
-        }
-        Ok(())
     }
 
     /// Writes the forces for the coming step (overwriting the last step's).
     fn apply(&self, mj: &mut MjArrays) {
-        for (g, f) in self.index.iter().zip(&self.forces) {
+        for (g, f) in self.index.iter().zip(&self.book.forces) {
             // A compression-positive strut force pushes the footpad away: it extends q.
             mj.ctrl[g.primary as usize] = f.honeycomb + f.viscous;
             // A tension pulls the tendon shorter.
@@ -476,70 +390,34 @@ impl MujocoLanding {
         }
     }
 
-    fn update_stability(&mut self) {
-        for i in 0..self.legs.len() {
-            self.pad_views[i] = PadView {
-                position: self.kin[i].footpad,
-                in_contact: self.contacts[i].in_contact,
-                touched: self.contacts[i].first_contact.is_some(),
-            };
-        }
-        let ke = self.kinetic_energy();
-        let old = self.steps.gt(&0).then_some(&self.old_velocity);
-        self.stability.update(
-            self.t,
-            &self.vehicle.position,
-            &self.vehicle.velocity,
-            old,
-            ke,
-            &self.pad_views,
-        );
-    }
-
     /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
     pub fn kinetic_energy(&self) -> f64 {
-        let v = &self.vehicle;
-        0.5 * self.mass * v.velocity.norm_squared() + 0.5 * v.omega.dot(&(self.inertia * v.omega))
+        let w = &self.omega_body;
+        0.5 * self.mass * self.vehicle.velocity.norm_squared() + 0.5 * w.dot(&(self.inertia * w))
     }
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        let stored: f64 = self
-            .kin
-            .iter()
-            .zip(&self.memory)
-            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
-            .sum();
-        let potential = -self.mass * self.gravity.dot(&(self.vehicle.position - self.position0));
-        self.ledger.report(
-            self.stability.initial_kinetic_energy(),
+        let potential = -self.mass
+            * self
+                .book
+                .gravity()
+                .dot(&(self.vehicle.position - self.position0));
+        self.book.energy(
             self.kinetic_energy(),
             potential,
             self.gear_energy - self.gear_energy0,
-            stored,
         )
     }
 
     /// The summary at the current state.
     pub fn summary(&self) -> Summary {
-        let mut settings = self.settings.clone();
-        settings.insert(
-            "max_footpad_penetration_m".into(),
-            self.max_penetration.into(),
-        );
-        let progress = Progress {
-            t: self.t,
-            steps: self.steps,
-            force_evaluations: self.steps,
-            first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
-        };
-        Summary::new(
+        self.book.summary(
             "mujoco",
             &self.name,
-            settings,
-            progress,
-            &self.stability,
-            &self.extremes,
+            self.settings.clone(),
+            self.t,
+            self.steps,
             self.energy(),
         )
     }
@@ -554,29 +432,7 @@ impl MujocoLanding {
 
     /// Writes the current state into `out` (a sample made for as many legs).
     pub fn sample(&self, out: &mut Sample) {
-        let v = &self.vehicle;
-        out.t = self.t;
-        out.position = v.position;
-        out.velocity = v.velocity;
-        out.theta = frames::euler_from_t_bi(&v.rotation);
-        out.omega = v.omega;
-        out.pitch_rate = (v.rotation * v.omega).x;
-        for (i, slot) in out.legs.iter_mut().enumerate() {
-            let (k, f, c) = (&self.kin[i], &self.forces[i], &self.contacts[i]);
-            slot.primary_stroke = k.c;
-            slot.primary_force = f.primary(k.c_dot);
-            slot.secondary_stroke = k.s;
-            slot.secondary_force = f.secondary();
-            slot.pad_position = k.footpad;
-            slot.contact = match (c.in_contact, c.first_contact) {
-                (true, _) => 1,
-                (false, Some(_)) => 2,
-                (false, None) => 0,
-            };
-        }
-        out.stability_distance
-            .copy_from_slice(self.stability.distances());
-        out.energy = self.energy();
+        self.book.sample(out, self.t, &self.vehicle, self.energy());
     }
 
     fn record(&mut self) {
@@ -587,48 +443,17 @@ impl MujocoLanding {
         }
     }
 
-    fn diverged(&self, message: String, law: &str, leg: Option<usize>) -> MujocoError {
-        let v = &self.vehicle;
-        let (x, u, w) = (v.position, v.velocity, v.rotation * v.omega);
-        MujocoError::Diverged(Divergence {
-            time: self.t,
-            law: match leg {
-                Some(i) => format!("{law} (leg {})", i + 1),
-                None => law.to_string(),
-            },
-            message,
-            state: format!(
-                "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
-                x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
-            ),
-        })
+    fn diverged(&self, fault: Fault) -> MujocoError {
+        MujocoError::Diverged(fault.at(self.t, &self.vehicle))
     }
 
     /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
     /// scenario's tolerance.
     fn check_divergence(&self) -> Result<(), MujocoError> {
-        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
-            let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm() + k.axis.norm();
-            let bad = f
-                .non_finite()
-                .or_else(|| (!geometry.is_finite()).then_some(("gear geometry", geometry)));
-            if let Some((law, value)) = bad {
-                return Err(self.diverged(format!("non-finite value {value}"), law, Some(i)));
-            }
-        }
-        let v = &self.vehicle;
-        let state = v.position.norm() + v.velocity.norm() + v.omega.norm() + self.gear_energy;
-        if !state.is_finite() {
-            return Err(self.diverged("non-finite body state".into(), "equations of motion", None));
-        }
-        let e = self.energy();
-        self.ledger
-            .check_balance(
-                &e,
-                self.energy_tolerance,
-                "time step too large for the stiffest strut law, or contact too soft?",
-            )
-            .map_err(|message| self.diverged(message, "energy balance", None))
+        let finite = self.vehicle.is_finite() && self.gear_energy.is_finite();
+        self.book
+            .check(&self.energy(), self.energy_tolerance, finite)
+            .map_err(|f| self.diverged(f))
     }
 }
 

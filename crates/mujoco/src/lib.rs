@@ -1,5 +1,5 @@
 //! The TN D-7045 lander as a MuJoCo model (MJCF), generated from a scenario, and the runtime that
-//! drives it from Python with the shared force laws (docs/engines.md, "The MuJoCo export").
+//! drives it from Python with the shared force laws (docs/engines.md, "The MuJoCo engine").
 //!
 //! | module | content |
 //! |---|---|

@@ -17,16 +17,9 @@ use crate::struts;
 use crate::RapierError;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_laws::multibody::{
-    check_explicit_timestep, strut_forces, StrutForces, StrutKinematics,
-};
-use touchdown_laws::{GearLaws, GearMemory};
-use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
-    Summary,
-};
-use touchdown_scenario::frames;
-use touchdown_scenario::model::{Leg, PadSurface};
+use touchdown_laws::GearLaws;
+use touchdown_multibody::{check_explicit_timestep, Fault, GearBook, VehicleState};
+use touchdown_record::{EnergyReport, Sample, Summary};
 use touchdown_scenario::Scenario;
 
 /// Something that watches a landing after every step (and at t = 0).
@@ -39,62 +32,39 @@ impl Observer for () {
     fn observe(&mut self, _: &RapierSimulation) {}
 }
 
-/// Contact state of one footpad.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct PadContact {
-    in_contact: bool,
-    first_contact: Option<f64>,
-}
-
 /// A landing simulated on the rapier multibody.
 pub struct RapierSimulation {
     name: String,
     assembly: Assembly,
-    legs: Vec<Leg>,
-    surfaces: Vec<PadSurface>,
-    laws: GearLaws,
+    /// The gear's laws, memories, kinematics, contacts, ledger, stability and extremes.
+    book: GearBook,
     /// Vehicle, then per gear outer link and footpad: handle, mass and inertia.
     bodies: Vec<(RigidBodyHandle, Inertia)>,
-    gravity: Vector3<f64>,
     t_end: f64,
     energy_tolerance: f64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     t: f64,
     steps: u64,
-    memory: Vec<GearMemory>,
-    kin: Vec<StrutKinematics>,
-    /// Kinematics before the current step (reused every step).
-    previous: Vec<StrutKinematics>,
     /// Footpad contact-point velocities before the current step, m/s (reused every step).
     pad_velocity: Vec<Vector3<f64>>,
-    forces: Vec<StrutForces>,
-    contacts: Vec<PadContact>,
-    ledger: EnergyLedger,
     /// Vehicle and link positions at touchdown (for potential energies).
     position0: Vec<Vector3<f64>>,
     /// Kinetic energy of the gear links at touchdown, J.
     links_kinetic0: f64,
-    max_penetration: f64,
-    stability: StabilityTracker,
-    extremes: Extremes,
-    pad_views: Vec<PadView>,
 }
 
 impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RapierError> {
-        let laws = GearLaws::from_scenario(scenario)?;
+        let book = GearBook::new(scenario)?;
         let assembly = assembly::build(scenario)?;
-        check_timestep(scenario, &laws)?;
+        check_timestep(scenario, &book.laws)?;
         let n = scenario.legs.len();
-        let gravity = frames::gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
         let settings = settings(scenario, &assembly.masses);
         let mut sim = RapierSimulation {
             name: scenario.file.name.clone(),
-            legs: scenario.legs.clone(),
-            surfaces: scenario.surface.pads.clone(),
-            laws,
+            book,
             bodies: std::iter::once((
                 assembly.vehicle,
                 Inertia {
@@ -109,33 +79,22 @@ impl RapierSimulation {
                     .flat_map(|g| [(g.outer, g.outer_inertia), (g.footpad, g.footpad_inertia)]),
             )
             .collect(),
-            gravity,
             t_end: scenario.integrator.t_end,
             energy_tolerance: scenario.integrator.energy_tolerance,
             settings,
             t: 0.0,
             steps: 0,
-            memory: vec![GearMemory::default(); n],
-            kin: vec![StrutKinematics::default(); n],
-            previous: vec![StrutKinematics::default(); n],
             pad_velocity: vec![Vector3::zeros(); n],
-            forces: vec![StrutForces::default(); n],
-            contacts: vec![PadContact::default(); n],
-            ledger: EnergyLedger::default(),
             position0: Vec::new(),
             links_kinetic0: 0.0,
-            max_penetration: 0.0,
-            stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
-            extremes: Extremes::new(n),
-            pad_views: vec![PadView::default(); n],
             assembly,
         };
         sim.position0 = sim.body_positions();
         sim.links_kinetic0 = sim.gear_energy();
-        sim.stability =
-            StabilityTracker::new(&scenario.stability, gravity, n, sim.kinetic_energy());
+        let ke = sim.kinetic_energy();
+        sim.book.start(ke);
         sim.read_kinematics();
-        sim.evaluate()?;
+        sim.book.evaluate().map_err(|f| sim.diverged(f))?;
         sim.update_stability(None);
         Ok(sim)
     }
@@ -152,7 +111,7 @@ impl RapierSimulation {
 
     /// Whether the run has ended.
     pub fn finished(&self) -> bool {
-        self.t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
+        self.t >= self.t_end * (1.0 - 1e-12) || self.book.stability.terminates()
     }
 
     /// Current time, s.
@@ -167,7 +126,7 @@ impl RapierSimulation {
 
     /// Deepest footpad penetration into its plane so far, m.
     pub fn max_penetration(&self) -> f64 {
-        self.max_penetration
+        self.book.max_penetration
     }
 
     fn state(&self, body: RigidBodyHandle) -> BodyState {
@@ -197,7 +156,8 @@ impl RapierSimulation {
         inertia.kinetic_energy(&s)
             - inertia.mass
                 * self
-                    .gravity
+                    .book
+                    .gravity()
                     .dot(&(s.point(&Vector3::zeros()) - self.position0[i]))
     }
 
@@ -211,88 +171,45 @@ impl RapierSimulation {
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        let stored: f64 = self
-            .kin
-            .iter()
-            .zip(&self.memory)
-            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
-            .sum();
         let kinetic = self.kinetic_energy();
-        self.ledger.report(
-            self.stability.initial_kinetic_energy(),
-            kinetic,
-            self.body_energy(0) - kinetic,
-            self.gear_energy(),
-            stored,
-        )
+        self.book
+            .energy(kinetic, self.body_energy(0) - kinetic, self.gear_energy())
     }
 
     /// The summary at the current state.
     pub fn summary(&self) -> Summary {
-        let mut settings = self.settings.clone();
-        settings.insert(
-            "max_footpad_penetration_m".into(),
-            self.max_penetration.into(),
-        );
-        let progress = Progress {
-            t: self.t,
-            steps: self.steps,
-            force_evaluations: self.steps,
-            first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
-        };
-        Summary::new(
+        self.book.summary(
             "rapier",
             &self.name,
-            settings,
-            progress,
-            &self.stability,
-            &self.extremes,
+            self.settings.clone(),
+            self.t,
+            self.steps,
             self.energy(),
         )
     }
 
+    /// The vehicle's state.
+    fn vehicle_state(&self) -> VehicleState {
+        let v = self.vehicle();
+        VehicleState {
+            position: v.point(&Vector3::zeros()),
+            rotation: v.rotation(),
+            velocity: v.linvel,
+            angular_velocity: v.angvel,
+        }
+    }
+
     /// Writes the current state into `out` (a sample made for as many legs).
     pub fn sample(&self, out: &mut Sample) {
-        let v = self.vehicle();
-        let r = v.rotation();
-        let w = v.angvel;
-        out.t = self.t;
-        out.position = v.point(&Vector3::zeros());
-        out.velocity = v.linvel;
-        out.theta = frames::euler_from_t_bi(&r);
-        out.omega = r.transpose() * w;
-        out.pitch_rate = w.x;
-        for (i, slot) in out.legs.iter_mut().enumerate() {
-            let (k, f, c) = (&self.kin[i], &self.forces[i], &self.contacts[i]);
-            slot.primary_stroke = k.c;
-            slot.primary_force = f.primary(k.c_dot);
-            slot.secondary_stroke = k.s;
-            slot.secondary_force = f.secondary();
-            slot.pad_position = k.footpad;
-            slot.contact = match (c.in_contact, c.first_contact) {
-                (true, _) => 1,
-                (false, Some(_)) => 2,
-                (false, None) => 0,
-            };
-        }
-        out.stability_distance
-            .copy_from_slice(self.stability.distances());
-        out.energy = self.energy();
+        self.book
+            .sample(out, self.t, &self.vehicle_state(), self.energy());
     }
 
     fn read_kinematics(&mut self) {
-        for (i, (g, leg)) in self.assembly.gears.iter().zip(&self.legs).enumerate() {
-            self.kin[i] = struts::kinematics(&self.assembly.world, self.assembly.vehicle, g, leg);
+        let b = &mut self.book;
+        for (i, (g, leg)) in self.assembly.gears.iter().zip(&b.legs).enumerate() {
+            b.kin[i] = struts::kinematics(&self.assembly.world, self.assembly.vehicle, g, leg);
         }
-    }
-
-    /// Evaluates the laws at the current kinematics (nothing applied yet).
-    fn evaluate(&mut self) -> Result<(), RapierError> {
-        for i in 0..self.legs.len() {
-            self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
-                .map_err(|e| self.diverged(e.to_string(), "bearing friction", Some(i)))?;
-        }
-        Ok(())
     }
 
     /// One fixed step (see the module documentation).
@@ -304,18 +221,18 @@ impl RapierSimulation {
             rb.reset_forces(false);
             rb.reset_torques(false);
         }
-        for i in 0..self.legs.len() {
+        for i in 0..self.book.legs.len() {
             let g = self.assembly.gears[i];
             struts::apply(
                 &mut self.assembly.world,
                 self.assembly.vehicle,
                 &g,
-                &self.kin[i],
-                &self.forces[i],
+                &self.book.kin[i],
+                &self.book.forces[i],
             );
         }
-        self.previous.copy_from_slice(&self.kin);
-        for i in 0..self.legs.len() {
+        self.book.begin_step();
+        for i in 0..self.book.legs.len() {
             self.pad_velocity[i] = self.contact_velocity(self.assembly.gears[i].footpad);
         }
         let old_velocity = self.vehicle().linvel;
@@ -323,23 +240,13 @@ impl RapierSimulation {
         self.t += dt;
         self.steps += 1;
         self.read_kinematics();
-        let steps = self.previous.iter().zip(&self.kin).zip(&self.forces);
-        for (((a, b), f), memory) in steps.zip(&mut self.memory) {
-            let w = f.work(a, b);
-            self.ledger.honeycomb += w.honeycomb;
-            self.ledger.viscous += w.viscous;
-            self.ledger.bearing += w.bearing;
-            self.laws.commit(b.c, b.s, memory);
-        }
+        self.book.book_struts();
         self.book_contacts();
-        self.evaluate()?;
+        self.book.evaluate().map_err(|f| self.diverged(f))?;
         self.check_divergence()?;
         self.update_stability(Some(&old_velocity));
-        for (i, k) in self.kin.iter().enumerate() {
-            self.extremes.update_leg(i, k.c, k.s);
-        }
-        let q = self.vehicle().angvel.x;
-        self.extremes.update_pitch_rate(self.t, q);
+        let v = self.vehicle_state();
+        self.book.update_extremes(self.t, &v);
         Ok(())
     }
 
@@ -385,67 +292,24 @@ impl RapierSimulation {
                 }
             }
             let v_mean = 0.5 * (self.pad_velocity[i] + self.contact_velocity(g.footpad));
-            let normal_work = impulse.z * v_mean.z;
-            let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
-            self.ledger.events += normal_work;
-            if self.surfaces[i].locked() {
-                self.ledger.events += lateral_work;
-            } else {
-                self.ledger.sliding -= lateral_work;
-            }
-            self.max_penetration = self.max_penetration.max(depth);
-            let c = &mut self.contacts[i];
-            c.in_contact = active && impulse.z > 0.0;
-            if c.in_contact && c.first_contact.is_none() {
-                c.first_contact = Some(self.t);
-            }
+            self.book
+                .book_contact(i, self.t, &impulse, &v_mean, depth, active);
         }
     }
 
     fn update_stability(&mut self, old_velocity: Option<&Vector3<f64>>) {
-        for i in 0..self.legs.len() {
-            self.pad_views[i] = PadView {
-                position: self.kin[i].footpad,
-                in_contact: self.contacts[i].in_contact,
-                touched: self.contacts[i].first_contact.is_some(),
-            };
-        }
         let ke = self.kinetic_energy();
-        let v = self.vehicle();
-        let (x, u) = (v.point(&Vector3::zeros()), v.linvel);
-        self.stability
-            .update(self.t, &x, &u, old_velocity, ke, &self.pad_views);
+        let v = self.vehicle_state();
+        self.book.update_stability(self.t, &v, old_velocity, ke);
     }
 
-    fn diverged(&self, message: String, law: &str, leg: Option<usize>) -> RapierError {
-        let v = self.vehicle();
-        let (x, u, w) = (v.point(&Vector3::zeros()), v.linvel, v.angvel);
-        RapierError::Diverged(Divergence {
-            time: self.t,
-            law: match leg {
-                Some(i) => format!("{law} (leg {})", i + 1),
-                None => law.to_string(),
-            },
-            message,
-            state: format!(
-                "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
-                x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
-            ),
-        })
+    fn diverged(&self, fault: Fault) -> RapierError {
+        RapierError::Diverged(fault.at(self.t, &self.vehicle_state()))
     }
 
     /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
     /// scenario's tolerance.
     fn check_divergence(&self) -> Result<(), RapierError> {
-        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
-            let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm();
-            let bad = f
-                .non_finite()
-                .or_else(|| (!geometry.is_finite()).then_some(("gear geometry", geometry)));
-            if let Some((law, value)) = bad {
-                return Err(self.diverged(format!("non-finite value {value}"), law, Some(i)));
-            }
-        }
         let finite = self.bodies.iter().all(|(h, _)| {
             let s = self.state(*h);
             s.pose.translation.is_finite()
@@ -454,17 +318,9 @@ impl RapierSimulation {
                     .chain(s.angvel.iter())
                     .all(|x| x.is_finite())
         });
-        if !finite {
-            return Err(self.diverged("non-finite body state".into(), "equations of motion", None));
-        }
-        let e = self.energy();
-        self.ledger
-            .check_balance(
-                &e,
-                self.energy_tolerance,
-                "time step too large for the stiffest strut law, or contact too soft?",
-            )
-            .map_err(|message| self.diverged(message, "energy balance", None))
+        self.book
+            .check(&self.energy(), self.energy_tolerance, finite)
+            .map_err(|f| self.diverged(f))
     }
 }
 

@@ -1,4 +1,4 @@
-//! The shared strut laws (`touchdown_laws::multibody`) applied to the rapier multibody's joints
+//! The shared strut laws (`touchdown_multibody::strut`) applied to the rapier multibody's joints
 //! and links.
 //!
 //! - Primary strut, along the prismatic joint: the honeycomb's elastic branches (onset, rebound,
@@ -15,7 +15,7 @@
 use crate::assembly::{body_state, to_na, to_rapier, GearBodies};
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_laws::multibody::{StrutForces, StrutKinematics};
+use touchdown_multibody::{StrutForces, StrutKinematics};
 use touchdown_scenario::model::Leg;
 
 /// Reads a gear's strokes and rates from the world.

@@ -11,8 +11,8 @@
 //! - secondary struts: massless two-force members between their trunnions on the vehicle and
 //!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
 
-use crate::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
 use nalgebra::Vector3;
+use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
 use touchdown_scenario::model::Leg;
 use touchdown_scenario::Scenario;
 
@@ -207,4 +207,43 @@ pub fn check_explicit_timestep(sc: &Scenario, laws: &GearLaws, dt: f64) -> Resul
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_work_of_a_step_is_each_force_on_its_own_stroke_increment() {
+        let f = StrutForces {
+            honeycomb: 0.0,
+            crush_load: 1000.0,
+            viscous: 50.0,
+            bearing_bound: 20.0,
+            secondary_honeycomb: [300.0, -200.0],
+            secondary_viscous: [10.0, -5.0],
+        };
+        let a = StrutKinematics::default();
+        let b = StrutKinematics {
+            c: 0.002,
+            s: [0.001, -0.003],
+            ..Default::default()
+        };
+        let w = f.work(&a, &b);
+        assert!((w.honeycomb - (1000.0 * 0.002 + 300.0 * 0.001 + 200.0 * 0.003)).abs() < 1e-12);
+        assert!((w.viscous - (50.0 * 0.002 + 10.0 * 0.001 + 5.0 * 0.003)).abs() < 1e-12);
+        // Dry friction dissipates whichever way the strut strokes.
+        assert!((w.bearing - 20.0 * 0.002).abs() < 1e-12);
+        assert_eq!(f.work(&b, &a).bearing, w.bearing);
+        assert_eq!(f.primary(1.0), 1000.0 + 50.0 + 20.0);
+        assert_eq!(f.secondary(), [310.0, -205.0]);
+        let bad = StrutForces {
+            viscous: f64::NAN,
+            ..f
+        };
+        assert_eq!(
+            bad.non_finite().map(|(law, _)| law),
+            Some("primary viscous")
+        );
+    }
 }

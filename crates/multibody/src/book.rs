@@ -1,0 +1,372 @@
+//! The gear bookkeeping a multibody engine keeps around its own stepping, the same for every
+//! multibody engine: each gear's kinematics before and after a step, the laws' forces, the
+//! honeycomb memories (committed once per step), the footpads' contact states, the energy
+//! ledger, the stability criteria, the extremes, and what the summary and the history report.
+//!
+//! A step of an engine, with `book: GearBook`: apply `book.forces` to its joints (its own
+//! way); [`GearBook::begin_step`]; step; read the new kinematics into `book.kin`;
+//! [`GearBook::book_struts`]; [`GearBook::book_contact`] per footpad; [`GearBook::evaluate`];
+//! [`GearBook::check`]; [`GearBook::update_stability`]; [`GearBook::update_extremes`].
+
+use crate::strut::{strut_forces, StrutForces, StrutKinematics};
+use nalgebra::{Matrix3, Vector3};
+use touchdown_laws::{GearLaws, GearMemory};
+use touchdown_record::{
+    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
+    Summary,
+};
+use touchdown_scenario::model::{Leg, PadSurface, Stability};
+use touchdown_scenario::{frames, Scenario, ScenarioError};
+
+/// Contact state of one footpad.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PadContact {
+    /// Bearing on its surface now.
+    pub in_contact: bool,
+    /// Time of the first contact, s.
+    pub first_contact: Option<f64>,
+}
+
+/// The vehicle's state as the bookkeeping reads it (inertial frame = the surface frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VehicleState {
+    /// Centre of mass, m.
+    pub position: Vector3<f64>,
+    /// Body → inertial rotation.
+    pub rotation: Matrix3<f64>,
+    /// Centre-of-mass velocity, m/s.
+    pub velocity: Vector3<f64>,
+    /// Angular velocity, rad/s, inertial axes.
+    pub angular_velocity: Vector3<f64>,
+}
+
+impl VehicleState {
+    /// The pitch rate: angular velocity about the inertial X axis, rad/s.
+    pub fn pitch_rate(&self) -> f64 {
+        self.angular_velocity.x
+    }
+
+    /// The state as a diagnostic's text.
+    pub fn describe(&self) -> String {
+        let (x, u, w) = (self.position, self.velocity, self.angular_velocity);
+        format!(
+            "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
+            x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
+        )
+    }
+
+    /// Whether every component is finite.
+    pub fn is_finite(&self) -> bool {
+        (self.position.norm() + self.velocity.norm() + self.angular_velocity.norm()).is_finite()
+    }
+}
+
+/// What stopped a run, before it is placed in time and state ([`Fault::at`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fault {
+    /// The law or mechanism involved.
+    pub law: &'static str,
+    /// The leg, where one is involved.
+    pub leg: Option<usize>,
+    /// What happened.
+    pub message: String,
+}
+
+impl Fault {
+    /// The divergence at time `time` (s) with the vehicle in state `vehicle`.
+    pub fn at(self, time: f64, vehicle: &VehicleState) -> Divergence {
+        Divergence {
+            time,
+            law: match self.leg {
+                Some(i) => format!("{} (leg {})", self.law, i + 1),
+                None => self.law.to_string(),
+            },
+            message: self.message,
+            state: vehicle.describe(),
+        }
+    }
+}
+
+/// Per-gear state and bookkeeping of a multibody landing (see the module documentation).
+pub struct GearBook {
+    /// The gear geometry.
+    pub legs: Vec<Leg>,
+    /// Each footpad's surface.
+    pub surfaces: Vec<PadSurface>,
+    /// The shared laws.
+    pub laws: GearLaws,
+    /// Committed honeycomb memories.
+    pub memory: Vec<GearMemory>,
+    /// Kinematics at the current state.
+    pub kin: Vec<StrutKinematics>,
+    /// Kinematics before the current step.
+    pub previous: Vec<StrutKinematics>,
+    /// The laws' forces at the current state (applied over the next step).
+    pub forces: Vec<StrutForces>,
+    /// Contact states.
+    pub contacts: Vec<PadContact>,
+    /// Work exchanged with each mechanism.
+    pub ledger: EnergyLedger,
+    /// Deepest footpad penetration into its plane so far, m.
+    pub max_penetration: f64,
+    /// Stability criteria, eqs. (105)-(107).
+    pub stability: StabilityTracker,
+    /// Running extremes.
+    pub extremes: Extremes,
+    criteria: Stability,
+    gravity: Vector3<f64>,
+    pad_views: Vec<PadView>,
+}
+
+impl GearBook {
+    /// The bookkeeping of `sc`'s gear at touchdown, nothing booked yet.
+    pub fn new(sc: &Scenario) -> Result<GearBook, ScenarioError> {
+        let n = sc.legs.len();
+        let gravity = frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+        Ok(GearBook {
+            legs: sc.legs.clone(),
+            surfaces: sc.surface.pads.clone(),
+            laws: GearLaws::from_scenario(sc)?,
+            memory: vec![GearMemory::default(); n],
+            kin: vec![StrutKinematics::default(); n],
+            previous: vec![StrutKinematics::default(); n],
+            forces: vec![StrutForces::default(); n],
+            contacts: vec![PadContact::default(); n],
+            ledger: EnergyLedger::default(),
+            max_penetration: 0.0,
+            stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
+            extremes: Extremes::new(n),
+            criteria: sc.stability.clone(),
+            gravity,
+            pad_views: vec![PadView::default(); n],
+        })
+    }
+
+    /// Gravity in the inertial frame, m/s².
+    pub fn gravity(&self) -> Vector3<f64> {
+        self.gravity
+    }
+
+    /// Starts the stability criteria with the vehicle's kinetic energy at touchdown, J.
+    pub fn start(&mut self, kinetic_energy: f64) {
+        self.stability = StabilityTracker::new(
+            &self.criteria,
+            self.gravity,
+            self.legs.len(),
+            kinetic_energy,
+        );
+    }
+
+    /// Keeps the current kinematics as the state before the coming step.
+    pub fn begin_step(&mut self) {
+        self.previous.copy_from_slice(&self.kin);
+    }
+
+    /// Books the work of the laws' forces over the step just taken (`previous` → `kin`) and
+    /// commits the honeycomb memories at the new strokes.
+    pub fn book_struts(&mut self) {
+        let steps = self.previous.iter().zip(&self.kin).zip(&self.forces);
+        for (((a, b), f), memory) in steps.zip(&mut self.memory) {
+            let w = f.work(a, b);
+            self.ledger.honeycomb += w.honeycomb;
+            self.ledger.viscous += w.viscous;
+            self.ledger.bearing += w.bearing;
+            self.laws.commit(b.c, b.s, memory);
+        }
+    }
+
+    /// Books footpad `i`'s contact over the step ending at time `t` (s): the `impulse` (N·s,
+    /// inertial) its surface gave it, working on `v_mean` (m/s, the mean of the contact point's
+    /// velocities before and after the step): the normal part (and a locked footpad's lateral
+    /// part) into the contact-event account, sliding friction into the sliding account; its
+    /// penetration `depth` (m); whether it bears on its surface (`touching` and a pushing
+    /// normal impulse).
+    pub fn book_contact(
+        &mut self,
+        i: usize,
+        t: f64,
+        impulse: &Vector3<f64>,
+        v_mean: &Vector3<f64>,
+        depth: f64,
+        touching: bool,
+    ) {
+        let normal_work = impulse.z * v_mean.z;
+        let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
+        self.ledger.events += normal_work;
+        if self.surfaces[i].locked() {
+            self.ledger.events += lateral_work;
+        } else {
+            self.ledger.sliding -= lateral_work;
+        }
+        self.max_penetration = self.max_penetration.max(depth);
+        let c = &mut self.contacts[i];
+        c.in_contact = touching && impulse.z > 0.0;
+        if c.in_contact && c.first_contact.is_none() {
+            c.first_contact = Some(t);
+        }
+    }
+
+    /// Evaluates the laws at the current kinematics with the committed memories.
+    pub fn evaluate(&mut self) -> Result<(), Fault> {
+        for i in 0..self.legs.len() {
+            self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
+                .map_err(|e| Fault {
+                    law: "bearing friction",
+                    leg: Some(i),
+                    message: e.to_string(),
+                })?;
+        }
+        Ok(())
+    }
+
+    /// The divergence checks after a step: the first non-finite force or gear geometry, a
+    /// non-finite body state (`state_finite` false, as the engine reads its bodies), or an
+    /// energy balance `e` (this landing's report) beyond `tolerance` of the energy scale.
+    pub fn check(&self, e: &EnergyReport, tolerance: f64, state_finite: bool) -> Result<(), Fault> {
+        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
+            let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm() + k.axis.norm();
+            let bad = f
+                .non_finite()
+                .or_else(|| (!geometry.is_finite()).then_some(("gear geometry", geometry)));
+            if let Some((law, value)) = bad {
+                return Err(Fault {
+                    law,
+                    leg: Some(i),
+                    message: format!("non-finite value {value}"),
+                });
+            }
+        }
+        if !state_finite {
+            return Err(Fault {
+                law: "equations of motion",
+                leg: None,
+                message: "non-finite body state".into(),
+            });
+        }
+        self.ledger
+            .check_balance(
+                e,
+                tolerance,
+                "time step too large for the stiffest strut law, or contact too soft?",
+            )
+            .map_err(|message| Fault {
+                law: "energy balance",
+                leg: None,
+                message,
+            })
+    }
+
+    /// Updates the stability criteria at time `t` (s) with the vehicle in state `v`, its
+    /// velocity before the step `old_velocity` (m/s; `None` at touchdown) and its kinetic energy
+    /// `kinetic_energy` (J).
+    pub fn update_stability(
+        &mut self,
+        t: f64,
+        v: &VehicleState,
+        old_velocity: Option<&Vector3<f64>>,
+        kinetic_energy: f64,
+    ) {
+        for i in 0..self.legs.len() {
+            self.pad_views[i] = PadView {
+                position: self.kin[i].footpad,
+                in_contact: self.contacts[i].in_contact,
+                touched: self.contacts[i].first_contact.is_some(),
+            };
+        }
+        self.stability.update(
+            t,
+            &v.position,
+            &v.velocity,
+            old_velocity,
+            kinetic_energy,
+            &self.pad_views,
+        );
+    }
+
+    /// Updates the extremes with the current strokes and the pitch rate at time `t`, s.
+    pub fn update_extremes(&mut self, t: f64, v: &VehicleState) {
+        for (i, k) in self.kin.iter().enumerate() {
+            self.extremes.update_leg(i, k.c, k.s);
+        }
+        self.extremes.update_pitch_rate(t, v.pitch_rate());
+    }
+
+    /// The energy report with the vehicle's kinetic energy `kinetic` (J), its potential-energy
+    /// change `potential_change` (J) and the gear links' energy change `gear` (J).
+    pub fn energy(&self, kinetic: f64, potential_change: f64, gear: f64) -> EnergyReport {
+        let stored: f64 = self
+            .kin
+            .iter()
+            .zip(&self.memory)
+            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
+            .sum();
+        self.ledger.report(
+            self.stability.initial_kinetic_energy(),
+            kinetic,
+            potential_change,
+            gear,
+            stored,
+        )
+    }
+
+    /// The summary of `engine`'s run on scenario `name` at time `t` (s) after `steps` steps,
+    /// with the engine's `settings` (the deepest footpad penetration added) and the energy
+    /// report `energy`.
+    pub fn summary(
+        &self,
+        engine: &str,
+        name: &str,
+        mut settings: serde_json::Map<String, serde_json::Value>,
+        t: f64,
+        steps: u64,
+        energy: EnergyReport,
+    ) -> Summary {
+        settings.insert(
+            "max_footpad_penetration_m".into(),
+            self.max_penetration.into(),
+        );
+        let progress = Progress {
+            t,
+            steps,
+            force_evaluations: steps,
+            first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
+        };
+        Summary::new(
+            engine,
+            name,
+            settings,
+            progress,
+            &self.stability,
+            &self.extremes,
+            energy,
+        )
+    }
+
+    /// Writes the state at time `t` (s), the vehicle in state `v`, into `out` (a sample made for
+    /// as many legs), with the energy report `energy`.
+    pub fn sample(&self, out: &mut Sample, t: f64, v: &VehicleState, energy: EnergyReport) {
+        let r = v.rotation;
+        out.t = t;
+        out.position = v.position;
+        out.velocity = v.velocity;
+        out.theta = frames::euler_from_t_bi(&r);
+        out.omega = r.transpose() * v.angular_velocity;
+        out.pitch_rate = v.pitch_rate();
+        for (i, slot) in out.legs.iter_mut().enumerate() {
+            let (k, f, c) = (&self.kin[i], &self.forces[i], &self.contacts[i]);
+            slot.primary_stroke = k.c;
+            slot.primary_force = f.primary(k.c_dot);
+            slot.secondary_stroke = k.s;
+            slot.secondary_force = f.secondary();
+            slot.pad_position = k.footpad;
+            slot.contact = match (c.in_contact, c.first_contact) {
+                (true, _) => 1,
+                (false, Some(_)) => 2,
+                (false, None) => 0,
+            };
+        }
+        out.stability_distance
+            .copy_from_slice(self.stability.distances());
+        out.energy = energy;
+    }
+}

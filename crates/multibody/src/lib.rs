@@ -1,0 +1,13 @@
+//! What the multibody engines (the rapier rebuild, the MuJoCo runner) share around their own
+//! stepping, so that both apply the same forces to the same joints and report alike:
+//!
+//! | module | content |
+//! |---|---|
+//! | [`strut`] | the strut laws at one state of a multibody gear (eqs. 49-63): explicit forces, the plateau and bearing-friction bounds, their work over a step, the explicit-step check |
+//! | [`book`] | the gear bookkeeping: kinematics before and after a step, hysteresis committed once per step, contact work, energy ledger, stability criteria, extremes, summary and history samples |
+
+pub mod book;
+pub mod strut;
+
+pub use book::{Fault, GearBook, PadContact, VehicleState};
+pub use strut::{check_explicit_timestep, strut_forces, StrutForces, StrutKinematics};
