@@ -4,7 +4,7 @@
 //! | module | content |
 //! |---|---|
 //! | [`mjcf`] | the MJCF document: vehicle, gear links, joints, secondary tendons, actuators, sensors, footpad planes, touchdown keyframe |
-//! | [`landing`] | one law-driven landing over MuJoCo's arrays: kinematics in, strut laws out (`touchdown_laws::multibody`), hysteresis committed once per step, energy ledger, stability criteria, history |
+//! | [`landing`] | one law-driven landing over MuJoCo's arrays: kinematics in, strut laws out, with the bookkeeping shared with the rapier rebuild (`touchdown_multibody`): hysteresis committed once per step, energy ledger, stability criteria, history |
 //! | [`ffi`] | the C ABI of [`landing`] (this crate is also built as a `cdylib`), loaded with ctypes by the Python runner `python/mujoco/run.py` |
 //! | [`launch`] | runs a scenario end to end: the project's Python environment, the runner and this library |
 //!
