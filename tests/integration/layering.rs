@@ -43,6 +43,16 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ),
     // Comparison level: runs engines, never reached by them.
     (
+        "touchdown-compare",
+        &[
+            "touchdown-scenario",
+            "touchdown-record",
+            "touchdown-core",
+            "touchdown-rapier",
+            "touchdown-mujoco",
+        ],
+    ),
+    (
         "touchdown-validation",
         &["touchdown-scenario", "touchdown-core"],
     ),
@@ -55,6 +65,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "touchdown-core",
             "touchdown-rapier",
             "touchdown-mujoco",
+            "touchdown-compare",
             "touchdown-validation",
         ],
     ),

@@ -41,6 +41,19 @@ enum Command {
         #[arg(long)]
         timestep: Option<f64>,
     },
+    /// Run scenarios through several engines and report how far apart they land, channel by
+    /// channel against written tolerances (docs/engines.md, "Comparing the engines").
+    Compare {
+        /// Scenario files (TOML).
+        #[arg(required = true)]
+        scenarios: Vec<PathBuf>,
+        /// Engines to compare, comma-separated (every pair is compared).
+        #[arg(long, value_delimiter = ',', default_value = "core,rapier,mujoco")]
+        engines: Vec<String>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
     /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
     /// how to open it in MuJoCo's viewer.
     ExportMjcf {
@@ -154,6 +167,11 @@ fn run(cli: Cli) -> Result<()> {
             engine,
             timestep,
         } => run_landing(&scenario, format, out.as_deref(), engine, timestep),
+        Command::Compare {
+            scenarios,
+            engines,
+            format,
+        } => compare(&scenarios, &engines, format),
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
             let xml = touchdown_mujoco::export(&sc);
@@ -279,4 +297,32 @@ fn scratch_dir() -> Result<PathBuf> {
     let dir = std::env::temp_dir().join(format!("touchdown-run-{}-{stamp}", std::process::id()));
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     Ok(dir)
+}
+
+/// `touchdown compare`: every scenario through every engine asked for, every pair compared.
+fn compare(scenarios: &[PathBuf], engines: &[String], format: Format) -> Result<()> {
+    let engines = engines
+        .iter()
+        .map(|e| e.parse::<touchdown_compare::Engine>())
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| anyhow::anyhow!("--engines: {e}"))?;
+    if engines.len() < 2 {
+        anyhow::bail!("--engines: name at least two engines to compare");
+    }
+    let mut json = Vec::new();
+    for path in scenarios {
+        let c = touchdown_compare::compare_scenario(path, &engines)?;
+        match format {
+            Format::Text => println!("{}", touchdown_compare::report::text(&c)),
+            Format::Json => json.push(touchdown_compare::report::json(&c)),
+        }
+    }
+    match format {
+        Format::Text => print!(
+            "tolerances\n{}",
+            touchdown_compare::report::tolerances_text()
+        ),
+        Format::Json => println!("[{}]", json.join(",\n")),
+    }
+    Ok(())
 }

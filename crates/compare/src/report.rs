@@ -1,0 +1,125 @@
+//! A scenario's comparison as text and JSON. The text rounds every number to three significant
+//! figures (and anything under 1e-6 in SI to 0, rounding noise such as a symmetric landing's
+//! pitch rate), so that it is stable across machines and fit for snapshot review.
+
+use crate::metrics::TOLERANCES;
+use crate::ScenarioComparison;
+use std::fmt::Write;
+
+/// Below this magnitude (SI) a number is written as 0.
+pub const NOISE: f64 = 1e-6;
+
+/// `x` to three significant figures, `0` below [`NOISE`].
+pub fn sig3(x: f64) -> String {
+    if !x.is_finite() {
+        return "-".into();
+    }
+    if x.abs() < NOISE {
+        return "0".into();
+    }
+    let rounded: f64 = format!("{x:.2e}").parse().unwrap_or(x);
+    let magnitude = rounded.abs().log10().floor() as i32;
+    if (-3..6).contains(&magnitude) {
+        let decimals = (2 - magnitude).max(0) as usize;
+        format!("{rounded:.decimals$}")
+    } else {
+        format!("{rounded:.2e}")
+    }
+}
+
+/// The comparison as text: runs, then each pair's channels with pass or fail and the worst.
+pub fn text(c: &ScenarioComparison) -> String {
+    let mut o = String::new();
+    let _ = writeln!(o, "scenario: {} ({})", c.scenario, c.file);
+    let _ = writeln!(o, "scenario sha256: {}", c.scenario_sha256);
+    for (run, (engine, version)) in c.runs.iter().zip(&c.engines) {
+        let s = &run.summary;
+        let decision = s
+            .decision_time_s
+            .map(|t| format!(" at {} s", sig3(t)))
+            .unwrap_or_default();
+        let _ = writeln!(
+            o,
+            "{:<7} {:?}{decision} ({version})",
+            engine.name(),
+            s.outcome
+        );
+    }
+    for p in &c.pairs {
+        let _ = writeln!(
+            o,
+            "\n{} vs {}: {}; outcomes {:?} / {:?}; worst: {}",
+            p.a.name(),
+            p.b.name(),
+            if p.pass { "PASS" } else { "FAIL" },
+            p.outcome.0,
+            p.outcome.1,
+            p.worst
+        );
+        let _ = writeln!(
+            o,
+            "  {:<40} {:>10} {:>10} {:>10} {:>9}",
+            "channel",
+            p.a.name(),
+            p.b.name(),
+            "difference",
+            "tolerance"
+        );
+        for ch in &p.channels {
+            let _ = writeln!(
+                o,
+                "  {:<40} {:>10} {:>10} {:>10} {:>9} {}",
+                ch.name,
+                sig3(ch.a),
+                sig3(ch.b),
+                sig3(ch.difference),
+                sig3(ch.tolerance),
+                if ch.pass { "pass" } else { "FAIL" }
+            );
+        }
+    }
+    o
+}
+
+/// The tolerances with their reasons, as text.
+pub fn tolerances_text() -> String {
+    let mut o = String::new();
+    for t in &TOLERANCES {
+        let _ = writeln!(
+            o,
+            "{}: {} ({}): {}",
+            t.channel,
+            sig3(t.limit),
+            t.unit,
+            t.reason
+        );
+    }
+    o
+}
+
+/// The comparison and the tolerances as pretty JSON.
+pub fn json(c: &ScenarioComparison) -> String {
+    let value = serde_json::json!({
+        "comparison": c,
+        "tolerances": TOLERANCES,
+    });
+    serde_json::to_string_pretty(&value).unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn three_significant_figures_and_noise() {
+        assert_eq!(sig3(0.075612), "0.0756");
+        assert_eq!(sig3(-4.6532), "-4.65");
+        assert_eq!(sig3(135.58), "136");
+        assert_eq!(sig3(0.0009996), "0.00100");
+        assert_eq!(sig3(1.23456e-5), "1.23e-5");
+        assert_eq!(sig3(3.0e-12), "0");
+        assert_eq!(sig3(f64::NAN), "-");
+        assert_eq!(sig3(123456.0), "123000");
+        assert_eq!(sig3(1.0e7), "1.00e7");
+    }
+}

@@ -1,0 +1,121 @@
+//! The time series a comparison needs of a landing, the same for every engine: time, vertical
+//! velocity and pitch rate at every accepted state.
+
+use std::path::Path;
+use touchdown_record::Sample;
+
+/// Window of the vertical-acceleration average, s: the velocity change over 2 ms, like an
+/// accelerometer filtered at a few hundred hertz. A multibody's contact impulses make the
+/// step-to-step acceleration of its vehicle spiky at the 20 µs step; the report's is smooth.
+pub const ACCELERATION_WINDOW: f64 = 2.0e-3;
+
+/// A landing's trace (SI, inertial frame = the surface frame).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Trace {
+    /// Times, s, increasing.
+    pub t: Vec<f64>,
+    /// Vertical (surface-normal) velocity of the centre of mass, m/s.
+    pub vz: Vec<f64>,
+    /// Pitch rate, angular velocity about the inertial X axis, rad/s.
+    pub pitch_rate: Vec<f64>,
+}
+
+impl Trace {
+    /// Appends a sample.
+    pub fn push(&mut self, s: &Sample) {
+        self.t.push(s.t);
+        self.vz.push(s.velocity.z);
+        self.pitch_rate.push(s.pitch_rate);
+    }
+
+    /// Reads the trace from a `history.csv`.
+    pub fn from_history(path: &Path) -> Result<Trace, String> {
+        let what = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+        let mut reader = csv::Reader::from_path(path).map_err(|e| what(&e))?;
+        let header = reader.headers().map_err(|e| what(&e))?.clone();
+        let column = |name: &str| {
+            header
+                .iter()
+                .position(|h| h == name)
+                .ok_or_else(|| what(&format!("no column {name}")))
+        };
+        let (ct, cz, cq) = (
+            column("t_s")?,
+            column("vz_m_s")?,
+            column("pitch_rate_rad_s")?,
+        );
+        let mut trace = Trace::default();
+        for row in reader.records() {
+            let row = row.map_err(|e| what(&e))?;
+            let num = |c: usize| {
+                row[c]
+                    .parse::<f64>()
+                    .map_err(|e| what(&format!("column {c}: {e}")))
+            };
+            trace.t.push(num(ct)?);
+            trace.vz.push(num(cz)?);
+            trace.pitch_rate.push(num(cq)?);
+        }
+        Ok(trace)
+    }
+
+    /// `values` (one per time of this trace) linearly interpolated at time `t`, s, within the
+    /// trace's span.
+    pub fn at(&self, values: &[f64], t: f64) -> f64 {
+        let i = self.t.partition_point(|x| *x < t);
+        if i == 0 {
+            return values[0];
+        }
+        if i >= self.t.len() {
+            return values[values.len() - 1];
+        }
+        let (t0, t1) = (self.t[i - 1], self.t[i]);
+        let w = if t1 > t0 { (t - t0) / (t1 - t0) } else { 1.0 };
+        values[i - 1] + w * (values[i] - values[i - 1])
+    }
+
+    /// End of the trace, s.
+    pub fn end(&self) -> f64 {
+        self.t.last().copied().unwrap_or(0.0)
+    }
+
+    /// The vertical acceleration of largest magnitude, averaged over
+    /// [`ACCELERATION_WINDOW`] (m/s², signed; positive up), and its time (the window's
+    /// middle, s).
+    pub fn peak_vertical_acceleration(&self) -> (f64, f64) {
+        let mut peak = (0.0, 0.0);
+        let end = self.end() - ACCELERATION_WINDOW;
+        for (i, &t) in self.t.iter().enumerate() {
+            if t > end {
+                break;
+            }
+            let a = (self.at(&self.vz, t + ACCELERATION_WINDOW) - self.vz[i]) / ACCELERATION_WINDOW;
+            if a.abs() > f64::abs(peak.0) {
+                peak = (a, t + 0.5 * ACCELERATION_WINDOW);
+            }
+        }
+        peak
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interpolation_and_windowed_acceleration() {
+        // Decelerating at 10 m/s², then at 50 m/s² from 4 to 8 ms, sampled every 0.5 ms.
+        let t: Vec<f64> = (0..=24).map(|k| k as f64 * 5e-4).collect();
+        let v = |t: f64| -3.0 + 10.0 * t.min(0.004) + 50.0 * (t.clamp(0.004, 0.008) - 0.004);
+        let trace = Trace {
+            vz: t.iter().map(|t| v(*t)).collect(),
+            pitch_rate: vec![0.0; t.len()],
+            t,
+        };
+        assert!((trace.at(&trace.vz, 0.00325) - v(0.00325)).abs() < 1e-12);
+        assert_eq!(trace.at(&trace.vz, 1.0), trace.vz[24]);
+        let (a, at) = trace.peak_vertical_acceleration();
+        assert!((a - 50.0).abs() < 1e-6, "{a}");
+        assert!((0.005 - 1e-9..=0.007 + 1e-9).contains(&at), "{at}");
+    }
+}

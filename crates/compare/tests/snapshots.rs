@@ -1,0 +1,50 @@
+//! The comparison of every scenario in `scenarios/` (one snapshot per file, via a glob), all
+//! engines, every pair: the divergence under review. A change to any model, law, engine or
+//! scenario that moves a compared value shows up here as a snapshot diff to review (`cargo
+//! insta review`); CI never accepts one (INSTA_UPDATE=no in .ci/run). Values are rounded to
+//! three significant figures (`touchdown_compare::report`); time series are never
+//! snapshotted, only their summaries.
+
+use touchdown_compare::{compare_scenario, report, Engine};
+
+#[test]
+fn every_scenario_compared_across_engines() {
+    insta::glob!("../../../scenarios", "*.toml", |path| {
+        let c = compare_scenario(path, &Engine::ALL).unwrap_or_else(|e| panic!("{e}"));
+        let file = path.file_name().unwrap().to_string_lossy();
+        let text = report::text(&c).replace(&c.file, &format!("scenarios/{file}"));
+        let versions: Vec<String> = c
+            .engines
+            .iter()
+            .map(|(e, v)| format!("{}: {v}", e.name()))
+            .collect();
+        let mut settings = insta::Settings::clone_current();
+        settings.set_description(format!(
+            "scenario sha256 {}; {}",
+            c.scenario_sha256,
+            versions.join(", ")
+        ));
+        settings.set_omit_expression(true);
+        settings.bind(|| insta::assert_snapshot!("comparison", text));
+    });
+}
+
+#[test]
+fn every_tolerance_is_documented_with_its_value() {
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/engines.md"),
+    )
+    .unwrap();
+    for t in touchdown_compare::metrics::TOLERANCES {
+        let row = doc
+            .lines()
+            .find(|l| l.starts_with(&format!("| {}", t.channel)))
+            .unwrap_or_else(|| panic!("docs/engines.md has no row for {}", t.channel));
+        assert!(
+            row.contains(&format!("| {} |", t.limit)),
+            "docs/engines.md: {} should say {}",
+            t.channel,
+            t.limit
+        );
+    }
+}
