@@ -1,7 +1,7 @@
 //! The core against results it must reproduce without any tuning.
 
 use nalgebra::Vector3;
-use touchdown_core::{Observer, Outcome, Simulation};
+use touchdown_core::{Landing, Observer, Outcome, Simulation};
 use touchdown_scenario::Scenario;
 use touchdown_tests::{analytic_drop_stroke, scenario};
 
@@ -55,7 +55,7 @@ struct Invariants {
     momentum: Vec<Vector3<f64>>,
 }
 
-impl Observer for Invariants {
+impl Observer<Simulation> for Invariants {
     fn observe(&mut self, sim: &Simulation) {
         // Eq. (19) sets the first footpad on the surface at t = 0; count from the moment every
         // footpad has left it (after that the body is torque-free).

@@ -5,7 +5,7 @@
 
 use touchdown_core::Simulation;
 use touchdown_rapier::{RapierError, RapierSimulation};
-use touchdown_record::Sample;
+use touchdown_record::{Landing, Observer, Sample};
 use touchdown_scenario::{frames, Scenario};
 use touchdown_tests::{scenario, validation_landings};
 
@@ -13,16 +13,9 @@ use touchdown_tests::{scenario, validation_landings};
 /// the scenario's legs, then the samples).
 struct History(Sample, Vec<Sample>);
 
-impl touchdown_core::Observer for History {
-    fn observe(&mut self, sim: &Simulation) {
-        sim.sample(&mut self.0);
-        self.1.push(self.0.clone());
-    }
-}
-
-impl touchdown_rapier::Observer for History {
-    fn observe(&mut self, sim: &RapierSimulation) {
-        sim.sample(&mut self.0);
+impl<L: Landing> Observer<L> for History {
+    fn observe(&mut self, landing: &L) {
+        landing.sample(&mut self.0);
         self.1.push(self.0.clone());
     }
 }

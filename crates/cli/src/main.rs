@@ -1,13 +1,12 @@
 //! `touchdown`: runs landing scenarios and reports them.
 
-mod history;
 mod report;
 mod validation;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
-use touchdown_record::History;
+use touchdown_record::{History, Landing};
 use touchdown_scenario::Scenario;
 
 #[derive(Parser)]
@@ -237,10 +236,9 @@ fn run_landing(
     }
     // The MuJoCo runner writes its own history.csv.
     let mut recorder = match out {
-        Some(dir) if engine != Engine::Mujoco => Some(history::Recorder(History::create(
-            &dir.join("history.csv"),
-            sc.legs.len(),
-        )?)),
+        Some(dir) if engine != Engine::Mujoco => {
+            Some(History::create(&dir.join("history.csv"), sc.legs.len())?)
+        }
         _ => None,
     };
     let summary = match engine {
@@ -272,7 +270,7 @@ fn run_landing(
         }
     };
     if let Some(r) = recorder {
-        r.0.finish()?;
+        r.finish()?;
     }
     if let Some(dir) = out {
         std::fs::write(

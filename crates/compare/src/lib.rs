@@ -15,7 +15,7 @@ pub mod trace;
 
 use serde::Serialize;
 use std::path::Path;
-use touchdown_record::{Sample, Summary};
+use touchdown_record::{Landing, Observer, Sample, Summary};
 use touchdown_scenario::Scenario;
 pub use trace::Trace;
 
@@ -84,19 +84,12 @@ pub struct EngineRun {
     pub trace: Trace,
 }
 
-/// Collects a trace from an engine's observer.
+/// Collects a trace from any stepping engine.
 struct Tracer(Sample, Trace);
 
-impl touchdown_core::Observer for Tracer {
-    fn observe(&mut self, sim: &touchdown_core::Simulation) {
-        sim.sample(&mut self.0);
-        self.1.push(&self.0);
-    }
-}
-
-impl touchdown_rapier::Observer for Tracer {
-    fn observe(&mut self, sim: &touchdown_rapier::RapierSimulation) {
-        sim.sample(&mut self.0);
+impl<L: Landing> Observer<L> for Tracer {
+    fn observe(&mut self, landing: &L) {
+        landing.sample(&mut self.0);
         self.1.push(&self.0);
     }
 }
@@ -195,7 +188,7 @@ pub fn compare_scenario(
     Ok(ScenarioComparison {
         scenario: sc.file.name.clone(),
         file: path.display().to_string(),
-        scenario_sha256: touchdown_mujoco::mjcf::scenario_hash(&sc),
+        scenario_sha256: sc.sha256(),
         engines: runs.iter().map(|r| (r.engine, engine_version(r))).collect(),
         runs,
         pairs,

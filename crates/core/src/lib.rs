@@ -23,8 +23,8 @@ pub mod rigid_body;
 pub mod simulation;
 pub mod surface;
 
-pub use simulation::{Observer, Simulation, VehicleState};
-pub use touchdown_record::{EnergyReport, Outcome, Summary};
+pub use simulation::{Simulation, VehicleState};
+pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, Summary};
 
 /// Errors of the core engine.
 #[derive(Debug, thiserror::Error)]

@@ -23,8 +23,8 @@ use crate::CoreError;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
-    Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, Sample,
+    StabilityTracker, Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, PadSurface};
@@ -108,16 +108,6 @@ pub struct Simulation {
     pad_views: Vec<PadView>,
 }
 
-/// Something that watches a landing after every accepted step (and at t = 0).
-pub trait Observer {
-    /// Called with the simulation at an accepted state.
-    fn observe(&mut self, sim: &Simulation);
-}
-
-impl Observer for () {
-    fn observe(&mut self, _: &Simulation) {}
-}
-
 /// Net loads on the vehicle (eqs. 66-68, 83-84): force in inertial axes excluding gravity,
 /// torque in body axes.
 struct Loads {
@@ -196,21 +186,6 @@ impl Simulation {
         sim.update_stability(None);
         sim.update_extremes();
         Ok(sim)
-    }
-
-    /// Runs to a decision (if the scenario terminates on one) or to the end time.
-    pub fn run(&mut self, observer: &mut impl Observer) -> Result<Summary, CoreError> {
-        observer.observe(self);
-        while !self.finished() {
-            self.step()?;
-            observer.observe(self);
-        }
-        Ok(self.summary())
-    }
-
-    /// Whether the run has ended (end time, or a decision with termination on).
-    pub fn finished(&self) -> bool {
-        self.t >= self.integrator.t_end * (1.0 - 1e-12) || self.stability.terminates()
     }
 
     /// Current time, s.
@@ -296,48 +271,6 @@ impl Simulation {
         m.insert("dt_max_s".into(), it.dt_max.into());
         m.insert("energy_tolerance".into(), it.energy_tolerance.into());
         m
-    }
-
-    /// The summary at the current state.
-    pub fn summary(&self) -> Summary {
-        let progress = Progress {
-            t: self.t,
-            steps: self.steps,
-            force_evaluations: self.evaluations,
-            first_contact_s: self.pads.iter().map(|p| p.first_contact).collect(),
-        };
-        Summary::new(
-            "core",
-            &self.name,
-            self.settings(),
-            progress,
-            &self.stability,
-            &self.extremes,
-            self.energy(),
-        )
-    }
-
-    /// Writes the current state into `out` (a sample made for as many legs), allocating
-    /// nothing.
-    pub fn sample(&self, out: &mut Sample) {
-        let v = &self.vehicle;
-        out.t = self.t;
-        out.position = v.position;
-        out.velocity = v.velocity;
-        out.theta = v.theta;
-        out.omega = v.omega;
-        out.pitch_rate = v.omega_inertial().x;
-        for ((slot, g), p) in out.legs.iter_mut().zip(&self.gear).zip(&self.pads) {
-            slot.primary_stroke = g.primary_stroke;
-            slot.primary_force = g.f2p;
-            slot.secondary_stroke = g.secondary_stroke;
-            slot.secondary_force = g.f_secondary();
-            slot.pad_position = p.position;
-            slot.contact = p.state.code();
-        }
-        out.stability_distance
-            .copy_from_slice(self.stability.distances());
-        out.energy = self.energy();
     }
 
     /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], shortened so that an
@@ -477,84 +410,6 @@ impl Simulation {
             }
         }
         changed
-    }
-
-    /// One integration step (see the module documentation).
-    pub fn step(&mut self) -> Result<(), CoreError> {
-        let dt = self.step_size();
-        let old = self.vehicle;
-        self.previous.copy_from_slice(&self.gear);
-        // 2. sliding footpads, forces frozen at t_k (eq. 97)
-        let mut pad_work = 0.0;
-        let mut pad_energy_change = 0.0;
-        for i in 0..self.pads.len() {
-            if self.pads[i].state != ContactState::Contact || self.surfaces[i].locked() {
-                continue;
-            }
-            let f = self.sliding_forces(i, &old);
-            let m = self.footpad_mass;
-            let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
-            advance_sliding(&mut self.pads[i], &f, dt);
-            let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
-            let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
-            pad_work += f.gear_xy.dot(&dp);
-            pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
-                - m * self.gravity.dot(&(p1 - p0));
-        }
-        // 3. predictor, c = 0 (eqs. 22-23)
-        let mut pred = old;
-        pred.position = old.position + old.velocity * dt + old.acceleration * (0.5 * dt * dt);
-        pred.velocity = old.velocity + old.acceleration * dt;
-        pred.set_attitude(
-            old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt),
-            old.theta_dot + old.theta_ddot * dt,
-        );
-        // 4. trial evaluation
-        let mut trial = std::mem::take(&mut self.trial);
-        let loads = self.loads(&pred, &mut trial);
-        self.trial = trial;
-        let loads = loads?;
-        self.evaluations += 1;
-        self.accelerate(&mut pred, &loads)?;
-        // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
-        let mut new = old;
-        new.velocity = old.velocity + (old.acceleration + pred.acceleration) * (0.5 * dt);
-        new.position = old.position
-            + old.velocity * dt
-            + (old.acceleration / 3.0 + pred.acceleration / 6.0) * (dt * dt);
-        let theta_dot = old.theta_dot + (old.theta_ddot + pred.theta_ddot) * (0.5 * dt);
-        let theta = old.theta
-            + old.theta_dot * dt
-            + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
-        new.set_attitude(theta, theta_dot);
-        // 6. evaluate, contact logic, re-evaluate on a change
-        self.t += dt;
-        self.accept(&mut new)?;
-        self.vehicle = new;
-        let pads_before = self.footpad_energy();
-        if self.contact_logic() {
-            let events = self.footpad_energy() - pads_before;
-            self.ledger.events += events;
-            self.accept(&mut new)?;
-            self.vehicle = new;
-        }
-        // 7. commit hysteresis at the accepted state
-        for i in 0..self.legs.len() {
-            if self.pads[i].state == ContactState::Contact {
-                let g = &self.gear[i];
-                self.laws
-                    .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
-                let bp = new.t_bi.transpose() * (self.pads[i].position - new.position);
-                self.pads[i].bp = bp;
-            }
-        }
-        self.ledger.sliding += pad_work - pad_energy_change;
-        self.book_strut_work(dt);
-        self.steps += 1;
-        self.check_divergence()?;
-        self.update_stability(Some(&old));
-        self.update_extremes();
-        Ok(())
     }
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
@@ -703,5 +558,134 @@ impl Simulation {
         }
         self.extremes
             .update_pitch_rate(self.t, self.vehicle.omega_inertial().x);
+    }
+}
+
+impl Landing for Simulation {
+    type Error = CoreError;
+
+    /// One integration step (see the module documentation).
+    fn step(&mut self) -> Result<(), CoreError> {
+        let dt = self.step_size();
+        let old = self.vehicle;
+        self.previous.copy_from_slice(&self.gear);
+        // 2. sliding footpads, forces frozen at t_k (eq. 97)
+        let mut pad_work = 0.0;
+        let mut pad_energy_change = 0.0;
+        for i in 0..self.pads.len() {
+            if self.pads[i].state != ContactState::Contact || self.surfaces[i].locked() {
+                continue;
+            }
+            let f = self.sliding_forces(i, &old);
+            let m = self.footpad_mass;
+            let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
+            advance_sliding(&mut self.pads[i], &f, dt);
+            let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
+            let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
+            pad_work += f.gear_xy.dot(&dp);
+            pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
+                - m * self.gravity.dot(&(p1 - p0));
+        }
+        // 3. predictor, c = 0 (eqs. 22-23)
+        let mut pred = old;
+        pred.position = old.position + old.velocity * dt + old.acceleration * (0.5 * dt * dt);
+        pred.velocity = old.velocity + old.acceleration * dt;
+        pred.set_attitude(
+            old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt),
+            old.theta_dot + old.theta_ddot * dt,
+        );
+        // 4. trial evaluation
+        let mut trial = std::mem::take(&mut self.trial);
+        let loads = self.loads(&pred, &mut trial);
+        self.trial = trial;
+        let loads = loads?;
+        self.evaluations += 1;
+        self.accelerate(&mut pred, &loads)?;
+        // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
+        let mut new = old;
+        new.velocity = old.velocity + (old.acceleration + pred.acceleration) * (0.5 * dt);
+        new.position = old.position
+            + old.velocity * dt
+            + (old.acceleration / 3.0 + pred.acceleration / 6.0) * (dt * dt);
+        let theta_dot = old.theta_dot + (old.theta_ddot + pred.theta_ddot) * (0.5 * dt);
+        let theta = old.theta
+            + old.theta_dot * dt
+            + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
+        new.set_attitude(theta, theta_dot);
+        // 6. evaluate, contact logic, re-evaluate on a change
+        self.t += dt;
+        self.accept(&mut new)?;
+        self.vehicle = new;
+        let pads_before = self.footpad_energy();
+        if self.contact_logic() {
+            let events = self.footpad_energy() - pads_before;
+            self.ledger.events += events;
+            self.accept(&mut new)?;
+            self.vehicle = new;
+        }
+        // 7. commit hysteresis at the accepted state
+        for i in 0..self.legs.len() {
+            if self.pads[i].state == ContactState::Contact {
+                let g = &self.gear[i];
+                self.laws
+                    .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
+                let bp = new.t_bi.transpose() * (self.pads[i].position - new.position);
+                self.pads[i].bp = bp;
+            }
+        }
+        self.ledger.sliding += pad_work - pad_energy_change;
+        self.book_strut_work(dt);
+        self.steps += 1;
+        self.check_divergence()?;
+        self.update_stability(Some(&old));
+        self.update_extremes();
+        Ok(())
+    }
+
+    /// Whether the run has ended (end time, or a decision with termination on).
+    fn finished(&self) -> bool {
+        self.t >= self.integrator.t_end * (1.0 - 1e-12) || self.stability.terminates()
+    }
+
+    /// Writes the current state into `out` (a sample made for as many legs), allocating
+    /// nothing.
+    fn sample(&self, out: &mut Sample) {
+        let v = &self.vehicle;
+        out.t = self.t;
+        out.position = v.position;
+        out.velocity = v.velocity;
+        out.theta = v.theta;
+        out.omega = v.omega;
+        out.pitch_rate = v.omega_inertial().x;
+        for ((slot, g), p) in out.legs.iter_mut().zip(&self.gear).zip(&self.pads) {
+            slot.primary_stroke = g.primary_stroke;
+            slot.primary_force = g.f2p;
+            slot.secondary_stroke = g.secondary_stroke;
+            slot.secondary_force = g.f_secondary();
+            slot.pad_position = p.position;
+            slot.contact = p.state.code();
+        }
+        out.stability_distance
+            .copy_from_slice(self.stability.distances());
+        out.energy = self.energy();
+    }
+
+    /// The summary at the current state.
+    fn summary(&self) -> Summary {
+        let progress = Progress {
+            t: self.t,
+            steps: self.steps,
+            force_evaluations: self.evaluations,
+            first_contact_s: self.pads.iter().map(|p| p.first_contact).collect(),
+        };
+        Summary::new(
+            "core",
+            &self.name,
+            self.settings(),
+            progress,
+            &self.stability,
+            &self.extremes,
+            self.energy(),
+        )
     }
 }

@@ -30,7 +30,6 @@
 //! refuses the tripod arrangement, so only the cantilever gear is exported.)
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
-use sha2::{Digest, Sha256};
 use std::fmt::Write;
 use touchdown_scenario::frames::{gravity_inertial, initial_state};
 use touchdown_scenario::Scenario;
@@ -46,16 +45,6 @@ pub const CONTACT_SOLIMP: [f64; 3] = [0.99, 0.999, 1.0e-4];
 
 /// Version of this generator, written into every exported file.
 pub const GENERATOR: &str = concat!("touchdown-mujoco ", env!("CARGO_PKG_VERSION"));
-
-/// SHA-256 of the resolved scenario (`Scenario::to_toml`), hex.
-pub fn scenario_hash(sc: &Scenario) -> String {
-    Sha256::digest(sc.to_toml().as_bytes())
-        .iter()
-        .fold(String::with_capacity(64), |mut s, b| {
-            let _ = write!(s, "{b:02x}");
-            s
-        })
-}
 
 /// Space-separated numbers (shortest round-trip form).
 fn nums(v: &[f64]) -> String {
@@ -98,7 +87,7 @@ pub fn export(sc: &Scenario) -> String {
         w,
         "<!-- Touchdown MJCF export of the scenario \"{}\".\n     scenario sha256 (resolved scenario TOML): {}\n     generator: {GENERATOR}\n     Units: SI (m, kg, s, N, rad). World frame: the report's inertial (surface) frame, Z normal\n     to the surface; the slope is in the gravity vector. Load the keyframe \"touchdown\" for the\n     touchdown state (docs/engines.md). -->",
         xml_text(&sc.file.name),
-        scenario_hash(sc)
+        sc.sha256()
     );
     let _ = writeln!(
         w,

@@ -16,7 +16,8 @@ pub mod assembly;
 pub mod simulation;
 pub mod struts;
 
-pub use simulation::{Observer, RapierSimulation};
+pub use simulation::RapierSimulation;
+pub use touchdown_record::{Landing, Observer};
 
 /// Errors of the rapier engine.
 #[derive(Debug, thiserror::Error)]

@@ -19,18 +19,8 @@ use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
 use touchdown_laws::GearLaws;
 use touchdown_multibody::{check_explicit_timestep, Fault, GearBook, VehicleState};
-use touchdown_record::{EnergyReport, Sample, Summary};
+use touchdown_record::{EnergyReport, Landing, Sample, Summary};
 use touchdown_scenario::Scenario;
-
-/// Something that watches a landing after every step (and at t = 0).
-pub trait Observer {
-    /// Called with the simulation after a step.
-    fn observe(&mut self, sim: &RapierSimulation);
-}
-
-impl Observer for () {
-    fn observe(&mut self, _: &RapierSimulation) {}
-}
 
 /// A landing simulated on the rapier multibody.
 pub struct RapierSimulation {
@@ -95,23 +85,9 @@ impl RapierSimulation {
         sim.book.start(ke);
         sim.read_kinematics();
         sim.book.evaluate().map_err(|f| sim.diverged(f))?;
-        sim.update_stability(None);
+        let v = sim.vehicle_state();
+        sim.update_stability(&v, None);
         Ok(sim)
-    }
-
-    /// Runs to a decision (if the scenario terminates on one) or to the end time.
-    pub fn run(&mut self, observer: &mut impl Observer) -> Result<Summary, RapierError> {
-        observer.observe(self);
-        while !self.finished() {
-            self.step()?;
-            observer.observe(self);
-        }
-        Ok(self.summary())
-    }
-
-    /// Whether the run has ended.
-    pub fn finished(&self) -> bool {
-        self.t >= self.t_end * (1.0 - 1e-12) || self.book.stability.terminates()
     }
 
     /// Current time, s.
@@ -176,18 +152,6 @@ impl RapierSimulation {
             .energy(kinetic, self.body_energy(0) - kinetic, self.gear_energy())
     }
 
-    /// The summary at the current state.
-    pub fn summary(&self) -> Summary {
-        self.book.summary(
-            "rapier",
-            &self.name,
-            self.settings.clone(),
-            self.t,
-            self.steps,
-            self.energy(),
-        )
-    }
-
     /// The vehicle's state.
     fn vehicle_state(&self) -> VehicleState {
         let v = self.vehicle();
@@ -199,55 +163,11 @@ impl RapierSimulation {
         }
     }
 
-    /// Writes the current state into `out` (a sample made for as many legs).
-    pub fn sample(&self, out: &mut Sample) {
-        self.book
-            .sample(out, self.t, &self.vehicle_state(), self.energy());
-    }
-
     fn read_kinematics(&mut self) {
         let b = &mut self.book;
         for (i, (g, leg)) in self.assembly.gears.iter().zip(&b.legs).enumerate() {
             b.kin[i] = struts::kinematics(&self.assembly.world, self.assembly.vehicle, g, leg);
         }
-    }
-
-    /// One fixed step (see the module documentation).
-    pub fn step(&mut self) -> Result<(), RapierError> {
-        let dt = self.assembly.world.integration_parameters.dt;
-        // User forces and torques persist in rapier until cleared, and are cleared separately.
-        for (h, _) in &self.bodies {
-            let rb = &mut self.assembly.world.bodies[*h];
-            rb.reset_forces(false);
-            rb.reset_torques(false);
-        }
-        for i in 0..self.book.legs.len() {
-            let g = self.assembly.gears[i];
-            struts::apply(
-                &mut self.assembly.world,
-                self.assembly.vehicle,
-                &g,
-                &self.book.kin[i],
-                &self.book.forces[i],
-            );
-        }
-        self.book.begin_step();
-        for i in 0..self.book.legs.len() {
-            self.pad_velocity[i] = self.contact_velocity(self.assembly.gears[i].footpad);
-        }
-        let old_velocity = self.vehicle().linvel;
-        self.assembly.world.step();
-        self.t += dt;
-        self.steps += 1;
-        self.read_kinematics();
-        self.book.book_struts();
-        self.book_contacts();
-        self.book.evaluate().map_err(|f| self.diverged(f))?;
-        self.check_divergence()?;
-        self.update_stability(Some(&old_velocity));
-        let v = self.vehicle_state();
-        self.book.update_extremes(self.t, &v);
-        Ok(())
     }
 
     /// Velocity of a footpad's contact point (the bottom of its contact sphere), m/s.
@@ -297,10 +217,10 @@ impl RapierSimulation {
         }
     }
 
-    fn update_stability(&mut self, old_velocity: Option<&Vector3<f64>>) {
+    /// Updates the stability criteria with the vehicle in state `v`.
+    fn update_stability(&mut self, v: &VehicleState, old_velocity: Option<&Vector3<f64>>) {
         let ke = self.kinetic_energy();
-        let v = self.vehicle_state();
-        self.book.update_stability(self.t, &v, old_velocity, ke);
+        self.book.update_stability(self.t, v, old_velocity, ke);
     }
 
     fn diverged(&self, fault: Fault) -> RapierError {
@@ -321,6 +241,71 @@ impl RapierSimulation {
         self.book
             .check(&self.energy(), self.energy_tolerance, finite)
             .map_err(|f| self.diverged(f))
+    }
+}
+
+impl Landing for RapierSimulation {
+    type Error = RapierError;
+
+    /// One fixed step (see the module documentation).
+    fn step(&mut self) -> Result<(), RapierError> {
+        let dt = self.assembly.world.integration_parameters.dt;
+        // User forces and torques persist in rapier until cleared, and are cleared separately.
+        for (h, _) in &self.bodies {
+            let rb = &mut self.assembly.world.bodies[*h];
+            rb.reset_forces(false);
+            rb.reset_torques(false);
+        }
+        for i in 0..self.book.legs.len() {
+            let g = self.assembly.gears[i];
+            struts::apply(
+                &mut self.assembly.world,
+                self.assembly.vehicle,
+                &g,
+                &self.book.kin[i],
+                &self.book.forces[i],
+            );
+        }
+        self.book.begin_step();
+        for i in 0..self.book.legs.len() {
+            self.pad_velocity[i] = self.contact_velocity(self.assembly.gears[i].footpad);
+        }
+        let old_velocity = self.vehicle().linvel;
+        self.assembly.world.step();
+        self.t += dt;
+        self.steps += 1;
+        self.read_kinematics();
+        self.book.book_struts();
+        self.book_contacts();
+        self.book.evaluate().map_err(|f| self.diverged(f))?;
+        self.check_divergence()?;
+        let v = self.vehicle_state();
+        self.update_stability(&v, Some(&old_velocity));
+        self.book.update_extremes(self.t, &v);
+        Ok(())
+    }
+
+    /// Whether the run has ended.
+    fn finished(&self) -> bool {
+        self.t >= self.t_end * (1.0 - 1e-12) || self.book.stability.terminates()
+    }
+
+    /// Writes the current state into `out` (a sample made for as many legs).
+    fn sample(&self, out: &mut Sample) {
+        self.book
+            .sample(out, self.t, &self.vehicle_state(), self.energy());
+    }
+
+    /// The summary at the current state.
+    fn summary(&self) -> Summary {
+        self.book.summary(
+            "rapier",
+            &self.name,
+            self.settings.clone(),
+            self.t,
+            self.steps,
+            self.energy(),
+        )
     }
 }
 

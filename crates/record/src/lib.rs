@@ -7,17 +7,20 @@
 //! | [`summary`] | the landing summary, the energy report and the running extremes behind them |
 //! | [`sample`] | one row of the time history |
 //! | [`history`] | the time-history file `history.csv` |
+//! | [`landing`] | the run loop every stepping engine shares, and its observers |
 //!
 //! An engine feeds a [`stability::StabilityTracker`] and an [`summary::Extremes`] after every
 //! accepted step, fills a [`sample::Sample`] when asked, and builds its [`summary::Summary`] with
 //! [`summary::Summary::new`].
 
 pub mod history;
+pub mod landing;
 pub mod sample;
 pub mod stability;
 pub mod summary;
 
 pub use history::History;
+pub use landing::{Landing, Observer};
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};

@@ -176,6 +176,20 @@ impl Scenario {
         toml::to_string(&self.file).expect("a scenario always serialises")
     }
 
+    /// SHA-256 of the resolved scenario ([`Scenario::to_toml`]), hex: what identifies a
+    /// scenario in exported models and comparison snapshots.
+    pub fn sha256(&self) -> String {
+        use sha2::{Digest, Sha256};
+        use std::fmt::Write;
+        Sha256::digest(self.to_toml().as_bytes()).iter().fold(
+            String::with_capacity(64),
+            |mut s, b| {
+                let _ = write!(s, "{b:02x}");
+                s
+            },
+        )
+    }
+
     /// The file of the `extends` chain that sets `field` (a path such as
     /// `primary_strut.compression.stages[1]`), to name it in messages about that field.
     pub fn file_of(&self, field: &str) -> &str {

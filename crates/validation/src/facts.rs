@@ -5,7 +5,7 @@ use crate::reference::{self, Paths};
 use crate::ValidationError;
 use serde::{Deserialize, Serialize};
 use touchdown_core::surface::ContactState;
-use touchdown_core::{Observer, Outcome, Simulation};
+use touchdown_core::{Landing, Observer, Outcome, Simulation};
 use touchdown_scenario::Scenario;
 
 /// Specific force below which the vehicle is taken to be in free flight, g.
@@ -115,7 +115,7 @@ struct Recorder {
     g: f64,
 }
 
-impl Observer for Recorder {
+impl Observer<Simulation> for Recorder {
     fn observe(&mut self, sim: &Simulation) {
         let v = sim.vehicle();
         let s = &mut self.series;
