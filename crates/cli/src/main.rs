@@ -1,5 +1,6 @@
 //! `touchdown`: runs landing scenarios and reports them.
 
+mod plots;
 mod report;
 mod validation;
 
@@ -7,6 +8,7 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use touchdown_record::{History, Landing};
+use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
 #[derive(Parser)]
@@ -32,8 +34,12 @@ enum Command {
         /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Engine to run.
-        #[arg(long, value_enum, default_value_t = Engine::Core)]
+        /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
+        /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
+        /// in the project's Python environment with the shared laws; settings in
+        /// [engines.mujoco]; set up by scripts/setup-python). The scenario's engines.applicable
+        /// must list it.
+        #[arg(long, default_value = "core", value_parser = str::parse::<Engine>)]
         engine: Engine,
         /// rapier and MuJoCo engines: fixed time step, s (overrides engines.rapier.timestep or
         /// engines.mujoco.timestep).
@@ -46,12 +52,25 @@ enum Command {
         /// Scenario files (TOML).
         #[arg(required = true)]
         scenarios: Vec<PathBuf>,
-        /// Engines to compare, comma-separated (every pair is compared).
-        #[arg(long, value_delimiter = ',', default_value = "core,rapier,mujoco")]
-        engines: Vec<String>,
+        /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
+        /// those its engines.applicable lists.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
+        /// window, pitch rate, primary strokes against time) into DIR/<scenario>.png, with the
+        /// traces beside it as DIR/<scenario>.<engine>.csv (matplotlib, in the project's Python
+        /// environment). `touchdown boundary --engines ... --plot` overlays the engines'
+        /// stability boundaries.
+        #[arg(long, value_name = "DIR")]
+        plot: Option<PathBuf>,
     },
     /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
     /// how to open it in MuJoCo's viewer.
@@ -117,9 +136,22 @@ enum Command {
         /// Bisection tolerance on the horizontal speed.
         #[arg(long, default_value_t = 0.05)]
         tol: f64,
+        /// Engines that search, comma-separated; each searches the same configuration and the
+        /// output has one row per engine and descent speed.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
         /// Output format.
         #[arg(long, value_enum, default_value_t = TableFormat::Text)]
         format: TableFormat,
+        /// Also draw the engines' boundaries, overlaid, into this PNG (matplotlib, in the
+        /// project's Python environment), with its data beside it as JSON.
+        #[arg(long)]
+        plot: Option<PathBuf>,
     },
 }
 
@@ -134,17 +166,6 @@ enum TableFormat {
 enum Format {
     Text,
     Json,
-}
-
-#[derive(Clone, Copy, PartialEq, ValueEnum)]
-enum Engine {
-    /// The report-faithful core.
-    Core,
-    /// The rapier multibody rebuild (engine settings in [engines.rapier]).
-    Rapier,
-    /// The MuJoCo export, run by the pinned `mujoco` in the project's Python environment with
-    /// the shared laws (engine settings in [engines.mujoco]; set up by scripts/setup-python).
-    Mujoco,
 }
 
 fn main() -> std::process::ExitCode {
@@ -170,9 +191,11 @@ fn run(cli: Cli) -> Result<()> {
             scenarios,
             engines,
             format,
-        } => compare(&scenarios, &engines, format),
+            plot,
+        } => compare(&scenarios, &engines, format, plot.as_deref()),
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
+            sc.require_engine(Engine::Mujoco)?;
             let xml = touchdown_mujoco::export(&sc);
             std::fs::write(&output, xml)
                 .with_context(|| format!("cannot write {}", output.display()))?;
@@ -194,7 +217,9 @@ fn run(cli: Cli) -> Result<()> {
             vh_step,
             vh_max,
             tol,
+            engines,
             format,
+            plot,
         } => {
             let settings = touchdown_validation::boundary::Settings {
                 vh_start,
@@ -207,7 +232,7 @@ fn run(cli: Cli) -> Result<()> {
                 TableFormat::Json => validation::BoundaryFormat::Json,
                 TableFormat::Csv => validation::BoundaryFormat::Csv,
             };
-            validation::boundary(&scenario, &vv, settings, format)
+            validation::boundary(&scenario, &vv, settings, &engines, format, plot.as_deref())
         }
     }
 }
@@ -222,6 +247,7 @@ fn run_landing(
     timestep: Option<f64>,
 ) -> Result<()> {
     let mut sc = Scenario::load(scenario)?;
+    sc.require_engine(engine)?;
     if let Some(t) = timestep {
         sc = match engine {
             Engine::Core => anyhow::bail!(
@@ -298,18 +324,24 @@ fn scratch_dir() -> Result<PathBuf> {
 }
 
 /// `touchdown compare`: every scenario through every engine asked for, every pair compared.
-fn compare(scenarios: &[PathBuf], engines: &[String], format: Format) -> Result<()> {
-    let engines = engines
-        .iter()
-        .map(|e| e.parse::<touchdown_compare::Engine>())
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| anyhow::anyhow!("--engines: {e}"))?;
+fn compare(
+    scenarios: &[PathBuf],
+    engines: &[Engine],
+    format: Format,
+    plot: Option<&Path>,
+) -> Result<()> {
+    let mut engines = engines.to_vec();
+    engines.sort();
+    engines.dedup();
     if engines.len() < 2 {
         anyhow::bail!("--engines: name at least two engines to compare");
     }
     let mut json = Vec::new();
     for path in scenarios {
         let c = touchdown_compare::compare_scenario(path, &engines)?;
+        if let Some(dir) = plot {
+            plots::comparison(&c, path, dir)?;
+        }
         match format {
             Format::Text => println!("{}", touchdown_compare::report::text(&c)),
             Format::Json => json.push(touchdown_compare::report::json(&c)),

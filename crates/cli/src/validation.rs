@@ -1,9 +1,12 @@
 //! The validation commands: validate, calibrate, sensitivity, boundary.
 
 use anyhow::{bail, Context, Result};
+use serde::Serialize;
 use std::fmt::Write;
 use std::io::IsTerminal;
 use std::path::Path;
+use touchdown_scenario::schema::Engine;
+use touchdown_scenario::Scenario;
 use touchdown_validation::boundary::{self, BoundaryPoint, Settings};
 use touchdown_validation::reference::{self, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
@@ -224,14 +227,22 @@ pub fn boundary(
     scenario: &Path,
     vv: &str,
     settings: Settings,
+    engines: &[Engine],
     format: BoundaryFormat,
+    plot: Option<&Path>,
 ) -> Result<()> {
     let vvs = range(vv)?;
     if !(settings.vh_step > 0.0 && settings.tolerance > 0.0 && settings.vh_max >= settings.vh_start)
     {
         bail!("expected --vh-step > 0, --tol > 0 and --vh-max ≥ --vh-start");
     }
-    let landing = boundary::scenario_landing(scenario)?;
+    let mut engines = engines.to_vec();
+    engines.sort();
+    engines.dedup();
+    let sc = Scenario::load(scenario)?;
+    for &e in &engines {
+        sc.require_engine(e)?;
+    }
     let bar = if std::io::stderr().is_terminal() {
         let b = indicatif::ProgressBar::new(0);
         b.set_message("landings");
@@ -240,33 +251,53 @@ pub fn boundary(
         indicatif::ProgressBar::hidden()
     };
     let tick = || bar.inc(1);
-    let points = boundary::search(&vvs, settings, landing, &tick)?;
+    let mut points = Vec::new();
+    for &engine in &engines {
+        let landing = boundary::scenario_landing(scenario, move |sc: &Scenario| {
+            touchdown_compare::run(engine, scenario, sc).map(|r| r.summary.outcome)
+        })?;
+        let found = boundary::search(&vvs, settings, landing, &tick)?;
+        points.extend(found.into_iter().map(|point| EnginePoint { engine, point }));
+    }
     bar.finish_and_clear();
-    let unit = touchdown_scenario::Scenario::load(scenario)?.file.units;
-    let vunit = format!("{}/s", unit.length_label());
+    let vunit = format!("{}/s", sc.file.units.length_label());
+    let json = serde_json::to_string_pretty(&points)?;
     match format {
-        BoundaryFormat::Json => println!("{}", serde_json::to_string_pretty(&points)?),
+        BoundaryFormat::Json => println!("{json}"),
         BoundaryFormat::Csv => print!("{}", boundary_csv(&points)?),
         BoundaryFormat::Text => print!("{}", boundary_text(&points, &vunit, settings)),
     }
+    if let Some(png) = plot {
+        let title = format!("{}\nstability boundary per engine", sc.file.name);
+        crate::plots::boundaries(&json, &title, &vunit, png)?;
+    }
     Ok(())
+}
+
+/// One engine's boundary at one descent speed.
+#[derive(Serialize)]
+struct EnginePoint {
+    engine: Engine,
+    #[serde(flatten)]
+    point: BoundaryPoint,
 }
 
 fn opt(x: Option<f64>) -> String {
     x.map(|v| format!("{v:.3}")).unwrap_or_else(|| "—".into())
 }
 
-fn boundary_text(points: &[BoundaryPoint], unit: &str, s: Settings) -> String {
+fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
     let mut o = String::new();
     let _ = writeln!(o, "stability boundary: horizontal velocity at which the landing turns unstable ({unit}; tolerance {})", s.tolerance);
     let _ = writeln!(
         o,
-        "  descent Vv   boundary Vh   stable at   unstable at   landings   undecided"
+        "  engine   descent Vv   boundary Vh   stable at   unstable at   landings   undecided"
     );
-    for p in points {
+    for EnginePoint { engine, point: p } in points {
         let _ = writeln!(
             o,
-            "  {:>10.3}   {:>11}   {:>9}   {:>11}   {:>8}   {:>9}",
+            "  {:<6}   {:>10.3}   {:>11}   {:>9}   {:>11}   {:>8}   {:>9}",
+            engine.name(),
             p.vv,
             opt(p.vh),
             opt(p.stable_at),
@@ -283,9 +314,10 @@ fn boundary_text(points: &[BoundaryPoint], unit: &str, s: Settings) -> String {
     o
 }
 
-fn boundary_csv(points: &[BoundaryPoint]) -> Result<String> {
+fn boundary_csv(points: &[EnginePoint]) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
+        "engine",
         "vv_descent",
         "vh_boundary",
         "vh_stable",
@@ -294,8 +326,9 @@ fn boundary_csv(points: &[BoundaryPoint]) -> Result<String> {
         "undecided",
     ])?;
     let f = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
-    for p in points {
+    for EnginePoint { engine, point: p } in points {
         w.write_record([
+            engine.name().to_string(),
             format!("{}", p.vv),
             f(p.vh),
             f(p.stable_at),

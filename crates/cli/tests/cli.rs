@@ -24,6 +24,24 @@ fn temp(name: &str) -> PathBuf {
     d
 }
 
+/// Writes `dir/file`, a scenario named `name` that extends the bundled `base` (a path under
+/// scenarios/) with the TOML `extra`; returns its path.
+fn extending(dir: &str, file: &str, base: &str, name: &str, extra: &str) -> PathBuf {
+    let d = temp(dir);
+    std::fs::create_dir_all(&d).unwrap();
+    let f = d.join(file);
+    let base = root().join("scenarios").join(base);
+    std::fs::write(
+        &f,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = {name:?}\n{extra}",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
+    f
+}
+
 #[test]
 fn same_scenario_same_binary_byte_identical_outputs() {
     let mut headers = Vec::new();
@@ -193,18 +211,13 @@ fn text_summary_reads_well() {
 
 #[test]
 fn bad_input_fails_with_the_file_and_field() {
-    let d = temp("bad");
-    std::fs::create_dir_all(&d).unwrap();
-    let f = d.join("bad.toml");
-    let base = root().join("scenarios/flat-drop.toml");
-    std::fs::write(
-        &f,
-        format!(
-            "schema_version = 1\nextends = {:?}\nname = \"bad\"\n[vehicle]\nmass = -2.0\n",
-            base.display().to_string()
-        ),
-    )
-    .unwrap();
+    let f = extending(
+        "bad",
+        "bad.toml",
+        "flat-drop.toml",
+        "bad",
+        "[vehicle]\nmass = -2.0\n",
+    );
     let out = touchdown(&["run", f.to_str().unwrap()]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
@@ -249,18 +262,13 @@ fn validate_json_carries_every_row_and_the_targets() {
 
 #[test]
 fn boundary_prints_csv_and_json() {
-    let d = temp("boundary");
-    std::fs::create_dir_all(&d).unwrap();
-    let f = d.join("steep.toml");
-    let base = root().join("scenarios/fig-25-26.toml");
-    std::fs::write(
-        &f,
-        format!(
-            "schema_version = 1\nextends = {:?}\nname = \"steep\"\n[surface]\nkind = \"rigid\"\nslope = 15.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
-            base.display().to_string()
-        ),
-    )
-    .unwrap();
+    let f = extending(
+        "boundary",
+        "steep.toml",
+        "fig-25-26.toml",
+        "steep",
+        "[surface]\nkind = \"rigid\"\nslope = 15.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
+    );
     let args = |fmt: &'static str| {
         [
             "boundary",
@@ -288,11 +296,11 @@ fn boundary_prints_csv_and_json() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("vv_descent,vh_boundary,vh_stable,vh_unstable,landings,undecided")
+        Some("engine,vv_descent,vh_boundary,vh_stable,vh_unstable,landings,undecided")
     );
     let row: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(row[0], "12");
-    let vh: f64 = row[1].parse().expect("a boundary was found");
+    assert_eq!(row[..2], ["core", "12"]);
+    let vh: f64 = row[2].parse().expect("a boundary was found");
     assert!(vh > 0.0 && vh < 12.0);
     let json = touchdown(&args("json").iter().map(String::as_str).collect::<Vec<_>>());
     let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
@@ -338,4 +346,155 @@ fn export_mjcf_writes_a_standalone_model() {
     ] {
         assert!(xml.contains(&format!("name=\"{name}\"")), "{name} missing");
     }
+}
+
+#[test]
+fn an_engine_the_scenario_leaves_out_is_refused_by_run_and_left_out_by_compare() {
+    let f = extending(
+        "applicable",
+        "core-and-rapier.toml",
+        "flat-drop.toml",
+        "two engines",
+        "[engines]\napplicable = [\"rapier\", \"core\"]\n",
+    );
+    let path = f.to_str().unwrap();
+    let xml = f.with_file_name("model.xml");
+    for args in [
+        &["run", path, "--engine", "mujoco"][..],
+        &["export-mjcf", path, "--output", xml.to_str().unwrap()],
+    ] {
+        let out = touchdown(args);
+        assert!(!out.status.success(), "{args:?} should fail");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("core-and-rapier.toml")
+                && err.contains("engines.applicable")
+                && err.contains("does not apply to the mujoco engine (it lists core, rapier)"),
+            "{args:?}: {err}"
+        );
+        assert!(out.stdout.is_empty(), "nothing is written on failure");
+    }
+    assert!(!xml.exists(), "no model is exported");
+    let out = touchdown(&["compare", path]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("core vs rapier:"), "{text}");
+    assert!(!text.contains("vs mujoco"), "{text}");
+    assert!(
+        text.contains("mujoco  not run: the scenario does not apply to it"),
+        "{text}"
+    );
+    let out = touchdown(&["compare", path, "--engines", "core,mujoco"]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("no pair of engines to compare"));
+}
+
+/// A PNG of some substance at `path`.
+fn assert_png(path: &Path) {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(
+        bytes.starts_with(b"\x89PNG\r\n\x1a\n") && bytes.len() > 10_000,
+        "{} is not a plot ({} bytes)",
+        path.display(),
+        bytes.len()
+    );
+}
+
+#[test]
+fn compare_plot_overlays_the_traces_behind_the_metrics() {
+    let d = temp("compare-plot");
+    let out = touchdown(&[
+        "compare",
+        "scenarios/flat-drop.toml",
+        "--engines",
+        "core,rapier",
+        "--plot",
+        d.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_png(&d.join("flat-drop.png"));
+    for engine in ["core", "rapier"] {
+        let text = std::fs::read_to_string(d.join(format!("flat-drop.{engine}.csv"))).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next(),
+            Some("t_s,pitch_rate_rad_s,leg1_primary_stroke_m,leg2_primary_stroke_m,leg3_primary_stroke_m,leg4_primary_stroke_m,acceleration_t_s,vertical_acceleration_m_s2")
+        );
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        assert!(rows.len() > 100, "{engine}: {} rows", rows.len());
+        // The largest stroke plotted is the stroke the comparison measured (0.0622 m analytic).
+        let max = rows
+            .iter()
+            .map(|r| r[2].parse::<f64>().unwrap())
+            .fold(0.0, f64::max);
+        assert!((max - 0.0622).abs() < 0.001, "{engine}: {max}");
+        // The windowed acceleration column stops 2 ms before the end; never a NaN.
+        assert!(rows.last().unwrap()[7].is_empty());
+        assert!(!text.contains("NaN") && !text.contains("inf"));
+    }
+}
+
+#[test]
+fn boundary_plot_overlays_the_engines() {
+    let d = temp("boundary-plot");
+    let png = d.join("boundary.png");
+    let out = touchdown(&[
+        "boundary",
+        "scenarios/near-boundary-overturn.toml",
+        "--vv",
+        "8:10:2",
+        "--vh-step",
+        "8",
+        "--vh-max",
+        "32",
+        "--tol",
+        "1",
+        "--format",
+        "csv",
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_png(&png);
+    let points: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(png.with_extension("json")).unwrap())
+            .unwrap();
+    assert_eq!(points.as_array().unwrap().len(), 2);
+    assert!(points
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| p["engine"] == "core"));
+    let csv = String::from_utf8(out.stdout).unwrap();
+    assert!(csv.starts_with("engine,vv_descent,"), "{csv}");
+    // Refused: an engine the scenario leaves out.
+    let f = extending(
+        "boundary-applicable",
+        "core-only.toml",
+        "near-boundary-overturn.toml",
+        "core only",
+        "[engines]\napplicable = [\"core\"]\n",
+    );
+    let out = touchdown(&[
+        "boundary",
+        f.to_str().unwrap(),
+        "--vv",
+        "8:8:1",
+        "--engines",
+        "core,rapier",
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("does not apply to the rapier engine"));
 }

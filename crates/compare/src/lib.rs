@@ -5,55 +5,22 @@
 //! | [`trace`] | the time series a comparison needs (vertical velocity, pitch rate), from any engine |
 //! | [`metrics`] | divergence of two engines, channel by channel, against written tolerances |
 //! | [`report`] | a scenario's comparison as text (rounded for snapshot review) and JSON |
+//! | [`plot`] | the traces behind the metrics, as CSV for `python/plot_compare.py` |
 //!
 //! An engine's run is its summary plus its trace; every pair of the engines asked for is
 //! compared, the first engine of the pair being the reference of its relative channels.
 
 pub mod metrics;
+pub mod plot;
 pub mod report;
 pub mod trace;
 
 use serde::Serialize;
 use std::path::Path;
 use touchdown_record::{Landing, Observer, Sample, Summary};
+pub use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 pub use trace::Trace;
-
-/// An engine of the testbench.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Engine {
-    /// The report-faithful core.
-    Core,
-    /// The rapier multibody rebuild.
-    Rapier,
-    /// The MuJoCo model driven by the shared laws.
-    Mujoco,
-}
-
-impl Engine {
-    /// Every engine, in comparison order.
-    pub const ALL: [Engine; 3] = [Engine::Core, Engine::Rapier, Engine::Mujoco];
-
-    /// The engine's name as on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Engine::Core => "core",
-            Engine::Rapier => "rapier",
-            Engine::Mujoco => "mujoco",
-        }
-    }
-}
-
-impl std::str::FromStr for Engine {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Engine, String> {
-        Engine::ALL
-            .into_iter()
-            .find(|e| e.name() == s)
-            .ok_or_else(|| format!("unknown engine {s:?}; expected core, rapier or mujoco"))
-    }
-}
 
 /// Errors of a comparison: an engine that failed on a scenario.
 #[derive(Debug, thiserror::Error)]
@@ -94,7 +61,8 @@ impl<L: Landing> Observer<L> for Tracer {
     }
 }
 
-/// Runs the scenario at `path` (loaded as `sc`) on `engine`.
+/// Runs the scenario `sc` (read from `path`, named in errors; changes made to it after loading
+/// apply, on every engine: MuJoCo's runner is given the resolved scenario) on `engine`.
 pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, CompareError> {
     let fail = |message: String| CompareError::Engine {
         engine: engine.name(),
@@ -111,14 +79,21 @@ pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, Comp
             .map_err(|e| fail(e.to_string()))?,
         Engine::Mujoco => {
             let launch = touchdown_mujoco::Launch::locate().map_err(|e| fail(e.to_string()))?;
+            static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
             let dir = std::env::temp_dir().join(format!(
                 "touchdown-compare-{}-{}",
                 std::process::id(),
-                path.file_stem().unwrap_or_default().to_string_lossy()
+                RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
             ));
-            let result = launch
-                .run(path, None, &dir, true)
-                .map_err(|e| fail(e.to_string()))
+            let resolved = dir.join("scenario.resolved.toml");
+            let result = std::fs::create_dir_all(&dir)
+                .and_then(|()| std::fs::write(&resolved, sc.to_toml()))
+                .map_err(|e| fail(format!("cannot write {}: {e}", resolved.display())))
+                .and_then(|()| {
+                    launch
+                        .run(&resolved, None, &dir, true)
+                        .map_err(|e| fail(e.to_string()))
+                })
                 .and_then(|summary| {
                     tracer.1 = Trace::from_history(&dir.join("history.csv")).map_err(fail)?;
                     Ok(summary)
@@ -160,8 +135,10 @@ pub struct ScenarioComparison {
     pub file: String,
     /// SHA-256 of the resolved scenario.
     pub scenario_sha256: String,
-    /// Each engine and what computed it.
+    /// Each engine run and what computed it.
     pub engines: Vec<(Engine, String)>,
+    /// Engines asked for that the scenario's `engines.applicable` leaves out (not run).
+    pub not_applicable: Vec<Engine>,
     /// Each engine's summary.
     #[serde(skip)]
     pub runs: Vec<EngineRun>,
@@ -169,13 +146,17 @@ pub struct ScenarioComparison {
     pub pairs: Vec<metrics::PairComparison>,
 }
 
-/// Runs the scenario at `path` on `engines` and compares every pair.
+/// Runs the scenario at `path` on those of `engines` that apply to it (`engines.applicable`)
+/// and compares every pair.
 pub fn compare_scenario(
     path: &Path,
     engines: &[Engine],
 ) -> Result<ScenarioComparison, CompareError> {
     let sc = Scenario::load(path)?;
-    let runs = engines
+    let (applicable, not_applicable): (Vec<Engine>, Vec<Engine>) = engines
+        .iter()
+        .partition(|e| sc.applicable_engines.contains(e));
+    let runs = applicable
         .iter()
         .map(|e| run(*e, path, &sc))
         .collect::<Result<Vec<_>, _>>()?;
@@ -190,6 +171,7 @@ pub fn compare_scenario(
         file: path.display().to_string(),
         scenario_sha256: sc.sha256(),
         engines: runs.iter().map(|r| (r.engine, engine_version(r))).collect(),
+        not_applicable,
         runs,
         pairs,
     })

@@ -45,6 +45,16 @@ pub fn text(c: &ScenarioComparison) -> String {
             s.outcome
         );
     }
+    for engine in &c.not_applicable {
+        let _ = writeln!(
+            o,
+            "{:<7} not run: the scenario does not apply to it (engines.applicable)",
+            engine.name()
+        );
+    }
+    if c.pairs.is_empty() {
+        let _ = writeln!(o, "\nno pair of engines to compare");
+    }
     for p in &c.pairs {
         let _ = writeln!(
             o,

@@ -1,5 +1,5 @@
 //! The time series a comparison needs of a landing, the same for every engine: time, vertical
-//! velocity and pitch rate at every accepted state.
+//! velocity, pitch rate and primary strokes at every accepted state.
 
 use std::path::Path;
 use touchdown_record::Sample;
@@ -18,6 +18,10 @@ pub struct Trace {
     pub vz: Vec<f64>,
     /// Pitch rate, angular velocity about the inertial X axis, rad/s.
     pub pitch_rate: Vec<f64>,
+    /// Primary strokes, m (compression positive): `legs` values per time, leg by leg.
+    pub primary_stroke: Vec<f64>,
+    /// Legs per time in `primary_stroke`.
+    pub legs: usize,
 }
 
 impl Trace {
@@ -26,6 +30,9 @@ impl Trace {
         self.t.push(s.t);
         self.vz.push(s.velocity.z);
         self.pitch_rate.push(s.pitch_rate);
+        self.legs = s.legs.len();
+        self.primary_stroke
+            .extend(s.legs.iter().map(|l| l.primary_stroke));
     }
 
     /// Reads the trace from a `history.csv`.
@@ -44,7 +51,14 @@ impl Trace {
             column("vz_m_s")?,
             column("pitch_rate_rad_s")?,
         );
-        let mut trace = Trace::default();
+        let strokes = (1..)
+            .map(|n| format!("leg{n}_primary_stroke_m"))
+            .map_while(|name| header.iter().position(|h| h == name))
+            .collect::<Vec<_>>();
+        let mut trace = Trace {
+            legs: strokes.len(),
+            ..Trace::default()
+        };
         for row in reader.records() {
             let row = row.map_err(|e| what(&e))?;
             let num = |c: usize| {
@@ -55,6 +69,9 @@ impl Trace {
             trace.t.push(num(ct)?);
             trace.vz.push(num(cz)?);
             trace.pitch_rate.push(num(cq)?);
+            for &c in &strokes {
+                trace.primary_stroke.push(num(c)?);
+            }
         }
         Ok(trace)
     }
@@ -79,22 +96,41 @@ impl Trace {
         self.t.last().copied().unwrap_or(0.0)
     }
 
+    /// Primary stroke of leg `leg` (0-based) at each time, m.
+    pub fn primary_stroke(&self, leg: usize) -> impl Iterator<Item = f64> + '_ {
+        self.primary_stroke
+            .iter()
+            .skip(leg)
+            .step_by(self.legs.max(1))
+            .copied()
+    }
+
+    /// The vertical acceleration averaged over [`ACCELERATION_WINDOW`] from each time of the
+    /// trace whose window ends within it: (the window's middle, s; m/s², positive up).
+    pub fn vertical_acceleration(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let end = self.end() - ACCELERATION_WINDOW;
+        self.t
+            .iter()
+            .zip(&self.vz)
+            .take_while(move |(t, _)| **t <= end)
+            .map(|(&t, &vz)| {
+                let a = (self.at(&self.vz, t + ACCELERATION_WINDOW) - vz) / ACCELERATION_WINDOW;
+                (t + 0.5 * ACCELERATION_WINDOW, a)
+            })
+    }
+
     /// The vertical acceleration of largest magnitude, averaged over
     /// [`ACCELERATION_WINDOW`] (m/s², signed; positive up), and its time (the window's
     /// middle, s).
     pub fn peak_vertical_acceleration(&self) -> (f64, f64) {
-        let mut peak = (0.0, 0.0);
-        let end = self.end() - ACCELERATION_WINDOW;
-        for (i, &t) in self.t.iter().enumerate() {
-            if t > end {
-                break;
-            }
-            let a = (self.at(&self.vz, t + ACCELERATION_WINDOW) - self.vz[i]) / ACCELERATION_WINDOW;
-            if a.abs() > f64::abs(peak.0) {
-                peak = (a, t + 0.5 * ACCELERATION_WINDOW);
-            }
-        }
-        peak
+        self.vertical_acceleration()
+            .fold((0.0, 0.0), |peak: (f64, f64), (t, a)| {
+                if a.abs() > peak.0.abs() {
+                    (a, t)
+                } else {
+                    peak
+                }
+            })
     }
 }
 
@@ -110,8 +146,12 @@ mod tests {
         let trace = Trace {
             vz: t.iter().map(|t| v(*t)).collect(),
             pitch_rate: vec![0.0; t.len()],
+            primary_stroke: t.iter().flat_map(|t| [*t, 2.0 * t]).collect(),
+            legs: 2,
             t,
         };
+        assert_eq!(trace.primary_stroke(1).nth(3), Some(2.0 * 1.5e-3));
+        assert_eq!(trace.primary_stroke(0).count(), 25);
         assert!((trace.at(&trace.vz, 0.00325) - v(0.00325)).abs() < 1e-12);
         assert_eq!(trace.at(&trace.vz, 1.0), trace.vz[24]);
         let (a, at) = trace.peak_vertical_acceleration();

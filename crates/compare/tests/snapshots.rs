@@ -48,3 +48,30 @@ fn every_tolerance_is_documented_with_its_value() {
         );
     }
 }
+
+/// Each shared scenario says, in its own file, which engines apply to it.
+#[test]
+fn every_shared_scenario_states_its_engines() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let table: toml::Table = std::fs::read_to_string(&path).unwrap().parse().unwrap();
+        let listed = table
+            .get("engines")
+            .and_then(|e| e.get("applicable"))
+            .and_then(|a| a.as_array())
+            .map(|a| a.len())
+            .unwrap_or(0);
+        assert!(
+            listed > 0,
+            "{}: state the engines that apply, [engines] applicable = [...]",
+            path.display()
+        );
+        n += 1;
+    }
+    assert!(n >= 10, "{n} shared scenarios");
+}

@@ -23,12 +23,12 @@ use crate::CoreError;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, Sample,
-    StabilityTracker, Summary,
+    Divergence, EnergyLedger, EnergyNow, EnergyReport, Extremes, Landing, PadView, Progress,
+    Sample, StabilityTracker, Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, PadSurface};
-use touchdown_scenario::schema::ReleaseRule;
+use touchdown_scenario::schema::{Engine, ReleaseRule};
 use touchdown_scenario::Scenario;
 
 /// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
@@ -119,6 +119,7 @@ impl Simulation {
     /// Sets up a landing from a resolved scenario: laws, initial state (eq. 19) and the
     /// contact of the first footpad.
     pub fn new(scenario: &Scenario) -> Result<Simulation, CoreError> {
+        scenario.require_engine(Engine::Core)?;
         let laws = GearLaws::from_scenario(scenario)?;
         let init = frames::initial_state(scenario);
         let n = scenario.legs.len();
@@ -240,21 +241,25 @@ impl Simulation {
             .sum()
     }
 
-    /// Energy report at the current state.
-    pub fn energy(&self) -> EnergyReport {
-        let stored: f64 = (0..self.legs.len())
+    /// Elastic energy stored in the gear's honeycombs now, J.
+    pub fn stored_energy(&self) -> f64 {
+        (0..self.legs.len())
             .map(|i| {
                 let g = &self.gear[i];
                 self.laws
                     .stored_energy(g.primary_stroke, g.secondary_stroke, &self.memory[i])
             })
-            .sum();
+            .sum()
+    }
+
+    /// Energy report at the current state.
+    pub fn energy(&self) -> EnergyReport {
         self.ledger.report(
             self.stability.initial_kinetic_energy(),
             self.kinetic_energy(),
             self.potential_energy() - self.potential0,
             self.footpad_energy(),
-            stored,
+            self.stored_energy(),
         )
     }
 
@@ -527,14 +532,17 @@ impl Simulation {
                 touched: p.first_contact.is_some(),
             };
         }
-        let ke = self.kinetic_energy();
+        let energy = EnergyNow {
+            kinetic: self.kinetic_energy(),
+            stored: self.stored_energy(),
+        };
         let v = &self.vehicle;
         self.stability.update(
             self.t,
             &v.position,
             &v.velocity,
             old.map(|o| &o.velocity),
-            ke,
+            energy,
             &self.pad_views,
         );
     }

@@ -15,6 +15,7 @@ use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 use touchdown_record::History;
+use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
 /// Pointers to MuJoCo's arrays (`MjData` and `MjModel` fields of the model loaded from
@@ -141,6 +142,7 @@ pub unsafe extern "C" fn touchdown_mujoco_open(
     runner.guard(|r| {
         let path = text(scenario, "scenario path")?;
         let mut sc = Scenario::load(Path::new(path))?;
+        sc.require_engine(Engine::Mujoco)?;
         if timestep > 0.0 {
             sc = sc.with_mujoco(|m| m.timestep = timestep)?;
         }

@@ -22,6 +22,7 @@ use touchdown_multibody::{
     check_explicit_timestep, Fault, GearBook, StrutKinematics, VehicleState,
 };
 use touchdown_record::{EnergyReport, History, Sample, Summary};
+use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
 /// Where one gear's quantities are in MuJoCo's arrays: ids and addresses the runner resolves
@@ -170,6 +171,7 @@ impl MujocoLanding {
         mujoco_version: &str,
         history: Option<History>,
     ) -> Result<MujocoLanding, MujocoError> {
+        sc.require_engine(Engine::Mujoco)?;
         let book = GearBook::new(sc)?;
         check_explicit_timestep(sc, &book.laws, sc.mujoco.timestep).map_err(|message| {
             MujocoError::Unsupported {

@@ -52,22 +52,29 @@ fn workspace() -> PathBuf {
     p.canonicalize().unwrap_or(p)
 }
 
+/// The project's Python interpreter (`$TOUCHDOWN_PYTHON`, else the workspace's `.venv`), or a
+/// setup error saying that `needed_for` needs it and how to create it.
+pub fn project_python(needed_for: &str) -> Result<PathBuf, MujocoError> {
+    let python = match std::env::var_os("TOUCHDOWN_PYTHON") {
+        Some(p) => PathBuf::from(p),
+        None => workspace().join(".venv").join("bin").join("python"),
+    };
+    if !python.is_file() {
+        return Err(setup_error(format!(
+            "{needed_for} needs the project's Python environment, and {} does not exist",
+            python.display()
+        )));
+    }
+    Ok(python)
+}
+
 impl Launch {
     /// Finds the interpreter (`$TOUCHDOWN_PYTHON`, else the workspace's `.venv`), the runner and
     /// the library (`$TOUCHDOWN_MUJOCO_LIBRARY`, else next to the running executable or in its
     /// `deps/`), or says which is missing and how to set it up.
     pub fn locate() -> Result<Launch, MujocoError> {
         let root = workspace();
-        let python = match std::env::var_os("TOUCHDOWN_PYTHON") {
-            Some(p) => PathBuf::from(p),
-            None => root.join(".venv").join("bin").join("python"),
-        };
-        if !python.is_file() {
-            return Err(setup_error(format!(
-                "the MuJoCo engine needs the project's Python environment, and {} does not exist",
-                python.display()
-            )));
-        }
+        let python = project_python("the MuJoCo engine")?;
         let runner = root.join("python").join("mujoco").join("run.py");
         if !runner.is_file() {
             return Err(MujocoError::Setup(format!(

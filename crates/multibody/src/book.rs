@@ -12,8 +12,8 @@ use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use nalgebra::{Matrix3, Vector3};
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
-    Summary,
+    Divergence, EnergyLedger, EnergyNow, EnergyReport, Extremes, PadView, Progress, Sample,
+    StabilityTracker, Summary,
 };
 use touchdown_scenario::model::{Leg, PadSurface, Stability};
 use touchdown_scenario::{frames, Scenario, ScenarioError};
@@ -273,12 +273,16 @@ impl GearBook {
                 touched: self.contacts[i].first_contact.is_some(),
             };
         }
+        let energy = EnergyNow {
+            kinetic: kinetic_energy,
+            stored: self.stored_energy(),
+        };
         self.stability.update(
             t,
             &v.position,
             &v.velocity,
             old_velocity,
-            kinetic_energy,
+            energy,
             &self.pad_views,
         );
     }
@@ -294,19 +298,22 @@ impl GearBook {
     /// The energy report with the vehicle's kinetic energy `kinetic` (J), its potential-energy
     /// change `potential_change` (J) and the gear links' energy change `gear` (J).
     pub fn energy(&self, kinetic: f64, potential_change: f64, gear: f64) -> EnergyReport {
-        let stored: f64 = self
-            .kin
-            .iter()
-            .zip(&self.memory)
-            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
-            .sum();
         self.ledger.report(
             self.stability.initial_kinetic_energy(),
             kinetic,
             potential_change,
             gear,
-            stored,
+            self.stored_energy(),
         )
+    }
+
+    /// Elastic energy stored in the gear's honeycombs at the current strokes, J.
+    pub fn stored_energy(&self) -> f64 {
+        self.kin
+            .iter()
+            .zip(&self.memory)
+            .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
+            .sum()
     }
 
     /// The summary of `engine`'s run on scenario `name` at time `t` (s) after `steps` steps,

@@ -20,6 +20,7 @@ use rapier3d_f64::prelude::*;
 use touchdown_laws::GearLaws;
 use touchdown_multibody::{check_explicit_timestep, Fault, GearBook, VehicleState};
 use touchdown_record::{EnergyReport, Landing, Sample, Summary};
+use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
 /// A landing simulated on the rapier multibody.
@@ -47,6 +48,7 @@ pub struct RapierSimulation {
 impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RapierError> {
+        scenario.require_engine(Engine::Rapier)?;
         let book = GearBook::new(scenario)?;
         let assembly = assembly::build(scenario)?;
         check_timestep(scenario, &book.laws)?;

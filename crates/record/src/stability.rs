@@ -9,7 +9,7 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 use touchdown_scenario::model::Stability;
-use touchdown_scenario::schema::WallRule;
+use touchdown_scenario::schema::{CountedEnergy, WallRule};
 
 /// Rounding allowance on condition 4, m/s: a centre of mass that does not move across the
 /// critical wall at all (a symmetric landing) has an outward velocity of rounding noise, about
@@ -51,6 +51,15 @@ pub fn stability_distance(
 /// crossing: V_o = V·n̂_out (positive: moving out of the footprint).
 pub fn overturn_velocity(v: &Vector3<f64>, n_out: &Vector3<f64>) -> f64 {
     v.dot(n_out) // eq. (107)
+}
+
+/// The energies condition 1 may count, J.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EnergyNow {
+    /// Kinetic energy of the vehicle, ½·M·V² + ½·ωᵀ·J·ω.
+    pub kinetic: f64,
+    /// Elastic energy stored in the gear's honeycombs.
+    pub stored: f64,
 }
 
 /// What the criteria need of one footpad.
@@ -105,15 +114,16 @@ impl StabilityTracker {
     /// Updates the distances and, until a decision is made, the unstable crossing and the four
     /// stable conditions, at time `t` (s) with the centre of mass at `cm` (m) moving at
     /// `velocity` (m/s; `previous_velocity` at the previous accepted state, to interpolate the
-    /// velocity at a crossing), the vehicle's kinetic energy `kinetic_energy` (J) and the
-    /// footpads `pads`. Allocates nothing.
+    /// velocity at a crossing), the vehicle's kinetic energy and the gear's stored energy
+    /// `energy` (the stored energy counted by condition 1 unless the criteria count the kinetic
+    /// energy alone) and the footpads `pads`. Allocates nothing.
     pub fn update(
         &mut self,
         t: f64,
         cm: &Vector3<f64>,
         velocity: &Vector3<f64>,
         previous_velocity: Option<&Vector3<f64>>,
-        kinetic_energy: f64,
+        energy: EnergyNow,
         pads: &[PadView],
     ) {
         let n = pads.len();
@@ -167,7 +177,11 @@ impl StabilityTracker {
             return;
         }
         let j = (min_wall + 1) % n;
-        let stable = kinetic_energy < self.criteria.kinetic_energy_fraction * self.ke0 // 1
+        let energy = match self.criteria.counted_energy {
+            CountedEnergy::Kinetic => energy.kinetic,
+            CountedEnergy::KineticAndStored => energy.kinetic + energy.stored,
+        };
+        let stable = energy < self.criteria.kinetic_energy_fraction * self.ke0 // 1
             && min_now > 0.0 // 2
             && pads[min_wall].in_contact && pads[j].in_contact // 3
             && -velocity.dot(&self.normal[min_wall])
@@ -240,9 +254,14 @@ mod tests {
         assert!(overturn_velocity(&Vector3::new(1.0, 1.0, 0.0), &n) > 0.0);
     }
 
+    fn e(kinetic: f64, stored: f64) -> EnergyNow {
+        EnergyNow { kinetic, stored }
+    }
+
     fn tracker() -> StabilityTracker {
         let criteria = Stability {
             kinetic_energy_fraction: 0.1,
+            counted_energy: CountedEnergy::KineticAndStored,
             min_separation_velocity: 0.0,
             walls: WallRule::All,
             terminate_on_decision: true,
@@ -267,7 +286,7 @@ mod tests {
             &Vector3::new(0.4, 0.4, 1.0),
             &v0,
             None,
-            50.0,
+            e(50.0, 0.0),
             &pads(true),
         );
         assert_eq!(t.decision(), None);
@@ -278,7 +297,7 @@ mod tests {
             &Vector3::new(0.6, 0.6, 1.0),
             &v1,
             Some(&v0),
-            50.0,
+            e(50.0, 0.0),
             &pads(true),
         );
         assert_eq!(t.decision(), Some((Outcome::Unstable, 0.1)));
@@ -292,11 +311,11 @@ mod tests {
         let mut t = tracker();
         let cm = Vector3::new(0.0, 0.0, 1.0);
         let v = Vector3::zeros();
-        t.update(0.0, &cm, &v, None, 20.0, &pads(true));
+        t.update(0.0, &cm, &v, None, e(20.0, 0.0), &pads(true));
         assert_eq!(t.decision(), None, "kinetic energy above 10 %");
-        t.update(0.1, &cm, &v, None, 5.0, &pads(false));
+        t.update(0.1, &cm, &v, None, e(5.0, 0.0), &pads(false));
         assert_eq!(t.decision(), None, "critical footpads off the surface");
-        t.update(0.2, &cm, &v, None, 5.0, &pads(true));
+        t.update(0.2, &cm, &v, None, e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.2)));
         assert!((t.min_distance() - (0.5f64).sqrt()).abs() < 1e-12);
     }
@@ -308,11 +327,34 @@ mod tests {
         // velocity toward it.
         let noise = Vector3::new(1e-11, 1e-11, 0.0);
         let mut t = tracker();
-        t.update(0.0, &cm, &noise, None, 5.0, &pads(true));
+        t.update(0.0, &cm, &noise, None, e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.0)));
         let mut t = tracker();
         let toward = Vector3::new(1e-3, 1e-3, 0.0);
-        t.update(0.0, &cm, &toward, None, 5.0, &pads(true));
+        t.update(0.0, &cm, &toward, None, e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), None, "moving toward the critical wall");
+    }
+
+    #[test]
+    fn energy_parked_in_the_gear_blocks_a_stable_decision_unless_kinetic_alone_counts() {
+        let cm = Vector3::new(0.0, 0.0, 1.0);
+        let v = Vector3::zeros();
+        // 5 J kinetic (below 10 % of 100 J) but 30 J stored in bottomed struts.
+        let mut t = tracker();
+        t.update(0.0, &cm, &v, None, e(5.0, 30.0), &pads(true));
+        assert_eq!(t.decision(), None, "the gear still holds 35 % of KE0");
+        t.update(0.1, &cm, &v, None, e(5.0, 4.0), &pads(true));
+        assert_eq!(t.decision(), Some((Outcome::Stable, 0.1)));
+        let criteria = Stability {
+            counted_energy: CountedEnergy::Kinetic,
+            ..t.criteria.clone()
+        };
+        let mut t = StabilityTracker::new(&criteria, Vector3::new(0.0, 0.0, -9.81), 4, 100.0);
+        t.update(0.0, &cm, &v, None, e(5.0, 30.0), &pads(true));
+        assert_eq!(
+            t.decision(),
+            Some((Outcome::Stable, 0.0)),
+            "the report's text"
+        );
     }
 }

@@ -195,6 +195,23 @@ impl Scenario {
     pub fn file_of(&self, field: &str) -> &str {
         owner_of(&self.layers, field)
     }
+
+    /// Refuses `engine` unless the scenario lists it in `engines.applicable`: every engine
+    /// calls this before it builds anything.
+    pub fn require_engine(&self, engine: schema::Engine) -> Result<(), ScenarioError> {
+        if self.applicable_engines.contains(&engine) {
+            return Ok(());
+        }
+        let listed: Vec<&str> = self.applicable_engines.iter().map(|e| e.name()).collect();
+        Err(ScenarioError::field(
+            self.file_of("engines.applicable"),
+            "engines.applicable",
+            format!(
+                "the scenario does not apply to the {engine} engine (it lists {})",
+                listed.join(", ")
+            ),
+        ))
+    }
 }
 
 /// The keys of a field path `a.b[2].c`: (key, optional array index) pairs.
@@ -281,6 +298,29 @@ fn resolve_layers(source: String, merged: Merged) -> Result<Scenario, ScenarioEr
         }
     })?;
     resolve(&source, merged.layers, file)
+}
+
+/// The applicable engines in comparison order: at least one, none named twice.
+fn resolve_applicable(
+    c: &Check,
+    engines: &[schema::Engine],
+) -> Result<Vec<schema::Engine>, ScenarioError> {
+    let field = "engines.applicable";
+    if engines.is_empty() {
+        return Err(c.err(
+            field,
+            "expected at least one of \"core\", \"rapier\", \"mujoco\"",
+        ));
+    }
+    let mut sorted = engines.to_vec();
+    sorted.sort();
+    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+        return Err(c.err(
+            field,
+            format!("expected each engine once, {} is named twice", w[0]),
+        ));
+    }
+    Ok(sorted)
 }
 
 /// The rapier engine's settings in SI.
@@ -769,6 +809,7 @@ fn resolve(
     }
     let stability = model::Stability {
         kinetic_energy_fraction: frac,
+        counted_energy: st.counted_energy,
         min_separation_velocity: c.non_negative(
             "stability.min_separation_velocity",
             st.min_separation_velocity,
@@ -776,6 +817,7 @@ fn resolve(
         walls: st.walls,
         terminate_on_decision: st.terminate_on_decision,
     };
+    let applicable_engines = resolve_applicable(&c, &file.engines.applicable)?;
     let rapier = resolve_rapier(&c, &file.engines.rapier, &u)?;
     let mujoco = resolve_mujoco(&c, &file.engines.mujoco, &u)?;
     let links = resolve_links(&c, &file.engines.links)?;
@@ -792,6 +834,7 @@ fn resolve(
         touchdown,
         integrator,
         stability,
+        applicable_engines,
         rapier,
         mujoco,
         links,

@@ -1,6 +1,6 @@
 //! The resolved scenario: every value in SI, geometry derived, ready for an engine.
 
-use crate::schema::{self, AttitudeReference, ReleaseRule, ScenarioFile, WallRule};
+use crate::schema::{self, AttitudeReference, CountedEnergy, ReleaseRule, ScenarioFile, WallRule};
 use nalgebra::{Matrix3, Vector3};
 
 /// A validated scenario in SI units (m, kg, N, s, rad).
@@ -28,6 +28,8 @@ pub struct Scenario {
     pub integrator: Integrator,
     /// Stability criteria.
     pub stability: Stability,
+    /// The engines that apply to the scenario, in comparison order, without repeats.
+    pub applicable_engines: Vec<schema::Engine>,
     /// Settings of the rapier multibody rebuild.
     pub rapier: Rapier,
     /// Settings of the MuJoCo export.
@@ -234,6 +236,8 @@ pub struct Integrator {
 pub struct Stability {
     /// Kinetic-energy fraction of condition 1.
     pub kinetic_energy_fraction: f64,
+    /// Energy counted by condition 1.
+    pub counted_energy: CountedEnergy,
     /// Minimum separation velocity of condition 4, m/s.
     pub min_separation_velocity: f64,
     /// Walls counted for the unstable declaration.

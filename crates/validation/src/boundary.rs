@@ -99,10 +99,16 @@ where
 }
 
 /// A landing closure for [`search`] on a scenario file: its vertical velocity set to −vv and
-/// its horizontal velocity to vh along the scenario's own horizontal direction (file units).
-pub fn scenario_landing(
-    path: &Path,
-) -> Result<impl Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync + '_, ValidationError> {
+/// its horizontal velocity to vh along the scenario's own horizontal direction (file units),
+/// landed by `land` (one engine's run of the changed scenario, to its outcome).
+pub fn scenario_landing<'a, L, E>(
+    path: &'a Path,
+    land: L,
+) -> Result<impl Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync + 'a, ValidationError>
+where
+    L: Fn(&Scenario) -> Result<Outcome, E> + Sync + 'a,
+    E: Into<Box<dyn std::error::Error + Send + Sync>>,
+{
     let sc = Scenario::load(path)?;
     let [hx, hy] = sc.file.touchdown.horizontal_velocity;
     let norm = hx.hypot(hy);
@@ -120,12 +126,10 @@ pub fn scenario_landing(
             ("touchdown.horizontal_velocity[1]", dy * vh),
         ];
         let sc = Scenario::load_with(path, &overrides)?;
-        touchdown_core::run(&sc)
-            .map(|s| s.outcome)
-            .map_err(|source| ValidationError::Run {
-                scenario: format!("{} at Vv = {vv}, Vh = {vh}", path.display()),
-                source,
-            })
+        land(&sc).map_err(|source| ValidationError::Run {
+            scenario: format!("{} at Vv = {vv}, Vh = {vh}", path.display()),
+            source: source.into(),
+        })
     })
 }
 

@@ -27,8 +27,8 @@ pub enum ValidationError {
     Run {
         /// The scenario.
         scenario: String,
-        /// Why.
-        source: touchdown_core::CoreError,
+        /// Why (the engine's error).
+        source: Box<dyn std::error::Error + Send + Sync>,
     },
     /// The optimiser failed.
     #[error("calibration: {0}")]

@@ -1,0 +1,79 @@
+//! The comparison plots: data written by the Rust side, drawn by `python/plot_compare.py` with
+//! the pinned matplotlib of the project's Python environment.
+
+use anyhow::{bail, Context, Result};
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use touchdown_compare::ScenarioComparison;
+
+/// The plotting script.
+fn script() -> PathBuf {
+    Path::new(touchdown_mujoco::launch::WORKSPACE).join("python/plot_compare.py")
+}
+
+/// Runs the plotting script with `args`; its error output becomes the error.
+fn draw(args: &[&OsStr]) -> Result<()> {
+    let python = touchdown_mujoco::launch::project_python("--plot")?;
+    let out = Command::new(&python)
+        .arg(script())
+        .args(args)
+        .output()
+        .with_context(|| format!("cannot start {}", python.display()))?;
+    if !out.status.success() {
+        bail!(
+            "python/plot_compare.py failed: {}",
+            String::from_utf8_lossy(&out.stderr).trim()
+        );
+    }
+    Ok(())
+}
+
+/// `touchdown compare --plot DIR`: the traces of `c` (run from `scenario`) as CSV and their
+/// overlay as DIR/<stem>.png.
+pub fn comparison(c: &ScenarioComparison, scenario: &Path, dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let stem = scenario
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scenario".into());
+    touchdown_compare::plot::write_traces(c, dir, &stem)
+        .with_context(|| format!("cannot write the traces into {}", dir.display()))?;
+    let engines: Vec<&str> = c.runs.iter().map(|r| r.engine.name()).collect();
+    let png = dir.join(format!("{stem}.png"));
+    draw(&[
+        "traces".as_ref(),
+        "--data".as_ref(),
+        dir.as_os_str(),
+        "--stem".as_ref(),
+        stem.as_ref(),
+        "--engines".as_ref(),
+        engines.join(",").as_ref(),
+        "--title".as_ref(),
+        c.scenario.as_ref(),
+        "--out".as_ref(),
+        png.as_os_str(),
+    ])
+}
+
+/// `touchdown boundary --plot FILE`: the boundary points (JSON, written beside FILE) overlaid
+/// per engine into FILE.
+/// `unit` is the velocity unit of the points.
+pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()> {
+    if let Some(dir) = png.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let data = png.with_extension("json");
+    std::fs::write(&data, json).with_context(|| format!("cannot write {}", data.display()))?;
+    draw(&[
+        "boundaries".as_ref(),
+        "--data".as_ref(),
+        data.as_os_str(),
+        "--title".as_ref(),
+        title.as_ref(),
+        "--unit".as_ref(),
+        unit.as_ref(),
+        "--out".as_ref(),
+        png.as_os_str(),
+    ])
+}
