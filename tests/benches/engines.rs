@@ -77,7 +77,7 @@ fn mujoco(c: &mut Criterion) {
     }
     engine(c, "mujoco", 10, |landing, _| {
         launch
-            .run(&scenario(landing), None, &out, false)
+            .run(&scenario(landing), &out, false)
             .expect("the landing runs")
     });
     let _ = std::fs::remove_dir_all(&out);

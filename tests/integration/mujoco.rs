@@ -10,7 +10,7 @@ use std::process::Command;
 use touchdown_mujoco::landing::{GearIndex, MjArrays, ModelSizes};
 use touchdown_mujoco::{Launch, MujocoError, MujocoLanding};
 use touchdown_record::{Outcome, Summary};
-use touchdown_scenario::{frames, Scenario};
+use touchdown_scenario::{frames, Scenario, ScenarioError};
 use touchdown_tests::{analytic_drop_stroke, python, root, scenario, validation_landings};
 
 /// A landing on the MuJoCo engine, end to end through the Python runner.
@@ -22,7 +22,7 @@ fn mujoco(path: &Path) -> Summary {
     ));
     let launch = Launch::locate().unwrap_or_else(|e| panic!("{e}"));
     let summary = launch
-        .run(path, None, &out, false)
+        .run(path, &out, false)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let _ = std::fs::remove_dir_all(&out);
     summary
@@ -214,7 +214,7 @@ fn a_time_step_too_large_for_the_stiffest_law_is_refused_by_the_mujoco_engine() 
         })
         .unwrap();
     match MujocoLanding::new(&sc, Vec::new(), ModelSizes::default(), "test", None) {
-        Err(MujocoError::Unsupported { field, message, .. }) => {
+        Err(MujocoError::Scenario(ScenarioError::Field { field, message, .. })) => {
             assert_eq!(field, "engines.mujoco.timestep");
             assert!(message.contains("ω·Δt"), "{message}");
         }

@@ -6,7 +6,7 @@
 use touchdown_core::Simulation;
 use touchdown_rapier::{RapierError, RapierSimulation};
 use touchdown_record::{Landing, Observer, Sample};
-use touchdown_scenario::{frames, Scenario};
+use touchdown_scenario::{frames, Scenario, ScenarioError};
 use touchdown_tests::{scenario, validation_landings};
 
 /// The history of a landing on one engine, one sample per step (a template sample sized for
@@ -96,7 +96,7 @@ fn the_footpads_impact_is_booked_as_contact_work() {
 fn a_time_step_too_large_for_the_stiffest_law_is_refused() {
     let sc = flat_drop().with_rapier(|r| r.timestep = 1e-3).unwrap();
     match RapierSimulation::new(&sc) {
-        Err(RapierError::Unsupported { field, message, .. }) => {
+        Err(RapierError::Scenario(ScenarioError::Field { field, message, .. })) => {
             assert_eq!(field, "engines.rapier.timestep");
             assert!(message.contains("ω·Δt"), "{message}");
         }

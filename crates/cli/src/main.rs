@@ -7,7 +7,7 @@ mod validation;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
-use touchdown_record::{History, Landing};
+use touchdown_record::History;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
@@ -267,34 +267,7 @@ fn run_landing(
         }
         _ => None,
     };
-    let summary = match engine {
-        Engine::Core => {
-            let mut sim = touchdown_core::Simulation::new(&sc)?;
-            match recorder.as_mut() {
-                Some(r) => sim.run(r)?,
-                None => sim.run(&mut ())?,
-            }
-        }
-        Engine::Rapier => {
-            let mut sim = touchdown_rapier::RapierSimulation::new(&sc)?;
-            match recorder.as_mut() {
-                Some(r) => sim.run(r)?,
-                None => sim.run(&mut ())?,
-            }
-        }
-        Engine::Mujoco => {
-            let launch = touchdown_mujoco::Launch::locate()?;
-            match out {
-                Some(dir) => launch.run(scenario, timestep, dir, true)?,
-                None => {
-                    let dir = scratch_dir()?;
-                    let summary = launch.run(scenario, timestep, &dir, false);
-                    std::fs::remove_dir_all(&dir).ok();
-                    summary?
-                }
-            }
-        }
-    };
+    let summary = touchdown_compare::land(engine, scenario, &sc, &mut recorder, out)?;
     if let Some(r) = recorder {
         r.finish()?;
     }
@@ -310,17 +283,6 @@ fn run_landing(
         Format::Json => println!("{}", summary.to_json()),
     }
     Ok(())
-}
-
-/// A fresh folder for a run's files that the user did not ask to keep.
-fn scratch_dir() -> Result<PathBuf> {
-    let stamp = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_nanos())
-        .unwrap_or(0);
-    let dir = std::env::temp_dir().join(format!("touchdown-run-{}-{stamp}", std::process::id()));
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    Ok(dir)
 }
 
 /// `touchdown compare`: every scenario through every engine asked for, every pair compared.

@@ -16,7 +16,8 @@ pub mod report;
 pub mod trace;
 
 use serde::Serialize;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use touchdown_record::{Landing, Observer, Sample, Summary};
 pub use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -40,6 +41,16 @@ pub enum CompareError {
     },
 }
 
+impl CompareError {
+    fn engine(engine: Engine, path: &Path, message: String) -> CompareError {
+        CompareError::Engine {
+            engine: engine.name(),
+            scenario: path.display().to_string(),
+            message,
+        }
+    }
+}
+
 /// One engine's run of a landing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EngineRun {
@@ -61,47 +72,89 @@ impl<L: Landing> Observer<L> for Tracer {
     }
 }
 
-/// Runs the scenario `sc` (read from `path`, named in errors; changes made to it after loading
-/// apply, on every engine: MuJoCo's runner is given the resolved scenario) on `engine`.
-pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, CompareError> {
-    let fail = |message: String| CompareError::Engine {
-        engine: engine.name(),
-        scenario: path.display().to_string(),
-        message,
-    };
-    let mut tracer = Tracer(Sample::new(sc.legs.len()), Trace::default());
-    let summary = match engine {
+/// A scratch folder for a run's files, removed when dropped; unique within the process.
+#[derive(Debug)]
+pub struct ScratchDir(PathBuf);
+
+impl ScratchDir {
+    /// Creates a fresh folder under the system's temporary folder.
+    pub fn new() -> std::io::Result<ScratchDir> {
+        static DIRS: AtomicUsize = AtomicUsize::new(0);
+        let dir = std::env::temp_dir().join(format!(
+            "touchdown-{}-{}",
+            std::process::id(),
+            DIRS.fetch_add(1, Ordering::Relaxed)
+        ));
+        std::fs::create_dir_all(&dir)?;
+        Ok(ScratchDir(dir))
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for ScratchDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Lands the scenario `sc` (read from `path`, named in errors; changes made to it after loading
+/// apply on every engine) on `engine`. The stepping engines report every accepted state to
+/// `observer`; MuJoCo's runner is given the resolved scenario in `out` and writes its
+/// `summary.json` and `history.csv` there (with no `out`, it works in a scratch folder and
+/// writes no history).
+pub fn land<O>(
+    engine: Engine,
+    path: &Path,
+    sc: &Scenario,
+    observer: &mut O,
+    out: Option<&Path>,
+) -> Result<Summary, CompareError>
+where
+    O: Observer<touchdown_core::Simulation> + Observer<touchdown_rapier::RapierSimulation>,
+{
+    let fail = |message| CompareError::engine(engine, path, message);
+    match engine {
         Engine::Core => touchdown_core::Simulation::new(sc)
-            .and_then(|mut s| s.run(&mut tracer))
-            .map_err(|e| fail(e.to_string()))?,
+            .and_then(|mut s| s.run(observer))
+            .map_err(|e| fail(e.to_string())),
         Engine::Rapier => touchdown_rapier::RapierSimulation::new(sc)
-            .and_then(|mut s| s.run(&mut tracer))
-            .map_err(|e| fail(e.to_string()))?,
+            .and_then(|mut s| s.run(observer))
+            .map_err(|e| fail(e.to_string())),
         Engine::Mujoco => {
             let launch = touchdown_mujoco::Launch::locate().map_err(|e| fail(e.to_string()))?;
-            static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-            let dir = std::env::temp_dir().join(format!(
-                "touchdown-compare-{}-{}",
-                std::process::id(),
-                RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
-            ));
+            let scratch;
+            let dir = match out {
+                Some(dir) => dir,
+                None => {
+                    scratch = ScratchDir::new()
+                        .map_err(|e| fail(format!("cannot create a scratch folder: {e}")))?;
+                    scratch.path()
+                }
+            };
             let resolved = dir.join("scenario.resolved.toml");
-            let result = std::fs::create_dir_all(&dir)
-                .and_then(|()| std::fs::write(&resolved, sc.to_toml()))
-                .map_err(|e| fail(format!("cannot write {}: {e}", resolved.display())))
-                .and_then(|()| {
-                    launch
-                        .run(&resolved, None, &dir, true)
-                        .map_err(|e| fail(e.to_string()))
-                })
-                .and_then(|summary| {
-                    tracer.1 = Trace::from_history(&dir.join("history.csv")).map_err(fail)?;
-                    Ok(summary)
-                });
-            let _ = std::fs::remove_dir_all(&dir);
-            result?
+            std::fs::write(&resolved, sc.to_toml())
+                .map_err(|e| fail(format!("cannot write {}: {e}", resolved.display())))?;
+            launch
+                .run(&resolved, dir, out.is_some())
+                .map_err(|e| fail(e.to_string()))
         }
-    };
+    }
+}
+
+/// Runs the scenario `sc` (read from `path`, named in errors) on `engine`, with its trace.
+pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, CompareError> {
+    let fail = |message| CompareError::engine(engine, path, message);
+    let scratch =
+        ScratchDir::new().map_err(|e| fail(format!("cannot create a scratch folder: {e}")))?;
+    let mut tracer = Tracer(Sample::new(sc.legs.len()), Trace::default());
+    let summary = land(engine, path, sc, &mut tracer, Some(scratch.path()))?;
+    if engine == Engine::Mujoco {
+        tracer.1 = Trace::from_history(&scratch.path().join("history.csv")).map_err(fail)?;
+    }
     Ok(EngineRun {
         engine,
         summary,

@@ -40,9 +40,6 @@ fn write_trace(trace: &Trace, path: &Path) -> Result<(), csv::Error> {
         "vertical_acceleration_m_s2".into(),
     ]);
     w.write_record(&header)?;
-    let strokes: Vec<Vec<f64>> = (0..trace.legs)
-        .map(|leg| trace.primary_stroke(leg).collect())
-        .collect();
     let mut acceleration = trace.vertical_acceleration();
     let mut last = f64::NEG_INFINITY;
     for (i, &t) in trace.t.iter().enumerate() {
@@ -52,7 +49,12 @@ fn write_trace(trace: &Trace, path: &Path) -> Result<(), csv::Error> {
         }
         last = t;
         let mut row = vec![format!("{t:.7}"), format!("{:.6e}", trace.pitch_rate[i])];
-        row.extend(strokes.iter().map(|s| format!("{:.6e}", s[i])));
+        row.extend(
+            trace
+                .primary_strokes_at(i)
+                .iter()
+                .map(|s| format!("{s:.6e}")),
+        );
         match a {
             Some((ta, a)) => row.extend([format!("{ta:.7}"), format!("{a:.6e}")]),
             None => row.extend([String::new(), String::new()]),

@@ -96,13 +96,9 @@ impl Trace {
         self.t.last().copied().unwrap_or(0.0)
     }
 
-    /// Primary stroke of leg `leg` (0-based) at each time, m.
-    pub fn primary_stroke(&self, leg: usize) -> impl Iterator<Item = f64> + '_ {
-        self.primary_stroke
-            .iter()
-            .skip(leg)
-            .step_by(self.legs.max(1))
-            .copied()
+    /// Every leg's primary stroke at the `i`-th time, m.
+    pub fn primary_strokes_at(&self, i: usize) -> &[f64] {
+        &self.primary_stroke[i * self.legs..(i + 1) * self.legs]
     }
 
     /// The vertical acceleration averaged over [`ACCELERATION_WINDOW`] from each time of the
@@ -150,8 +146,8 @@ mod tests {
             legs: 2,
             t,
         };
-        assert_eq!(trace.primary_stroke(1).nth(3), Some(2.0 * 1.5e-3));
-        assert_eq!(trace.primary_stroke(0).count(), 25);
+        assert_eq!(trace.primary_strokes_at(3)[1], 2.0 * 1.5e-3);
+        assert_eq!(trace.primary_stroke.len() / trace.legs, 25);
         assert!((trace.at(&trace.vz, 0.00325) - v(0.00325)).abs() < 1e-12);
         assert_eq!(trace.at(&trace.vz, 1.0), trace.vz[24]);
         let (a, at) = trace.peak_vertical_acceleration();

@@ -23,8 +23,8 @@ use crate::CoreError;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyNow, EnergyReport, Extremes, Landing, PadView, Progress,
-    Sample, StabilityTracker, Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, Sample,
+    StabilityTracker, Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, PadSurface};
@@ -184,7 +184,8 @@ impl Simulation {
         let mut v = sim.vehicle;
         sim.accept(&mut v)?;
         sim.vehicle = v;
-        sim.update_stability(None);
+        let energy = sim.energy();
+        sim.update_stability(None, &energy);
         sim.update_extremes();
         Ok(sim)
     }
@@ -242,7 +243,7 @@ impl Simulation {
     }
 
     /// Elastic energy stored in the gear's honeycombs now, J.
-    pub fn stored_energy(&self) -> f64 {
+    fn stored_energy(&self) -> f64 {
         (0..self.legs.len())
             .map(|i| {
                 let g = &self.gear[i];
@@ -466,9 +467,9 @@ impl Simulation {
         })
     }
 
-    /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
-    /// tolerance, naming the law most involved.
-    fn check_divergence(&self) -> Result<(), CoreError> {
+    /// Stops a run whose state is not finite or whose energy balance (`e`, this state's report)
+    /// has drifted beyond the tolerance, naming the law most involved.
+    fn check_divergence(&self, e: &EnergyReport) -> Result<(), CoreError> {
         let v = &self.vehicle;
         for (i, g) in self.gear.iter().enumerate() {
             let checks = [
@@ -510,10 +511,9 @@ impl Simulation {
                 usize::MAX,
             ));
         }
-        let e = self.energy();
         self.ledger
             .check_balance(
-                &e,
+                e,
                 self.integrator.energy_tolerance,
                 "step too large for the stiffest mode?",
             )
@@ -522,8 +522,8 @@ impl Simulation {
 
     /// Stability distances, the unstable crossing and the four stable conditions
     /// (eqs. 105-107, `touchdown_record::stability`). `old` is the previous accepted vehicle
-    /// state.
-    fn update_stability(&mut self, old: Option<&VehicleState>) {
+    /// state, `energy` the energy report of this state.
+    fn update_stability(&mut self, old: Option<&VehicleState>, energy: &EnergyReport) {
         for i in 0..self.pads.len() {
             let p = &self.pads[i];
             self.pad_views[i] = PadView {
@@ -532,10 +532,6 @@ impl Simulation {
                 touched: p.first_contact.is_some(),
             };
         }
-        let energy = EnergyNow {
-            kinetic: self.kinetic_energy(),
-            stored: self.stored_energy(),
-        };
         let v = &self.vehicle;
         self.stability.update(
             self.t,
@@ -644,8 +640,9 @@ impl Landing for Simulation {
         self.ledger.sliding += pad_work - pad_energy_change;
         self.book_strut_work(dt);
         self.steps += 1;
-        self.check_divergence()?;
-        self.update_stability(Some(&old));
+        let energy = self.energy();
+        self.check_divergence(&energy)?;
+        self.update_stability(Some(&old), &energy);
         self.update_extremes();
         Ok(())
     }

@@ -173,13 +173,12 @@ impl MujocoLanding {
     ) -> Result<MujocoLanding, MujocoError> {
         sc.require_engine(Engine::Mujoco)?;
         let book = GearBook::new(sc)?;
-        check_explicit_timestep(sc, &book.laws, sc.mujoco.timestep).map_err(|message| {
-            MujocoError::Unsupported {
-                file: sc.file_of("engines.mujoco.timestep").to_string(),
-                field: "engines.mujoco.timestep".into(),
-                message,
-            }
-        })?;
+        check_explicit_timestep(
+            sc,
+            &book.laws,
+            sc.mujoco.timestep,
+            "engines.mujoco.timestep",
+        )?;
         let n = sc.legs.len();
         if index.len() != n {
             return Err(MujocoError::Binding(format!(
@@ -277,10 +276,11 @@ impl MujocoLanding {
             self.book.start(ke);
         }
         self.book.evaluate().map_err(|f| self.diverged(f))?;
-        self.check_divergence()?;
-        let ke = self.kinetic_energy();
+        let energy = self.energy();
+        self.check_divergence(&energy)?;
         let old = (self.steps > 0).then_some(&self.old_velocity);
-        self.book.update_stability(self.t, &self.vehicle, old, ke);
+        self.book
+            .update_stability(self.t, &self.vehicle, old, &energy);
         if self.steps > 0 {
             self.book.update_extremes(self.t, &self.vehicle);
         }
@@ -449,12 +449,12 @@ impl MujocoLanding {
         MujocoError::Diverged(fault.at(self.t, &self.vehicle))
     }
 
-    /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
-    /// scenario's tolerance.
-    fn check_divergence(&self) -> Result<(), MujocoError> {
+    /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's
+    /// report) has drifted beyond the scenario's tolerance.
+    fn check_divergence(&self, energy: &EnergyReport) -> Result<(), MujocoError> {
         let finite = self.vehicle.is_finite() && self.gear_energy.is_finite();
         self.book
-            .check(&self.energy(), self.energy_tolerance, finite)
+            .check(energy, self.energy_tolerance, finite)
             .map_err(|f| self.diverged(f))
     }
 }

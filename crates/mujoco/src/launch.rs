@@ -93,15 +93,10 @@ impl Launch {
         })
     }
 
-    /// Runs `scenario` (with the MuJoCo time step `timestep`, s, if given) and writes
-    /// `summary.json`, and with `history` also `history.csv`, into `out`; returns the summary.
-    pub fn run(
-        &self,
-        scenario: &Path,
-        timestep: Option<f64>,
-        out: &Path,
-        history: bool,
-    ) -> Result<Summary, MujocoError> {
+    /// Runs `scenario` and writes `summary.json`, and with `history` also `history.csv`, into
+    /// `out`; returns the summary. (A changed time step travels in the scenario: write the
+    /// resolved scenario of `Scenario::with_mujoco`.)
+    pub fn run(&self, scenario: &Path, out: &Path, history: bool) -> Result<Summary, MujocoError> {
         let mut cmd = Command::new(&self.python);
         cmd.arg(&self.runner)
             .arg(scenario)
@@ -109,9 +104,6 @@ impl Launch {
             .arg(out)
             .arg("--library")
             .arg(&self.library);
-        if let Some(t) = timestep {
-            cmd.arg("--timestep").arg(format!("{t:e}"));
-        }
         if history {
             cmd.arg("--history");
         }

@@ -31,16 +31,6 @@ pub enum MujocoError {
     /// The scenario is invalid (names the file and field).
     #[error(transparent)]
     Scenario(#[from] touchdown_scenario::ScenarioError),
-    /// The scenario asks for something this engine does not model.
-    #[error("{file}: {field}: not supported by the MuJoCo engine: {message}")]
-    Unsupported {
-        /// Scenario file.
-        file: String,
-        /// Field.
-        field: String,
-        /// What is missing.
-        message: String,
-    },
     /// The simulation diverged, left the domain of a law, or MuJoCo warned; the run was stopped.
     #[error(transparent)]
     Diverged(#[from] touchdown_record::Divergence),

@@ -12,8 +12,8 @@ use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use nalgebra::{Matrix3, Vector3};
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyNow, EnergyReport, Extremes, PadView, Progress, Sample,
-    StabilityTracker, Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
+    Summary,
 };
 use touchdown_scenario::model::{Leg, PadSurface, Stability};
 use touchdown_scenario::{frames, Scenario, ScenarioError};
@@ -257,14 +257,14 @@ impl GearBook {
     }
 
     /// Updates the stability criteria at time `t` (s) with the vehicle in state `v`, its
-    /// velocity before the step `old_velocity` (m/s; `None` at touchdown) and its kinetic energy
-    /// `kinetic_energy` (J).
+    /// velocity before the step `old_velocity` (m/s; `None` at touchdown) and the energy report
+    /// of this state `energy` (the one [`GearBook::check`] was given).
     pub fn update_stability(
         &mut self,
         t: f64,
         v: &VehicleState,
         old_velocity: Option<&Vector3<f64>>,
-        kinetic_energy: f64,
+        energy: &EnergyReport,
     ) {
         for i in 0..self.legs.len() {
             self.pad_views[i] = PadView {
@@ -273,10 +273,6 @@ impl GearBook {
                 touched: self.contacts[i].first_contact.is_some(),
             };
         }
-        let energy = EnergyNow {
-            kinetic: kinetic_energy,
-            stored: self.stored_energy(),
-        };
         self.stability.update(
             t,
             &v.position,
@@ -308,7 +304,7 @@ impl GearBook {
     }
 
     /// Elastic energy stored in the gear's honeycombs at the current strokes, J.
-    pub fn stored_energy(&self) -> f64 {
+    fn stored_energy(&self) -> f64 {
         self.kin
             .iter()
             .zip(&self.memory)

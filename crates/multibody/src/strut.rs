@@ -14,7 +14,7 @@
 use nalgebra::Vector3;
 use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
 use touchdown_scenario::model::Leg;
-use touchdown_scenario::Scenario;
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Geometry and rates of one gear at one state (inertial axes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -169,9 +169,14 @@ pub const MAX_OMEGA_DT: f64 = 1.0;
 
 /// Checks a multibody engine's fixed time step `dt` (s) against the stiffest explicit strut
 /// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
-/// link's rotation about its trunnion (links as in `sc.links`). The error says which mode is too
-/// stiff and the largest step allowed.
-pub fn check_explicit_timestep(sc: &Scenario, laws: &GearLaws, dt: f64) -> Result<(), String> {
+/// link's rotation about its trunnion (links as in `sc.links`). The error, on the scenario field
+/// `field` that set the step, says which mode is too stiff and the largest step allowed.
+pub fn check_explicit_timestep(
+    sc: &Scenario,
+    laws: &GearLaws,
+    dt: f64,
+    field: &str,
+) -> Result<(), ScenarioError> {
     let stiffest = |h: &Honeycomb| {
         h.backoff_rate
             .max(h.curve.stroke_out_rate())
@@ -199,10 +204,14 @@ pub fn check_explicit_timestep(sc: &Scenario, laws: &GearLaws, dt: f64) -> Resul
     ];
     for (what, omega) in modes {
         if omega * dt > MAX_OMEGA_DT {
-            return Err(format!(
-                "time step {dt:.3e} s is too large for the stiffest explicit strut law ({what}: ω = {omega:.4e} rad/s, ω·Δt = {:.3}); expected ω·Δt ≤ {MAX_OMEGA_DT}, i.e. a time step ≤ {:.3e} s",
-                omega * dt,
-                MAX_OMEGA_DT / omega
+            return Err(ScenarioError::field(
+                sc.file_of(field),
+                field,
+                format!(
+                    "time step {dt:.3e} s is too large for the stiffest explicit strut law ({what}: ω = {omega:.4e} rad/s, ω·Δt = {:.3}); expected ω·Δt ≤ {MAX_OMEGA_DT}, i.e. a time step ≤ {:.3e} s",
+                    omega * dt,
+                    MAX_OMEGA_DT / omega
+                ),
             ));
         }
     }

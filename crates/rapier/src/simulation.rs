@@ -17,7 +17,6 @@ use crate::struts;
 use crate::RapierError;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_laws::GearLaws;
 use touchdown_multibody::{check_explicit_timestep, Fault, GearBook, VehicleState};
 use touchdown_record::{EnergyReport, Landing, Sample, Summary};
 use touchdown_scenario::schema::Engine;
@@ -51,7 +50,12 @@ impl RapierSimulation {
         scenario.require_engine(Engine::Rapier)?;
         let book = GearBook::new(scenario)?;
         let assembly = assembly::build(scenario)?;
-        check_timestep(scenario, &book.laws)?;
+        check_explicit_timestep(
+            scenario,
+            &book.laws,
+            scenario.rapier.timestep,
+            "engines.rapier.timestep",
+        )?;
         let n = scenario.legs.len();
         let settings = settings(scenario, &assembly.masses);
         let mut sim = RapierSimulation {
@@ -88,7 +92,8 @@ impl RapierSimulation {
         sim.read_kinematics();
         sim.book.evaluate().map_err(|f| sim.diverged(f))?;
         let v = sim.vehicle_state();
-        sim.update_stability(&v, None);
+        let energy = sim.energy();
+        sim.book.update_stability(sim.t, &v, None, &energy);
         Ok(sim)
     }
 
@@ -219,19 +224,13 @@ impl RapierSimulation {
         }
     }
 
-    /// Updates the stability criteria with the vehicle in state `v`.
-    fn update_stability(&mut self, v: &VehicleState, old_velocity: Option<&Vector3<f64>>) {
-        let ke = self.kinetic_energy();
-        self.book.update_stability(self.t, v, old_velocity, ke);
-    }
-
     fn diverged(&self, fault: Fault) -> RapierError {
         RapierError::Diverged(fault.at(self.t, &self.vehicle_state()))
     }
 
-    /// Stops a run whose state is not finite or whose energy balance has drifted beyond the
-    /// scenario's tolerance.
-    fn check_divergence(&self) -> Result<(), RapierError> {
+    /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's
+    /// report) has drifted beyond the scenario's tolerance.
+    fn check_divergence(&self, energy: &EnergyReport) -> Result<(), RapierError> {
         let finite = self.bodies.iter().all(|(h, _)| {
             let s = self.state(*h);
             s.pose.translation.is_finite()
@@ -241,7 +240,7 @@ impl RapierSimulation {
                     .all(|x| x.is_finite())
         });
         self.book
-            .check(&self.energy(), self.energy_tolerance, finite)
+            .check(energy, self.energy_tolerance, finite)
             .map_err(|f| self.diverged(f))
     }
 }
@@ -280,9 +279,11 @@ impl Landing for RapierSimulation {
         self.book.book_struts();
         self.book_contacts();
         self.book.evaluate().map_err(|f| self.diverged(f))?;
-        self.check_divergence()?;
+        let energy = self.energy();
+        self.check_divergence(&energy)?;
         let v = self.vehicle_state();
-        self.update_stability(&v, Some(&old_velocity));
+        self.book
+            .update_stability(self.t, &v, Some(&old_velocity), &energy);
         self.book.update_extremes(self.t, &v);
         Ok(())
     }
@@ -340,15 +341,4 @@ fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde
     m.insert("link_radius_m".into(), masses.link_radius.into());
     m.insert("contact_radius_m".into(), masses.contact_radius.into());
     m
-}
-
-/// Refuses a time step too large for the stiffest explicit strut law.
-fn check_timestep(sc: &Scenario, laws: &GearLaws) -> Result<(), RapierError> {
-    check_explicit_timestep(sc, laws, sc.rapier.timestep).map_err(|message| {
-        RapierError::Unsupported {
-            file: sc.file_of("engines.rapier.timestep").to_string(),
-            field: "engines.rapier.timestep".into(),
-            message,
-        }
-    })
 }

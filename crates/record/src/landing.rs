@@ -13,6 +13,15 @@ impl<L: ?Sized> Observer<L> for () {
     fn observe(&mut self, _: &L) {}
 }
 
+/// An observer that may be absent.
+impl<L: ?Sized, O: Observer<L>> Observer<L> for Option<O> {
+    fn observe(&mut self, landing: &L) {
+        if let Some(o) = self {
+            o.observe(landing);
+        }
+    }
+}
+
 /// A landing an engine steps (the core, the rapier rebuild).
 pub trait Landing: Sized {
     /// The engine's error (a divergence among them).

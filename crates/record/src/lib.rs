@@ -22,7 +22,7 @@ pub mod summary;
 pub use history::History;
 pub use landing::{Landing, Observer};
 pub use sample::{LegSample, Sample};
-pub use stability::{EnergyNow, Outcome, PadView, StabilityTracker};
+pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};
 
 /// A run stopped because it diverged or left the domain of a law: where and why, so that the

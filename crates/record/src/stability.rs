@@ -6,6 +6,7 @@
 //! n̂ = G×AB/|G×AB| (the outward normal), SD = ACM·n̂ is positive while the centre of mass is
 //! inside the wall.
 
+use crate::summary::EnergyReport;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 use touchdown_scenario::model::Stability;
@@ -51,15 +52,6 @@ pub fn stability_distance(
 /// crossing: V_o = V·n̂_out (positive: moving out of the footprint).
 pub fn overturn_velocity(v: &Vector3<f64>, n_out: &Vector3<f64>) -> f64 {
     v.dot(n_out) // eq. (107)
-}
-
-/// The energies condition 1 may count, J.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct EnergyNow {
-    /// Kinetic energy of the vehicle, ½·M·V² + ½·ωᵀ·J·ω.
-    pub kinetic: f64,
-    /// Elastic energy stored in the gear's honeycombs.
-    pub stored: f64,
 }
 
 /// What the criteria need of one footpad.
@@ -114,16 +106,16 @@ impl StabilityTracker {
     /// Updates the distances and, until a decision is made, the unstable crossing and the four
     /// stable conditions, at time `t` (s) with the centre of mass at `cm` (m) moving at
     /// `velocity` (m/s; `previous_velocity` at the previous accepted state, to interpolate the
-    /// velocity at a crossing), the vehicle's kinetic energy and the gear's stored energy
-    /// `energy` (the stored energy counted by condition 1 unless the criteria count the kinetic
-    /// energy alone) and the footpads `pads`. Allocates nothing.
+    /// velocity at a crossing), the engine's energy report at this state `energy` (its kinetic
+    /// energy, and its honeycomb stored energy unless the criteria count the kinetic energy
+    /// alone, enter condition 1) and the footpads `pads`. Allocates nothing.
     pub fn update(
         &mut self,
         t: f64,
         cm: &Vector3<f64>,
         velocity: &Vector3<f64>,
         previous_velocity: Option<&Vector3<f64>>,
-        energy: EnergyNow,
+        energy: &EnergyReport,
         pads: &[PadView],
     ) {
         let n = pads.len();
@@ -178,8 +170,8 @@ impl StabilityTracker {
         }
         let j = (min_wall + 1) % n;
         let energy = match self.criteria.counted_energy {
-            CountedEnergy::Kinetic => energy.kinetic,
-            CountedEnergy::KineticAndStored => energy.kinetic + energy.stored,
+            CountedEnergy::Kinetic => energy.kinetic_j,
+            CountedEnergy::KineticAndStored => energy.kinetic_j + energy.honeycomb_stored_j,
         };
         let stable = energy < self.criteria.kinetic_energy_fraction * self.ke0 // 1
             && min_now > 0.0 // 2
@@ -254,8 +246,12 @@ mod tests {
         assert!(overturn_velocity(&Vector3::new(1.0, 1.0, 0.0), &n) > 0.0);
     }
 
-    fn e(kinetic: f64, stored: f64) -> EnergyNow {
-        EnergyNow { kinetic, stored }
+    fn e(kinetic: f64, stored: f64) -> EnergyReport {
+        EnergyReport {
+            kinetic_j: kinetic,
+            honeycomb_stored_j: stored,
+            ..EnergyReport::default()
+        }
     }
 
     fn tracker() -> StabilityTracker {
@@ -286,7 +282,7 @@ mod tests {
             &Vector3::new(0.4, 0.4, 1.0),
             &v0,
             None,
-            e(50.0, 0.0),
+            &e(50.0, 0.0),
             &pads(true),
         );
         assert_eq!(t.decision(), None);
@@ -297,7 +293,7 @@ mod tests {
             &Vector3::new(0.6, 0.6, 1.0),
             &v1,
             Some(&v0),
-            e(50.0, 0.0),
+            &e(50.0, 0.0),
             &pads(true),
         );
         assert_eq!(t.decision(), Some((Outcome::Unstable, 0.1)));
@@ -311,11 +307,11 @@ mod tests {
         let mut t = tracker();
         let cm = Vector3::new(0.0, 0.0, 1.0);
         let v = Vector3::zeros();
-        t.update(0.0, &cm, &v, None, e(20.0, 0.0), &pads(true));
+        t.update(0.0, &cm, &v, None, &e(20.0, 0.0), &pads(true));
         assert_eq!(t.decision(), None, "kinetic energy above 10 %");
-        t.update(0.1, &cm, &v, None, e(5.0, 0.0), &pads(false));
+        t.update(0.1, &cm, &v, None, &e(5.0, 0.0), &pads(false));
         assert_eq!(t.decision(), None, "critical footpads off the surface");
-        t.update(0.2, &cm, &v, None, e(5.0, 0.0), &pads(true));
+        t.update(0.2, &cm, &v, None, &e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.2)));
         assert!((t.min_distance() - (0.5f64).sqrt()).abs() < 1e-12);
     }
@@ -327,11 +323,11 @@ mod tests {
         // velocity toward it.
         let noise = Vector3::new(1e-11, 1e-11, 0.0);
         let mut t = tracker();
-        t.update(0.0, &cm, &noise, None, e(5.0, 0.0), &pads(true));
+        t.update(0.0, &cm, &noise, None, &e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.0)));
         let mut t = tracker();
         let toward = Vector3::new(1e-3, 1e-3, 0.0);
-        t.update(0.0, &cm, &toward, None, e(5.0, 0.0), &pads(true));
+        t.update(0.0, &cm, &toward, None, &e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), None, "moving toward the critical wall");
     }
 
@@ -341,16 +337,16 @@ mod tests {
         let v = Vector3::zeros();
         // 5 J kinetic (below 10 % of 100 J) but 30 J stored in bottomed struts.
         let mut t = tracker();
-        t.update(0.0, &cm, &v, None, e(5.0, 30.0), &pads(true));
+        t.update(0.0, &cm, &v, None, &e(5.0, 30.0), &pads(true));
         assert_eq!(t.decision(), None, "the gear still holds 35 % of KE0");
-        t.update(0.1, &cm, &v, None, e(5.0, 4.0), &pads(true));
+        t.update(0.1, &cm, &v, None, &e(5.0, 4.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.1)));
         let criteria = Stability {
             counted_energy: CountedEnergy::Kinetic,
             ..t.criteria.clone()
         };
         let mut t = StabilityTracker::new(&criteria, Vector3::new(0.0, 0.0, -9.81), 4, 100.0);
-        t.update(0.0, &cm, &v, None, e(5.0, 30.0), &pads(true));
+        t.update(0.0, &cm, &v, None, &e(5.0, 30.0), &pads(true));
         assert_eq!(
             t.decision(),
             Some((Outcome::Stable, 0.0)),
