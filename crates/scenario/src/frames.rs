@@ -43,6 +43,14 @@ pub fn t_bi(theta: &Vector3<f64>) -> Matrix3<f64> {
     rot_x(theta.x) * rot_y(theta.y) * rot_z(theta.z) // eq. (3)
 }
 
+/// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6); also maps the Euler-angle deviations
+/// to body attitude errors in eq. (77). Angles in rad.
+pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
+    let (sy, cy) = theta.y.sin_cos();
+    let (sz, cz) = theta.z.sin_cos();
+    Matrix3::new(cy * cz, sz, 0.0, -cy * sz, cz, 0.0, sy, 0.0, 1.0) // eq. (6)
+}
+
 /// Euler angles (θx, θy, θz), rad, of a body → inertial rotation matrix: the inverse of
 /// [`t_bi`], with θy in [−π/2, π/2].
 pub fn euler_from_t_bi(t: &Matrix3<f64>) -> Vector3<f64> {
