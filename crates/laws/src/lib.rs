@@ -10,11 +10,17 @@
 //! | [`viscous`] | eq. 49 | stroking-velocity force `C·sgn(v)·|v|^γ` |
 //! | [`bearing`] | eqs. 59-63 | primary-strut bearing normal loads and Coulomb bearing friction |
 //! | [`sliding`] | eqs. 85, 96 | Coulomb sliding friction on the footpad bottom |
+//! | [`thrust`] | Figs. 15, 16; eqs. 69-74 | descent-engine thrust tailoff, thrust amplification table AMP(ZNOZ), constant-load nozzle-rim crushing, engine force and moment |
+//! | [`rcs`] | eqs. 75-82 | RCS attitude-hold / rate-command on-off torques with deadbands; delayed downward-translation force |
+//! | [`slosh`] | Appendix, eqs. 108-117 | first-mode propellant slosh as a spring-mass: slosh mass, CM shift, rigid inertia, amplitude equation, wall force and torque |
 
 pub mod bearing;
 pub mod gear;
 pub mod honeycomb;
+pub mod rcs;
 pub mod sliding;
+pub mod slosh;
+pub mod thrust;
 pub mod viscous;
 
 pub use bearing::{side_load, Bearing, BearingLoads};
@@ -22,7 +28,10 @@ pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryStrutLaw};
 pub use honeycomb::{
     CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
 };
+pub use rcs::{Rcs, RcsLoads, RcsMode, RcsParams, Translation};
 pub use sliding::sliding_friction;
+pub use slosh::Slosh;
+pub use thrust::{engine_loads, Amplification, EngineLoads, Nozzle, RimContact, Tailoff};
 pub use viscous::Viscous;
 
 /// An error raised by a force law: bad parameters at construction, or a state in which the law
@@ -41,6 +50,21 @@ pub enum LawError {
          at compression stroke {stroke} m"
     )]
     BearingGeometry { d2: f64, d1: f64, stroke: f64 },
+    /// A magnitude, delay or gain is not a non-negative finite number.
+    #[error("{name} must be a non-negative finite number, got {value}")]
+    Negative { name: &'static str, value: f64 },
+    /// A signed quantity (angle, rate, length) is not finite.
+    #[error("{name} must be finite, got {value}")]
+    NotFinite { name: &'static str, value: f64 },
+    /// The thrust tailoff curve (eqs. 69-70) is not usable.
+    #[error("thrust tailoff: {0}")]
+    Tailoff(String),
+    /// A tabulated function (e.g. the thrust amplification AMP(ZNOZ)) is not usable.
+    #[error("table: {0}")]
+    Table(String),
+    /// The slosh mass M_s = F_s/ω² (eq. 112) is not below the total vehicle mass M.
+    #[error("slosh mass M_s = {slosh_mass} kg must be below the total mass M = {total_mass} kg")]
+    SloshMass { slosh_mass: f64, total_mass: f64 },
 }
 
 /// Series combination of two spring rates, eqs. (35)-(36): `K' = K1·K2/(K1 + K2)`, N/m.
