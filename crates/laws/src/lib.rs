@@ -1,6 +1,6 @@
 //! Force laws of NASA TN D-7045, written once and used by every engine.
 //!
-//! All quantities are SI: strokes in m, forces in N, rates in N/m, speeds in m/s.
+//! All quantities are SI: strokes in m, forces in N, rates in N/m, speeds in m/s, pressures in Pa.
 //! Each law is a pure function of its inputs plus, for the crushable honeycomb, an explicit
 //! memory ([`CrushMemory`]) that the caller commits only at accepted states.
 //!
@@ -10,19 +10,31 @@
 //! | [`viscous`] | eq. 49 | stroking-velocity force `C·sgn(v)·|v|^γ` |
 //! | [`bearing`] | eqs. 59-63 | primary-strut bearing normal loads and Coulomb bearing friction |
 //! | [`sliding`] | eqs. 85, 96 | Coulomb sliding friction on the footpad bottom |
+//! | [`curb`] | Figs. 18-20; eqs. 86-95 | curbs on the rigid surface: footpad-curb distance, crushing with memory, curb friction |
+//! | [`soil`] | eqs. 101-104 | non-rigid surface: rigid-plastic bearing with rate terms, lateral drag, constant-force vertical step |
+//! | [`beam`] | eqs. 40-48 | primary-strut bending as a beam-column, Euler cap, apparent change in secondary-strut length |
 
+pub mod beam;
 pub mod bearing;
+pub mod curb;
 pub mod gear;
 pub mod honeycomb;
 pub mod sliding;
+pub mod soil;
 pub mod viscous;
 
+pub use beam::{
+    euler_load, normal_load, secondary_lengthening, secondary_shortening, Bending, Deflection,
+    EULER_CAP,
+};
 pub use bearing::{side_load, Bearing, BearingLoads};
+pub use curb::{Curb, FootpadCrush};
 pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryStrutLaw};
 pub use honeycomb::{
     CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
 };
 pub use sliding::sliding_friction;
+pub use soil::{Soil, VerticalStep};
 pub use viscous::Viscous;
 
 /// An error raised by a force law: bad parameters at construction, or a state in which the law
@@ -41,6 +53,15 @@ pub enum LawError {
          at compression stroke {stroke} m"
     )]
     BearingGeometry { d2: f64, d1: f64, stroke: f64 },
+    /// A coefficient is negative or not finite where zero is allowed.
+    #[error("{name} must be a non-negative finite number, got {value}")]
+    Negative { name: &'static str, value: f64 },
+    /// An input is NaN or infinite.
+    #[error("{name} must be finite, got {value}")]
+    NotFinite { name: &'static str, value: f64 },
+    /// The primary-strut load point lies outside the beam (need 0 ≤ L21 ≤ V2P).
+    #[error("beam: load point a = {a} m is outside the span [0, L = {l} m]")]
+    BeamGeometry { a: f64, l: f64 },
 }
 
 /// Series combination of two spring rates, eqs. (35)-(36): `K' = K1·K2/(K1 + K2)`, N/m.
