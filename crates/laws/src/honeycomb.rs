@@ -18,6 +18,7 @@
 //! far softer than the stop, would return the bottoming energy over a stroke longer than the
 //! strut; docs/errata.md.)
 
+use crate::positive;
 use crate::{series_rate, LawError};
 
 /// Maximum number of honeycomb stages on one side (the report allows 3 primary, 4 secondary).
@@ -40,14 +41,6 @@ pub struct LoadStroke {
     f: [f64; MAX_VERTICES],
     n: usize,
     stroke_out_rate: f64,
-}
-
-fn positive(name: &'static str, value: f64) -> Result<f64, LawError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(LawError::NotPositive { name, value })
-    }
 }
 
 impl LoadStroke {

@@ -1,6 +1,6 @@
 //! Force laws of NASA TN D-7045, written once and used by every engine.
 //!
-//! All quantities are SI: strokes in m, forces in N, rates in N/m, speeds in m/s.
+//! All quantities are SI: strokes in m, forces in N, rates in N/m, speeds in m/s, pressures in Pa.
 //! Each law is a pure function of its inputs plus, for the crushable honeycomb, an explicit
 //! memory ([`CrushMemory`]) that the caller commits only at accepted states.
 //!
@@ -13,17 +13,28 @@
 //! | [`thrust`] | Figs. 15, 16; eqs. 69-74 | descent-engine thrust tailoff, thrust amplification table AMP(ZNOZ), constant-load nozzle-rim crushing, engine force and moment |
 //! | [`rcs`] | eqs. 75-82 | RCS attitude-hold / rate-command on-off torques with deadbands; delayed downward-translation force |
 //! | [`slosh`] | Appendix, eqs. 108-117 | first-mode propellant slosh as a spring-mass: slosh mass, CM shift, rigid inertia, amplitude equation, wall force and torque |
+//! | [`curb`] | Figs. 18-20; eqs. 86-95 | curbs on the rigid surface: footpad-curb distance, crushing with memory, curb friction |
+//! | [`soil`] | eqs. 101-104 | non-rigid surface: rigid-plastic bearing with rate terms, lateral drag, constant-force vertical step |
+//! | [`beam`] | eqs. 40-48 | primary-strut bending as a beam-column, Euler cap, apparent change in secondary-strut length |
 
+pub mod beam;
 pub mod bearing;
+pub mod curb;
 pub mod gear;
 pub mod honeycomb;
 pub mod rcs;
 pub mod sliding;
 pub mod slosh;
+pub mod soil;
 pub mod thrust;
 pub mod viscous;
 
+pub use beam::{
+    euler_load, normal_load, secondary_lengthening, secondary_shortening, Bending, Deflection,
+    EULER_CAP,
+};
 pub use bearing::{side_load, Bearing, BearingLoads};
+pub use curb::{Curb, FootpadCrush};
 pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryStrutLaw};
 pub use honeycomb::{
     CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
@@ -31,6 +42,7 @@ pub use honeycomb::{
 pub use rcs::{Rcs, RcsLoads, RcsMode, RcsParams, Translation};
 pub use sliding::sliding_friction;
 pub use slosh::Slosh;
+pub use soil::{Soil, VerticalStep};
 pub use thrust::{engine_loads, Amplification, EngineLoads, Nozzle, RimContact, Tailoff};
 pub use viscous::Viscous;
 
@@ -65,9 +77,39 @@ pub enum LawError {
     /// The slosh mass M_s = F_s/ω² (eq. 112) is not below the total vehicle mass M.
     #[error("slosh mass M_s = {slosh_mass} kg must be below the total mass M = {total_mass} kg")]
     SloshMass { slosh_mass: f64, total_mass: f64 },
+    /// The primary-strut load point lies outside the beam (need 0 ≤ L21 ≤ V2P).
+    #[error("beam: load point a = {a} m is outside the span [0, L = {l} m]")]
+    BeamGeometry { a: f64, l: f64 },
 }
 
 /// Series combination of two spring rates, eqs. (35)-(36): `K' = K1·K2/(K1 + K2)`, N/m.
 pub fn series_rate(k1: f64, k2: f64) -> f64 {
     k1 * k2 / (k1 + k2)
+}
+
+/// `value` if it is a positive finite number, else [`LawError::NotPositive`] naming `name`.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, LawError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(LawError::NotPositive { name, value })
+    }
+}
+
+/// `value` if it is finite, else [`LawError::NotFinite`] naming `name`.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, LawError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(LawError::NotFinite { name, value })
+    }
+}
+
+/// `value` if it is a finite number ≥ 0, else [`LawError::Negative`] naming `name`.
+pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64, LawError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(LawError::Negative { name, value })
+    }
 }

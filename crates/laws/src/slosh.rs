@@ -23,25 +23,10 @@
 //!
 //! Units: kg, m, s, N.
 
+use crate::{finite, positive};
 use nalgebra::{Matrix3, Vector2, Vector3};
 
 use crate::LawError;
-
-fn positive(name: &'static str, value: f64) -> Result<f64, LawError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(LawError::NotPositive { name, value })
-    }
-}
-
-fn finite(name: &'static str, value: f64) -> Result<f64, LawError> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(LawError::NotFinite { name, value })
-    }
-}
 
 /// The slosh model's constants.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -11,6 +11,7 @@
 //!
 //! Units: N, m, s. Body vectors are measured from the rigid-vehicle centre of mass.
 
+use crate::{finite, non_negative};
 use nalgebra::{Matrix3, Vector3};
 
 use crate::LawError;
@@ -25,22 +26,6 @@ pub const RIM_SAMPLES: usize = 72;
 /// penetration finite when the vehicle axis is at or beyond horizontal (overturned, outside the
 /// law's domain).
 const AXIS_Z_MIN: f64 = 1e-6;
-
-fn non_negative(name: &'static str, value: f64) -> Result<f64, LawError> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(value)
-    } else {
-        Err(LawError::Negative { name, value })
-    }
-}
-
-fn finite(name: &'static str, value: f64) -> Result<f64, LawError> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(LawError::NotFinite { name, value })
-    }
-}
 
 /// Engine thrust tailoff, eqs. (69)-(70), on the thrust-curve clock `t_curve = tp + t_sim`
 /// (review row 69).

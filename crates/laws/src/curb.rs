@@ -1,0 +1,282 @@
+//! Curbs on the rigid surface and footpad crushing against them, eqs. (86)-(95), figs. 18-20.
+//!
+//! A curb is fixed at the footpad's first contact (XPI, YPI) by its normal distance DWALLI and
+//! the angle WALANG of its normal from +X (fig. 19). All vectors are in the surface (inertial
+//! X-Y) plane.
+//!
+//! - eqs. (87)-(89): a = DWALLI·cos W, b = DWALLI·sin W, Â = (a, b)/DWALLI (pad → curb).
+//! - eq. (90): B̂ = Â × ẑ = (sin W, −cos W), along the curb.
+//! - eqs. (91)-(92), corrected: DWALL = A·Â with A = (XPI + a − XP, YPI + b − YP); the printed
+//!   eq. (92) divides by DWALL itself (circular), the divisor is DWALLI.
+//! - eq. (93): PSTRK = PR − DWALL, crushing when positive.
+//! - eq. (94): the crush force on the pad is −PFRC·Â (away from the curb).
+//! - eq. (95), corrected (vector times vector in print): FWF = −UW·PFRC·sgn(SṖ·B̂)·B̂.
+//!
+//! PFRC comes from the footpad force-deflection diagram (fig. 18, missing) with memory: the
+//! same virgin-curve/backoff law as the struts ([`Honeycomb`]), one [`CrushMemory`] per pad and
+//! curb (review A14). The pad bottom is rigid.
+
+use nalgebra::Vector2;
+
+use crate::{CrushMemory, Honeycomb, LawError};
+
+/// One curb of one footpad (figs. 19-20).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Curb {
+    /// DWALLI: normal distance from the pad centre to the curb at first contact, m.
+    dwalli: f64,
+    /// (a, b) of eqs. (87)-(88), m.
+    ab: Vector2<f64>,
+    /// Â of eq. (89): unit normal from the pad toward the curb.
+    a_hat: Vector2<f64>,
+    /// B̂ of eq. (90): unit vector along the curb.
+    b_hat: Vector2<f64>,
+    /// UW: pad-curb friction coefficient.
+    friction: f64,
+}
+
+impl Curb {
+    /// A curb from DWALLI (m, positive), WALANG (rad, from +X to the curb normal) and UW (≥ 0).
+    pub fn new(dwalli: f64, walang: f64, uw: f64) -> Result<Self, LawError> {
+        if !(dwalli.is_finite() && dwalli > 0.0) {
+            return Err(LawError::NotPositive {
+                name: "curb distance DWALLI",
+                value: dwalli,
+            });
+        }
+        if !walang.is_finite() {
+            return Err(LawError::NotFinite {
+                name: "curb angle WALANG",
+                value: walang,
+            });
+        }
+        if !(uw.is_finite() && uw >= 0.0) {
+            return Err(LawError::Negative {
+                name: "curb friction UW",
+                value: uw,
+            });
+        }
+        let (s, c) = walang.sin_cos();
+        Ok(Curb {
+            dwalli,
+            // eqs. (87)-(88)
+            ab: Vector2::new(dwalli * c, dwalli * s),
+            // eq. (89): (a, b)/DWALLI
+            a_hat: Vector2::new(c, s),
+            // eq. (90): Â × ẑ
+            b_hat: Vector2::new(s, -c),
+            friction: uw,
+        })
+    }
+
+    /// DWALLI, m.
+    pub fn initial_distance(&self) -> f64 {
+        self.dwalli
+    }
+
+    /// Â, unit normal from the pad toward the curb (eq. 89).
+    pub fn normal(&self) -> Vector2<f64> {
+        self.a_hat
+    }
+
+    /// B̂, unit vector along the curb (eq. 90).
+    pub fn along(&self) -> Vector2<f64> {
+        self.b_hat
+    }
+
+    /// UW, the pad-curb friction coefficient.
+    pub fn friction(&self) -> f64 {
+        self.friction
+    }
+
+    /// DWALL, m: distance from the pad centre `pad_xy` = (XP, YP) to the curb, given the first
+    /// contact point `touchdown_xy` = (XPI, YPI), both m.
+    #[inline]
+    pub fn distance(&self, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>) -> f64 {
+        // eq. (91): A = W − (XP, YP), W = (XPI + a, YPI + b)
+        let a = touchdown_xy + self.ab - pad_xy;
+        // eq. (92), corrected: A·(a, b)/DWALLI = A·Â
+        a.dot(&self.a_hat)
+    }
+
+    /// PSTRK = PR − DWALL, m (eq. 93): footpad crushing normal to the curb when positive.
+    /// `pad_radius` = PR, the undeformed footpad radius, m.
+    #[inline]
+    pub fn crush(&self, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>, pad_radius: f64) -> f64 {
+        pad_radius - self.distance(touchdown_xy, pad_xy)
+    }
+
+    /// In-plane force of the curb on the footpad, N: crush force plus curb friction.
+    ///
+    /// `crush_force` = PFRC (N, from [`FootpadCrush::force`]; negative values are taken as 0),
+    /// `pad_velocity` = SṖ = (ẊP, ẎP), m/s. Returns `−PFRC·Â − UW·PFRC·sgn(SṖ·B̂)·B̂`
+    /// (eqs. 94-95); no friction when the along-curb velocity is exactly zero.
+    #[inline]
+    pub fn force(&self, crush_force: f64, pad_velocity: Vector2<f64>) -> Vector2<f64> {
+        let pfrc = crush_force.max(0.0);
+        // eq. (94)
+        let normal = -self.a_hat * pfrc;
+        // eq. (95), corrected: PFRC scalar, sign from SṖ·B̂
+        let v_along = pad_velocity.dot(&self.b_hat);
+        let sgn = if v_along > 0.0 {
+            1.0
+        } else if v_along < 0.0 {
+            -1.0
+        } else {
+            0.0
+        };
+        normal - self.b_hat * (self.friction * pfrc * sgn)
+    }
+}
+
+/// Footpad force-deflection diagram for crushing against a curb (fig. 18, missing from the
+/// report), with memory: the [`Honeycomb`] virgin-curve/backoff law on PSTRK.
+///
+/// Keep one [`CrushMemory`] per pad and curb ("retain deformed footpad geometry"; crush along
+/// different curbs is independent). Contact only while PSTRK exceeds the permanent set
+/// (review A14); the pad bottom is rigid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FootpadCrush {
+    /// The load-deflection law: stroke = PSTRK, m; force = PFRC, N.
+    pub table: Honeycomb,
+}
+
+impl FootpadCrush {
+    /// Wraps a load-deflection law.
+    pub fn new(table: Honeycomb) -> Self {
+        FootpadCrush { table }
+    }
+
+    /// PFRC, N (≥ 0), at crushing `pstrk` (m, eq. 93) given the committed memory; zero at or
+    /// below the permanent set.
+    #[inline]
+    pub fn force(&self, pstrk: f64, memory: CrushMemory) -> f64 {
+        if self.in_contact(pstrk, memory) {
+            self.table.force(pstrk, memory)
+        } else {
+            0.0
+        }
+    }
+
+    /// True when the pad touches the curb: PSTRK > max(0, permanent set).
+    #[inline]
+    pub fn in_contact(&self, pstrk: f64, memory: CrushMemory) -> bool {
+        pstrk > 0.0 && pstrk > self.table.permanent_set(memory)
+    }
+
+    /// Commits an accepted PSTRK (m) into the memory.
+    #[inline]
+    pub fn commit(&self, pstrk: f64, memory: &mut CrushMemory) {
+        self.table.commit(pstrk, memory)
+    }
+
+    /// Permanent crushing of the pad normal to this curb, m.
+    pub fn permanent_set(&self, memory: CrushMemory) -> f64 {
+        self.table.permanent_set(memory)
+    }
+
+    /// Recoverable elastic energy at `pstrk` (m), J.
+    #[inline]
+    pub fn stored_energy(&self, pstrk: f64, memory: CrushMemory) -> f64 {
+        if self.in_contact(pstrk, memory) {
+            self.table.stored_energy(pstrk, memory)
+        } else {
+            0.0
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{LoadStroke, Stage};
+
+    fn curb() -> Curb {
+        Curb::new(0.5, 30f64.to_radians(), 0.3).unwrap()
+    }
+
+    #[test]
+    fn geometry() {
+        let c = curb();
+        let td = Vector2::new(1.0, -2.0);
+        // At the touchdown point DWALL = DWALLI (eq. 92 corrected).
+        assert!((c.distance(td, td) - 0.5).abs() < 1e-15);
+        // Â from eq. (89) and B̂ ⟂ Â (eq. 90).
+        let w = 30f64.to_radians();
+        assert!((c.normal() - Vector2::new(w.cos(), w.sin())).norm() < 1e-15);
+        assert!(c.normal().dot(&c.along()).abs() < 1e-15);
+        // Moving toward the curb by d reduces DWALL by d; moving along it changes nothing.
+        let d = 0.123;
+        assert!((c.distance(td, td + c.normal() * d) - (0.5 - d)).abs() < 1e-15);
+        assert!((c.distance(td, td + c.along() * 7.0) - 0.5).abs() < 1e-14);
+        // PSTRK = PR − DWALL (eq. 93).
+        assert!((c.crush(td, td + c.normal() * d, 0.5) - d).abs() < 1e-15);
+        assert!(Curb::new(0.0, 0.0, 0.1).is_err());
+        assert!(Curb::new(0.5, 0.0, -0.1).is_err());
+    }
+
+    #[test]
+    fn force_directions() {
+        let c = curb();
+        // Crush force pushes the pad away from the curb (eq. 94).
+        let f = c.force(1000.0, Vector2::zeros());
+        assert!((f + c.normal() * 1000.0).norm() < 1e-12);
+        // Friction opposes the along-curb velocity, magnitude UW·PFRC (eq. 95 corrected).
+        for v in [c.along() * 2.0 + c.normal(), -c.along() * 0.1] {
+            let fw = c.force(1000.0, v) - f;
+            assert!((fw.norm() - 0.3 * 1000.0).abs() < 1e-9);
+            assert!(fw.dot(&v) < 0.0 && fw.dot(&c.normal()).abs() < 1e-12);
+        }
+        // No friction for motion straight into the curb; no force when PFRC ≤ 0.
+        assert!((c.force(1000.0, c.normal() * 3.0) - f).norm() < 1e-12);
+        assert_eq!(c.force(-5.0, c.along()), Vector2::zeros());
+    }
+
+    #[test]
+    fn pad_pushed_into_a_curb_stops_on_the_table_and_keeps_its_set() {
+        // Fig. 18 stand-in: onset 1e5 N/m to a 5000 N plateau (to 0.2 m), backoff 1e6 N/m.
+        let (k, kb) = (1e5, 1e6);
+        let stage = Stage {
+            crush_load: 5000.0,
+            stroke_end: 0.2,
+        };
+        let pad = FootpadCrush::new(
+            Honeycomb::new(LoadStroke::new(k, &[stage], 1e8).unwrap(), kb).unwrap(),
+        );
+        let c = curb();
+        let (pr, m) = (0.5, 20.0); // PR = DWALLI: touching at first contact
+        let td = Vector2::zeros();
+        let mut mem = CrushMemory::default();
+        // Pad pushed toward the curb by a constant force, critically damped on the active rate
+        // (no overshoot), semi-implicit Euler; memory committed every step.
+        let run = |push: f64, rate: f64, pos: &mut Vector2<f64>, mem: &mut CrushMemory| {
+            let damping = 2.0 * (rate * m).sqrt();
+            let mut vel = Vector2::zeros();
+            let dt = 1e-5;
+            for _ in 0..100_000 {
+                let pstrk = c.crush(td, *pos, pr);
+                let f = c.force(pad.force(pstrk, *mem), vel) + c.normal() * push - vel * damping;
+                vel += f / m * dt;
+                *pos += vel * dt;
+                pad.commit(c.crush(td, *pos, pr), mem);
+            }
+        };
+        let mut pos = td;
+        let f = 2000.0;
+        run(f, k, &mut pos, &mut mem);
+        // Rest on the onset ramp where the table's load equals F: PSTRK = F/k = 0.02 m.
+        let x = c.crush(td, pos, pr);
+        assert!((x - f / k).abs() < 1e-6 * (f / k), "x = {x}");
+        assert!((pad.force(x, mem) - f).abs() < 1e-3);
+        // Unload: the pad rebounds along K_B; permanent set G = x_max − F/K_B = 0.018 m.
+        run(0.0, kb, &mut pos, &mut mem);
+        let g = pad.permanent_set(mem);
+        assert!((g - (f / k - f / kb)).abs() < 1e-8, "G = {g}");
+        assert!(c.crush(td, pos, pr) <= g + 1e-9);
+        assert!(!pad.in_contact(g - 1e-6, mem) && pad.force(g - 1e-6, mem) == 0.0);
+        // Second contact starts at the set: 1000 N rests on the backoff line at G + 1000/K_B.
+        run(1000.0, kb, &mut pos, &mut mem);
+        let x2 = c.crush(td, pos, pr);
+        assert!((x2 - (g + 1000.0 / kb)).abs() < 1e-8, "x2 = {x2}");
+    }
+}
