@@ -28,6 +28,14 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
         s.engine
     );
     let _ = writeln!(o, "scenario: {} ({})", s.scenario, sc.source);
+    if !s.mechanisms.is_empty() {
+        let list: Vec<String> = s
+            .mechanisms
+            .iter()
+            .map(|(m, n)| format!("{m} ({n} evaluations)"))
+            .collect();
+        let _ = writeln!(o, "mechanisms: {}", list.join(", "));
+    }
     let outcome = match (s.outcome, s.decision_time_s) {
         (Outcome::Stable, Some(t)) => format!("STABLE (declared at t = {t:.4} s)"),
         (Outcome::Unstable, Some(t)) => format!(
@@ -69,6 +77,7 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
         ("bearing friction", e.bearing_friction_j),
         ("sliding friction", e.sliding_friction_j),
         ("contact events", e.contact_events_j),
+        ("mechanisms (soil, curbs, ...)", e.mechanisms_j),
     ];
     for (name, v) in rows {
         let _ = writeln!(o, "  {name:<28}{v:12.4}");

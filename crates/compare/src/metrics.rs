@@ -314,6 +314,12 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
     ] {
         channels.push(channel(name.into(), x, y, (x - y).abs() / ke0, &ENERGY));
     }
+    // The optional mechanisms' account only where a scene has them.
+    let (x, y) = (ea.mechanisms_j, eb.mechanisms_j);
+    if x != 0.0 || y != 0.0 {
+        let name = "energy: mechanisms".into();
+        channels.push(channel(name, x, y, (x - y).abs() / ke0, &ENERGY));
+    }
     let outcome_agrees = sa.outcome == sb.outcome;
     let worst = if outcome_agrees {
         channels

@@ -8,8 +8,9 @@
 //! the secondaries at point 1. FP is the force the gear exerts on the footpad.
 
 use nalgebra::Vector3;
-use touchdown_laws::{GearLaws, GearMemory, LawError};
-use touchdown_scenario::model::Leg;
+use touchdown_laws::{Bending, GearLaws, GearMemory, LawError};
+use touchdown_scenario::model::{Leg, Mechanism};
+use touchdown_scenario::schema::Arrangement;
 
 /// Everything computed for one gear at one state.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -38,6 +39,30 @@ pub struct GearState {
     pub fm: f64,
     /// FP, force of the gear on the footpad, body axes, N (eq. 65).
     pub fp: Vector3<f64>,
+    /// Displacement of point 1 by primary-strut bending at this state, body axes, m (|η|
+    /// along FN̂, eqs. 43-47): the next step's secondaries see it (lagged, review A8).
+    pub point1_deflection: Vector3<f64>,
+    /// Whether the bending law capped the axial load below the Euler load.
+    pub euler_capped: bool,
+}
+
+/// A law that left its domain while evaluating a gear.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GearFault {
+    /// The law ("bearing friction", "strut bending").
+    pub law: &'static str,
+    /// What happened.
+    pub error: LawError,
+}
+
+/// The gear's arrangement and its optional bending law with the lagged point-1 deflection
+/// (body axes, m).
+#[derive(Debug, Clone, Copy)]
+pub struct GearOptions<'a> {
+    /// Cantilever or tripod.
+    pub arrangement: Arrangement,
+    /// Primary-strut bending with the previous accepted state's point-1 displacement.
+    pub bending: Option<(&'a Bending, Vector3<f64>)>,
 }
 
 impl GearState {
@@ -58,7 +83,15 @@ pub fn evaluate(
     memory: &GearMemory,
     bp: &Vector3<f64>,
     bp_dot: &Vector3<f64>,
-) -> Result<GearState, LawError> {
+    options: &GearOptions,
+) -> Result<GearState, GearFault> {
+    if options.arrangement == Arrangement::Tripod {
+        return Ok(evaluate_tripod(leg, laws, memory, bp, bp_dot));
+    }
+    let bearing = |error| GearFault {
+        law: "bearing friction",
+        error,
+    };
     // eqs. (27)-(28): primary strut vector, length and direction (from point 2 to the pad)
     let v2p = bp - leg.b2;
     let len = v2p.norm();
@@ -73,7 +106,13 @@ pub fn evaluate(
     let u = [v31 / l31, v41 / l41];
     // eqs. (33)-(34): strokes (primary as compression c = −S2P; secondaries tension positive)
     let c = leg.l2p - len;
-    let s = [l31 - leg.l31, l41 - leg.l41];
+    let mut s = [l31 - leg.l31, l41 - leg.l41];
+    // eq. (47), as a stroke correction (review A8): the lagged bending displacement of point 1
+    // lengthens secondary i by λ_i = d·V̂i1 (a strut in tension is eased: a softer series spring).
+    if let Some((_, d)) = &options.bending {
+        let lambda = touchdown_laws::secondary_lengthening(*d, u[0], u[1]);
+        s = [s[0] + lambda[0], s[1] + lambda[1]];
+    }
     // Stroking rates (eq. 49 row): V̇2P = V̂2P·Ḃp; point 1 moves with L21·dV̂2P/dt.
     let v2p_dot = e.dot(bp_dot);
     let e_dot = (bp_dot - e * v2p_dot) / len;
@@ -95,7 +134,7 @@ pub fn evaluate(
     let fm_mag = fm.norm();
     // eqs. (59)-(63): bearing friction, opposing the stroking direction
     let pri = &laws.primary;
-    let fbr = pri.bearing.friction(fm_mag, c, c_dot)?;
+    let fbr = pri.bearing.friction(fm_mag, c, c_dot).map_err(bearing)?;
     // eq. (49): primary viscous force (compression positive opposes extension: FVP = CP·sgn(ċ)|ċ|^γ)
     let fvp = pri.viscous.force(c_dot);
     let fcp = pri.stroke_force(c, memory.primary);
@@ -103,6 +142,23 @@ pub fn evaluate(
     let f2p = fcp + fvp + fbr;
     // eqs. (64)-(65): force on the footpad
     let fp = e * f2p + fm;
+    // eqs. (43)-(47), corrected: point 1's deflection under FN (from the honeycomb forces FC
+    // only) and the axial load F2P, for the next step.
+    let (mut point1_deflection, mut euler_capped) = (Vector3::zeros(), false);
+    if let Some((law, _)) = &options.bending {
+        let normal = touchdown_laws::normal_load(fc, u[0], u[1], e);
+        let fn_mag = normal.norm();
+        if fn_mag > 0.0 {
+            let d = law
+                .deflection(fn_mag, f2p, leg.l21, len)
+                .map_err(|error| GearFault {
+                    law: Mechanism::Bending.name(),
+                    error,
+                })?;
+            point1_deflection = normal * (d.magnitude / fn_mag);
+            euler_capped = d.capped;
+        }
+    }
     Ok(GearState {
         primary_stroke: c,
         primary_rate: c_dot,
@@ -116,7 +172,58 @@ pub fn evaluate(
         fv_secondary: fv,
         fm: fm_mag,
         fp,
+        point1_deflection,
+        euler_capped,
     })
+}
+
+/// The tripod gear (review A23): the secondaries meet the primary at the footpad (B1 = BP,
+/// eqs. 29-30 with L21 = V2P), so the primary is a two-force member with no side load and no
+/// bearing friction, and FP = F2P·V̂2P − FS (eqs. 64-65 rows).
+fn evaluate_tripod(
+    leg: &Leg,
+    laws: &GearLaws,
+    memory: &GearMemory,
+    bp: &Vector3<f64>,
+    bp_dot: &Vector3<f64>,
+) -> GearState {
+    let v2p = bp - leg.b2; // eq. (27)
+    let len = v2p.norm();
+    let e = v2p / len; // eq. (28)
+    let (v31, v41) = (bp - leg.b3, bp - leg.b4); // eqs. (31)-(32) with B1 = BP
+    let (l31, l41) = (v31.norm(), v41.norm());
+    let u = [v31 / l31, v41 / l41];
+    let c = leg.l2p - len; // eq. (33)
+    let s = [l31 - leg.l31, l41 - leg.l41]; // eq. (34)
+    let c_dot = -e.dot(bp_dot);
+    let s_dot = [u[0].dot(bp_dot), u[1].dot(bp_dot)];
+    let sec = &laws.secondary;
+    let fc = [
+        sec.honeycomb.force(s[0], memory.secondary[0]),
+        sec.honeycomb.force(s[1], memory.secondary[1]),
+    ];
+    let fv = [sec.viscous.force(s_dot[0]), sec.viscous.force(s_dot[1])];
+    let fs = u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]); // eq. (52)
+    let pri = &laws.primary;
+    let fvp = pri.viscous.force(c_dot);
+    let fcp = pri.stroke_force(c, memory.primary);
+    let f2p = fcp + fvp; // eq. (50) with FBR = 0
+    GearState {
+        primary_stroke: c,
+        primary_rate: c_dot,
+        secondary_stroke: s,
+        secondary_rate: s_dot,
+        fcp,
+        fvp,
+        fbr: 0.0,
+        f2p,
+        fc_secondary: fc,
+        fv_secondary: fv,
+        fm: 0.0,
+        fp: e * f2p - fs, // eq. (65), tripod
+        point1_deflection: Vector3::zeros(),
+        euler_capped: false,
+    }
 }
 
 #[cfg(test)]
@@ -125,6 +232,11 @@ mod tests {
     use touchdown_laws::{
         Bearing, DoubleActingHoneycomb, Honeycomb, LoadStroke, PrimaryStrutLaw, SecondaryStrutLaw,
         Stage, Viscous,
+    };
+
+    const CANTILEVER: GearOptions = GearOptions {
+        arrangement: Arrangement::Cantilever,
+        bending: None,
     };
 
     fn laws(mu: f64) -> GearLaws {
@@ -183,7 +295,7 @@ mod tests {
         let mem = GearMemory::default();
         // A deformed footpad position: compressed and pushed sideways.
         let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
-        let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros()).unwrap();
+        let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
         assert!(g.fcp > 0.0 && g.fc_secondary.iter().any(|f| f.abs() > 0.0));
         // Reconstruct the trunnion forces on the body.
         let e = (bp - leg.b2).normalize();
@@ -217,10 +329,110 @@ mod tests {
         let mem = GearMemory::default();
         let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
         let e = (bp - leg.b2).normalize();
-        let compressing = evaluate(&leg, &laws, &mem, &bp, &(-e * 0.5)).unwrap();
-        let extending = evaluate(&leg, &laws, &mem, &bp, &(e * 0.5)).unwrap();
+        let compressing = evaluate(&leg, &laws, &mem, &bp, &(-e * 0.5), &CANTILEVER).unwrap();
+        let extending = evaluate(&leg, &laws, &mem, &bp, &(e * 0.5), &CANTILEVER).unwrap();
         assert!(compressing.primary_rate > 0.0 && compressing.fbr > 0.0);
         assert!(extending.fbr < 0.0);
         assert!((compressing.fbr + extending.fbr).abs() < 1e-9);
+    }
+
+    /// A tripod gear's footpad force balances the trunnion loads by statics: the primary and
+    /// both secondaries are two-force members meeting at the footpad, so FP is the sum of
+    /// their axial forces and the body's three trunnion forces balance −FP in force and moment.
+    #[test]
+    fn tripod_footpad_force_balances_its_three_struts() {
+        let l = leg();
+        let tripod = Leg::from_points(l.b2, l.b3, l.b4, l.bp, (l.bp - l.b2).norm());
+        let laws = laws(0.3); // bearing friction must play no part
+        let bp = tripod.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let options = GearOptions {
+            arrangement: Arrangement::Tripod,
+            bending: None,
+        };
+        let g = evaluate(
+            &tripod,
+            &laws,
+            &GearMemory::default(),
+            &bp,
+            &Vector3::zeros(),
+            &options,
+        )
+        .unwrap();
+        assert_eq!((g.fbr, g.fm), (0.0, 0.0));
+        assert!(g.fcp > 0.0 && g.fc_secondary.iter().all(|f| f.abs() > 0.0));
+        let e = (bp - tripod.b2).normalize();
+        let u3 = (bp - tripod.b3).normalize();
+        let u4 = (bp - tripod.b4).normalize();
+        let f = g.f_secondary();
+        // Each strut pushes (compression) or pulls (tension) the footpad along its axis.
+        let on_pad = e * g.f2p - u3 * f[0] - u4 * f[1];
+        assert!((on_pad - g.fp).norm() < 1e-9 * g.fp.norm());
+        // The body feels each strut's reaction at its trunnion.
+        let on_body = [
+            (tripod.b2, -e * g.f2p),
+            (tripod.b3, u3 * f[0]),
+            (tripod.b4, u4 * f[1]),
+        ];
+        let total: Vector3<f64> = on_body.iter().map(|(_, f)| *f).sum();
+        let moment: Vector3<f64> = on_body.iter().map(|(p, f)| p.cross(f)).sum();
+        assert!((total + g.fp).norm() < 1e-9 * g.fp.norm());
+        assert!((moment - bp.cross(&(-g.fp))).norm() < 1e-9 * g.fp.norm());
+    }
+
+    /// Bending: the point-1 deflection is the beam-column's under FN and F2P, perpendicular to
+    /// the strut; a stiff strut tends to the rigid gear, and the lagged deflection eases a
+    /// secondary in tension (a softer spring in series).
+    #[test]
+    fn bending_deflects_point_one_along_the_normal_load_and_softens_the_secondaries() {
+        let leg = leg();
+        let laws = laws(0.0);
+        let mem = GearMemory::default();
+        let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let rigid = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
+        let beam = Bending::new(2.0e4).unwrap();
+        let bent = |lag: Vector3<f64>| {
+            let options = GearOptions {
+                arrangement: Arrangement::Cantilever,
+                bending: Some((&beam, lag)),
+            };
+            evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap()
+        };
+        let first = bent(Vector3::zeros());
+        assert_eq!(
+            first.fc_secondary, rigid.fc_secondary,
+            "no lag yet: same forces"
+        );
+        let e = (bp - leg.b2).normalize();
+        let d = first.point1_deflection;
+        assert!(d.norm() > 0.0 && d.dot(&e).abs() < 1e-12 * d.norm());
+        let len = (bp - leg.b2).norm();
+        let fn_mag = touchdown_laws::normal_load(
+            rigid.fc_secondary,
+            (leg.b2 + e * leg.l21 - leg.b3).normalize(),
+            (leg.b2 + e * leg.l21 - leg.b4).normalize(),
+            e,
+        )
+        .norm();
+        let expected = touchdown_laws::beam::deflection(fn_mag, rigid.f2p, leg.l21, len, 2.0e4)
+            .unwrap()
+            .magnitude;
+        assert!((d.norm() - expected).abs() < 1e-12 * expected);
+        // The next step sees it: the secondaries' normal load on the primary eases (a softer
+        // spring in series), by less than it was.
+        let second = bent(d);
+        let u = [
+            (leg.b2 + e * leg.l21 - leg.b3).normalize(),
+            (leg.b2 + e * leg.l21 - leg.b4).normalize(),
+        ];
+        let fn2 = touchdown_laws::normal_load(second.fc_secondary, u[0], u[1], e).norm();
+        assert!(fn2 < fn_mag && fn2 > 0.0, "{fn2} vs {fn_mag}");
+        // A very stiff strut: the deflection vanishes.
+        let stiff = Bending::new(1.0e12).unwrap();
+        let options = GearOptions {
+            arrangement: Arrangement::Cantilever,
+            bending: Some((&stiff, Vector3::zeros())),
+        };
+        let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap();
+        assert!(g.point1_deflection.norm() < 1e-9);
     }
 }

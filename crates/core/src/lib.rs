@@ -9,6 +9,7 @@
 //! | [`rigid_body`] | rigid-vehicle equations, eqs. (10)-(15) |
 //! | [`gear`] | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
 //! | [`surface`] | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
+//! | [`mechanisms`] | the scene's optional mechanisms: thrust and nozzle crushing (69-74), RCS (75-82), slosh (108-117), soil (101-104), curbs (86-95), bending (40-48) |
 //! | [`simulation`] | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
 //!
 //! The stability criteria (eqs. 105-107) and the summary are shared with the other engines in
@@ -19,6 +20,7 @@
 
 pub mod gear;
 pub mod kinematics;
+pub mod mechanisms;
 pub mod rigid_body;
 pub mod simulation;
 pub mod surface;

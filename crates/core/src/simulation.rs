@@ -15,8 +15,9 @@
 //!
 //! Nothing in the step allocates.
 
-use crate::gear::{self, GearState};
+use crate::gear::{self, GearOptions, GearState};
 use crate::kinematics::{euler_acceleration, t_eb, GIMBAL_LOCK_COS};
+use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
 use crate::CoreError;
@@ -27,8 +28,8 @@ use touchdown_record::{
     StabilityTracker, Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
-use touchdown_scenario::model::{Integrator, Leg, PadSurface};
-use touchdown_scenario::schema::{Engine, ReleaseRule};
+use touchdown_scenario::model::{Integrator, Leg, Mechanism, PadSurface};
+use touchdown_scenario::schema::{Arrangement, Engine, ReleaseRule};
 use touchdown_scenario::Scenario;
 
 /// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
@@ -48,8 +49,16 @@ pub struct VehicleState {
     pub theta_ddot: Vector3<f64>,
     /// Body rates ω, rad/s.
     pub omega: Vector3<f64>,
+    /// Body angular acceleration ω̇, rad/s² (eqs. 13-15).
+    pub omega_dot: Vector3<f64>,
     /// T_BI (eq. 3) at θ.
     pub t_bi: Matrix3<f64>,
+    /// Slosh amplitude q (X_B, Y_B), m (eq. 109; zero without sloshing).
+    pub slosh_q: Vector2<f64>,
+    /// Slosh rate q̇, m/s.
+    pub slosh_q_dot: Vector2<f64>,
+    /// Slosh acceleration q̈, m/s².
+    pub slosh_q_ddot: Vector2<f64>,
 }
 
 impl VehicleState {
@@ -89,6 +98,9 @@ pub struct Simulation {
     footpad_mass: f64,
     release: ReleaseRule,
     integrator: Integrator,
+    arrangement: Arrangement,
+    footpad_radius: f64,
+    mechanisms: Mechanisms,
     // state
     t: f64,
     steps: u64,
@@ -100,6 +112,10 @@ pub struct Simulation {
     trial: Vec<GearState>,
     previous: Vec<GearState>,
     scratch: Vec<GearState>,
+    /// Point-1 bending displacement per leg at the last accepted state (lagged, review A8), m.
+    bending_lag: Vec<Vector3<f64>>,
+    /// Power of the vehicle-level mechanisms on the vehicle at the accepted state, W.
+    applied_power: f64,
     ledger: EnergyLedger,
     potential0: f64,
     stability: StabilityTracker,
@@ -109,10 +125,12 @@ pub struct Simulation {
 }
 
 /// Net loads on the vehicle (eqs. 66-68, 83-84): force in inertial axes excluding gravity,
-/// torque in body axes.
+/// torque in body axes, and the power of the vehicle-level mechanisms (thrust, nozzle, RCS,
+/// slosh) on the vehicle, W.
 struct Loads {
     force: Vector3<f64>,
     torque: Vector3<f64>,
+    applied_power: f64,
 }
 
 impl Simulation {
@@ -120,6 +138,16 @@ impl Simulation {
     /// contact of the first footpad.
     pub fn new(scenario: &Scenario) -> Result<Simulation, CoreError> {
         scenario.require_engine(Engine::Core)?;
+        // With sloshing the rigid vehicle excludes the slosh mass (eqs. 113-114).
+        let rigid;
+        let scenario = match touchdown_laws::scene::slosh_from_scenario(scenario)? {
+            Some(slosh) => {
+                rigid = touchdown_laws::scene::rigid_vehicle(scenario, &slosh)?;
+                &rigid
+            }
+            None => scenario,
+        };
+        let mechanisms = Mechanisms::new(scenario)?;
         let laws = GearLaws::from_scenario(scenario)?;
         let init = frames::initial_state(scenario);
         let n = scenario.legs.len();
@@ -131,7 +159,13 @@ impl Simulation {
             theta_dot: Vector3::zeros(),
             theta_ddot: Vector3::zeros(),
             omega: init.omega,
+            omega_dot: Vector3::zeros(),
             t_bi: init.t_bi,
+            slosh_q: scenario
+                .slosh
+                .map_or(Vector2::zeros(), |s| Vector2::from(s.initial_amplitude)),
+            slosh_q_dot: Vector2::zeros(),
+            slosh_q_ddot: Vector2::zeros(),
         };
         let theta_dot = crate::kinematics::t_be(&init.theta) * init.omega; // eq. (7)
         vehicle.set_attitude(init.theta, theta_dot);
@@ -158,6 +192,9 @@ impl Simulation {
             footpad_mass: scenario.footpad.mass,
             release: scenario.surface.release,
             integrator: scenario.integrator.clone(),
+            arrangement: scenario.arrangement,
+            footpad_radius: scenario.footpad.radius,
+            mechanisms,
             t: 0.0,
             steps: 0,
             evaluations: 0,
@@ -168,6 +205,8 @@ impl Simulation {
             trial: vec![GearState::default(); n],
             previous: vec![GearState::default(); n],
             scratch: vec![GearState::default(); n],
+            bending_lag: vec![Vector3::zeros(); n],
+            applied_power: 0.0,
             ledger: EnergyLedger::default(),
             potential0: 0.0,
             stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
@@ -203,6 +242,17 @@ impl Simulation {
     /// Rigid-vehicle state.
     pub fn vehicle(&self) -> &VehicleState {
         &self.vehicle
+    }
+
+    /// Evaluations of each mechanism the scene declares (and only those), in the order of
+    /// [`Mechanism::ALL`].
+    pub fn mechanism_evaluations(&self) -> Vec<(Mechanism, u64)> {
+        self.mechanisms.evaluations()
+    }
+
+    /// The scene's optional mechanisms as built.
+    pub fn mechanisms(&self) -> &Mechanisms {
+        &self.mechanisms
     }
 
     /// Footpads.
@@ -311,7 +361,7 @@ impl Simulation {
 
     /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
     /// written into `out` (eqs. 26-68, 83-84). Footpads not in contact carry no load.
-    fn loads(&self, v: &VehicleState, out: &mut [GearState]) -> Result<Loads, CoreError> {
+    fn loads(&self, t: f64, v: &VehicleState, out: &mut [GearState]) -> Result<Loads, CoreError> {
         let t_ib = v.t_bi.transpose();
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
@@ -328,13 +378,42 @@ impl Simulation {
             }
             let bp = t_ib * (pad.position - v.position);
             let bp_dot = t_ib * (pad.velocity - v.velocity) - v.omega.cross(&bp);
-            let g = gear::evaluate(&self.legs[i], &self.laws, &self.memory[i], &bp, &bp_dot)
-                .map_err(|e| self.diverged(v, e.to_string(), "bearing friction", i))?;
+            let options = GearOptions {
+                arrangement: self.arrangement,
+                bending: self.mechanisms.bending.as_ref().map(|b| {
+                    self.mechanisms.tick(Mechanism::Bending);
+                    (b, self.bending_lag[i])
+                }),
+            };
+            let g = gear::evaluate(
+                &self.legs[i],
+                &self.laws,
+                &self.memory[i],
+                &bp,
+                &bp_dot,
+                &options,
+            )
+            .map_err(|f| self.diverged(v, f.error.to_string(), f.law, i))?;
             torque += bp.cross(&(-g.fp)); // eq. (66)
             force -= v.t_bi * g.fp; // eqs. (67)-(68)
             *slot = g;
         }
-        Ok(Loads { force, torque })
+        // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms.
+        let applied = self.mechanisms.vehicle_loads(t, self.first_contact(), v);
+        let applied_force = v.t_bi * applied.force;
+        Ok(Loads {
+            force: force + applied_force,    // eq. (83)
+            torque: torque + applied.torque, // eq. (84)
+            applied_power: applied_force.dot(&v.velocity) + applied.torque.dot(&v.omega),
+        })
+    }
+
+    /// Time of the first footpad contact, s.
+    fn first_contact(&self) -> Option<f64> {
+        self.pads
+            .iter()
+            .filter_map(|p| p.first_contact)
+            .reduce(f64::min)
     }
 
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c).
@@ -348,15 +427,16 @@ impl Simulation {
             ));
         }
         v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
-        let omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
-        v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &omega_dot);
+        v.omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
+        v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
+        v.slosh_q_ddot = self.mechanisms.slosh_acceleration(v); // eq. (109), corrected
         Ok(())
     }
 
     /// Evaluates the accepted state `v` into `self.gear` and sets its accelerations.
     fn accept(&mut self, v: &mut VehicleState) -> Result<(), CoreError> {
         let mut out = std::mem::take(&mut self.scratch);
-        let loads = self.loads(v, &mut out);
+        let loads = self.loads(self.t, v, &mut out);
         self.evaluations += 1;
         let loads = match loads {
             Ok(l) => l,
@@ -366,6 +446,7 @@ impl Simulation {
             }
         };
         self.accelerate(v, &loads)?;
+        self.applied_power = loads.applied_power;
         self.scratch = std::mem::replace(&mut self.gear, out);
         Ok(())
     }
@@ -390,6 +471,12 @@ impl Simulation {
                             Vector2::new(vel.x, vel.y),
                             self.t,
                         );
+                        if self.mechanisms.soil.is_some() {
+                            // Soil: the footpad keeps its normal velocity and penetrates
+                            // (eq. 103) instead of stopping on the plane.
+                            pad.velocity.z = vel.z;
+                            pad.stuck = false;
+                        }
                         changed = true;
                     } else {
                         pad.position = tentative;
@@ -405,7 +492,13 @@ impl Simulation {
                         ReleaseRule::StrutForce => g.f2p > 0.0,
                         ReleaseRule::HoneycombForce => g.fcp > 0.0,
                     };
-                    if tentative.z > s.plane() && !compressive {
+                    // On soil the footpad leaves when it has risen out of the soil (A15).
+                    let height = if self.mechanisms.soil.is_some() {
+                        pad.position.z
+                    } else {
+                        tentative.z
+                    };
+                    if height > s.plane() && !compressive {
                         pad.state = ContactState::Detached;
                         pad.stuck = false;
                         pad.bp_attached = v.t_bi.transpose() * (pad.position - v.position);
@@ -423,9 +516,28 @@ impl Simulation {
     fn sliding_forces(&self, i: usize, v: &VehicleState) -> SlidingForces {
         let on_pad = v.t_bi * self.gear[i].fp; // −FPI, eq. (67) reversed
         let fzi = -on_pad.z; // FZI = (FPI)_z, positive pressing into the surface
+        let pad = &self.pads[i];
+        let xy = Vector2::new(pad.position.x, pad.position.y);
+        let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
+        let mut drag = sliding_friction(self.surfaces[i].friction, fzi); // eq. (85)
+        if let Some(soil) = &self.mechanisms.soil {
+            // eqs. (102), (104): FGRND = FDRAG + FDRAGP, both along −v̂
+            self.mechanisms.tick(Mechanism::Soil);
+            let depth = self.surfaces[i].plane() - pad.position.z;
+            let sp = (xy - pad.touchdown_xy).norm();
+            drag += soil.lateral_drag(depth, sp, v_xy.norm());
+        }
+        let curb_xy = match &self.mechanisms.curbs {
+            Some(curbs) => {
+                self.mechanisms.tick(Mechanism::Curbs);
+                curbs.force(i, pad.touchdown_xy, xy, v_xy, self.footpad_radius)
+            }
+            None => Vector2::zeros(),
+        };
         SlidingForces {
             gear_xy: Vector2::new(on_pad.x, on_pad.y),
-            drag: sliding_friction(self.surfaces[i].friction, fzi), // eq. (85)
+            curb_xy,
+            drag,
             gravity_xy: Vector2::new(self.gravity.x, self.gravity.y),
             mass: self.footpad_mass,
         }
@@ -576,6 +688,7 @@ impl Landing for Simulation {
         // 2. sliding footpads, forces frozen at t_k (eq. 97)
         let mut pad_work = 0.0;
         let mut pad_energy_change = 0.0;
+        let (mut soil_work, mut curb_work) = (0.0, 0.0);
         for i in 0..self.pads.len() {
             if self.pads[i].state != ContactState::Contact || self.surfaces[i].locked() {
                 continue;
@@ -584,9 +697,23 @@ impl Landing for Simulation {
             let m = self.footpad_mass;
             let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
             advance_sliding(&mut self.pads[i], &f, dt);
+            if let Some(soil) = &self.mechanisms.soil {
+                // eq. (103) with constant forces over the step; the soil only resists
+                // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
+                let on_pad_z = (old.t_bi * self.gear[i].fp).z;
+                let load = -on_pad_z - m * self.gravity.z; // FZI + weight, downward positive
+                let plane = self.surfaces[i].plane();
+                let step = soil.advance_vertical(plane - p0.z, -v0.z, load, m, dt);
+                let pad = &mut self.pads[i];
+                pad.position.z = plane - step.depth;
+                pad.velocity.z = -step.rate;
+                pad_work += on_pad_z * (pad.position.z - p0.z);
+                soil_work += step.work;
+            }
             let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
             let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
             pad_work += f.gear_xy.dot(&dp);
+            curb_work += f.curb_xy.dot(&dp);
             pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
                 - m * self.gravity.dot(&(p1 - p0));
         }
@@ -598,9 +725,11 @@ impl Landing for Simulation {
             old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt),
             old.theta_dot + old.theta_ddot * dt,
         );
+        pred.slosh_q = old.slosh_q + old.slosh_q_dot * dt + old.slosh_q_ddot * (0.5 * dt * dt);
+        pred.slosh_q_dot = old.slosh_q_dot + old.slosh_q_ddot * dt;
         // 4. trial evaluation
         let mut trial = std::mem::take(&mut self.trial);
-        let loads = self.loads(&pred, &mut trial);
+        let loads = self.loads(self.t + dt, &pred, &mut trial);
         self.trial = trial;
         let loads = loads?;
         self.evaluations += 1;
@@ -616,6 +745,11 @@ impl Landing for Simulation {
             + old.theta_dot * dt
             + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
         new.set_attitude(theta, theta_dot);
+        new.slosh_q_dot = old.slosh_q_dot + (old.slosh_q_ddot + pred.slosh_q_ddot) * (0.5 * dt);
+        new.slosh_q = old.slosh_q
+            + old.slosh_q_dot * dt
+            + (old.slosh_q_ddot / 3.0 + pred.slosh_q_ddot / 6.0) * (dt * dt);
+        let power_old = self.applied_power;
         // 6. evaluate, contact logic, re-evaluate on a change
         self.t += dt;
         self.accept(&mut new)?;
@@ -633,11 +767,22 @@ impl Landing for Simulation {
                 let g = &self.gear[i];
                 self.laws
                     .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
-                let bp = new.t_bi.transpose() * (self.pads[i].position - new.position);
-                self.pads[i].bp = bp;
+                self.bending_lag[i] = g.point1_deflection;
+                let pad = &mut self.pads[i];
+                let bp = new.t_bi.transpose() * (pad.position - new.position);
+                pad.bp = bp;
+                if let Some(curbs) = &mut self.mechanisms.curbs {
+                    let xy = Vector2::new(pad.position.x, pad.position.y);
+                    curbs.commit(i, pad.touchdown_xy, xy, self.footpad_radius);
+                }
             }
         }
-        self.ledger.sliding += pad_work - pad_energy_change;
+        self.mechanisms.commit(self.t, &new, &self.gravity);
+        // Work of the vehicle-level mechanisms on the vehicle with the forces the corrector
+        // used (trapezoid of their power), and of the soil and curbs on the footpads.
+        let applied_work = 0.5 * (power_old + loads.applied_power) * dt;
+        self.ledger.mechanisms += -applied_work - soil_work - curb_work;
+        self.ledger.sliding += pad_work + curb_work + soil_work - pad_energy_change;
         self.book_strut_work(dt);
         self.steps += 1;
         let energy = self.energy();
@@ -683,7 +828,7 @@ impl Landing for Simulation {
             force_evaluations: self.evaluations,
             first_contact_s: self.pads.iter().map(|p| p.first_contact).collect(),
         };
-        Summary::new(
+        let mut summary = Summary::new(
             "core",
             &self.name,
             self.settings(),
@@ -691,6 +836,12 @@ impl Landing for Simulation {
             &self.stability,
             &self.extremes,
             self.energy(),
-        )
+        );
+        summary.mechanisms = self
+            .mechanism_evaluations()
+            .into_iter()
+            .map(|(m, n)| (m.name().to_string(), n))
+            .collect();
+        summary
     }
 }

@@ -47,7 +47,8 @@ pub struct Footpad {
     pub bp_attached: Vector3<f64>,
     /// Body-frame position at the last accepted state, m (used for the tentative position).
     pub bp: Vector3<f64>,
-    /// (XPI, YPI), inertial X-Y at the latest touchdown, m.
+    /// (XPI, YPI), inertial X-Y at the first touchdown, m (review A1: recorded the first time
+    /// only; curbs (eq. 86) and the soil's lateral displacement SP (eq. 102) refer to it).
     pub touchdown_xy: Vector2<f64>,
     /// Sliding footpad at rest, held by static friction (A13).
     pub stuck: bool,
@@ -60,7 +61,10 @@ pub struct Footpad {
 pub struct SlidingForces {
     /// (FXP, FYP): gear force on the footpad in the surface plane, N (eqs. 98-99, corrected).
     pub gear_xy: Vector2<f64>,
-    /// FDRAGP, sliding-friction magnitude, N (eq. 85, corrected).
+    /// Σ PFRC + Σ FWF: the curbs' force on the footpad, N (eqs. 94-96; zero without curbs).
+    pub curb_xy: Vector2<f64>,
+    /// FDRAGP, sliding-friction magnitude, N (eq. 85, corrected); on soil FGRND = FDRAG +
+    /// FDRAGP (eq. 104).
     pub drag: f64,
     /// (g_x, g_y), m/s².
     pub gravity_xy: Vector2<f64>,
@@ -77,13 +81,13 @@ impl SlidingForces {
         } else {
             Vector2::zeros()
         };
-        self.gear_xy / self.mass - drag + self.gravity_xy // eq. (97)
+        (self.gear_xy + self.curb_xy) / self.mass - drag + self.gravity_xy // eq. (97)
     }
 
     /// Applied in-plane force FXYP including the footpad's weight component, N (eq. 100; the
     /// weight term is an addition, review A13 / eq. 100 row).
     pub fn applied(&self) -> Vector2<f64> {
-        self.gear_xy + self.gravity_xy * self.mass
+        self.gear_xy + self.curb_xy + self.gravity_xy * self.mass
     }
 }
 
@@ -174,7 +178,9 @@ pub fn touch_down(
 ) {
     pad.state = ContactState::Contact;
     pad.position = Vector3::new(xy.x, xy.y, surface.plane());
-    pad.touchdown_xy = xy;
+    if pad.first_contact.is_none() {
+        pad.touchdown_xy = xy;
+    }
     let v = if surface.locked() {
         Vector2::zeros()
     } else {
@@ -201,6 +207,7 @@ mod tests {
     fn friction_stops_a_sliding_pad_and_holds_it() {
         let f = SlidingForces {
             gear_xy: Vector2::zeros(),
+            curb_xy: Vector2::zeros(),
             drag: 10.0,
             gravity_xy: Vector2::zeros(),
             mass: 1.0,
@@ -234,6 +241,7 @@ mod tests {
     fn frictionless_pad_follows_constant_force_exactly() {
         let f = SlidingForces {
             gear_xy: Vector2::new(2.0, -1.0),
+            curb_xy: Vector2::zeros(),
             drag: 0.0,
             gravity_xy: Vector2::new(0.0, 0.5),
             mass: 2.0,

@@ -74,7 +74,7 @@ pub struct GearLaws {
     pub secondary: SecondaryStrutLaw,
 }
 
-fn honeycomb(
+pub(crate) fn honeycomb(
     s: &Scenario,
     field: &str,
     ls: &model::LoadStroke,

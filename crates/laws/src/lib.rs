@@ -12,6 +12,7 @@
 //! | [`sliding`] | eqs. 85, 96 | Coulomb sliding friction on the footpad bottom |
 //! | [`thrust`] | Figs. 15, 16; eqs. 69-74 | descent-engine thrust tailoff, thrust amplification table AMP(ZNOZ), constant-load nozzle-rim crushing, engine force and moment |
 //! | [`rcs`] | eqs. 75-82 | RCS attitude-hold / rate-command on-off torques with deadbands; delayed downward-translation force |
+//! | [`scene`] | eqs. 69-82, 108-117 | the vehicle-level laws a scene declares (descent engine, RCS, slosh), built from the scenario once for every engine |
 //! | [`slosh`] | Appendix, eqs. 108-117 | first-mode propellant slosh as a spring-mass: slosh mass, CM shift, rigid inertia, amplitude equation, wall force and torque |
 //! | [`curb`] | Figs. 18-20; eqs. 86-95 | curbs on the rigid surface: footpad-curb distance, crushing with memory, curb friction |
 //! | [`soil`] | eqs. 101-104 | non-rigid surface: rigid-plastic bearing with rate terms, lateral drag, constant-force vertical step |
@@ -23,6 +24,7 @@ pub mod curb;
 pub mod gear;
 pub mod honeycomb;
 pub mod rcs;
+pub mod scene;
 pub mod sliding;
 pub mod slosh;
 pub mod soil;

@@ -16,15 +16,8 @@ use touchdown_scenario::frames::t_eb;
 
 use crate::LawError;
 
-/// Control mode for the torque logic (eqs. 78-79).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RcsMode {
-    /// Attitude hold: attitude and rate errors, commanded rates zero (eq. 78).
-    AttitudeHold,
-    /// Rate command: attitude hold with k11 = k21 = k31 = 0 and commanded rates not
-    /// necessarily zero.
-    RateCommand,
-}
+/// Control mode for the torque logic (eqs. 78-79), as the scenario names it.
+pub use touchdown_scenario::schema::RcsMode;
 
 /// Downward-translation mode (eq. 81): after `delay` from first contact, no torques and a
 /// force FRCSZ along −Z_B.

@@ -64,8 +64,8 @@ impl DescentEngine {
             }
         };
         let (radius, load) = t.nozzle_crushing.unwrap_or((1.0, 0.0));
-        let nozzle = Nozzle::new(t.nozzle_exit, radius, load)
-            .map_err(field(s, "thrust.nozzle_crushing"))?;
+        let nozzle =
+            Nozzle::new(t.nozzle_exit, radius, load).map_err(field(s, "thrust.nozzle_crushing"))?;
         Ok(Some(DescentEngine {
             tailoff,
             amplification,
@@ -168,4 +168,54 @@ pub fn rigid_vehicle(s: &Scenario, slosh: &Slosh) -> Result<Scenario, ScenarioEr
         t.nozzle_exit -= shift;
     }
     Ok(out)
+}
+
+/// The scene's soil (eqs. 101-104), if its surface is soil: AP = π·PR², the frontal area
+/// bounded by the footpad height.
+pub fn soil_from_scenario(s: &Scenario) -> Result<Option<crate::Soil>, ScenarioError> {
+    let Some(k) = &s.surface.soil else {
+        return Ok(None);
+    };
+    let r = s.footpad.radius;
+    let height = s.footpad.height.unwrap_or(0.0);
+    crate::Soil::new(
+        [k.k1, k.k2, k.k3, k.k4, k.k5, k.k6, k.k7, k.k8],
+        std::f64::consts::PI * r * r,
+        r,
+        height,
+    )
+    .map(Some)
+    .map_err(field(s, "surface.soil"))
+}
+
+/// A scene's curbs: (leg index, curb) in the scenario's order, and the footpad crushing
+/// diagram (fig. 18) they share.
+pub type SceneCurbs = (Vec<(usize, crate::Curb)>, crate::FootpadCrush);
+
+/// The scene's curbs (eqs. 86-95); `None` when the scene has no curbs.
+pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<SceneCurbs>, ScenarioError> {
+    let Some(table) = &s.footpad.crush else {
+        return Ok(None);
+    };
+    if s.surface.curbs.is_empty() {
+        return Ok(None);
+    }
+    let crush = crate::FootpadCrush::new(crate::gear::honeycomb(s, "footpad.crush", table, None)?);
+    let mut curbs = Vec::with_capacity(s.surface.curbs.len());
+    for (i, c) in s.surface.curbs.iter().enumerate() {
+        let curb = crate::Curb::new(c.distance, c.angle, c.friction)
+            .map_err(field(s, &format!("surface.curbs[{i}]")))?;
+        curbs.push((c.leg, curb));
+    }
+    Ok(Some((curbs, crush)))
+}
+
+/// The scene's primary-strut bending law (eqs. 40-48), if it declares one.
+pub fn bending_from_scenario(s: &Scenario) -> Result<Option<crate::Bending>, ScenarioError> {
+    match s.primary.bending_stiffness {
+        None => Ok(None),
+        Some(ei) => crate::Bending::new(ei)
+            .map(Some)
+            .map_err(field(s, "primary_strut.bending.stiffness")),
+    }
 }

@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 
 /// Energy bookkeeping since touchdown, J. The balance
 /// `kinetic + potential_change + footpad + honeycomb_stored + honeycomb_dissipated + viscous +
-/// bearing_friction + sliding_friction − contact_events − kinetic_initial` is `residual`.
+/// bearing_friction + sliding_friction + mechanisms − contact_events − kinetic_initial` is
+/// `residual`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct EnergyReport {
     /// Vehicle kinetic energy at first contact, J.
@@ -32,6 +33,11 @@ pub struct EnergyReport {
     /// at lift-off (core), or the work of the surface's normal contact impulses and obstacle
     /// locks (multibody engines; negative, the impacts absorb energy).
     pub contact_events_j: f64,
+    /// Work done by the vehicle and footpads on the scene's optional mechanisms, J: soil,
+    /// curbs, nozzle crushing and the slosh mass absorb it; the descent engine and the RCS
+    /// drive the vehicle, so their work counts negative. Zero without such mechanisms.
+    #[serde(default)]
+    pub mechanisms_j: f64,
     /// Balance residual (integration error), J.
     pub residual_j: f64,
 }
@@ -50,6 +56,8 @@ pub struct EnergyLedger {
     pub sliding: f64,
     /// Given to the footpads by contact events, J (`EnergyReport::contact_events_j`).
     pub events: f64,
+    /// Done on the scene's optional mechanisms, J (`EnergyReport::mechanisms_j`).
+    pub mechanisms: f64,
 }
 
 impl EnergyLedger {
@@ -65,7 +73,8 @@ impl EnergyLedger {
         footpad: f64,
         honeycomb_stored: f64,
     ) -> EnergyReport {
-        let absorbed = self.honeycomb + self.viscous + self.bearing + self.sliding;
+        let absorbed =
+            self.honeycomb + self.viscous + self.bearing + self.sliding + self.mechanisms;
         EnergyReport {
             kinetic_initial_j: kinetic_initial,
             kinetic_j: kinetic,
@@ -77,6 +86,7 @@ impl EnergyLedger {
             bearing_friction_j: self.bearing,
             sliding_friction_j: self.sliding,
             contact_events_j: self.events,
+            mechanisms_j: self.mechanisms,
             residual_j: kinetic + potential_change + footpad + absorbed
                 - self.events
                 - kinetic_initial,
@@ -98,14 +108,15 @@ impl EnergyLedger {
             + self.viscous.abs()
             + self.bearing.abs()
             + self.sliding.abs()
-            + self.events.abs();
+            + self.events.abs()
+            + self.mechanisms.abs();
         if e.residual_j.abs() <= tolerance * scale.max(f64::MIN_POSITIVE) {
             return Ok(());
         }
         Err(format!(
             "energy balance residual {:.4e} J exceeds {tolerance} of the energy scale {scale:.4e} J ({hint}); \
-             exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J",
-            e.residual_j, self.honeycomb, self.viscous, self.bearing, self.sliding, self.events
+             exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J, mechanisms {:.4e} J",
+            e.residual_j, self.honeycomb, self.viscous, self.bearing, self.sliding, self.events, self.mechanisms
         ))
     }
 }
@@ -192,6 +203,10 @@ pub struct Summary {
     pub energy_residual_j: f64,
     /// Energy bookkeeping at the end.
     pub energy: EnergyReport,
+    /// Evaluations of each optional mechanism the scene declares (name → count); empty, and
+    /// left out of the JSON, when it declares none.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub mechanisms: std::collections::BTreeMap<String, u64>,
 }
 
 /// How far a run went: time, steps, force evaluations and first contacts.
@@ -246,6 +261,7 @@ impl Summary {
             first_contact_s: progress.first_contact_s,
             energy_residual_j: energy.residual_j,
             energy,
+            mechanisms: Default::default(),
         }
     }
 }
@@ -278,6 +294,7 @@ mod tests {
             bearing: 4.0,
             sliding: 0.0,
             events: -1.0,
+            mechanisms: 0.0,
         };
         let e = l.report(100.0, 10.0, -5.0, 0.0, 3.0);
         assert_eq!(e.residual_j, 0.0);

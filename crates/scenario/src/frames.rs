@@ -177,7 +177,8 @@ pub struct InitialState {
 /// Initial state of a scenario, eq. (19) corrected for holes (review eq. 19 row): the footpad
 /// k that is lowest relative to its own plane, k = argmin_n [(T_BI·BP_n)_z + HOLE_n], touches
 /// its plane at inertial X = Y = 0, so R_cm = (0, 0, −HOLE_k) − T_BI·BP_k. An attitude given
-/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (review A17).
+/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (review A17). A
+/// `touchdown.clearance` lifts the whole vehicle by that height along the surface normal.
 pub fn initial_state(s: &crate::Scenario) -> InitialState {
     let td = &s.touchdown;
     let alpha = s.surface.slope;
@@ -189,8 +190,8 @@ pub fn initial_state(s: &crate::Scenario) -> InitialState {
     let t = t_bi(&theta);
     let height = |i: usize| (t * s.legs[i].bp).z + s.surface.pads[i].hole;
     let first_leg = (0..s.legs.len()).fold(0, |k, i| if height(i) < height(k) { i } else { k });
-    let position =
-        Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane()) - t * s.legs[first_leg].bp; // eq. (19)
+    let position = Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane() + td.clearance)
+        - t * s.legs[first_leg].bp; // eq. (19)
     InitialState {
         t_bi: t,
         theta,

@@ -12,6 +12,7 @@
 pub mod error;
 pub mod frames;
 mod load;
+mod mechanisms;
 pub mod model;
 pub mod schema;
 pub mod units;

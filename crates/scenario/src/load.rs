@@ -3,6 +3,7 @@
 
 use crate::error::ScenarioError;
 use crate::frames;
+use crate::mechanisms;
 use crate::model::{self, Scenario};
 use crate::schema::{self, PerPad, ScenarioFile, Trunnion, SCHEMA_VERSION};
 use crate::units::Units;
@@ -196,9 +197,24 @@ impl Scenario {
         owner_of(&self.layers, field)
     }
 
-    /// Refuses `engine` unless the scenario lists it in `engines.applicable`: every engine
-    /// calls this before it builds anything.
+    /// Refuses `engine` unless the scenario lists it in `engines.applicable` and the engine
+    /// models every mechanism the scene declares ([`model::Mechanism::supported_by`]): every
+    /// engine calls this before it builds anything.
     pub fn require_engine(&self, engine: schema::Engine) -> Result<(), ScenarioError> {
+        if let Some(m) = self
+            .mechanisms()
+            .into_iter()
+            .find(|m| !m.supported_by(engine))
+        {
+            return Err(ScenarioError::field(
+                self.file_of(m.field()),
+                m.field(),
+                format!(
+                    "the {engine} engine does not model {} (docs/engines.md lists what each engine supports); run this scene on the core",
+                    m.name()
+                ),
+            ));
+        }
         if self.applicable_engines.contains(&engine) {
             return Ok(());
         }
@@ -411,42 +427,52 @@ impl Scenario {
 
 /// Field checker bound to one file and the chain it extends: an error names the file that
 /// sets the field.
-struct Check<'a> {
-    layers: &'a [(String, toml::Table)],
+pub(crate) struct Check<'a> {
+    pub(crate) layers: &'a [(String, toml::Table)],
 }
 
 impl Check<'_> {
-    fn err(&self, field: &str, message: impl Into<String>) -> ScenarioError {
+    pub(crate) fn err(&self, field: &str, message: impl Into<String>) -> ScenarioError {
         ScenarioError::field(owner_of(self.layers, field), field, message)
     }
-    fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
+    pub(crate) fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() {
             Ok(v)
         } else {
             Err(self.err(field, format!("expected a finite number, got {v}")))
         }
     }
-    fn positive(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
+    pub(crate) fn positive(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
             Err(self.err(field, format!("expected a positive number, got {v}")))
         }
     }
-    fn non_negative(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
+    pub(crate) fn non_negative(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() && v >= 0.0 {
             Ok(v)
         } else {
             Err(self.err(field, format!("expected a number ≥ 0, got {v}")))
         }
     }
-    fn vec3(&self, field: &str, v: [f64; 3], scale: f64) -> Result<Vector3<f64>, ScenarioError> {
+    pub(crate) fn vec3(
+        &self,
+        field: &str,
+        v: [f64; 3],
+        scale: f64,
+    ) -> Result<Vector3<f64>, ScenarioError> {
         for (i, x) in v.iter().enumerate() {
             self.finite(&format!("{field}[{i}]"), *x)?;
         }
         Ok(Vector3::from(v) * scale)
     }
-    fn per_pad(&self, field: &str, v: &PerPad, n: usize) -> Result<Vec<f64>, ScenarioError> {
+    pub(crate) fn per_pad(
+        &self,
+        field: &str,
+        v: &PerPad,
+        n: usize,
+    ) -> Result<Vec<f64>, ScenarioError> {
         let values = match v {
             PerPad::All(x) => vec![*x; n],
             PerPad::Each(xs) if xs.len() == n => xs.clone(),
@@ -465,7 +491,7 @@ impl Check<'_> {
         }
         Ok(values)
     }
-    fn load_stroke(
+    pub(crate) fn load_stroke(
         &self,
         field: &str,
         ls: &schema::LoadStroke,
@@ -587,6 +613,7 @@ fn parametric_legs(
 fn explicit_legs(
     c: &Check,
     legs: &[schema::Leg],
+    arrangement: schema::Arrangement,
     u: &Units,
 ) -> Result<Vec<model::Leg>, ScenarioError> {
     if legs.len() < 3 {
@@ -600,12 +627,27 @@ fn explicit_legs(
         .enumerate()
         .map(|(i, leg)| {
             let f = |n: &str| format!("gear.legs[{i}].{n}");
+            let (b2, bp) = (c.vec3(&f("b2"), leg.b2, l)?, c.vec3(&f("bp"), leg.bp, l)?);
+            // eqs. (29)-(30): point 1 at L21 along the primary; the tripod's is the footpad.
+            let l21 = match (arrangement, leg.l21) {
+                (schema::Arrangement::Cantilever, Some(x)) => c.positive(&f("l21"), x)? * l,
+                (schema::Arrangement::Cantilever, None) => {
+                    return Err(c.err(&f("l21"), "expected L21 (length) for the cantilever gear"))
+                }
+                (schema::Arrangement::Tripod, None) => (bp - b2).norm(),
+                (schema::Arrangement::Tripod, Some(_)) => {
+                    return Err(c.err(
+                        &f("l21"),
+                        "the tripod's secondaries meet the primary at the footpad: leave L21 out",
+                    ))
+                }
+            };
             Ok(model::Leg::from_points(
-                c.vec3(&f("b2"), leg.b2, l)?,
+                b2,
                 c.vec3(&f("b3"), leg.b3, l)?,
                 c.vec3(&f("b4"), leg.b4, l)?,
-                c.vec3(&f("bp"), leg.bp, l)?,
-                c.positive(&f("l21"), leg.l21)? * l,
+                bp,
+                l21,
             ))
         })
         .collect()
@@ -616,6 +658,7 @@ fn check_legs(
     c: &Check,
     field: &str,
     legs: &[model::Leg],
+    arrangement: schema::Arrangement,
     lengths: f64,
 ) -> Result<(), ScenarioError> {
     let tiny = 1e-9;
@@ -624,7 +667,7 @@ fn check_legs(
         if leg.l2p < tiny {
             return Err(c.err(&f, "the footpad BP coincides with the primary trunnion B2"));
         }
-        if leg.l21 >= leg.l2p {
+        if arrangement == schema::Arrangement::Cantilever && leg.l21 >= leg.l2p {
             return Err(c.err(
                 &f,
                 format!(
@@ -690,18 +733,19 @@ fn resolve(
         inertia: inertia(&c, &file.vehicle.inertia, &u)?,
         gravity: c.non_negative("vehicle.gravity", file.vehicle.gravity)? * u.acceleration(),
     };
-    if file.gear.arrangement == schema::Arrangement::Tripod {
-        return Err(c.err(
-            "gear.arrangement",
-            "expected \"cantilever\": the tripod arrangement is not supported by this version",
-        ));
-    }
+    let arrangement = file.gear.arrangement;
     let (legs, legs_field) = match (&file.gear.legs, &file.gear.parametric) {
-        (Some(l), None) => (explicit_legs(&c, l, &u)?, "gear.legs"),
+        (Some(l), None) => (explicit_legs(&c, l, arrangement, &u)?, "gear.legs"),
+        (None, Some(_)) if arrangement == schema::Arrangement::Tripod => {
+            return Err(c.err(
+                "gear.parametric",
+                "the report's parameterisation (fig. 23) is of the cantilever gear; give the tripod's points in gear.legs",
+            ))
+        }
         (None, Some(p)) => (parametric_legs(&c, p, &u)?, "gear.parametric"),
         _ => return Err(c.err("gear", "expected exactly one of `legs` or `parametric`")),
     };
-    check_legs(&c, legs_field, &legs, u.length())?;
+    check_legs(&c, legs_field, &legs, arrangement, u.length())?;
     let n = legs.len();
     let ps = &file.primary_strut;
     let primary = model::PrimaryStrut {
@@ -717,6 +761,7 @@ fn resolve(
             "primary_strut.bearing.initial_overlap",
             ps.bearing.initial_overlap,
         )? * u.length(),
+        bending_stiffness: mechanisms::bending(&c, ps.bending, arrangement, &u)?,
     };
     if primary.initial_overlap >= primary.inner_cylinder_length {
         return Err(c.err(
@@ -741,6 +786,14 @@ fn resolve(
     let footpad = model::Footpad {
         mass: c.positive("footpad.mass", file.footpad.mass)? * u.mass(),
         radius: c.positive("footpad.radius", file.footpad.radius)? * u.length(),
+        height: match file.footpad.height {
+            Some(h) => Some(c.positive("footpad.height", h)? * u.length()),
+            None => None,
+        },
+        crush: match &file.footpad.crush {
+            Some(ls) => Some(c.load_stroke("footpad.crush", ls, 4, &u)?),
+            None => None,
+        },
     };
     let sf = &file.surface;
     let slope = c.finite("surface.slope", sf.slope)? * u.angle();
@@ -768,6 +821,8 @@ fn resolve(
         .collect();
     let surface = model::Surface {
         slope,
+        soil: mechanisms::soil(&c, sf, &footpad, &obstacle, &u)?,
+        curbs: mechanisms::curbs(&c, sf, &footpad, &obstacle, &u)?,
         pads,
         release: sf.release,
     };
@@ -782,6 +837,7 @@ fn resolve(
         attitude_reference: td.attitude_reference,
         velocity_g: Vector3::new(vh[0], vh[1], vv) * u.velocity(),
         body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
+        clearance: c.non_negative("touchdown.clearance", td.clearance)? * u.length(),
     };
     let it = &file.integrator;
     let integrator = model::Integrator {
@@ -821,11 +877,15 @@ fn resolve(
     let rapier = resolve_rapier(&c, &file.engines.rapier, &u)?;
     let mujoco = resolve_mujoco(&c, &file.engines.mujoco, &u)?;
     let links = resolve_links(&c, &file.engines.links)?;
+    let thrust = mechanisms::thrust(&c, file.thrust.as_ref(), &u)?;
+    let rcs = mechanisms::rcs(&c, file.rcs.as_ref(), &u)?;
+    let slosh = mechanisms::slosh(&c, file.slosh.as_ref(), vehicle.mass, &u)?;
     Ok(Scenario {
         source: source.to_string(),
         layers,
         file,
         vehicle,
+        arrangement,
         legs,
         primary,
         secondary,
@@ -838,5 +898,8 @@ fn resolve(
         rapier,
         mujoco,
         links,
+        thrust,
+        rcs,
+        slosh,
     })
 }

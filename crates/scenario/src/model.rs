@@ -1,6 +1,9 @@
 //! The resolved scenario: every value in SI, geometry derived, ready for an engine.
 
-use crate::schema::{self, AttitudeReference, CountedEnergy, ReleaseRule, ScenarioFile, WallRule};
+use crate::schema::{
+    self, Arrangement, AttitudeReference, CountedEnergy, RcsMode, ReleaseRule, ScenarioFile,
+    WallRule,
+};
 use nalgebra::{Matrix3, Vector3};
 
 /// A validated scenario in SI units (m, kg, N, s, rad).
@@ -12,6 +15,8 @@ pub struct Scenario {
     pub file: ScenarioFile,
     /// Rigid vehicle.
     pub vehicle: Vehicle,
+    /// Gear arrangement (fig. 4).
+    pub arrangement: Arrangement,
     /// Legs in counter-clockwise order seen from above.
     pub legs: Vec<Leg>,
     /// Primary strut.
@@ -36,6 +41,12 @@ pub struct Scenario {
     pub mujoco: Mujoco,
     /// The gear links of the multibody engines.
     pub links: GearLinks,
+    /// Descent engine (eqs. 69-74), if the scene has one.
+    pub thrust: Option<Thrust>,
+    /// Reaction control system (eqs. 75-82), if the scene has one.
+    pub rcs: Option<Rcs>,
+    /// Propellant sloshing (eqs. 108-117), if the scene has it.
+    pub slosh: Option<Slosh>,
     /// The files of the `extends` chain with their own tables (this file first), to name the
     /// file that sets a field in messages.
     pub(crate) layers: Vec<(String, toml::Table)>,
@@ -142,6 +153,8 @@ pub struct PrimaryStrut {
     pub inner_cylinder_length: f64,
     /// Initial D2, m.
     pub initial_overlap: f64,
+    /// Bending stiffness EI of the primary strut (eqs. 40-48), N·m²; `None`: rigid in bending.
+    pub bending_stiffness: Option<f64>,
 }
 
 /// Secondary struts, SI.
@@ -158,12 +171,16 @@ pub struct SecondaryStrut {
 }
 
 /// Effective footpad, SI.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Footpad {
     /// PMASS, kg.
     pub mass: f64,
     /// PR, m.
     pub radius: f64,
+    /// Footpad height (bounds the frontal area in soil), m; required with soil.
+    pub height: Option<f64>,
+    /// Footpad crushing diagram against curbs (fig. 18); required with curbs.
+    pub crush: Option<LoadStroke>,
 }
 
 /// Surface under one footpad.
@@ -197,6 +214,212 @@ pub struct Surface {
     pub pads: Vec<PadSurface>,
     /// Release rule.
     pub release: ReleaseRule,
+    /// Soil constants (eqs. 101-102); `None` on the rigid surface.
+    pub soil: Option<Soil>,
+    /// Curbs on the rigid surface (eqs. 86-95).
+    pub curbs: Vec<Curb>,
+}
+
+/// Soil constants of eqs. (101)-(102), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Soil {
+    /// K1, Pa.
+    pub k1: f64,
+    /// K2, Pa/m.
+    pub k2: f64,
+    /// K3, Pa·s/m.
+    pub k3: f64,
+    /// K4, Pa·s²/m².
+    pub k4: f64,
+    /// K5, Pa.
+    pub k5: f64,
+    /// K6, Pa/m.
+    pub k6: f64,
+    /// K7, Pa/m.
+    pub k7: f64,
+    /// K8, Pa·s²/m².
+    pub k8: f64,
+}
+
+/// One curb (fig. 19), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Curb {
+    /// Index of the leg (0-based).
+    pub leg: usize,
+    /// DWALLI, m.
+    pub distance: f64,
+    /// WALANG, rad.
+    pub angle: f64,
+    /// UW.
+    pub friction: f64,
+}
+
+/// Descent engine, SI (eqs. 69-74).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Thrust {
+    /// F1, N.
+    pub thrust: f64,
+    /// t2 on the thrust-curve clock, s.
+    pub tailoff_start: f64,
+    /// t_p, the thrust-curve clock at simulation time 0, s.
+    pub clock_at_touchdown: f64,
+    /// K, 1/s; `None`: no exponential term.
+    pub decay_rate: Option<f64>,
+    /// M_i, N/s^i.
+    pub polynomial: Vec<f64>,
+    /// R_T, body axes, m.
+    pub nozzle_exit: Vector3<f64>,
+    /// AMP table: (clearance m, factor); `None`: AMP = 1.
+    pub amplification: Option<Vec<(f64, f64)>>,
+    /// Nozzle crushing: (exit radius m, crush load N); `None`: no crushing.
+    pub nozzle_crushing: Option<(f64, f64)>,
+}
+
+/// Reaction control system, SI (eqs. 75-82).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rcs {
+    /// Mode.
+    pub mode: RcsMode,
+    /// k_i1 (zero in rate command).
+    pub attitude_gain: Vector3<f64>,
+    /// k_i2, s.
+    pub rate_gain: Vector3<f64>,
+    /// EM_i, rad.
+    pub deadband: Vector3<f64>,
+    /// TORQ_i, N·m.
+    pub torque: Vector3<f64>,
+    /// Cθ, rad.
+    pub commanded_attitude: Vector3<f64>,
+    /// Cω, rad/s.
+    pub commanded_rates: Vector3<f64>,
+    /// Downward translation: (delay s, FRCSZ N).
+    pub downward_translation: Option<(f64, f64)>,
+}
+
+/// Propellant sloshing, SI (eqs. 108-117).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slosh {
+    /// F_s, kg.
+    pub force_coefficient: f64,
+    /// ω², 1/m.
+    pub frequency_parameter: f64,
+    /// ℓ1, m.
+    pub free_surface_depth: f64,
+    /// ℓ, m.
+    pub mass_depth: f64,
+    /// q0, m.
+    pub initial_amplitude: [f64; 2],
+}
+
+/// An optional mechanism of the model, declared by the scene or not.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Mechanism {
+    /// Trunnion springs applied to raw load-stroke diagrams (eqs. 35-39).
+    TrunnionSprings,
+    /// Primary-strut bending (eqs. 40-48).
+    Bending,
+    /// The tripod gear arrangement.
+    Tripod,
+    /// Soil surface (eqs. 101-104).
+    Soil,
+    /// Curbs and footpad crushing (eqs. 86-95).
+    Curbs,
+    /// Descent-engine thrust and tailoff (eqs. 69-71, 74).
+    Thrust,
+    /// Nozzle crushing (eqs. 72-73).
+    NozzleCrushing,
+    /// Reaction control (eqs. 75-82).
+    Rcs,
+    /// Propellant sloshing (eqs. 108-117).
+    Slosh,
+}
+
+impl Mechanism {
+    /// Every mechanism, in the order of the report.
+    pub const ALL: [Mechanism; 9] = [
+        Mechanism::TrunnionSprings,
+        Mechanism::Bending,
+        Mechanism::Tripod,
+        Mechanism::Soil,
+        Mechanism::Curbs,
+        Mechanism::Thrust,
+        Mechanism::NozzleCrushing,
+        Mechanism::Rcs,
+        Mechanism::Slosh,
+    ];
+
+    /// Short name, as in summaries and docs/engines.md.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mechanism::TrunnionSprings => "trunnion springs",
+            Mechanism::Bending => "strut bending",
+            Mechanism::Tripod => "tripod gear",
+            Mechanism::Soil => "soil",
+            Mechanism::Curbs => "curbs",
+            Mechanism::Thrust => "thrust",
+            Mechanism::NozzleCrushing => "nozzle crushing",
+            Mechanism::Rcs => "rcs",
+            Mechanism::Slosh => "slosh",
+        }
+    }
+
+    /// Whether `engine` models this mechanism. The core models them all; the multibody engines
+    /// take the trunnion springs through the shared strut laws and refuse the others for now
+    /// (docs/engines.md).
+    pub fn supported_by(self, engine: schema::Engine) -> bool {
+        match engine {
+            schema::Engine::Core => true,
+            schema::Engine::Rapier | schema::Engine::Mujoco => {
+                matches!(self, Mechanism::TrunnionSprings)
+            }
+        }
+    }
+
+    /// The scenario field that declares it.
+    pub fn field(self) -> &'static str {
+        match self {
+            Mechanism::TrunnionSprings => "primary_strut.trunnion",
+            Mechanism::Bending => "primary_strut.bending",
+            Mechanism::Tripod => "gear.arrangement",
+            Mechanism::Soil => "surface.soil",
+            Mechanism::Curbs => "surface.curbs",
+            Mechanism::Thrust => "thrust",
+            Mechanism::NozzleCrushing => "thrust.nozzle_crushing",
+            Mechanism::Rcs => "rcs",
+            Mechanism::Slosh => "slosh",
+        }
+    }
+}
+
+impl Scenario {
+    /// The optional mechanisms this scene declares, in the order of [`Mechanism::ALL`]: the
+    /// engines build these and nothing else.
+    pub fn mechanisms(&self) -> Vec<Mechanism> {
+        Mechanism::ALL
+            .into_iter()
+            .filter(|m| self.declares(*m))
+            .collect()
+    }
+
+    /// Whether the scene declares mechanism `m`.
+    pub fn declares(&self, m: Mechanism) -> bool {
+        match m {
+            Mechanism::TrunnionSprings => {
+                self.primary.trunnion_rate.is_some() || self.secondary.trunnion_rate.is_some()
+            }
+            Mechanism::Bending => self.primary.bending_stiffness.is_some(),
+            Mechanism::Tripod => self.arrangement == Arrangement::Tripod,
+            Mechanism::Soil => self.surface.soil.is_some(),
+            Mechanism::Curbs => !self.surface.curbs.is_empty(),
+            Mechanism::Thrust => self.thrust.is_some(),
+            Mechanism::NozzleCrushing => self
+                .thrust
+                .as_ref()
+                .is_some_and(|t| t.nozzle_crushing.is_some()),
+            Mechanism::Rcs => self.rcs.is_some(),
+            Mechanism::Slosh => self.slosh.is_some(),
+        }
+    }
 }
 
 /// Touchdown conditions, SI.
@@ -210,6 +433,8 @@ pub struct Touchdown {
     pub velocity_g: Vector3<f64>,
     /// Body rates, rad/s.
     pub body_rates: Vector3<f64>,
+    /// Height of the first footpad above its plane at the start, m.
+    pub clearance: f64,
 }
 
 /// Integrator settings, SI.

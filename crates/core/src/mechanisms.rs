@@ -1,0 +1,224 @@
+//! The optional mechanisms of a scene, assembled from what it declares and nothing else: the
+//! descent engine with nozzle crushing (eqs. 69-74), the RCS (eqs. 75-82), propellant
+//! sloshing (eqs. 108-117), soil (eqs. 101-104), curbs with footpad crushing (eqs. 86-95) and
+//! primary-strut bending (eqs. 40-48). A mechanism the scene leaves out is `None` here: it is
+//! never built and never evaluated, and every evaluation of one that is present is counted
+//! ([`Mechanisms::evaluations`]), which is how the tests show it.
+
+use crate::simulation::VehicleState;
+use nalgebra::{Vector2, Vector3};
+use std::cell::Cell;
+use touchdown_laws::scene::{self, DescentEngine};
+use touchdown_laws::{Bending, CrushMemory, Curb, FootpadCrush, Rcs, Slosh, Soil};
+use touchdown_scenario::model::Mechanism;
+use touchdown_scenario::{Scenario, ScenarioError};
+
+/// Loads of the vehicle-level mechanisms on the rigid vehicle, body axes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AppliedLoads {
+    /// Force, N (body axes; the caller applies T_BI, eqs. 74, 82, 116).
+    pub force: Vector3<f64>,
+    /// Torque about the centre of mass, N·m (body axes; MTF + MRCS + T_f, eqs. 73, 80, 117).
+    pub torque: Vector3<f64>,
+}
+
+/// The curbs of a scene: each (leg, curb) with its crush memory, and the footpad crushing
+/// diagram (fig. 18) they share.
+#[derive(Debug, Clone)]
+pub struct Curbs {
+    /// (leg index, curb), at most two per leg.
+    pub list: Vec<(usize, Curb)>,
+    /// Footpad crushing diagram with memory.
+    pub crush: FootpadCrush,
+    /// Committed crush memory per curb (review A14).
+    pub memory: Vec<CrushMemory>,
+}
+
+impl Curbs {
+    /// In-plane force of leg `leg`'s curbs on its footpad, N, with the footpad at `pad_xy`
+    /// (m) moving at `velocity` (m/s), its first contact at `touchdown_xy` (m), radius `radius`
+    /// (m): eqs. (91)-(95) per curb, summed over the footpad's curbs (eq. 96 corrected).
+    pub fn force(
+        &self,
+        leg: usize,
+        touchdown_xy: Vector2<f64>,
+        pad_xy: Vector2<f64>,
+        velocity: Vector2<f64>,
+        radius: f64,
+    ) -> Vector2<f64> {
+        let mut f = Vector2::zeros();
+        for ((l, curb), m) in self.list.iter().zip(&self.memory) {
+            if *l == leg {
+                let pstrk = curb.crush(touchdown_xy, pad_xy, radius); // eq. (93)
+                let pfrc = self.crush.force(pstrk, *m); // fig. 18 with memory
+                if pfrc > 0.0 {
+                    f += curb.force(pfrc, velocity); // eqs. (94)-(95)
+                }
+            }
+        }
+        f
+    }
+
+    /// Commits the crush of leg `leg`'s curbs with the footpad at `pad_xy` (accepted state).
+    pub fn commit(&mut self, leg: usize, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>, r: f64) {
+        for ((l, curb), m) in self.list.iter().zip(&mut self.memory) {
+            if *l == leg {
+                self.crush.commit(curb.crush(touchdown_xy, pad_xy, r), m);
+            }
+        }
+    }
+}
+
+/// Evaluation counts per mechanism.
+#[derive(Debug, Clone, Default)]
+pub struct Evaluations([Cell<u64>; Mechanism::ALL.len()]);
+
+impl Evaluations {
+    /// Counts one evaluation of `m`.
+    #[inline]
+    pub fn tick(&self, m: Mechanism) {
+        let c = &self.0[m as usize];
+        c.set(c.get() + 1);
+    }
+
+    /// Evaluations of `m` so far.
+    pub fn get(&self, m: Mechanism) -> u64 {
+        self.0[m as usize].get()
+    }
+}
+
+/// The scene's optional mechanisms.
+#[derive(Debug, Clone)]
+pub struct Mechanisms {
+    /// Descent engine (thrust, amplification, nozzle crushing).
+    pub engine: Option<DescentEngine>,
+    /// Reaction control system.
+    pub rcs: Option<Rcs>,
+    /// Propellant slosh.
+    pub slosh: Option<Slosh>,
+    /// Soil surface.
+    pub soil: Option<Soil>,
+    /// Curbs and footpad crushing.
+    pub curbs: Option<Curbs>,
+    /// Primary-strut bending.
+    pub bending: Option<Bending>,
+    /// Committed nozzle crush (shortening along Z_B), m (review A18).
+    pub nozzle_crush: f64,
+    /// Specific force at the slosh mass, body axes, m/s², at the last accepted state: the
+    /// slosh equations use it one step lagged, which breaks the algebraic loop between the
+    /// vehicle's and the slosh mass's accelerations (review rows 108-109).
+    pub slosh_specific_force: Vector3<f64>,
+    declared: Vec<Mechanism>,
+    evaluations: Evaluations,
+}
+
+impl Mechanisms {
+    /// Builds what `s` declares (and nothing else).
+    pub fn new(s: &Scenario) -> Result<Mechanisms, ScenarioError> {
+        let curbs = scene::curbs_from_scenario(s)?.map(|(list, crush)| Curbs {
+            memory: vec![CrushMemory::default(); list.len()],
+            list,
+            crush,
+        });
+        Ok(Mechanisms {
+            engine: DescentEngine::from_scenario(s)?,
+            rcs: scene::rcs_from_scenario(s)?,
+            slosh: scene::slosh_from_scenario(s)?,
+            soil: scene::soil_from_scenario(s)?,
+            curbs,
+            bending: scene::bending_from_scenario(s)?,
+            nozzle_crush: 0.0,
+            slosh_specific_force: Vector3::new(0.0, 0.0, s.vehicle.gravity),
+            declared: s.mechanisms(),
+            evaluations: Evaluations::default(),
+        })
+    }
+
+    /// Counts one evaluation of `m` (for the mechanisms evaluated elsewhere: soil, curbs,
+    /// bending).
+    #[inline]
+    pub fn tick(&self, m: Mechanism) {
+        self.evaluations.tick(m);
+    }
+
+    /// Evaluations of each declared mechanism so far, in the order of [`Mechanism::ALL`].
+    pub fn evaluations(&self) -> Vec<(Mechanism, u64)> {
+        self.declared
+            .iter()
+            .map(|m| (*m, self.evaluations.get(*m)))
+            .collect()
+    }
+
+    /// Position of the slosh mass from the rigid centre of mass, body axes, m: (0, 0, −d).
+    fn slosh_arm(slosh: &Slosh) -> Vector3<f64> {
+        Vector3::new(0.0, 0.0, -slosh.arm())
+    }
+
+    /// Loads of the descent engine, the RCS and the slosh mass on the vehicle at time `t` (s)
+    /// and state `v`; `first_contact` is the first footpad contact (s), for the RCS delay.
+    #[inline]
+    pub fn vehicle_loads(
+        &self,
+        t: f64,
+        first_contact: Option<f64>,
+        v: &VehicleState,
+    ) -> AppliedLoads {
+        let mut out = AppliedLoads::default();
+        if let Some(engine) = &self.engine {
+            self.evaluations.tick(Mechanism::Thrust);
+            let e = engine.state(t, &v.position, &v.t_bi, self.nozzle_crush);
+            if engine.crushing {
+                self.evaluations.tick(Mechanism::NozzleCrushing);
+            }
+            out.force += e.loads.force; // eq. (72)
+            out.torque += e.loads.torque; // eq. (73)
+        }
+        if let Some(rcs) = &self.rcs {
+            self.evaluations.tick(Mechanism::Rcs);
+            let r = rcs.loads(t, first_contact, &v.theta, &v.omega);
+            out.force += r.force; // eq. (81)
+            out.torque += r.torque; // eq. (80)
+        }
+        if let Some(slosh) = &self.slosh {
+            self.evaluations.tick(Mechanism::Slosh);
+            let axial = slosh.axial(&self.slosh_specific_force);
+            let lateral = slosh.wall_force(&v.slosh_q, axial); // eqs. (108), (115)
+                                                               // The slosh mass presses on the tank floor with M_s·Z̈_B,eff along −Z_B (review
+                                                               // A21: the appendix drops this axial load); it acts on the axis, so no moment.
+            out.force += Vector3::new(lateral.x, lateral.y, -slosh.slosh_mass() * axial);
+            out.torque += slosh.torque(&lateral); // eq. (117), corrected
+        }
+        out
+    }
+
+    /// Slosh acceleration q̈ at state `v` (eq. 109, corrected), m/s²; zero without slosh.
+    #[inline]
+    pub fn slosh_acceleration(&self, v: &VehicleState) -> Vector2<f64> {
+        match &self.slosh {
+            None => Vector2::zeros(),
+            Some(slosh) => {
+                let f = &self.slosh_specific_force;
+                let axial = slosh.axial(f);
+                slosh.acceleration(&v.slosh_q, &Vector2::new(f.x, f.y), axial)
+            }
+        }
+    }
+
+    /// Commits the accepted state `v`: the nozzle crush grows by the rim's penetration, and the
+    /// specific force at the slosh mass is taken for the next step.
+    pub fn commit(&mut self, t: f64, v: &VehicleState, gravity: &Vector3<f64>) {
+        if let Some(engine) = &self.engine {
+            if engine.crushing {
+                let e = engine.state(t, &v.position, &v.t_bi, self.nozzle_crush);
+                self.nozzle_crush += e.rim.penetration;
+            }
+        }
+        if let Some(slosh) = &self.slosh {
+            // (A_tank − G) in body axes at r_s = (0, 0, −d) (review row 109).
+            let r = Self::slosh_arm(slosh);
+            self.slosh_specific_force = v.t_bi.transpose() * (v.acceleration - gravity)
+                + v.omega_dot.cross(&r)
+                + v.omega.cross(&v.omega.cross(&r));
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! Reading the optional mechanisms of a scene (soil, curbs, bending, thrust, RCS, sloshing):
+//! each is absent unless its table is given, and each is checked against the rest of the scene
+//! (a soil surface has no curbs, a curb needs a footpad crush diagram, ...).
+
+use crate::error::ScenarioError;
+use crate::load::Check;
+use crate::model;
+use crate::schema::{self, Arrangement, RcsMode};
+use crate::units::Units;
+use nalgebra::Vector3;
+
+/// Primary-strut bending stiffness EI, N·m² (force·length² in the file).
+pub(crate) fn bending(
+    c: &Check,
+    b: Option<schema::Bending>,
+    arrangement: Arrangement,
+    u: &Units,
+) -> Result<Option<f64>, ScenarioError> {
+    let Some(b) = b else { return Ok(None) };
+    if arrangement == Arrangement::Tripod {
+        return Err(c.err(
+            "primary_strut.bending",
+            "the tripod's primary is a two-force member with no side load, so it does not bend (review A23); remove [primary_strut.bending]",
+        ));
+    }
+    let ei = c.positive("primary_strut.bending.stiffness", b.stiffness)?;
+    Ok(Some(ei * u.force() * u.length() * u.length()))
+}
+
+/// The soil of a `kind = "soil"` surface, SI.
+pub(crate) fn soil(
+    c: &Check,
+    sf: &schema::Surface,
+    footpad: &model::Footpad,
+    obstacle: &[f64],
+    u: &Units,
+) -> Result<Option<model::Soil>, ScenarioError> {
+    let soil = match (sf.kind, &sf.soil) {
+        (schema::SurfaceKind::Rigid, None) => return Ok(None),
+        (schema::SurfaceKind::Rigid, Some(_)) => {
+            return Err(c.err(
+                "surface.soil",
+                "soil constants on a rigid surface: set surface.kind = \"soil\" or remove [surface.soil]",
+            ))
+        }
+        (schema::SurfaceKind::Soil, None) => {
+            return Err(c.err(
+                "surface.soil",
+                "expected the soil constants k1..k8 for surface.kind = \"soil\"",
+            ))
+        }
+        (schema::SurfaceKind::Soil, Some(s)) => *s,
+    };
+    if footpad.height.is_none() {
+        return Err(c.err(
+            "footpad.height",
+            "expected the footpad height (length) on a soil surface: it bounds the frontal area of eq. (102)",
+        ));
+    }
+    if let Some(i) = obstacle.iter().position(|o| *o > 0.0) {
+        return Err(c.err(
+            &format!("surface.obstacle[{i}]"),
+            "obstacles are not part of the soil model (the report omits them there); give obstacle ≤ 0",
+        ));
+    }
+    if !sf.curbs.is_empty() {
+        return Err(c.err(
+            "surface.curbs",
+            "curbs are not part of the soil model (the report omits them there); remove them or use a rigid surface",
+        ));
+    }
+    let (f, l, t) = (u.force(), u.length(), u.time());
+    let p = f / (l * l);
+    let k = |name: &str, v: f64, scale: f64| {
+        c.non_negative(&format!("surface.soil.{name}"), v)
+            .map(|v| v * scale)
+    };
+    Ok(Some(model::Soil {
+        k1: k("k1", soil.k1, p)?,
+        k2: k("k2", soil.k2, p / l)?,
+        k3: k("k3", soil.k3, p * t / l)?,
+        k4: k("k4", soil.k4, p * t * t / (l * l))?,
+        k5: k("k5", soil.k5, p)?,
+        k6: k("k6", soil.k6, p / l)?,
+        k7: k("k7", soil.k7, p / l)?,
+        k8: k("k8", soil.k8, p * t * t / (l * l))?,
+    }))
+}
+
+/// The curbs of a rigid surface, SI; at most two per footpad, only beside sliding footpads.
+pub(crate) fn curbs(
+    c: &Check,
+    sf: &schema::Surface,
+    footpad: &model::Footpad,
+    obstacle: &[f64],
+    u: &Units,
+) -> Result<Vec<model::Curb>, ScenarioError> {
+    let n = obstacle.len();
+    let mut per_leg = vec![0usize; n];
+    let mut out = Vec::with_capacity(sf.curbs.len());
+    for (i, curb) in sf.curbs.iter().enumerate() {
+        let f = |name: &str| format!("surface.curbs[{i}].{name}");
+        if curb.leg == 0 || curb.leg > n {
+            return Err(c.err(
+                &f("leg"),
+                format!("expected a leg number from 1 to {n}, got {}", curb.leg),
+            ));
+        }
+        let leg = curb.leg - 1;
+        per_leg[leg] += 1;
+        if per_leg[leg] > 2 {
+            return Err(c.err(
+                &f("leg"),
+                format!(
+                    "at most two curbs per footpad (fig. 19); leg {} has more",
+                    curb.leg
+                ),
+            ));
+        }
+        if obstacle[leg] > 0.0 {
+            return Err(c.err(
+                &f("leg"),
+                format!(
+                    "leg {}'s footpad is locked by an obstacle (surface.obstacle > 0); curbs apply to sliding footpads",
+                    curb.leg
+                ),
+            ));
+        }
+        out.push(model::Curb {
+            leg,
+            distance: c.positive(&f("distance"), curb.distance)? * u.length(),
+            angle: c.finite(&f("angle"), curb.angle)? * u.angle(),
+            friction: c.non_negative(&f("friction"), curb.friction)?,
+        });
+    }
+    if !out.is_empty() && footpad.crush.is_none() {
+        return Err(c.err(
+            "footpad.crush",
+            "expected the footpad crushing diagram (fig. 18) with curbs",
+        ));
+    }
+    Ok(out)
+}
+
+/// The descent engine, SI.
+pub(crate) fn thrust(
+    c: &Check,
+    t: Option<&schema::Thrust>,
+    u: &Units,
+) -> Result<Option<model::Thrust>, ScenarioError> {
+    let Some(t) = t else { return Ok(None) };
+    let (f, s) = (u.force(), u.time());
+    let decay_rate = match t.decay_rate {
+        Some(k) => Some(c.non_negative("thrust.decay_rate", k)? / s),
+        None => None,
+    };
+    let mut polynomial = Vec::with_capacity(t.polynomial.len());
+    for (i, m) in t.polynomial.iter().enumerate() {
+        polynomial.push(c.finite(&format!("thrust.polynomial[{i}]"), *m)? * f / s.powi(i as i32));
+    }
+    let amplification = match &t.amplification {
+        None => None,
+        Some(a) => {
+            if a.clearance.len() != a.factor.len() || a.clearance.is_empty() {
+                return Err(c.err(
+                    "thrust.amplification",
+                    format!(
+                        "expected as many factors as clearances (at least one), got {} clearances and {} factors",
+                        a.clearance.len(),
+                        a.factor.len()
+                    ),
+                ));
+            }
+            let mut table = Vec::with_capacity(a.clearance.len());
+            for (i, (z, k)) in a.clearance.iter().zip(&a.factor).enumerate() {
+                let z = c.finite(&format!("thrust.amplification.clearance[{i}]"), *z)?;
+                let k = c.positive(&format!("thrust.amplification.factor[{i}]"), *k)?;
+                table.push((z * u.length(), k));
+            }
+            Some(table)
+        }
+    };
+    let nozzle_crushing = match t.nozzle_crushing {
+        None => None,
+        Some(n) => Some((
+            c.positive("thrust.nozzle_crushing.exit_radius", n.exit_radius)? * u.length(),
+            c.non_negative("thrust.nozzle_crushing.crush_load", n.crush_load)? * f,
+        )),
+    };
+    Ok(Some(model::Thrust {
+        thrust: c.non_negative("thrust.thrust", t.thrust)? * f,
+        tailoff_start: c.finite("thrust.tailoff_start", t.tailoff_start)? * s,
+        clock_at_touchdown: c.finite("thrust.clock_at_touchdown", t.clock_at_touchdown)? * s,
+        decay_rate,
+        polynomial,
+        nozzle_exit: c.vec3("thrust.nozzle_exit", t.nozzle_exit, u.length())?,
+        amplification,
+        nozzle_crushing,
+    }))
+}
+
+/// The reaction control system, SI.
+pub(crate) fn rcs(
+    c: &Check,
+    r: Option<&schema::Rcs>,
+    u: &Units,
+) -> Result<Option<model::Rcs>, ScenarioError> {
+    let Some(r) = r else { return Ok(None) };
+    let each = |name: &str, v: [f64; 3], scale: f64, positive: bool| {
+        let mut out = Vector3::zeros();
+        for i in 0..3 {
+            let field = format!("rcs.{name}[{i}]");
+            out[i] = if positive {
+                c.positive(&field, v[i])?
+            } else {
+                c.non_negative(&field, v[i])?
+            } * scale;
+        }
+        Ok::<_, ScenarioError>(out)
+    };
+    let attitude_gain = match r.mode {
+        RcsMode::AttitudeHold => each("attitude_gain", r.attitude_gain, 1.0, false)?,
+        RcsMode::RateCommand if r.attitude_gain != [0.0; 3] => {
+            return Err(c.err(
+                "rcs.attitude_gain",
+                "rate command has no attitude gains (k11 = k21 = k31 = 0): leave them out or use mode = \"attitude_hold\"",
+            ))
+        }
+        RcsMode::RateCommand => Vector3::zeros(),
+    };
+    if r.mode == RcsMode::AttitudeHold && r.commanded_rates != [0.0; 3] {
+        return Err(c.err(
+            "rcs.commanded_rates",
+            "attitude hold commands zero rates (eq. 78); use mode = \"rate_command\" to command rates",
+        ));
+    }
+    let downward_translation = match r.downward_translation {
+        None => None,
+        Some(d) => Some((
+            c.non_negative("rcs.downward_translation.delay", d.delay)? * u.time(),
+            c.non_negative("rcs.downward_translation.force", d.force)? * u.force(),
+        )),
+    };
+    Ok(Some(model::Rcs {
+        mode: r.mode,
+        attitude_gain,
+        rate_gain: each("rate_gain", r.rate_gain, u.time(), false)?,
+        deadband: each("deadband", r.deadband, u.angle(), true)?,
+        torque: each("torque", r.torque, u.force() * u.length(), false)?,
+        commanded_attitude: c.vec3("rcs.commanded_attitude", r.commanded_attitude, u.angle())?,
+        commanded_rates: c.vec3("rcs.commanded_rates", r.commanded_rates, u.angular_rate())?,
+        downward_translation,
+    }))
+}
+
+/// Propellant sloshing, SI; the slosh mass M_s = F_s/ω² (eq. 112) must be less than the
+/// vehicle's mass `mass` (kg).
+pub(crate) fn slosh(
+    c: &Check,
+    s: Option<&schema::Slosh>,
+    mass: f64,
+    u: &Units,
+) -> Result<Option<model::Slosh>, ScenarioError> {
+    let Some(s) = s else { return Ok(None) };
+    let l = u.length();
+    let fs = c.positive("slosh.force_coefficient", s.force_coefficient)? * u.mass();
+    let w2 = c.positive("slosh.frequency_parameter", s.frequency_parameter)? / l;
+    if fs / w2 >= mass {
+        return Err(c.err(
+            "slosh.force_coefficient",
+            format!(
+                "the slosh mass F_s/ω² = {:.6} kg (eq. 112) must be less than the vehicle mass {mass:.6} kg",
+                fs / w2
+            ),
+        ));
+    }
+    Ok(Some(model::Slosh {
+        force_coefficient: fs,
+        frequency_parameter: w2,
+        free_surface_depth: c.finite("slosh.free_surface_depth", s.free_surface_depth)? * l,
+        mass_depth: c.non_negative("slosh.mass_depth", s.mass_depth)? * l,
+        initial_amplitude: [
+            c.finite("slosh.initial_amplitude[0]", s.initial_amplitude[0])? * l,
+            c.finite("slosh.initial_amplitude[1]", s.initial_amplitude[1])? * l,
+        ],
+    }))
+}
