@@ -7,6 +7,8 @@
 //! * `allocation`: the core's step loop does not allocate;
 //! * `docs`: docs/scenario-format.md documents every scenario field;
 //! * `layering`: the crate dependency layers (engines never depend on each other);
+//! * `mechanisms`: each optional mechanism (soil, curbs, bending, trunnion springs, thrust,
+//!   RCS, slosh, tripod) against an analytic or limiting case; absent ones never evaluated;
 //! * `plots`: the validation plots regenerate from the committed data with the project's venv;
 //! * `rapier`: the rapier rebuild against the core: start state, energy balance, outcomes, and
 //!   the two mechanisms that part them;
@@ -19,6 +21,7 @@
 mod allocation;
 mod docs;
 mod layering;
+mod mechanisms;
 mod mujoco;
 mod physics;
 mod plots;

@@ -44,6 +44,9 @@ pub struct GearState {
     pub point1_deflection: Vector3<f64>,
     /// Whether the bending law capped the axial load below the Euler load.
     pub euler_capped: bool,
+    /// λ31, λ41: the apparent lengthening of the secondaries by the lagged bending
+    /// displacement (eq. 47), m, included in `secondary_stroke`.
+    pub bending_lengthening: [f64; 2],
 }
 
 /// A law that left its domain while evaluating a gear.
@@ -107,11 +110,13 @@ pub fn evaluate(
     // eqs. (33)-(34): strokes (primary as compression c = −S2P; secondaries tension positive)
     let c = leg.l2p - len;
     let mut s = [l31 - leg.l31, l41 - leg.l41];
+    let mut bending_lengthening = [0.0; 2];
     // eq. (47), as a stroke correction (review A8): the lagged bending displacement of point 1
     // lengthens secondary i by λ_i = d·V̂i1 (a strut in tension is eased: a softer series spring).
     if let Some((_, d)) = &options.bending {
         let lambda = touchdown_laws::secondary_lengthening(*d, u[0], u[1]);
         s = [s[0] + lambda[0], s[1] + lambda[1]];
+        bending_lengthening = lambda;
     }
     // Stroking rates (eq. 49 row): V̇2P = V̂2P·Ḃp; point 1 moves with L21·dV̂2P/dt.
     let v2p_dot = e.dot(bp_dot);
@@ -174,6 +179,7 @@ pub fn evaluate(
         fp,
         point1_deflection,
         euler_capped,
+        bending_lengthening,
     })
 }
 
@@ -223,6 +229,7 @@ fn evaluate_tripod(
         fp: e * f2p - fs, // eq. (65), tripod
         point1_deflection: Vector3::zeros(),
         euler_capped: false,
+        bending_lengthening: [0.0; 2],
     }
 }
 

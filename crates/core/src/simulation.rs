@@ -378,6 +378,9 @@ impl Simulation {
             }
             let bp = t_ib * (pad.position - v.position);
             let bp_dot = t_ib * (pad.velocity - v.velocity) - v.omega.cross(&bp);
+            if self.arrangement == Arrangement::Tripod {
+                self.mechanisms.tick(Mechanism::Tripod);
+            }
             let options = GearOptions {
                 arrangement: self.arrangement,
                 bending: self.mechanisms.bending.as_ref().map(|b| {
@@ -557,6 +560,10 @@ impl Simulation {
             for j in 0..2 {
                 let (fa, ft) = (a.fc_secondary[j], t.fc_secondary[j]);
                 l.honeycomb += 0.5 * (fa + ft) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                // The honeycombs see the bending-corrected strokes; the change of the bending
+                // lengthening is work the vehicle did not do on the struts (eq. 47, lagged).
+                let dl = b.bending_lengthening[j] - a.bending_lengthening[j];
+                l.mechanisms -= 0.5 * (fa + ft) * dl;
                 let (pa, pt) = (
                     a.fv_secondary[j] * a.secondary_rate[j],
                     t.fv_secondary[j] * t.secondary_rate[j],

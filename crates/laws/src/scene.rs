@@ -210,12 +210,36 @@ pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<SceneCurbs>, ScenarioE
     Ok(Some((curbs, crush)))
 }
 
-/// The scene's primary-strut bending law (eqs. 40-48), if it declares one.
+/// The scene's primary-strut bending law (eqs. 40-48), if it declares one. The coupling is
+/// lagged one step (review A8), which converges only while the beam is stiffer than the
+/// secondaries it carries: the loop gain K_S·a²b²/(3·EI·L) (secondary onset rate times the
+/// beam's compliance at point 1, eq. 46 corrected) must stay below 1/2, else the scenario is
+/// refused.
 pub fn bending_from_scenario(s: &Scenario) -> Result<Option<crate::Bending>, ScenarioError> {
-    match s.primary.bending_stiffness {
-        None => Ok(None),
-        Some(ei) => crate::Bending::new(ei)
-            .map(Some)
-            .map_err(field(s, "primary_strut.bending.stiffness")),
+    let Some(ei) = s.primary.bending_stiffness else {
+        return Ok(None);
+    };
+    let name = "primary_strut.bending.stiffness";
+    let law = crate::Bending::new(ei).map_err(field(s, name))?;
+    let k = s
+        .secondary
+        .tension
+        .onset_rate
+        .max(s.secondary.compression.onset_rate);
+    for leg in &s.legs {
+        let (a, l) = (leg.l21, leg.l2p);
+        let b = l - a;
+        let gain = 2.0 * k * a * a * b * b / (3.0 * ei * l);
+        if gain >= 1.0 {
+            return Err(ScenarioError::field(
+                s.file_of(name),
+                name,
+                format!(
+                    "EI = {ei:.4e} N·m² is too soft for the lagged bending coupling: the loop gain 2·K_S·a²b²/(3·EI·L) = {gain:.3} must stay below 1 (EI above {:.4e} N·m²)",
+                    ei * gain
+                ),
+            ));
+        }
     }
+    Ok(Some(law))
 }

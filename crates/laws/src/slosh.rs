@@ -43,7 +43,7 @@ pub struct Slosh {
 impl Slosh {
     /// A slosh model from:
     /// - `fs`: F_s, the wall force per unit axial acceleration per unit amplitude,
-    ///   N/(m·m/s²) = kg (> 0);
+    ///   N/(m·m/s²) = kg/m (> 0);
     /// - `omega2`: ω², the sloshing frequency squared per unit axial acceleration,
     ///   (rad/s)²/(m/s²) = 1/m (> 0);
     /// - `l1`, `l`: ℓ1 and ℓ, m (finite, signed): the slosh mass lies ℓ1 + ℓ below the total
@@ -181,7 +181,7 @@ mod tests {
 
     const G_MOON: f64 = 1.62;
 
-    // F_s = 200 kg, ω² = 0.5 1/m → M_s = 400 kg; ℓ1 = 1.0 m, ℓ = 0.5 m; M = 10 000 kg.
+    // F_s = 200 kg/m, ω² = 0.5 1/m → M_s = 400 kg; ℓ1 = 1.0 m, ℓ = 0.5 m; M = 10 000 kg.
     fn slosh() -> Slosh {
         Slosh::new(200.0, 0.5, 1.0, 0.5, 10_000.0).unwrap()
     }

@@ -738,8 +738,8 @@ fn resolve(
         (Some(l), None) => (explicit_legs(&c, l, arrangement, &u)?, "gear.legs"),
         (None, Some(_)) if arrangement == schema::Arrangement::Tripod => {
             return Err(c.err(
-                "gear.parametric",
-                "the report's parameterisation (fig. 23) is of the cantilever gear; give the tripod's points in gear.legs",
+                "gear.arrangement",
+                "the tripod is not supported by gear.parametric (the report's fig. 23 parameterisation is of the cantilever gear): give the tripod's points in gear.legs",
             ))
         }
         (None, Some(p)) => (parametric_legs(&c, p, &u)?, "gear.parametric"),

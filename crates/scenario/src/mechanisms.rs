@@ -263,7 +263,7 @@ pub(crate) fn slosh(
 ) -> Result<Option<model::Slosh>, ScenarioError> {
     let Some(s) = s else { return Ok(None) };
     let l = u.length();
-    let fs = c.positive("slosh.force_coefficient", s.force_coefficient)? * u.mass();
+    let fs = c.positive("slosh.force_coefficient", s.force_coefficient)? * u.mass() / l;
     let w2 = c.positive("slosh.frequency_parameter", s.frequency_parameter)? / l;
     if fs / w2 >= mass {
         return Err(c.err(

@@ -299,7 +299,7 @@ pub struct Rcs {
 /// Propellant sloshing, SI (eqs. 108-117).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Slosh {
-    /// F_s, kg.
+    /// F_s, kg/m.
     pub force_coefficient: f64,
     /// ω², 1/m.
     pub frequency_parameter: f64,

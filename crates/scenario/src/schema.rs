@@ -545,7 +545,8 @@ pub struct DownwardTranslation {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Slosh {
-    /// F_s, wall force per unit axial acceleration per unit amplitude (eq. 108); mass.
+    /// F_s, wall force per unit axial acceleration per unit amplitude (eq. 108);
+    /// mass/length (F_s = M_s·ω², eq. 112).
     pub force_coefficient: f64,
     /// ω², slosh frequency squared per unit axial acceleration (eq. 109); 1/length.
     pub frequency_parameter: f64,

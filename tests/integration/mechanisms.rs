@@ -1,0 +1,385 @@
+//! The optional mechanisms of the core (issue 7): each scenario in `scenarios/` that declares one,
+//! checked against an analytic or limiting case, and the proof that a mechanism a scene leaves
+//! out is never built nor evaluated.
+
+use touchdown_core::{Landing, Simulation};
+use touchdown_scenario::model::{LoadStroke, Mechanism};
+use touchdown_scenario::schema::Engine;
+use touchdown_scenario::Scenario;
+use touchdown_tests::scenario;
+
+const FT: f64 = 0.3048;
+const LBF: f64 = 4.448_221_615_260_5;
+
+fn load(name: &str, overrides: &[(&str, f64)]) -> Scenario {
+    Scenario::load_with(scenario(name), overrides).expect("scenario loads")
+}
+
+fn run(sc: &Scenario) -> Simulation {
+    let mut sim = Simulation::new(sc).expect("core builds");
+    while !sim.finished() {
+        sim.step().expect("core steps");
+    }
+    sim
+}
+
+/// A scene without optional mechanisms builds none; a scene with the descent engine evaluates
+/// it (and its nozzle) once per force evaluation and nothing else.
+#[test]
+fn absent_mechanisms_are_never_built_nor_evaluated() {
+    let sim = run(&load("flat-drop.toml", &[]));
+    let m = sim.mechanisms();
+    assert!(m.engine.is_none() && m.rcs.is_none() && m.slosh.is_none());
+    assert!(m.soil.is_none() && m.curbs.is_none() && m.bending.is_none());
+    assert!(sim.mechanism_evaluations().is_empty());
+    assert!(sim.summary().mechanisms.is_empty());
+    assert_eq!(sim.summary().energy.mechanisms_j, 0.0);
+
+    let sim = run(&load("thrust-tailoff.toml", &[]));
+    let evaluations = sim.summary().force_evaluations;
+    assert_eq!(
+        sim.mechanism_evaluations(),
+        vec![
+            (Mechanism::Thrust, evaluations),
+            (Mechanism::NozzleCrushing, evaluations)
+        ]
+    );
+}
+
+/// Thrust equal to the weight with unit amplification holds the vehicle in hover (eqs. 69-74):
+/// released 0.2 ft above the ground at rest, it neither falls nor rises.
+#[test]
+fn thrust_equal_to_weight_holds_the_vehicle_in_hover() {
+    let sc = load(
+        "thrust-tailoff.toml",
+        &[
+            ("touchdown.vertical_velocity", 0.0),
+            ("touchdown.clearance", 0.2),
+            ("thrust.tailoff_start", 100.0),
+            ("thrust.amplification.factor[0]", 1.0),
+            ("thrust.amplification.factor[1]", 1.0),
+            ("thrust.amplification.factor[2]", 1.0),
+        ],
+    );
+    let mut sim = Simulation::new(&sc).unwrap();
+    let z0 = sim.vehicle().position.z;
+    while !sim.finished() {
+        sim.step().unwrap();
+    }
+    let v = sim.vehicle();
+    assert!(sim.time() > 0.09);
+    assert!((v.position.z - z0).abs() < 1e-9, "{}", v.position.z - z0);
+    assert!(v.velocity.norm() < 1e-9 && v.acceleration.norm() < 1e-9);
+    assert!(sim.footpads().iter().all(|p| p.first_contact.is_none()));
+}
+
+/// RCS (eqs. 75-80) in free flight with a yaw rate and rate gains only: the yaw torque fires
+/// while k·ωz is outside the deadband, so ωz falls at TORQZ/Izz, and stops within one step of
+/// the deadband's edge, where it stays.
+#[test]
+fn rcs_fires_outside_its_deadband_and_stops_inside() {
+    let sc = load(
+        "rcs-attitude-hold.toml",
+        &[
+            ("touchdown.clearance", 1.0),
+            ("touchdown.vertical_velocity", 0.0),
+            ("touchdown.horizontal_velocity[1]", 0.0),
+            ("touchdown.attitude[1]", 0.0),
+            ("touchdown.body_rates[2]", 60.0),
+            ("rcs.attitude_gain[0]", 0.0),
+            ("rcs.attitude_gain[1]", 0.0),
+            ("rcs.attitude_gain[2]", 0.0),
+            ("rcs.rate_gain[2]", 0.5),
+            ("rcs.deadband[2]", 2.0),
+            ("rcs.torque[2]", 10.0),
+            ("integrator.t_end", 0.2),
+        ],
+    );
+    let alpha = 10.0 * LBF * FT / sc.vehicle.inertia[(2, 2)];
+    let edge = 2.0f64.to_radians() / 0.5;
+    let w0 = 60.0f64.to_radians();
+    let dt_max = sc.integrator.dt_max;
+    let mut sim = Simulation::new(&sc).unwrap();
+    let mut stopped = None;
+    while !sim.finished() {
+        sim.step().unwrap();
+        let (t, w) = (sim.time(), sim.vehicle().omega.z);
+        if stopped.is_none() && w > edge {
+            // Linear at TORQZ/Izz, except in the step where the torque switches off (the
+            // corrector averages the torque at both ends of that step).
+            let off_linear = (w - (w0 - alpha * t)).abs();
+            assert!(
+                off_linear < 1e-6 || w - edge < alpha * dt_max,
+                "t = {t}: {w}"
+            );
+        } else {
+            let w_stop = *stopped.get_or_insert(w);
+            assert!(
+                w <= edge && w > edge - alpha * dt_max * 1.01,
+                "{w} vs {edge}"
+            );
+            assert!((w - w_stop).abs() < 1e-9, "inside the deadband: no torque");
+        }
+    }
+    assert!(stopped.is_some(), "the rate reached the deadband");
+    assert!(sim.footpads().iter().all(|p| p.first_contact.is_none()));
+}
+
+/// A slosh mass in hover (thrust = weight, the liquid pressed to the tank floor at 1 g) on a
+/// vehicle made rotationally stiff oscillates at the two-body frequency of eq. (109)'s spring,
+/// ω_n·√(1 + M_s/M_r), ω_n² = ω²·g (eqs. 108-112).
+#[test]
+fn a_free_slosh_oscillates_at_its_natural_frequency() {
+    let dir = std::env::temp_dir().join(format!("touchdown-slosh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("hover.toml");
+    let parent = scenario("slosh-drop.toml");
+    std::fs::write(
+        &file,
+        format!(
+            r#"schema_version = 1
+extends = "{}"
+name = "slosh in hover"
+[vehicle]
+inertia = {{ xx = 1.0e6, yy = 1.0e6, zz = 0.994 }}
+[touchdown]
+vertical_velocity = 0.0
+horizontal_velocity = [0.0, 0.5]
+clearance = 0.5
+[slosh]
+initial_amplitude = [0.02, 0.0]
+[thrust]
+thrust = 64.348
+tailoff_start = 100.0
+polynomial = [64.348]
+nozzle_exit = [0.0, 0.0, -0.8]
+[integrator]
+t_end = 0.6
+"#,
+            parent.display()
+        ),
+    )
+    .unwrap();
+    let sc = Scenario::load(&file).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let p = sc.slosh.unwrap();
+    let ms = p.force_coefficient / p.frequency_parameter;
+    let mr = sc.vehicle.mass - ms;
+    let wn = (p.frequency_parameter * sc.vehicle.gravity).sqrt();
+    let expected = wn * (1.0 + ms / mr).sqrt();
+    let mut sim = Simulation::new(&sc).unwrap();
+    let mut crossings = Vec::new();
+    let mut last = (sim.time(), sim.vehicle().slosh_q.x);
+    while !sim.finished() {
+        sim.step().unwrap();
+        let now = (sim.time(), sim.vehicle().slosh_q.x);
+        if last.1 * now.1 < 0.0 {
+            crossings.push(last.0 + (now.0 - last.0) * last.1 / (last.1 - now.1));
+        }
+        last = now;
+    }
+    assert!(crossings.len() >= 4, "{crossings:?}");
+    let half_periods = (crossings.len() - 1) as f64;
+    let measured = std::f64::consts::PI * half_periods / (crossings.last().unwrap() - crossings[0]);
+    assert!(
+        (measured / expected - 1.0).abs() < 2e-3,
+        "{measured} vs {expected} rad/s"
+    );
+    assert!(sim.footpads().iter().all(|p| p.first_contact.is_none()));
+}
+
+/// Footpads landing on soil (eqs. 101-104, rigid-plastic, no rate terms) sink until the bearing
+/// AP·(K1 + K2·depth) carries the largest load they have seen, then are held there.
+#[test]
+fn a_footpad_on_soil_rests_where_bearing_equals_its_largest_load() {
+    let sc = load("soil-drop.toml", &[("surface.soil.k3", 0.0)]);
+    let soil = sc.surface.soil.unwrap();
+    let area = std::f64::consts::PI * sc.footpad.radius.powi(2);
+    let weight = sc.footpad.mass * sc.vehicle.gravity;
+    let mut sim = Simulation::new(&sc).unwrap();
+    let mut largest = [0.0f64; 4];
+    while !sim.finished() {
+        sim.step().unwrap();
+        let t_bi = sim.vehicle().t_bi;
+        for (i, g) in sim.gear().iter().enumerate() {
+            let fzi = -(t_bi * g.fp).z;
+            largest[i] = largest[i].max(fzi + weight);
+        }
+    }
+    for (i, pad) in sim.footpads().iter().enumerate() {
+        let depth = -pad.position.z;
+        let bearing = area * (soil.k1 + soil.k2 * depth);
+        assert!(depth > 0.0 && pad.velocity.z == 0.0, "pad {i} held");
+        // The footpad's own momentum at touchdown pushes it a little deeper than the gear load
+        // alone would.
+        assert!(
+            bearing >= largest[i] * (1.0 - 1e-3) && bearing < largest[i] * 1.05,
+            "pad {i}: bearing {bearing} N at {depth} m, largest load {} N",
+            largest[i]
+        );
+    }
+    let e = sim.summary().energy;
+    assert!(e.mechanisms_j > 0.0 && e.residual_j.abs() < 1e-3 * e.kinetic_initial_j);
+}
+
+/// Footpads sliding into curbs (eqs. 86-95) crush as the footpad table says: the energy the run
+/// books for the curbs equals the table's crushing work at each curb's largest crush less the
+/// elastic energy it gave back, and no crush goes beyond the table.
+#[test]
+fn footpads_sliding_into_curbs_crush_as_their_table_says() {
+    let overrides: Vec<(String, f64)> = (0..4)
+        .map(|i| (format!("surface.curbs[{i}].friction"), 0.0))
+        .collect();
+    let refs: Vec<(&str, f64)> = overrides.iter().map(|(f, v)| (f.as_str(), *v)).collect();
+    let sc = load("curb-slide.toml", &refs);
+    let table: &LoadStroke = sc.footpad.crush.as_ref().unwrap();
+    let (f, end) = table.stages[0];
+    let x_a = f / table.onset_rate;
+    let sim = run(&sc);
+    let curbs = sim.mechanisms().curbs.as_ref().unwrap();
+    let mut expected = 0.0;
+    for (((leg, curb), memory), n) in curbs.list.iter().zip(&curbs.memory).zip(0..) {
+        let pad = &sim.footpads()[*leg];
+        let xy = nalgebra::Vector2::new(pad.position.x, pad.position.y);
+        let x_now = curb.crush(pad.touchdown_xy, xy, sc.footpad.radius);
+        let x_max = memory.max_stroke;
+        assert!(x_max > 0.0 && x_max < end, "curb {n}: crush {x_max} m");
+        let virgin = if x_max <= x_a {
+            0.5 * table.onset_rate * x_max * x_max
+        } else {
+            0.5 * f * x_a + f * (x_max - x_a)
+        };
+        let given_back =
+            curbs.crush.stored_energy(x_max, *memory) - curbs.crush.stored_energy(x_now, *memory);
+        expected += virgin - given_back;
+    }
+    // The footpad equations freeze the curb force over a step (eq. 97), so the booked work
+    // lags the table's area by the force's change over a step on the stiff onset.
+    let booked = sim.summary().energy.mechanisms_j;
+    assert!(
+        (booked / expected - 1.0).abs() < 0.15,
+        "booked {booked} J vs table {expected} J"
+    );
+}
+
+/// Bending (eqs. 40-48): a very stiff primary strut gives the rigid gear's landing; the
+/// scenario's EI changes the secondary strokes by millimetres and keeps the energy balance.
+#[test]
+fn bending_tends_to_the_rigid_strut_and_eases_the_secondaries() {
+    let rigid = run(&load("table-i-2-2-vv8.toml", &[])).summary();
+    let stiff = run(&load(
+        "bending-2-2-vv8.toml",
+        &[("primary_strut.bending.stiffness", 1.0e9)],
+    ))
+    .summary();
+    let bent = run(&load("bending-2-2-vv8.toml", &[])).summary();
+    for i in 0..4 {
+        assert!((stiff.max_primary_stroke_m[i] - rigid.max_primary_stroke_m[i]).abs() < 1e-6);
+        for j in 0..2 {
+            let d = stiff.max_secondary_tension_m[i][j] - rigid.max_secondary_tension_m[i][j];
+            assert!(d.abs() < 1e-6, "leg {i} strut {j}: {d}");
+        }
+    }
+    let moved = (0..4)
+        .flat_map(|i| (0..2).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            (bent.max_secondary_tension_m[i][j] - rigid.max_secondary_tension_m[i][j]).abs()
+        })
+        .fold(0.0, f64::max);
+    assert!(
+        moved > 5e-4,
+        "bending moved the secondary strokes by {moved} m"
+    );
+    let e = &bent.energy;
+    assert!(
+        e.residual_j.abs() < 0.02 * e.kinetic_initial_j,
+        "residual {} J of {} J",
+        e.residual_j,
+        e.kinetic_initial_j
+    );
+}
+
+/// Trunnion springs on raw diagrams (eqs. 35-39) land exactly as the diagrams modified by hand:
+/// onset, backoff and stroke-out rates in series with K_T, every stage end moved by F/K_T.
+#[test]
+fn trunnion_springs_equal_the_hand_modified_diagrams() {
+    let springs = load("trunnion-springs.toml", &[]);
+    let mut by_hand = load("table-i-2-2-vv8.toml", &[]);
+    let modify = |ls: &mut LoadStroke, k: f64| {
+        let series = |a: f64| a * k / (a + k); // eqs. (35)-(36)
+        ls.onset_rate = series(ls.onset_rate);
+        ls.backoff_rate = series(ls.backoff_rate);
+        ls.stroke_out_rate = series(ls.stroke_out_rate);
+        for (f, x) in &mut ls.stages {
+            *x += *f / k; // eqs. (37)-(39), every stage (review rows 37-39)
+        }
+    };
+    let (kp, ks) = (
+        springs.primary.trunnion_rate.unwrap(),
+        springs.secondary.trunnion_rate.unwrap(),
+    );
+    assert!((kp - 30000.0 * LBF / FT).abs() < 1e-6 && (ks - 20000.0 * LBF / FT).abs() < 1e-6);
+    modify(&mut by_hand.primary.compression, kp);
+    modify(&mut by_hand.secondary.tension, ks);
+    modify(&mut by_hand.secondary.compression, ks);
+    let a = run(&springs).summary();
+    let b = run(&by_hand).summary();
+    assert_eq!(a.steps, b.steps);
+    for i in 0..4 {
+        assert!((a.max_primary_stroke_m[i] - b.max_primary_stroke_m[i]).abs() < 1e-9);
+        for j in 0..2 {
+            let d = a.max_secondary_tension_m[i][j] - b.max_secondary_tension_m[i][j];
+            assert!(d.abs() < 1e-9);
+        }
+    }
+    // And the springs matter: the primary strokes move by millimetres.
+    let rigid = run(&load("table-i-2-2-vv8.toml", &[])).summary();
+    assert!((a.max_primary_stroke_m[0] - rigid.max_primary_stroke_m[0]).abs() > 1e-3);
+}
+
+/// The tripod gear (review A23) dropped level: four identical legs, its secondaries compressed,
+/// no bearing friction, and the energy balance closed.
+#[test]
+fn tripod_drop_is_symmetric_and_closes_its_energy_balance() {
+    let sim = run(&load("tripod-drop.toml", &[]));
+    let s = sim.summary();
+    for i in 1..4 {
+        assert!((s.max_primary_stroke_m[i] - s.max_primary_stroke_m[0]).abs() < 1e-9);
+        for j in 0..2 {
+            let d = s.max_secondary_compression_m[i][j] - s.max_secondary_compression_m[0][j];
+            assert!(d.abs() < 1e-9);
+        }
+    }
+    assert!(s.max_primary_stroke_m[0] > 0.0 && s.max_secondary_compression_m[0][0] > 0.0);
+    assert!(sim.gear().iter().all(|g| g.fbr == 0.0 && g.fm == 0.0));
+    assert_eq!(s.energy.bearing_friction_j, 0.0);
+    assert!(s.energy.residual_j.abs() < 1e-3 * s.energy.kinetic_initial_j);
+}
+
+/// The multibody engines refuse a mechanism they do not model, naming the scenario field.
+#[test]
+fn multibody_engines_refuse_mechanisms_they_do_not_model() {
+    for (name, field) in [
+        ("soil-drop.toml", "surface.soil"),
+        ("curb-slide.toml", "surface.curbs"),
+        ("thrust-tailoff.toml", "thrust"),
+        ("rcs-attitude-hold.toml", "rcs"),
+        ("slosh-drop.toml", "slosh"),
+        ("bending-2-2-vv8.toml", "primary_strut.bending"),
+        ("tripod-drop.toml", "gear.arrangement"),
+    ] {
+        let sc = load(name, &[]);
+        for engine in [Engine::Rapier, Engine::Mujoco] {
+            let e = sc.require_engine(engine).unwrap_err().to_string();
+            assert!(
+                e.contains(field) && e.contains("does not model"),
+                "{name} on {engine}: {e}"
+            );
+        }
+        sc.require_engine(Engine::Core).unwrap();
+    }
+    let sc = load("trunnion-springs.toml", &[]);
+    for engine in Engine::ALL {
+        sc.require_engine(engine).unwrap();
+    }
+}
