@@ -125,15 +125,10 @@ pub fn evaluate(
     let c_dot = -v2p_dot;
     let s_dot = [u[0].dot(&b1_dot), u[1].dot(&b1_dot)];
 
-    // eq. (49) and (51): secondary forces, tension positive
-    let sec = &laws.secondary;
-    let fc = [
-        sec.honeycomb.force(s[0], memory.secondary[0]),
-        sec.honeycomb.force(s[1], memory.secondary[1]),
-    ];
-    let fv = [sec.viscous.force(s_dot[0]), sec.viscous.force(s_dot[1])];
-    // eq. (52): FS, force of the primary on the secondaries at point 1
-    let fs = u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]);
+    // eqs. (49), (51)-(52): secondary forces, tension positive, and FS, the force of the
+    // primary on the secondaries at point 1
+    let sec = laws.secondary.forces(s, s_dot, &u, &memory.secondary);
+    let (fc, fv, fs) = (sec.honeycomb, sec.viscous, sec.fs);
     // eqs. (53)-(58) with eq. (54) corrected, closed form
     let fm = touchdown_laws::side_load(&fs, &e, leg.l21, len);
     let fm_mag = fm.norm();
@@ -203,13 +198,7 @@ fn evaluate_tripod(
     let s = [l31 - leg.l31, l41 - leg.l41]; // eq. (34)
     let c_dot = -e.dot(bp_dot);
     let s_dot = [u[0].dot(bp_dot), u[1].dot(bp_dot)];
-    let sec = &laws.secondary;
-    let fc = [
-        sec.honeycomb.force(s[0], memory.secondary[0]),
-        sec.honeycomb.force(s[1], memory.secondary[1]),
-    ];
-    let fv = [sec.viscous.force(s_dot[0]), sec.viscous.force(s_dot[1])];
-    let fs = u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]); // eq. (52)
+    let sec = laws.secondary.forces(s, s_dot, &u, &memory.secondary); // eqs. (49)-(52)
     let pri = &laws.primary;
     let fvp = pri.viscous.force(c_dot);
     let fcp = pri.stroke_force(c, memory.primary);
@@ -223,10 +212,10 @@ fn evaluate_tripod(
         fvp,
         fbr: 0.0,
         f2p,
-        fc_secondary: fc,
-        fv_secondary: fv,
+        fc_secondary: sec.honeycomb,
+        fv_secondary: sec.viscous,
         fm: 0.0,
-        fp: e * f2p - fs, // eq. (65), tripod
+        fp: e * f2p - sec.fs, // eq. (65), tripod
         point1_deflection: Vector3::zeros(),
         euler_capped: false,
         bending_lengthening: [0.0; 2],
@@ -292,6 +281,11 @@ mod tests {
         )
     }
 
+    /// A deformed footpad position near `bp`: compressed and pushed sideways, m.
+    fn deformed(bp: Vector3<f64>) -> Vector3<f64> {
+        bp + Vector3::new(-0.03, 0.04, 0.08)
+    }
+
     /// Independent statics of the massless gear (review check_forces.py): the primary pinned
     /// at 2, secondaries two-force members, pad force FP; the forces at the trunnions on the
     /// body must balance −FP and their moments about the origin must equal BP × (−FP) (eq. 66).
@@ -300,8 +294,7 @@ mod tests {
         let leg = leg();
         let laws = laws(0.0);
         let mem = GearMemory::default();
-        // A deformed footpad position: compressed and pushed sideways.
-        let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let bp = deformed(leg.bp);
         let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
         assert!(g.fcp > 0.0 && g.fc_secondary.iter().any(|f| f.abs() > 0.0));
         // Reconstruct the trunnion forces on the body.
@@ -334,7 +327,7 @@ mod tests {
         let leg = leg();
         let laws = laws(0.2);
         let mem = GearMemory::default();
-        let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let bp = deformed(leg.bp);
         let e = (bp - leg.b2).normalize();
         let compressing = evaluate(&leg, &laws, &mem, &bp, &(-e * 0.5), &CANTILEVER).unwrap();
         let extending = evaluate(&leg, &laws, &mem, &bp, &(e * 0.5), &CANTILEVER).unwrap();
@@ -351,7 +344,7 @@ mod tests {
         let l = leg();
         let tripod = Leg::from_points(l.b2, l.b3, l.b4, l.bp, (l.bp - l.b2).norm());
         let laws = laws(0.3); // bearing friction must play no part
-        let bp = tripod.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let bp = deformed(tripod.bp);
         let options = GearOptions {
             arrangement: Arrangement::Tripod,
             bending: None,
@@ -394,7 +387,7 @@ mod tests {
         let leg = leg();
         let laws = laws(0.0);
         let mem = GearMemory::default();
-        let bp = leg.bp + Vector3::new(-0.03, 0.04, 0.08);
+        let bp = deformed(leg.bp);
         let rigid = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
         let beam = Bending::new(2.0e4).unwrap();
         let bent = |lag: Vector3<f64>| {

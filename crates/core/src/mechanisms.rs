@@ -113,8 +113,10 @@ pub struct Mechanisms {
 }
 
 impl Mechanisms {
-    /// Builds what `s` declares (and nothing else).
-    pub fn new(s: &Scenario) -> Result<Mechanisms, ScenarioError> {
+    /// Builds what `s` declares (and nothing else); `slosh` is the scene's slosh law, built
+    /// from the total vehicle before `s` was re-referenced to the rigid one
+    /// (`touchdown_laws::scene::rigid_vehicle`).
+    pub fn new(s: &Scenario, slosh: Option<Slosh>) -> Result<Mechanisms, ScenarioError> {
         let curbs = scene::curbs_from_scenario(s)?.map(|(list, crush)| Curbs {
             memory: vec![CrushMemory::default(); list.len()],
             list,
@@ -123,7 +125,7 @@ impl Mechanisms {
         Ok(Mechanisms {
             engine: DescentEngine::from_scenario(s)?,
             rcs: scene::rcs_from_scenario(s)?,
-            slosh: scene::slosh_from_scenario(s)?,
+            slosh,
             soil: scene::soil_from_scenario(s)?,
             curbs,
             bending: scene::bending_from_scenario(s)?,
@@ -158,27 +160,31 @@ impl Mechanisms {
     }
 
     /// Loads of the descent engine, the RCS and the slosh mass on the vehicle at time `t` (s)
-    /// and state `v`; `first_contact` is the first footpad contact (s), for the RCS delay.
+    /// and state `v`, or `None` when the scene has none of them; `first_contact` gives the
+    /// first footpad contact (s), for the RCS delay.
     #[inline]
     pub fn vehicle_loads(
         &self,
         t: f64,
-        first_contact: Option<f64>,
+        first_contact: impl Fn() -> Option<f64>,
         v: &VehicleState,
-    ) -> AppliedLoads {
+    ) -> Option<AppliedLoads> {
+        if self.engine.is_none() && self.rcs.is_none() && self.slosh.is_none() {
+            return None;
+        }
         let mut out = AppliedLoads::default();
         if let Some(engine) = &self.engine {
             self.evaluations.tick(Mechanism::Thrust);
-            let e = engine.state(t, &v.position, &v.t_bi, self.nozzle_crush);
-            if engine.crushing {
+            if engine.nozzle.is_some() {
                 self.evaluations.tick(Mechanism::NozzleCrushing);
             }
-            out.force += e.loads.force; // eq. (72)
-            out.torque += e.loads.torque; // eq. (73)
+            let e = engine.loads(t, &v.position, &v.t_bi, self.nozzle_crush);
+            out.force += e.force; // eq. (72)
+            out.torque += e.torque; // eq. (73)
         }
         if let Some(rcs) = &self.rcs {
             self.evaluations.tick(Mechanism::Rcs);
-            let r = rcs.loads(t, first_contact, &v.theta, &v.omega);
+            let r = rcs.loads(t, first_contact(), &v.theta, &v.omega);
             out.force += r.force; // eq. (81)
             out.torque += r.torque; // eq. (80)
         }
@@ -191,7 +197,7 @@ impl Mechanisms {
             out.force += Vector3::new(lateral.x, lateral.y, -slosh.slosh_mass() * axial);
             out.torque += slosh.torque(&lateral); // eq. (117), corrected
         }
-        out
+        Some(out)
     }
 
     /// Slosh acceleration q̈ at state `v` (eq. 109, corrected), m/s²; zero without slosh.
@@ -209,12 +215,9 @@ impl Mechanisms {
 
     /// Commits the accepted state `v`: the nozzle crush grows by the rim's penetration, and the
     /// specific force at the slosh mass is taken for the next step.
-    pub fn commit(&mut self, t: f64, v: &VehicleState, gravity: &Vector3<f64>) {
+    pub fn commit(&mut self, v: &VehicleState, gravity: &Vector3<f64>) {
         if let Some(engine) = &self.engine {
-            if engine.crushing {
-                let e = engine.state(t, &v.position, &v.t_bi, self.nozzle_crush);
-                self.nozzle_crush += e.rim.penetration;
-            }
+            self.nozzle_crush += engine.crush_increment(&v.position, &v.t_bi, self.nozzle_crush);
         }
         if let Some(slosh) = &self.slosh {
             // (A_tank − G) in body axes at r_s = (0, 0, −d) (review row 109).

@@ -138,16 +138,18 @@ impl Simulation {
     /// contact of the first footpad.
     pub fn new(scenario: &Scenario) -> Result<Simulation, CoreError> {
         scenario.require_engine(Engine::Core)?;
-        // With sloshing the rigid vehicle excludes the slosh mass (eqs. 113-114).
+        // With sloshing the rigid vehicle excludes the slosh mass (eqs. 113-114); the slosh law
+        // itself refers to the total vehicle.
+        let slosh = touchdown_laws::scene::slosh_from_scenario(scenario)?;
         let rigid;
-        let scenario = match touchdown_laws::scene::slosh_from_scenario(scenario)? {
+        let scenario = match &slosh {
             Some(slosh) => {
-                rigid = touchdown_laws::scene::rigid_vehicle(scenario, &slosh)?;
+                rigid = touchdown_laws::scene::rigid_vehicle(scenario, slosh)?;
                 &rigid
             }
             None => scenario,
         };
-        let mechanisms = Mechanisms::new(scenario)?;
+        let mechanisms = Mechanisms::new(scenario, slosh)?;
         let laws = GearLaws::from_scenario(scenario)?;
         let init = frames::initial_state(scenario);
         let n = scenario.legs.len();
@@ -401,13 +403,18 @@ impl Simulation {
             force -= v.t_bi * g.fp; // eqs. (67)-(68)
             *slot = g;
         }
-        // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms.
-        let applied = self.mechanisms.vehicle_loads(t, self.first_contact(), v);
-        let applied_force = v.t_bi * applied.force;
+        // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms, if any.
+        let mut applied_power = 0.0;
+        if let Some(a) = self.mechanisms.vehicle_loads(t, || self.first_contact(), v) {
+            let applied_force = v.t_bi * a.force;
+            force += applied_force; // eq. (83)
+            torque += a.torque; // eq. (84)
+            applied_power = applied_force.dot(&v.velocity) + a.torque.dot(&v.omega);
+        }
         Ok(Loads {
-            force: force + applied_force,    // eq. (83)
-            torque: torque + applied.torque, // eq. (84)
-            applied_power: applied_force.dot(&v.velocity) + applied.torque.dot(&v.omega),
+            force,
+            torque,
+            applied_power,
         })
     }
 
@@ -467,19 +474,19 @@ impl Simulation {
                     let tentative = v.point(&pad.bp_attached);
                     if tentative.z <= s.plane() {
                         let vel = v.point_velocity(&pad.bp_attached);
+                        let v_normal = if self.mechanisms.soil.is_some() {
+                            vel.z
+                        } else {
+                            0.0
+                        };
                         touch_down(
                             pad,
                             &s,
                             Vector2::new(tentative.x, tentative.y),
                             Vector2::new(vel.x, vel.y),
+                            v_normal,
                             self.t,
                         );
-                        if self.mechanisms.soil.is_some() {
-                            // Soil: the footpad keeps its normal velocity and penetrates
-                            // (eq. 103) instead of stopping on the plane.
-                            pad.velocity.z = vel.z;
-                            pad.stuck = false;
-                        }
                         changed = true;
                     } else {
                         pad.position = tentative;
@@ -542,6 +549,7 @@ impl Simulation {
             curb_xy,
             drag,
             gravity_xy: Vector2::new(self.gravity.x, self.gravity.y),
+            fzi,
             mass: self.footpad_mass,
         }
     }
@@ -707,14 +715,13 @@ impl Landing for Simulation {
             if let Some(soil) = &self.mechanisms.soil {
                 // eq. (103) with constant forces over the step; the soil only resists
                 // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
-                let on_pad_z = (old.t_bi * self.gear[i].fp).z;
-                let load = -on_pad_z - m * self.gravity.z; // FZI + weight, downward positive
+                let load = f.fzi - m * self.gravity.z; // FZI + weight, downward positive
                 let plane = self.surfaces[i].plane();
                 let step = soil.advance_vertical(plane - p0.z, -v0.z, load, m, dt);
                 let pad = &mut self.pads[i];
                 pad.position.z = plane - step.depth;
                 pad.velocity.z = -step.rate;
-                pad_work += on_pad_z * (pad.position.z - p0.z);
+                pad_work -= f.fzi * (pad.position.z - p0.z);
                 soil_work += step.work;
             }
             let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
@@ -784,7 +791,7 @@ impl Landing for Simulation {
                 }
             }
         }
-        self.mechanisms.commit(self.t, &new, &self.gravity);
+        self.mechanisms.commit(&new, &self.gravity);
         // Work of the vehicle-level mechanisms on the vehicle with the forces the corrector
         // used (trapezoid of their power), and of the soil and curbs on the footpads.
         let applied_work = 0.5 * (power_old + loads.applied_power) * dt;

@@ -68,6 +68,9 @@ pub struct SlidingForces {
     pub drag: f64,
     /// (g_x, g_y), m/s².
     pub gravity_xy: Vector2<f64>,
+    /// FZI, the gear force pressing the footpad into the surface, N (eq. 67; the soil's
+    /// vertical load, eq. 103).
+    pub fzi: f64,
     /// PMASS, kg.
     pub mass: f64,
 }
@@ -167,13 +170,15 @@ fn set_xy(pad: &mut Footpad, p: Vector2<f64>, v: Vector2<f64>) {
 }
 
 /// Puts a footpad into contact at inertial X-Y `xy` on its plane (text before eq. 86, A1):
-/// records (XPI, YPI), zeroes the normal velocity, and keeps the in-plane velocity `v_xy` of
-/// the rigid attachment unless the footpad is locked (OBST > 0).
+/// records (XPI, YPI), keeps the in-plane velocity `v_xy` of the rigid attachment unless the
+/// footpad is locked (OBST > 0), and sets the normal velocity to `v_normal` (m/s): 0 on the
+/// rigid surface, the attachment's on soil, where the footpad penetrates (eq. 103).
 pub fn touch_down(
     pad: &mut Footpad,
     surface: &PadSurface,
     xy: Vector2<f64>,
     v_xy: Vector2<f64>,
+    v_normal: f64,
     t: f64,
 ) {
     pad.state = ContactState::Contact;
@@ -186,7 +191,7 @@ pub fn touch_down(
     } else {
         v_xy
     };
-    pad.velocity = Vector3::new(v.x, v.y, 0.0);
+    pad.velocity = Vector3::new(v.x, v.y, v_normal);
     pad.stuck = !surface.locked() && v == Vector2::zeros();
     pad.first_contact.get_or_insert(t);
 }
@@ -210,6 +215,7 @@ mod tests {
             curb_xy: Vector2::zeros(),
             drag: 10.0,
             gravity_xy: Vector2::zeros(),
+            fzi: 0.0,
             mass: 1.0,
         };
         let mut p = pad(Vector2::new(1.0, 0.5));
@@ -244,6 +250,7 @@ mod tests {
             curb_xy: Vector2::zeros(),
             drag: 0.0,
             gravity_xy: Vector2::new(0.0, 0.5),
+            fzi: 0.0,
             mass: 2.0,
         };
         let mut p = pad(Vector2::new(0.3, 0.0));

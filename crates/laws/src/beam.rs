@@ -61,14 +61,9 @@ pub struct Bending {
 impl Bending {
     /// Bending law from EI (N·m², positive finite).
     pub fn new(ei: f64) -> Result<Self, LawError> {
-        if ei.is_finite() && ei > 0.0 {
-            Ok(Bending { stiffness: ei })
-        } else {
-            Err(LawError::NotPositive {
-                name: "bending stiffness EI",
-                value: ei,
-            })
-        }
+        Ok(Bending {
+            stiffness: positive("bending stiffness EI", ei)?,
+        })
     }
 
     /// [`deflection`] with this stiffness.

@@ -18,7 +18,7 @@
 
 use nalgebra::Vector2;
 
-use crate::{CrushMemory, Honeycomb, LawError};
+use crate::{finite, non_negative, positive, CrushMemory, Honeycomb, LawError};
 
 /// One curb of one footpad (figs. 19-20).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,24 +38,9 @@ pub struct Curb {
 impl Curb {
     /// A curb from DWALLI (m, positive), WALANG (rad, from +X to the curb normal) and UW (≥ 0).
     pub fn new(dwalli: f64, walang: f64, uw: f64) -> Result<Self, LawError> {
-        if !(dwalli.is_finite() && dwalli > 0.0) {
-            return Err(LawError::NotPositive {
-                name: "curb distance DWALLI",
-                value: dwalli,
-            });
-        }
-        if !walang.is_finite() {
-            return Err(LawError::NotFinite {
-                name: "curb angle WALANG",
-                value: walang,
-            });
-        }
-        if !(uw.is_finite() && uw >= 0.0) {
-            return Err(LawError::Negative {
-                name: "curb friction UW",
-                value: uw,
-            });
-        }
+        positive("curb distance DWALLI", dwalli)?;
+        finite("curb angle WALANG", walang)?;
+        non_negative("curb friction UW", uw)?;
         let (s, c) = walang.sin_cos();
         Ok(Curb {
             dwalli,
@@ -69,11 +54,6 @@ impl Curb {
         })
     }
 
-    /// DWALLI, m.
-    pub fn initial_distance(&self) -> f64 {
-        self.dwalli
-    }
-
     /// Â, unit normal from the pad toward the curb (eq. 89).
     pub fn normal(&self) -> Vector2<f64> {
         self.a_hat
@@ -82,11 +62,6 @@ impl Curb {
     /// B̂, unit vector along the curb (eq. 90).
     pub fn along(&self) -> Vector2<f64> {
         self.b_hat
-    }
-
-    /// UW, the pad-curb friction coefficient.
-    pub fn friction(&self) -> f64 {
-        self.friction
     }
 
     /// DWALL, m: distance from the pad centre `pad_xy` = (XP, YP) to the curb, given the first

@@ -5,6 +5,7 @@ use crate::{
     Bearing, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LawError,
     LoadStroke, Stage, Viscous,
 };
+use nalgebra::Vector3;
 use touchdown_scenario::{model, Scenario, ScenarioError};
 
 /// Primary-strut laws: compression honeycomb (trunnion-modified if a K_TP is given), viscous
@@ -54,6 +55,42 @@ pub struct SecondaryStrutLaw {
     pub honeycomb: DoubleActingHoneycomb,
     /// FV31 of eq. (49), tension positive.
     pub viscous: Viscous,
+}
+
+/// Both secondaries' forces at one state, tension positive.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SecondaryForces {
+    /// FC31, FC41, honeycomb forces, N (eq. 49).
+    pub honeycomb: [f64; 2],
+    /// FV31, FV41, viscous forces, N (eq. 49).
+    pub viscous: [f64; 2],
+    /// FS = F31·V̂31 + F41·V̂41, the force of the primary on the secondaries at their
+    /// attachment, N (eqs. 51-52).
+    pub fs: Vector3<f64>,
+}
+
+impl SecondaryStrutLaw {
+    /// The forces of both secondaries at strokes `s` (m), stroking rates `s_dot` (m/s), unit
+    /// directions `u` (trunnion → attachment) and committed memories `memory`.
+    #[inline]
+    pub fn forces(
+        &self,
+        s: [f64; 2],
+        s_dot: [f64; 2],
+        u: &[Vector3<f64>; 2],
+        memory: &[DoubleActingMemory; 2],
+    ) -> SecondaryForces {
+        let fc = [
+            self.honeycomb.force(s[0], memory[0]),
+            self.honeycomb.force(s[1], memory[1]),
+        ]; // eq. (49)
+        let fv = [self.viscous.force(s_dot[0]), self.viscous.force(s_dot[1])]; // eq. (49)
+        SecondaryForces {
+            honeycomb: fc,
+            viscous: fv,
+            fs: u[0] * (fc[0] + fv[0]) + u[1] * (fc[1] + fv[1]), // eqs. (51)-(52)
+        }
+    }
 }
 
 /// Committed hysteresis of one gear: primary compression and both secondaries.

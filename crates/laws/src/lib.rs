@@ -37,11 +37,11 @@ pub use beam::{
 };
 pub use bearing::{side_load, Bearing, BearingLoads};
 pub use curb::{Curb, FootpadCrush};
-pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryStrutLaw};
+pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw};
 pub use honeycomb::{
     CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
 };
-pub use rcs::{Rcs, RcsLoads, RcsMode, RcsParams, Translation};
+pub use rcs::{Rcs, RcsLoads, RcsMode};
 pub use sliding::sliding_friction;
 pub use slosh::Slosh;
 pub use soil::{Soil, VerticalStep};

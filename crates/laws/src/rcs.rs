@@ -14,44 +14,15 @@
 use nalgebra::Vector3;
 use touchdown_scenario::frames::t_eb;
 
-use crate::LawError;
+use crate::{finite, non_negative, positive, LawError};
 
 /// Control mode for the torque logic (eqs. 78-79), as the scenario names it.
 pub use touchdown_scenario::schema::RcsMode;
 
-/// Downward-translation mode (eq. 81): after `delay` from first contact, no torques and a
-/// force FRCSZ along −Z_B.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Translation {
-    /// Delay after the first pad contact before the translation jets fire, s (≥ 0; about 1 s
-    /// for the LM).
-    pub delay: f64,
-    /// Translation force magnitude FRCSZ, N (≥ 0), applied along −Z_B.
-    pub force: f64,
-}
-
-/// Input data of the RCS law. Per-axis vectors are (X_B, Y_B, Z_B).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RcsParams {
-    /// Control mode.
-    pub mode: RcsMode,
-    /// Attitude gains k_11, k_21, k_31, dimensionless (≥ 0). Ignored (set to 0) in
-    /// [`RcsMode::RateCommand`].
-    pub attitude_gain: Vector3<f64>,
-    /// Rate gains k_12, k_22, k_32, s (≥ 0).
-    pub rate_gain: Vector3<f64>,
-    /// Deadbands EXM, EYM, EZM on the switching error, rad (> 0).
-    pub deadband: Vector3<f64>,
-    /// Torque magnitudes TORQX, TORQY, TORQZ, N·m (≥ 0).
-    pub torque: Vector3<f64>,
-    /// Commanded Euler angles Cθ, rad (used in attitude hold).
-    pub commanded_angles: Vector3<f64>,
-    /// Commanded body rates Cω, rad/s. Ignored (set to 0) in [`RcsMode::AttitudeHold`], where
-    /// the report states the commanded rates are zero.
-    pub commanded_rates: Vector3<f64>,
-    /// Downward translation, if used.
-    pub translation: Option<Translation>,
-}
+/// Input data of the RCS law: the scenario's resolved table (SI; per-axis vectors are
+/// (X_B, Y_B, Z_B); commanded angles are used in attitude hold, commanded rates in rate
+/// command).
+pub use touchdown_scenario::model::{DownwardTranslation, Rcs as RcsParams};
 
 /// RCS loads on the vehicle, body axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,27 +43,16 @@ pub struct Rcs {
     torque: Vector3<f64>,
     cmd_theta: Vector3<f64>,
     cmd_omega: Vector3<f64>,
-    translation: Option<Translation>,
+    translation: Option<DownwardTranslation>,
 }
 
+/// Checks every component of `v` with `check` (one of the crate's parameter checks).
 fn each(
     name: &'static str,
     v: &Vector3<f64>,
-    ok: fn(f64) -> bool,
-    err: fn(&'static str, f64) -> LawError,
+    check: fn(&'static str, f64) -> Result<f64, LawError>,
 ) -> Result<(), LawError> {
-    match v.iter().find(|&&x| !ok(x)) {
-        Some(&x) => Err(err(name, x)),
-        None => Ok(()),
-    }
-}
-
-fn neg(name: &'static str, value: f64) -> LawError {
-    LawError::Negative { name, value }
-}
-
-fn non_negative(x: f64) -> bool {
-    x.is_finite() && x >= 0.0
+    v.iter().try_for_each(|&x| check(name, x).map(|_| ()))
 }
 
 /// `x` wrapped into (−π, π], rad (review row 75-76).
@@ -111,40 +71,15 @@ impl Rcs {
     /// Errors if a gain, torque or translation parameter is negative or not finite, a deadband
     /// is not positive, or a commanded angle or rate is not finite.
     pub fn new(p: RcsParams) -> Result<Self, LawError> {
-        each(
-            "RCS attitude gain k_i1",
-            &p.attitude_gain,
-            non_negative,
-            neg,
-        )?;
-        each("RCS rate gain k_i2", &p.rate_gain, non_negative, neg)?;
-        each(
-            "RCS deadband EM",
-            &p.deadband,
-            |x| x.is_finite() && x > 0.0,
-            |name, value| LawError::NotPositive { name, value },
-        )?;
-        each("RCS torque TORQ", &p.torque, non_negative, neg)?;
-        let not_finite = |name, value| LawError::NotFinite { name, value };
-        each(
-            "RCS commanded angle",
-            &p.commanded_angles,
-            f64::is_finite,
-            not_finite,
-        )?;
-        each(
-            "RCS commanded rate",
-            &p.commanded_rates,
-            f64::is_finite,
-            not_finite,
-        )?;
-        if let Some(t) = p.translation {
-            if !non_negative(t.delay) {
-                return Err(neg("RCS translation delay", t.delay));
-            }
-            if !non_negative(t.force) {
-                return Err(neg("RCS translation force FRCSZ", t.force));
-            }
+        each("RCS attitude gain k_i1", &p.attitude_gain, non_negative)?;
+        each("RCS rate gain k_i2", &p.rate_gain, non_negative)?;
+        each("RCS deadband EM", &p.deadband, positive)?;
+        each("RCS torque TORQ", &p.torque, non_negative)?;
+        each("RCS commanded angle", &p.commanded_attitude, finite)?;
+        each("RCS commanded rate", &p.commanded_rates, finite)?;
+        if let Some(t) = p.downward_translation {
+            non_negative("RCS translation delay", t.delay)?;
+            non_negative("RCS translation force FRCSZ", t.force)?;
         }
         let (k1, cmd_omega) = match p.mode {
             RcsMode::AttitudeHold => (p.attitude_gain, Vector3::zeros()),
@@ -156,15 +91,10 @@ impl Rcs {
             k2: p.rate_gain,
             deadband: p.deadband,
             torque: p.torque,
-            cmd_theta: p.commanded_angles,
+            cmd_theta: p.commanded_attitude,
             cmd_omega,
-            translation: p.translation,
+            translation: p.downward_translation,
         })
-    }
-
-    /// Control mode.
-    pub fn mode(&self) -> RcsMode {
-        self.mode
     }
 
     /// Effective attitude gains k_i1 (zero in rate command), dimensionless.
@@ -259,9 +189,9 @@ mod tests {
             rate_gain: Vector3::new(0.5, 0.5, 0.5),
             deadband: Vector3::new(0.3 * DEG, 0.5 * DEG, 1.0 * DEG),
             torque: Vector3::new(500.0, 600.0, 700.0),
-            commanded_angles: Vector3::zeros(),
+            commanded_attitude: Vector3::zeros(),
             commanded_rates: Vector3::new(2.0 * DEG, 0.0, 0.0),
-            translation: None,
+            downward_translation: None,
         }
     }
 
@@ -340,7 +270,7 @@ mod tests {
         // θy = θz = 0), so E_x = k11·(−10°) = −10°.
         let mut p = params(RcsMode::AttitudeHold);
         p.rate_gain = Vector3::zeros();
-        p.commanded_angles = Vector3::new(-175.0 * DEG, 0.0, 0.0);
+        p.commanded_attitude = Vector3::new(-175.0 * DEG, 0.0, 0.0);
         let rcs = Rcs::new(p).unwrap();
         let e = rcs.errors(&Vector3::new(175.0 * DEG, 0.0, 0.0), &Vector3::zeros());
         assert!((e.x + 10.0 * DEG).abs() < 1e-12, "{}", e.x / DEG);
@@ -370,7 +300,7 @@ mod tests {
     #[test]
     fn translation_switches_to_pure_force_after_the_delay() {
         let mut p = params(RcsMode::AttitudeHold);
-        p.translation = Some(Translation {
+        p.downward_translation = Some(DownwardTranslation {
             delay: 1.0,
             force: 800.0,
         });
@@ -415,10 +345,10 @@ mod tests {
         p.torque.z = -1.0;
         assert!(matches!(Rcs::new(p), Err(LawError::Negative { .. })));
         let mut p = params(RcsMode::AttitudeHold);
-        p.commanded_angles.y = f64::NAN;
+        p.commanded_attitude.y = f64::NAN;
         assert!(matches!(Rcs::new(p), Err(LawError::NotFinite { .. })));
         let mut p = params(RcsMode::AttitudeHold);
-        p.translation = Some(Translation {
+        p.downward_translation = Some(DownwardTranslation {
             delay: -1.0,
             force: 1.0,
         });

@@ -3,8 +3,8 @@
 //! (eqs. 108-117). Every engine builds them here, so the mapping from scenario to law exists
 //! once; a parameter a law rejects is reported against its scenario field.
 
-use crate::thrust::{engine_loads, Amplification, EngineLoads, Nozzle, RimContact, Tailoff};
-use crate::{LawError, Rcs, RcsParams, Slosh, Translation};
+use crate::thrust::{engine_loads, nozzle_clearance, Amplification, EngineLoads, Nozzle, Tailoff};
+use crate::{LawError, Rcs, Slosh};
 use nalgebra::{Matrix3, Vector3};
 use touchdown_scenario::{Scenario, ScenarioError};
 
@@ -19,29 +19,18 @@ fn field(s: &Scenario, field: &str) -> impl Fn(LawError) -> ScenarioError {
 }
 
 /// The descent engine: thrust along +Z_B at the nozzle exit centroid R_T with its tailoff
-/// (eqs. 69-70) and ground amplification (eq. 71), and the nozzle crushing under constant load
-/// in proportion to the rim in contact (eqs. 72-73).
+/// (eqs. 69-70) and ground amplification (eq. 71), and, if the scene declares it, the nozzle
+/// crushing under constant load in proportion to the rim in contact (eqs. 72-73).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DescentEngine {
     /// F_THRUST(t), eqs. (69)-(70).
     pub tailoff: Tailoff,
     /// AMP(ZNOZ), eq. (71).
     pub amplification: Amplification,
-    /// The nozzle (R_T, exit radius, crush load).
-    pub nozzle: Nozzle,
-    /// Whether the nozzle crushes (the scene declares `thrust.nozzle_crushing`).
-    pub crushing: bool,
-}
-
-/// The descent engine's loads at one state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EngineState {
-    /// F_TF and MTF in body axes (eqs. 72-73).
-    pub loads: EngineLoads,
-    /// TAF, the amplified thrust, N (eq. 71).
-    pub thrust: f64,
-    /// The rim in contact (zero when the nozzle does not crush).
-    pub rim: RimContact,
+    /// R_T, centroid of the nozzle exit plane, body axes, m.
+    pub exit: Vector3<f64>,
+    /// The crushing nozzle (`thrust.nozzle_crushing`); `None`: the nozzle never touches.
+    pub nozzle: Option<Nozzle>,
 }
 
 impl DescentEngine {
@@ -63,68 +52,59 @@ impl DescentEngine {
                 Amplification::new(&z, &k).map_err(field(s, "thrust.amplification"))?
             }
         };
-        let (radius, load) = t.nozzle_crushing.unwrap_or((1.0, 0.0));
-        let nozzle =
-            Nozzle::new(t.nozzle_exit, radius, load).map_err(field(s, "thrust.nozzle_crushing"))?;
+        let nozzle = match t.nozzle_crushing {
+            None => None,
+            Some((radius, load)) => Some(
+                Nozzle::new(t.nozzle_exit, radius, load)
+                    .map_err(field(s, "thrust.nozzle_crushing"))?,
+            ),
+        };
         Ok(Some(DescentEngine {
             tailoff,
             amplification,
+            exit: t.nozzle_exit,
             nozzle,
-            crushing: t.nozzle_crushing.is_some(),
         }))
     }
 
-    /// Loads at simulation time `t` (s) with the vehicle's centre of mass at `position` (m,
-    /// inertial), attitude `t_bi` and the committed nozzle crush `crush` (m along Z_B).
+    /// F_TF and MTF in body axes (eqs. 72-73) at simulation time `t` (s) with the vehicle's
+    /// centre of mass at `position` (m, inertial), attitude `t_bi` and the committed nozzle
+    /// crush `crush` (m along Z_B).
     #[inline]
-    pub fn state(
+    pub fn loads(
         &self,
         t: f64,
         position: &Vector3<f64>,
         t_bi: &Matrix3<f64>,
         crush: f64,
-    ) -> EngineState {
-        let clearance = self
-            .nozzle
-            .clearance(crush, position, t_bi, NOZZLE_SURFACE_Z);
+    ) -> EngineLoads {
+        let clearance = nozzle_clearance(&self.exit, crush, position, t_bi, NOZZLE_SURFACE_Z);
         let taf = self.amplification.factor(clearance) * self.tailoff.thrust(t); // eq. (71)
-        let r_t = self.nozzle.exit_centroid();
-        let rim = if self.crushing {
-            self.nozzle
-                .rim_contact(crush, position, t_bi, NOZZLE_SURFACE_Z)
-        } else {
-            RimContact {
-                fraction: 0.0,
-                centroid: r_t,
-                penetration: 0.0,
+        let (ffl, r_f) = match &self.nozzle {
+            Some(n) => {
+                let rim = n.rim_contact(crush, position, t_bi, NOZZLE_SURFACE_Z);
+                (n.force(&rim), rim.centroid)
             }
+            None => (0.0, self.exit),
         };
-        let ffl = self.nozzle.force(&rim);
-        EngineState {
-            loads: engine_loads(taf, &r_t, ffl, &rim.centroid), // eqs. (72)-(73)
-            thrust: taf,
-            rim,
-        }
+        engine_loads(taf, &self.exit, ffl, &r_f) // eqs. (72)-(73)
+    }
+
+    /// How far the nozzle rim penetrates the surface beyond the committed crush `crush` (m),
+    /// at an accepted state: the caller adds it to the crush memory (review A18); 0 without
+    /// nozzle crushing.
+    pub fn crush_increment(&self, position: &Vector3<f64>, t_bi: &Matrix3<f64>, crush: f64) -> f64 {
+        self.nozzle.map_or(0.0, |n| {
+            n.rim_contact(crush, position, t_bi, NOZZLE_SURFACE_Z)
+                .penetration
+        })
     }
 }
 
 /// The scene's RCS, if it declares one.
 pub fn rcs_from_scenario(s: &Scenario) -> Result<Option<Rcs>, ScenarioError> {
     let Some(r) = &s.rcs else { return Ok(None) };
-    Rcs::new(RcsParams {
-        mode: r.mode,
-        attitude_gain: r.attitude_gain,
-        rate_gain: r.rate_gain,
-        deadband: r.deadband,
-        torque: r.torque,
-        commanded_angles: r.commanded_attitude,
-        commanded_rates: r.commanded_rates,
-        translation: r
-            .downward_translation
-            .map(|(delay, force)| Translation { delay, force }),
-    })
-    .map(Some)
-    .map_err(field(s, "rcs"))
+    Rcs::new(*r).map(Some).map_err(field(s, "rcs"))
 }
 
 /// The scene's propellant slosh, if it declares one (the vehicle mass includes the
@@ -178,14 +158,9 @@ pub fn soil_from_scenario(s: &Scenario) -> Result<Option<crate::Soil>, ScenarioE
     };
     let r = s.footpad.radius;
     let height = s.footpad.height.unwrap_or(0.0);
-    crate::Soil::new(
-        [k.k1, k.k2, k.k3, k.k4, k.k5, k.k6, k.k7, k.k8],
-        std::f64::consts::PI * r * r,
-        r,
-        height,
-    )
-    .map(Some)
-    .map_err(field(s, "surface.soil"))
+    crate::Soil::new(*k, std::f64::consts::PI * r * r, r, height)
+        .map(Some)
+        .map_err(field(s, "surface.soil"))
 }
 
 /// A scene's curbs: (leg index, curb) in the scenario's order, and the footpad crushing

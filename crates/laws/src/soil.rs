@@ -16,27 +16,14 @@
 
 use nalgebra::Vector2;
 
-use crate::LawError;
+use crate::{non_negative, positive, LawError};
+use touchdown_scenario::model;
 
 /// Soil constants and footpad geometry of eqs. (101)-(102).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Soil {
-    /// K1, bearing strength at the surface, Pa.
-    pub k1: f64,
-    /// K2, increase of bearing strength with depth, Pa/m.
-    pub k2: f64,
-    /// K3, increase of bearing strength with penetration rate, Pa·s/m.
-    pub k3: f64,
-    /// K4, increase of bearing strength with the rate squared, Pa·s²/m².
-    pub k4: f64,
-    /// K5, static lateral resistance, Pa.
-    pub k5: f64,
-    /// K6, increase of lateral resistance with lateral displacement, Pa/m.
-    pub k6: f64,
-    /// K7, increase of lateral resistance with depth, Pa/m.
-    pub k7: f64,
-    /// K8, increase of lateral resistance with horizontal speed squared, Pa·s²/m².
-    pub k8: f64,
+    /// K1-K8 of eqs. (101)-(102), SI (the scenario's resolved constants).
+    pub k: model::Soil,
     /// AP, footpad bottom area, m².
     pub pad_area: f64,
     /// PR, footpad radius, m.
@@ -61,42 +48,24 @@ pub struct VerticalStep {
 }
 
 impl Soil {
-    /// Soil from `k` = [K1, ..., K8] (SI units as the fields, all ≥ 0 finite), AP (m²), PR (m)
-    /// and pad height (m), all positive finite.
+    /// Soil from the constants `k` (SI, all ≥ 0 finite), AP (m²), PR (m) and pad height (m),
+    /// all positive finite.
     pub fn new(
-        k: [f64; 8],
+        k: model::Soil,
         pad_area: f64,
         pad_radius: f64,
         pad_height: f64,
     ) -> Result<Self, LawError> {
+        let values = [k.k1, k.k2, k.k3, k.k4, k.k5, k.k6, k.k7, k.k8];
         const NAMES: [&str; 8] = ["K1", "K2", "K3", "K4", "K5", "K6", "K7", "K8"];
-        for (name, &value) in NAMES.iter().zip(k.iter()) {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(LawError::Negative { name, value });
-            }
+        for (name, value) in NAMES.into_iter().zip(values) {
+            non_negative(name, value)?;
         }
-        for (name, value) in [
-            ("footpad area AP", pad_area),
-            ("footpad radius PR", pad_radius),
-            ("footpad height", pad_height),
-        ] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(LawError::NotPositive { name, value });
-            }
-        }
-        let [k1, k2, k3, k4, k5, k6, k7, k8] = k;
         Ok(Soil {
-            k1,
-            k2,
-            k3,
-            k4,
-            k5,
-            k6,
-            k7,
-            k8,
-            pad_area,
-            pad_radius,
-            pad_height,
+            k,
+            pad_area: positive("footpad area AP", pad_area)?,
+            pad_radius: positive("footpad radius PR", pad_radius)?,
+            pad_height: positive("footpad height", pad_height)?,
         })
     }
 
@@ -109,13 +78,14 @@ impl Soil {
             return 0.0;
         }
         // eq. (101), corrected: rate terms in ṗ = −ŻP > 0
-        self.pad_area * (self.k1 + self.k2 * depth.max(0.0) + rate * (self.k3 + self.k4 * rate))
+        self.pad_area
+            * (self.k.k1 + self.k.k2 * depth.max(0.0) + rate * (self.k.k3 + self.k.k4 * rate))
     }
 
     /// Holding capacity of a resting pad, `AP·(K1 + K2·ZPEN)`, N (rigid-plastic; `depth` in m).
     #[inline]
     pub fn static_capacity(&self, depth: f64) -> f64 {
-        self.pad_area * (self.k1 + self.k2 * depth.max(0.0))
+        self.pad_area * (self.k.k1 + self.k.k2 * depth.max(0.0))
     }
 
     /// Frontal area APF = 2·PR·min(ZPEN, height), m² (cylindrical pad; 0 for depth ≤ 0).
@@ -132,10 +102,10 @@ impl Soil {
     pub fn lateral_drag(&self, depth: f64, displacement: f64, speed: f64) -> f64 {
         // eq. (102), corrected to a magnitude
         self.frontal_area(depth)
-            * (self.k5
-                + self.k6 * displacement.abs()
-                + self.k7 * depth.max(0.0)
-                + self.k8 * speed * speed)
+            * (self.k.k5
+                + self.k.k6 * displacement.abs()
+                + self.k.k7 * depth.max(0.0)
+                + self.k.k8 * speed * speed)
     }
 
     /// Lateral drag vector FDRAG, N: [`Soil::lateral_drag`] along −v̂ for the in-plane pad
@@ -227,7 +197,26 @@ mod tests {
 
     // AP = 0.1 m², K1 = 1e4 Pa, K2 = 1e6 Pa/m: capacity 1000 N + 1e5 N/m·z.
     fn soil(k3: f64, k4: f64) -> Soil {
-        Soil::new([1e4, 1e6, k3, k4, 2e3, 5e4, 3e5, 40.0], 0.1, 0.2, 0.05).unwrap()
+        Soil::new(
+            constants([1e4, 1e6, k3, k4, 2e3, 5e4, 3e5, 40.0]),
+            0.1,
+            0.2,
+            0.05,
+        )
+        .unwrap()
+    }
+
+    fn constants([k1, k2, k3, k4, k5, k6, k7, k8]: [f64; 8]) -> model::Soil {
+        model::Soil {
+            k1,
+            k2,
+            k3,
+            k4,
+            k5,
+            k6,
+            k7,
+            k8,
+        }
     }
 
     #[test]
@@ -342,7 +331,13 @@ mod tests {
         assert!((f.norm() - s.lateral_drag(0.03, 0.1, 1.5)).abs() < 1e-9);
         assert!((f.normalize() + v.normalize()).norm() < 1e-12);
         assert_eq!(s.drag_force(0.03, 0.1, Vector2::zeros()), Vector2::zeros());
-        assert!(Soil::new([1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 0.1, 0.2, 0.05).is_err());
-        assert!(Soil::new([0.0; 8], 0.0, 0.2, 0.05).is_err());
+        assert!(Soil::new(
+            constants([1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+            0.1,
+            0.2,
+            0.05
+        )
+        .is_err());
+        assert!(Soil::new(constants([0.0; 8]), 0.0, 0.2, 0.05).is_err());
     }
 }

@@ -11,7 +11,7 @@
 //!
 //! Units: N, m, s. Body vectors are measured from the rigid-vehicle centre of mass.
 
-use crate::{finite, non_negative};
+use crate::{finite, non_negative, positive};
 use nalgebra::{Matrix3, Vector3};
 
 use crate::LawError;
@@ -107,21 +107,6 @@ impl Tailoff {
         Tailoff::new(f1, f64::INFINITY, 0.0, None, &[])
     }
 
-    /// Constant thrust F1 before tailoff, N.
-    pub fn f1(&self) -> f64 {
-        self.f1
-    }
-
-    /// Start of the tailoff on the thrust-curve clock, s.
-    pub fn t2(&self) -> f64 {
-        self.t2
-    }
-
-    /// The thrust-curve clock at simulation time 0, s.
-    pub fn tp(&self) -> f64 {
-        self.tp
-    }
-
     /// Eq. (70) before clamping, N, at τ = t_curve − t2 ≥ 0 s.
     #[inline]
     fn tail(&self, tau: f64) -> f64 {
@@ -181,12 +166,7 @@ impl Amplification {
         for i in 0..n {
             let (z, a) = (clearance[i], factor[i]);
             finite("amplification clearance", z)?;
-            if !(a.is_finite() && a > 0.0) {
-                return Err(LawError::NotPositive {
-                    name: "amplification factor",
-                    value: a,
-                });
-            }
+            positive("amplification factor", a)?;
             if i > 0 && z <= clearance[i - 1] {
                 return Err(LawError::Table(format!(
                     "amplification: clearances must increase strictly, got {} then {z} m",
@@ -266,12 +246,7 @@ impl Nozzle {
         for &v in exit_centroid.iter() {
             finite("nozzle exit centroid R_T", v)?;
         }
-        if !(exit_radius.is_finite() && exit_radius > 0.0) {
-            return Err(LawError::NotPositive {
-                name: "nozzle exit radius",
-                value: exit_radius,
-            });
-        }
+        positive("nozzle exit radius", exit_radius)?;
         non_negative("nozzle crush load", crush_load)?;
         Ok(Nozzle {
             exit_centroid,
@@ -280,25 +255,7 @@ impl Nozzle {
         })
     }
 
-    /// Exit-plane centroid R_T of the uncrushed nozzle, body axes, m.
-    pub fn exit_centroid(&self) -> Vector3<f64> {
-        self.exit_centroid
-    }
-
-    /// Exit radius r_e, m.
-    pub fn exit_radius(&self) -> f64 {
-        self.exit_radius
-    }
-
-    /// Crush load F_c of the whole rim, N.
-    pub fn crush_load(&self) -> f64 {
-        self.crush_load
-    }
-
-    /// Nozzle clearance ZNOZ, m: height of the (crushed) exit-plane centroid above the surface
-    /// plane Z = `surface_z` (m, inertial), for the CM at `position` (inertial, m), body → inertial
-    /// rotation `t_bi` (eq. 3) and stored crush `crush` (m). Review row 71:
-    /// `ZNOZ = Z_cm + (T_BI·(R_T + c·ẑ_B))_z − z_s`.
+    /// Nozzle clearance ZNOZ, m ([`nozzle_clearance`] of this nozzle's exit centroid).
     #[inline]
     pub fn clearance(
         &self,
@@ -307,8 +264,7 @@ impl Nozzle {
         t_bi: &Matrix3<f64>,
         surface_z: f64,
     ) -> f64 {
-        let r = self.exit_centroid + Vector3::new(0.0, 0.0, crush);
-        position.z + (t_bi * r).z - surface_z
+        nozzle_clearance(&self.exit_centroid, crush, position, t_bi, surface_z)
     }
 
     /// The rim's contact with the surface plane Z = `surface_z` (m, inertial), sampled at
@@ -358,6 +314,22 @@ impl Nozzle {
     pub fn force(&self, contact: &RimContact) -> f64 {
         self.crush_load * contact.fraction
     }
+}
+
+/// Nozzle clearance ZNOZ, m: height of the (crushed) exit-plane centroid `exit` (R_T, body
+/// axes, m) above the surface plane Z = `surface_z` (m, inertial), for the CM at `position`
+/// (inertial, m), body → inertial rotation `t_bi` (eq. 3) and stored crush `crush` (m). Review
+/// row 71: `ZNOZ = Z_cm + (T_BI·(R_T + c·ẑ_B))_z − z_s`.
+#[inline]
+pub fn nozzle_clearance(
+    exit: &Vector3<f64>,
+    crush: f64,
+    position: &Vector3<f64>,
+    t_bi: &Matrix3<f64>,
+    surface_z: f64,
+) -> f64 {
+    let r = exit + Vector3::new(0.0, 0.0, crush);
+    position.z + (t_bi * r).z - surface_z
 }
 
 /// Engine force and moment on the vehicle, body axes.

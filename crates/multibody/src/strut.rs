@@ -133,13 +133,8 @@ pub fn strut_forces(
     leg: &Leg,
     k: &StrutKinematics,
 ) -> Result<StrutForces, LawError> {
-    let sec = &laws.secondary;
-    let fc = [
-        sec.honeycomb.force(k.s[0], memory.secondary[0]),
-        sec.honeycomb.force(k.s[1], memory.secondary[1]),
-    ]; // eq. (49)
-    let fv = [sec.viscous.force(k.s_dot[0]), sec.viscous.force(k.s_dot[1])]; // eq. (49)
-    let fs = k.u[0] * (fc[0] + fv[0]) + k.u[1] * (fc[1] + fv[1]); // eq. (52)
+    let sec = laws.secondary.forces(k.s, k.s_dot, &k.u, &memory.secondary); // eqs. (49), (51)-(52)
+    let fs = sec.fs;
     let length = leg.l2p - k.c;
     let fm = side_load(&fs, &k.axis, leg.l21, length).norm(); // eqs. (53)-(58)
     let p = &laws.primary;
@@ -158,8 +153,8 @@ pub fn strut_forces(
         crush_load,
         viscous: p.viscous.force(k.c_dot), // eq. (49)
         bearing_bound,
-        secondary_honeycomb: fc,
-        secondary_viscous: fv,
+        secondary_honeycomb: sec.honeycomb,
+        secondary_viscous: sec.viscous,
     })
 }
 

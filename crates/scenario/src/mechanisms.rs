@@ -236,10 +236,10 @@ pub(crate) fn rcs(
     }
     let downward_translation = match r.downward_translation {
         None => None,
-        Some(d) => Some((
-            c.non_negative("rcs.downward_translation.delay", d.delay)? * u.time(),
-            c.non_negative("rcs.downward_translation.force", d.force)? * u.force(),
-        )),
+        Some(d) => Some(model::DownwardTranslation {
+            delay: c.non_negative("rcs.downward_translation.delay", d.delay)? * u.time(),
+            force: c.non_negative("rcs.downward_translation.force", d.force)? * u.force(),
+        }),
     };
     Ok(Some(model::Rcs {
         mode: r.mode,

@@ -292,8 +292,18 @@ pub struct Rcs {
     pub commanded_attitude: Vector3<f64>,
     /// Cω, rad/s.
     pub commanded_rates: Vector3<f64>,
-    /// Downward translation: (delay s, FRCSZ N).
-    pub downward_translation: Option<(f64, f64)>,
+    /// Downward translation, if the scene has it.
+    pub downward_translation: Option<DownwardTranslation>,
+}
+
+/// The RCS downward-translation mode (eq. 81), SI: after `delay` from first contact, no torques
+/// and a force FRCSZ along −Z_B.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DownwardTranslation {
+    /// Delay after the first footpad contact, s.
+    pub delay: f64,
+    /// FRCSZ, N.
+    pub force: f64,
 }
 
 /// Propellant sloshing, SI (eqs. 108-117).
