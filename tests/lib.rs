@@ -31,6 +31,20 @@ pub fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)
 }
 
+/// A variant of scenario `base` (under `scenarios/`) named `name`, with `extra` TOML on top,
+/// written to a temporary file (the MuJoCo runner and the CLI read files).
+pub fn variant(base: &str, name: &str, extra: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("touchdown-variants-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("the temporary folder is writable");
+    let path = dir.join(format!("{name}.toml"));
+    let text = format!(
+        "schema_version = 1\nextends = {:?}\nname = {name:?}\n{extra}",
+        scenario(base).display().to_string()
+    );
+    std::fs::write(&path, text).expect("the variant is written");
+    path
+}
+
 /// The file names of the nine validation landings under `scenarios/` (the eight Table I
 /// landings and the figure 25-26 landing), sorted.
 pub fn validation_landings() -> Vec<String> {

@@ -270,6 +270,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
     warnings[5] = 1; // mjWARN_BADQACC
     let mut ctrl = vec![0.0; 3 * n];
     let mut friction = vec![0.0; sizes.nv as usize];
+    let mut applied = vec![0.0; sizes.nv as usize];
     let mut arrays = MjArrays {
         qpos: &qpos,
         qvel: &qvel,
@@ -282,6 +283,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
         warnings: &warnings,
         ctrl: &mut ctrl,
         dof_frictionloss: &mut friction,
+        qfrc_applied: &mut applied,
     };
     match landing.advance(&mut arrays) {
         Err(MujocoError::Diverged(d)) => {

@@ -5,16 +5,9 @@ use touchdown_core::{Landing, Observer, Outcome, Simulation};
 use touchdown_scenario::Scenario;
 use touchdown_tests::{analytic_drop_stroke, scenario};
 
-/// A scenario that extends `base` (under scenarios/) with extra TOML, written to a temporary file.
+/// A scenario that extends `base` (under scenarios/) with extra TOML.
 fn variant(base: &str, name: &str, extra: &str) -> Scenario {
-    let dir = std::env::temp_dir().join(format!("touchdown-physics-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{name}.toml"));
-    let text = format!(
-        "schema_version = 1\nextends = {:?}\nname = {name:?}\n{extra}",
-        scenario(base).display().to_string()
-    );
-    std::fs::write(&path, text).unwrap();
+    let path = touchdown_tests::variant(base, name, extra);
     Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 

@@ -42,8 +42,6 @@ pub struct GearState {
     /// Displacement of point 1 by primary-strut bending at this state, body axes, m (|η|
     /// along FN̂, eqs. 43-47): the next step's secondaries see it (lagged, review A8).
     pub point1_deflection: Vector3<f64>,
-    /// Whether the bending law capped the axial load below the Euler load.
-    pub euler_capped: bool,
     /// λ31, λ41: the apparent lengthening of the secondaries by the lagged bending
     /// displacement (eq. 47), m, included in `secondary_stroke`.
     pub bending_lengthening: [f64; 2],
@@ -79,7 +77,8 @@ impl GearState {
 }
 
 /// Geometry and strut forces for one gear with the footpad at `bp` (body axes, m) moving at
-/// `bp_dot` (its velocity relative to the body, in body axes, m/s), eqs. (26)-(65).
+/// `bp_dot` (its velocity relative to the body, in body axes, m/s), eqs. (26)-(65), written
+/// into `out` (in place: the state is too large to move cheaply on the hot path).
 pub fn evaluate(
     leg: &Leg,
     laws: &GearLaws,
@@ -87,9 +86,11 @@ pub fn evaluate(
     bp: &Vector3<f64>,
     bp_dot: &Vector3<f64>,
     options: &GearOptions,
-) -> Result<GearState, GearFault> {
+    out: &mut GearState,
+) -> Result<(), GearFault> {
     if options.arrangement == Arrangement::Tripod {
-        return Ok(evaluate_tripod(leg, laws, memory, bp, bp_dot));
+        evaluate_tripod(leg, laws, memory, bp, bp_dot, out);
+        return Ok(());
     }
     let bearing = |error| GearFault {
         law: "bearing friction",
@@ -144,7 +145,7 @@ pub fn evaluate(
     let fp = e * f2p + fm;
     // eqs. (43)-(47), corrected: point 1's deflection under FN (from the honeycomb forces FC
     // only) and the axial load F2P, for the next step.
-    let (mut point1_deflection, mut euler_capped) = (Vector3::zeros(), false);
+    let mut point1_deflection = Vector3::zeros();
     if let Some((law, _)) = &options.bending {
         let normal = touchdown_laws::normal_load(fc, u[0], u[1], e);
         let fn_mag = normal.norm();
@@ -156,10 +157,9 @@ pub fn evaluate(
                     error,
                 })?;
             point1_deflection = normal * (d.magnitude / fn_mag);
-            euler_capped = d.capped;
         }
     }
-    Ok(GearState {
+    *out = GearState {
         primary_stroke: c,
         primary_rate: c_dot,
         secondary_stroke: s,
@@ -173,9 +173,9 @@ pub fn evaluate(
         fm: fm_mag,
         fp,
         point1_deflection,
-        euler_capped,
         bending_lengthening,
-    })
+    };
+    Ok(())
 }
 
 /// The tripod gear (review A23): the secondaries meet the primary at the footpad (B1 = BP,
@@ -187,7 +187,8 @@ fn evaluate_tripod(
     memory: &GearMemory,
     bp: &Vector3<f64>,
     bp_dot: &Vector3<f64>,
-) -> GearState {
+    out: &mut GearState,
+) {
     let v2p = bp - leg.b2; // eq. (27)
     let len = v2p.norm();
     let e = v2p / len; // eq. (28)
@@ -203,7 +204,7 @@ fn evaluate_tripod(
     let fvp = pri.viscous.force(c_dot);
     let fcp = pri.stroke_force(c, memory.primary);
     let f2p = fcp + fvp; // eq. (50) with FBR = 0
-    GearState {
+    *out = GearState {
         primary_stroke: c,
         primary_rate: c_dot,
         secondary_stroke: s,
@@ -217,9 +218,8 @@ fn evaluate_tripod(
         fm: 0.0,
         fp: e * f2p - sec.fs, // eq. (65), tripod
         point1_deflection: Vector3::zeros(),
-        euler_capped: false,
         bending_lengthening: [0.0; 2],
-    }
+    };
 }
 
 #[cfg(test)]
@@ -229,6 +229,19 @@ mod tests {
         Bearing, DoubleActingHoneycomb, Honeycomb, LoadStroke, PrimaryStrutLaw, SecondaryStrutLaw,
         Stage, Viscous,
     };
+
+    /// [`evaluate`] into a fresh state.
+    fn evaluated(
+        leg: &Leg,
+        laws: &GearLaws,
+        memory: &GearMemory,
+        bp: &Vector3<f64>,
+        bp_dot: &Vector3<f64>,
+        options: &GearOptions,
+    ) -> Result<GearState, GearFault> {
+        let mut out = GearState::default();
+        evaluate(leg, laws, memory, bp, bp_dot, options, &mut out).map(|()| out)
+    }
 
     const CANTILEVER: GearOptions = GearOptions {
         arrangement: Arrangement::Cantilever,
@@ -295,7 +308,7 @@ mod tests {
         let laws = laws(0.0);
         let mem = GearMemory::default();
         let bp = deformed(leg.bp);
-        let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
+        let g = evaluated(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
         assert!(g.fcp > 0.0 && g.fc_secondary.iter().any(|f| f.abs() > 0.0));
         // Reconstruct the trunnion forces on the body.
         let e = (bp - leg.b2).normalize();
@@ -329,8 +342,8 @@ mod tests {
         let mem = GearMemory::default();
         let bp = deformed(leg.bp);
         let e = (bp - leg.b2).normalize();
-        let compressing = evaluate(&leg, &laws, &mem, &bp, &(-e * 0.5), &CANTILEVER).unwrap();
-        let extending = evaluate(&leg, &laws, &mem, &bp, &(e * 0.5), &CANTILEVER).unwrap();
+        let compressing = evaluated(&leg, &laws, &mem, &bp, &(-e * 0.5), &CANTILEVER).unwrap();
+        let extending = evaluated(&leg, &laws, &mem, &bp, &(e * 0.5), &CANTILEVER).unwrap();
         assert!(compressing.primary_rate > 0.0 && compressing.fbr > 0.0);
         assert!(extending.fbr < 0.0);
         assert!((compressing.fbr + extending.fbr).abs() < 1e-9);
@@ -349,7 +362,7 @@ mod tests {
             arrangement: Arrangement::Tripod,
             bending: None,
         };
-        let g = evaluate(
+        let g = evaluated(
             &tripod,
             &laws,
             &GearMemory::default(),
@@ -388,14 +401,14 @@ mod tests {
         let laws = laws(0.0);
         let mem = GearMemory::default();
         let bp = deformed(leg.bp);
-        let rigid = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
+        let rigid = evaluated(&leg, &laws, &mem, &bp, &Vector3::zeros(), &CANTILEVER).unwrap();
         let beam = Bending::new(2.0e4).unwrap();
         let bent = |lag: Vector3<f64>| {
             let options = GearOptions {
                 arrangement: Arrangement::Cantilever,
                 bending: Some((&beam, lag)),
             };
-            evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap()
+            evaluated(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap()
         };
         let first = bent(Vector3::zeros());
         assert_eq!(
@@ -432,7 +445,7 @@ mod tests {
             arrangement: Arrangement::Cantilever,
             bending: Some((&stiff, Vector3::zeros())),
         };
-        let g = evaluate(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap();
+        let g = evaluated(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap();
         assert!(g.point1_deflection.norm() < 1e-9);
     }
 }

@@ -8,19 +8,10 @@
 use crate::simulation::VehicleState;
 use nalgebra::{Vector2, Vector3};
 use std::cell::Cell;
-use touchdown_laws::scene::{self, DescentEngine};
-use touchdown_laws::{Bending, CrushMemory, Curb, FootpadCrush, Rcs, Slosh, Soil};
+use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion};
+use touchdown_laws::{Bending, CrushMemory, Curb, FootpadCrush, Slosh, Soil};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{Scenario, ScenarioError};
-
-/// Loads of the vehicle-level mechanisms on the rigid vehicle, body axes.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct AppliedLoads {
-    /// Force, N (body axes; the caller applies T_BI, eqs. 74, 82, 116).
-    pub force: Vector3<f64>,
-    /// Torque about the centre of mass, N·m (body axes; MTF + MRCS + T_f, eqs. 73, 80, 117).
-    pub torque: Vector3<f64>,
-}
 
 /// The curbs of a scene: each (leg, curb) with its crush memory, and the footpad crushing
 /// diagram (fig. 18) they share.
@@ -90,10 +81,9 @@ impl Evaluations {
 /// The scene's optional mechanisms.
 #[derive(Debug, Clone)]
 pub struct Mechanisms {
-    /// Descent engine (thrust, amplification, nozzle crushing).
-    pub engine: Option<DescentEngine>,
-    /// Reaction control system.
-    pub rcs: Option<Rcs>,
+    /// Descent engine (thrust, amplification, nozzle crushing) and RCS, with the committed
+    /// nozzle crush.
+    pub propulsion: Propulsion,
     /// Propellant slosh.
     pub slosh: Option<Slosh>,
     /// Soil surface.
@@ -102,8 +92,6 @@ pub struct Mechanisms {
     pub curbs: Option<Curbs>,
     /// Primary-strut bending.
     pub bending: Option<Bending>,
-    /// Committed nozzle crush (shortening along Z_B), m (review A18).
-    pub nozzle_crush: f64,
     /// Specific force at the slosh mass, body axes, m/s², at the last accepted state: the
     /// slosh equations use it one step lagged, which breaks the algebraic loop between the
     /// vehicle's and the slosh mass's accelerations (review rows 108-109).
@@ -123,13 +111,11 @@ impl Mechanisms {
             crush,
         });
         Ok(Mechanisms {
-            engine: DescentEngine::from_scenario(s)?,
-            rcs: scene::rcs_from_scenario(s)?,
+            propulsion: Propulsion::from_scenario(s)?,
             slosh,
             soil: scene::soil_from_scenario(s)?,
             curbs,
             bending: scene::bending_from_scenario(s)?,
-            nozzle_crush: 0.0,
             slosh_specific_force: Vector3::new(0.0, 0.0, s.vehicle.gravity),
             declared: s.mechanisms(),
             evaluations: Evaluations::default(),
@@ -169,25 +155,26 @@ impl Mechanisms {
         first_contact: impl Fn() -> Option<f64>,
         v: &VehicleState,
     ) -> Option<AppliedLoads> {
-        if self.engine.is_none() && self.rcs.is_none() && self.slosh.is_none() {
+        let p = &self.propulsion;
+        if p.is_empty() && self.slosh.is_none() {
             return None;
         }
-        let mut out = AppliedLoads::default();
-        if let Some(engine) = &self.engine {
+        if let Some(engine) = &p.engine {
             self.evaluations.tick(Mechanism::Thrust);
             if engine.nozzle.is_some() {
                 self.evaluations.tick(Mechanism::NozzleCrushing);
             }
-            let e = engine.loads(t, &v.position, &v.t_bi, self.nozzle_crush);
-            out.force += e.force; // eq. (72)
-            out.torque += e.torque; // eq. (73)
         }
-        if let Some(rcs) = &self.rcs {
+        if p.rcs.is_some() {
             self.evaluations.tick(Mechanism::Rcs);
-            let r = rcs.loads(t, first_contact(), &v.theta, &v.omega);
-            out.force += r.force; // eq. (81)
-            out.torque += r.torque; // eq. (80)
         }
+        let attitude = Attitude {
+            position: &v.position,
+            t_bi: &v.t_bi,
+            theta: &v.theta,
+            omega: &v.omega,
+        };
+        let mut out = p.loads(t, first_contact, &attitude); // eqs. (72)-(73), (80)-(81)
         if let Some(slosh) = &self.slosh {
             self.evaluations.tick(Mechanism::Slosh);
             let axial = slosh.axial(&self.slosh_specific_force);
@@ -216,9 +203,7 @@ impl Mechanisms {
     /// Commits the accepted state `v`: the nozzle crush grows by the rim's penetration, and the
     /// specific force at the slosh mass is taken for the next step.
     pub fn commit(&mut self, v: &VehicleState, gravity: &Vector3<f64>) {
-        if let Some(engine) = &self.engine {
-            self.nozzle_crush += engine.crush_increment(&v.position, &v.t_bi, self.nozzle_crush);
-        }
+        self.propulsion.commit(&v.position, &v.t_bi);
         if let Some(slosh) = &self.slosh {
             // (A_tank − G) in body axes at r_s = (0, 0, −d) (review row 109).
             let r = Self::slosh_arm(slosh);

@@ -390,18 +390,18 @@ impl Simulation {
                     (b, self.bending_lag[i])
                 }),
             };
-            let g = gear::evaluate(
+            gear::evaluate(
                 &self.legs[i],
                 &self.laws,
                 &self.memory[i],
                 &bp,
                 &bp_dot,
                 &options,
+                slot,
             )
             .map_err(|f| self.diverged(v, f.error.to_string(), f.law, i))?;
-            torque += bp.cross(&(-g.fp)); // eq. (66)
-            force -= v.t_bi * g.fp; // eqs. (67)-(68)
-            *slot = g;
+            torque += bp.cross(&(-slot.fp)); // eq. (66)
+            force -= v.t_bi * slot.fp; // eqs. (67)-(68)
         }
         // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms, if any.
         let mut applied_power = 0.0;
@@ -739,8 +739,10 @@ impl Landing for Simulation {
             old.theta + old.theta_dot * dt + old.theta_ddot * (0.5 * dt * dt),
             old.theta_dot + old.theta_ddot * dt,
         );
-        pred.slosh_q = old.slosh_q + old.slosh_q_dot * dt + old.slosh_q_ddot * (0.5 * dt * dt);
-        pred.slosh_q_dot = old.slosh_q_dot + old.slosh_q_ddot * dt;
+        if self.mechanisms.slosh.is_some() {
+            pred.slosh_q = old.slosh_q + old.slosh_q_dot * dt + old.slosh_q_ddot * (0.5 * dt * dt);
+            pred.slosh_q_dot = old.slosh_q_dot + old.slosh_q_ddot * dt;
+        }
         // 4. trial evaluation
         let mut trial = std::mem::take(&mut self.trial);
         let loads = self.loads(self.t + dt, &pred, &mut trial);
@@ -759,10 +761,12 @@ impl Landing for Simulation {
             + old.theta_dot * dt
             + (old.theta_ddot / 3.0 + pred.theta_ddot / 6.0) * (dt * dt);
         new.set_attitude(theta, theta_dot);
-        new.slosh_q_dot = old.slosh_q_dot + (old.slosh_q_ddot + pred.slosh_q_ddot) * (0.5 * dt);
-        new.slosh_q = old.slosh_q
-            + old.slosh_q_dot * dt
-            + (old.slosh_q_ddot / 3.0 + pred.slosh_q_ddot / 6.0) * (dt * dt);
+        if self.mechanisms.slosh.is_some() {
+            new.slosh_q_dot = old.slosh_q_dot + (old.slosh_q_ddot + pred.slosh_q_ddot) * (0.5 * dt);
+            new.slosh_q = old.slosh_q
+                + old.slosh_q_dot * dt
+                + (old.slosh_q_ddot / 3.0 + pred.slosh_q_ddot / 6.0) * (dt * dt);
+        }
         let power_old = self.applied_power;
         // 6. evaluate, contact logic, re-evaluate on a change
         self.t += dt;

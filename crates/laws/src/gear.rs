@@ -72,7 +72,7 @@ pub struct SecondaryForces {
 impl SecondaryStrutLaw {
     /// The forces of both secondaries at strokes `s` (m), stroking rates `s_dot` (m/s), unit
     /// directions `u` (trunnion → attachment) and committed memories `memory`.
-    #[inline]
+    #[inline(always)]
     pub fn forces(
         &self,
         s: [f64; 2],
@@ -151,6 +151,7 @@ fn viscous(v: &model::Viscous) -> Viscous {
 impl GearLaws {
     /// Commits an accepted state into the memory (honeycomb x_max per side): primary
     /// compression stroke `c` and secondary strokes `s` (tension positive), m.
+    #[inline]
     pub fn commit(&self, c: f64, s: [f64; 2], memory: &mut GearMemory) {
         self.primary.honeycomb.commit(c, &mut memory.primary);
         for (s, m) in s.into_iter().zip(&mut memory.secondary) {

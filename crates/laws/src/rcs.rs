@@ -140,6 +140,12 @@ impl Rcs {
         })
     }
 
+    /// Whether the law has a downward-translation mode (which needs the first contact time).
+    #[inline]
+    pub fn translates(&self) -> bool {
+        self.translation.is_some()
+    }
+
     /// Whether the downward-translation phase is active at time `t` (s), given the time of the
     /// first pad contact (s), if any: translation mode configured and `t ≥ first_contact + delay`.
     #[inline]

@@ -101,6 +101,94 @@ impl DescentEngine {
     }
 }
 
+/// Loads of the vehicle-level mechanisms on the vehicle, body axes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AppliedLoads {
+    /// Force, N (body axes; the caller applies T_BI, eqs. 74, 82, 116).
+    pub force: Vector3<f64>,
+    /// Torque about the centre of mass, N·m (body axes; MTF + MRCS + T_f, eqs. 73, 80, 117).
+    pub torque: Vector3<f64>,
+}
+
+/// The vehicle's attitude and rates, as the propulsion laws read them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Attitude<'a> {
+    /// Centre of mass, inertial (surface) frame, m.
+    pub position: &'a Vector3<f64>,
+    /// T_BI, body → inertial.
+    pub t_bi: &'a Matrix3<f64>,
+    /// Euler angles θ (eq. 1 order), rad.
+    pub theta: &'a Vector3<f64>,
+    /// Angular velocity ω, body axes, rad/s.
+    pub omega: &'a Vector3<f64>,
+}
+
+/// The scene's propulsion: the descent engine with its nozzle (eqs. 69-74) and the RCS
+/// (eqs. 75-82), the vehicle-level mechanisms every engine applies the same way, as a force
+/// and a torque on the vehicle; with the committed nozzle crush (review A18).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Propulsion {
+    /// Descent engine (`thrust`), if declared.
+    pub engine: Option<DescentEngine>,
+    /// Reaction control system (`rcs`), if declared.
+    pub rcs: Option<Rcs>,
+    /// Committed nozzle crush (shortening along Z_B), m.
+    pub nozzle_crush: f64,
+}
+
+impl Propulsion {
+    /// What `s` declares of the engine and the RCS.
+    pub fn from_scenario(s: &Scenario) -> Result<Propulsion, ScenarioError> {
+        Ok(Propulsion {
+            engine: DescentEngine::from_scenario(s)?,
+            rcs: rcs_from_scenario(s)?,
+            nozzle_crush: 0.0,
+        })
+    }
+
+    /// Whether the scene declares neither an engine nor an RCS.
+    pub fn is_empty(&self) -> bool {
+        self.engine.is_none() && self.rcs.is_none()
+    }
+
+    /// Engine and RCS loads in body axes at simulation time `t` (s) with the vehicle at `a`;
+    /// `first_contact` gives the first footpad contact (s), for the RCS delay (asked only if
+    /// the RCS translates).
+    #[inline]
+    pub fn loads(
+        &self,
+        t: f64,
+        first_contact: impl Fn() -> Option<f64>,
+        a: &Attitude,
+    ) -> AppliedLoads {
+        let mut out = AppliedLoads::default();
+        if let Some(engine) = &self.engine {
+            let e = engine.loads(t, a.position, a.t_bi, self.nozzle_crush);
+            out.force += e.force; // eq. (72)
+            out.torque += e.torque; // eq. (73)
+        }
+        if let Some(rcs) = &self.rcs {
+            let first = if rcs.translates() {
+                first_contact()
+            } else {
+                None
+            };
+            let r = rcs.loads(t, first, a.theta, a.omega);
+            out.force += r.force; // eq. (81)
+            out.torque += r.torque; // eq. (80)
+        }
+        out
+    }
+
+    /// Commits an accepted state (vehicle at `position`, m, attitude `t_bi`): the nozzle crush
+    /// grows by the rim's penetration.
+    pub fn commit(&mut self, position: &Vector3<f64>, t_bi: &Matrix3<f64>) {
+        if let Some(engine) = &self.engine {
+            self.nozzle_crush += engine.crush_increment(position, t_bi, self.nozzle_crush);
+        }
+    }
+}
+
 /// The scene's RCS, if it declares one.
 pub fn rcs_from_scenario(s: &Scenario) -> Result<Option<Rcs>, ScenarioError> {
     let Some(r) = &s.rcs else { return Ok(None) };

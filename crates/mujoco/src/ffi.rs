@@ -47,6 +47,8 @@ pub struct MjPointers {
     pub ctrl: *mut f64,
     /// `model.dof_frictionloss`.
     pub dof_frictionloss: *mut f64,
+    /// `data.qfrc_applied`.
+    pub qfrc_applied: *mut f64,
 }
 
 /// A runner's state behind the C ABI.
@@ -102,6 +104,7 @@ impl Runner {
                 warnings: &warnings,
                 ctrl: std::slice::from_raw_parts_mut(p.ctrl, n(s.nu)),
                 dof_frictionloss: std::slice::from_raw_parts_mut(p.dof_frictionloss, n(s.nv)),
+                qfrc_applied: std::slice::from_raw_parts_mut(p.qfrc_applied, n(s.nv)),
             }
         };
         Ok(i32::from(landing.advance(&mut arrays)?))

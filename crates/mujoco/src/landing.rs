@@ -10,7 +10,8 @@
 //!    the mean of the contact point's velocities; commit the honeycomb memories at state n;
 //! 3. evaluate the laws at state n with the committed memories, check for divergence, update the
 //!    stability criteria, the extremes and the history;
-//! 4. unless the run has ended, write the forces for the step n → n+1: the explicit primary
+//! 4. unless the run has ended, write the forces for the step n → n+1: the engine and RCS loads
+//!    on the vehicle (`qfrc_applied`, if the scene has them), the explicit primary
 //!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
 //!    joint's dry friction `frictionloss`: the bearing bound plus, while the honeycomb crushes
 //!    on a plateau, the crush load (a bound that stops the stroke but never drives it; it is
@@ -113,6 +114,9 @@ pub struct MjArrays<'a> {
     pub ctrl: &'a mut [f64],
     /// `dof_frictionloss` (nv) of the model, written: N.
     pub dof_frictionloss: &'a mut [f64],
+    /// `qfrc_applied` (nv), written: the engine and RCS loads on the vehicle's free joint
+    /// (force N, world axes; torque N·m, body axes); the gear's entries stay 0.
+    pub qfrc_applied: &'a mut [f64],
 }
 
 /// A landing driven on MuJoCo's arrays (see the module documentation).
@@ -262,12 +266,14 @@ impl MujocoLanding {
     pub fn advance(&mut self, mj: &mut MjArrays) -> Result<bool, MujocoError> {
         self.check_warnings(mj)?;
         self.book.begin_step();
+        let before = self.vehicle;
         self.read_state(mj);
         if self.started {
             self.t += self.dt;
             self.steps += 1;
             self.book.book_struts();
             self.book_contacts(mj);
+            self.book.book_vehicle(&before, &self.vehicle, self.dt);
         } else {
             self.started = true;
             self.position0 = self.vehicle.position;
@@ -290,6 +296,9 @@ impl MujocoLanding {
         if self.finished() {
             return Ok(true);
         }
+        self.book
+            .evaluate_vehicle(self.t, &self.vehicle)
+            .map_err(|f| self.diverged(f))?;
         self.apply(mj);
         Ok(false)
     }
@@ -389,6 +398,14 @@ impl MujocoLanding {
                 mj.ctrl[g.secondary[j] as usize] = -force;
             }
             mj.dof_frictionloss[g.stroke_dof as usize] = f.bearing_bound + f.crush_load;
+        }
+        if !self.book.applied.is_empty() {
+            // eqs. (72)-(74), (80)-(82): the free joint's generalized forces are the force in
+            // world axes and the torque in body axes.
+            let a = &self.book.applied;
+            let torque = self.vehicle.rotation.transpose() * a.torque;
+            mj.qfrc_applied[..3].copy_from_slice(a.force.as_slice());
+            mj.qfrc_applied[3..6].copy_from_slice(torque.as_slice());
         }
     }
 

@@ -8,6 +8,7 @@
 //! [`GearBook::book_struts`]; [`GearBook::book_contact`] per footpad; [`GearBook::evaluate`];
 //! [`GearBook::check`]; [`GearBook::update_stability`]; [`GearBook::update_extremes`].
 
+use crate::applied::VehicleLoads;
 use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use nalgebra::{Matrix3, Vector3};
 use touchdown_laws::{GearLaws, GearMemory};
@@ -105,6 +106,8 @@ pub struct GearBook {
     pub forces: Vec<StrutForces>,
     /// Contact states.
     pub contacts: Vec<PadContact>,
+    /// The engine and RCS loads on the vehicle (nothing without them).
+    pub applied: VehicleLoads,
     /// Work exchanged with each mechanism.
     pub ledger: EnergyLedger,
     /// Deepest footpad penetration into its plane so far, m.
@@ -132,6 +135,7 @@ impl GearBook {
             previous: vec![StrutKinematics::default(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
+            applied: VehicleLoads::new(sc)?,
             ledger: EnergyLedger::default(),
             max_penetration: 0.0,
             stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
@@ -217,6 +221,23 @@ impl GearBook {
                 })?;
         }
         Ok(())
+    }
+
+    /// Evaluates the engine and RCS loads at time `t` (s) with the vehicle in state `v`, for
+    /// the coming step, and commits the nozzle crush there.
+    pub fn evaluate_vehicle(&mut self, t: f64, v: &VehicleState) -> Result<(), Fault> {
+        let first_contact = self
+            .contacts
+            .iter()
+            .filter_map(|c| c.first_contact)
+            .reduce(f64::min);
+        self.applied.evaluate(t, v, first_contact)
+    }
+
+    /// Books the work of the engine and RCS loads over the step from `before` to `after`
+    /// (`dt` s long) into the mechanisms account (done on the vehicle, so it counts negative).
+    pub fn book_vehicle(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
+        self.ledger.mechanisms -= self.applied.step_work(before, after, dt);
     }
 
     /// The divergence checks after a step: the first non-finite force or gear geometry, a
@@ -334,7 +355,7 @@ impl GearBook {
             force_evaluations: steps,
             first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
         };
-        Summary::new(
+        let mut summary = Summary::new(
             engine,
             name,
             settings,
@@ -342,7 +363,13 @@ impl GearBook {
             &self.stability,
             &self.extremes,
             energy,
-        )
+        );
+        summary.mechanisms = self
+            .applied
+            .evaluations()
+            .map(|(m, n)| (m.name().to_string(), n))
+            .collect();
+        summary
     }
 
     /// Writes the state at time `t` (s), the vehicle in state `v`, into `out` (a sample made for

@@ -4,10 +4,13 @@
 //! | module | content |
 //! |---|---|
 //! | [`strut`] | the strut laws at one state of a multibody gear (eqs. 49-63): explicit forces, the plateau and bearing-friction bounds, their work over a step, the explicit-step check |
+//! | [`applied`] | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
 //! | [`book`] | the gear bookkeeping: kinematics before and after a step, hysteresis committed once per step, contact work, energy ledger, stability criteria, extremes, summary and history samples |
 
+pub mod applied;
 pub mod book;
 pub mod strut;
 
+pub use applied::VehicleLoads;
 pub use book::{Fault, GearBook, PadContact, VehicleState};
 pub use strut::{check_explicit_timestep, strut_forces, StrutForces, StrutKinematics};

@@ -4,14 +4,15 @@
 //!
 //! Step:
 //! 1. read every gear's strokes and rates, evaluate the laws with the committed memories, apply
-//!    the explicit forces and set the motor and friction bounds (`struts`);
+//!    the explicit forces and set the motor and friction bounds (`struts`); apply the engine
+//!    and RCS loads, if the scene has them, to the vehicle;
 //! 2. let rapier step (contacts, joints, motors and dry friction are solved implicitly);
 //! 3. book the work of each law over the step (explicit forces and bounds × the stroke
 //!    increments), the work of the contact impulses, commit the honeycomb memories at the new
 //!    strokes, update the stability criteria and the extremes, and check for divergence.
 
 use crate::assembly::{
-    self, body_state, to_na, Assembly, BodyState, Inertia, LinkMasses, LOCK_FRICTION,
+    self, body_state, to_na, to_rapier, Assembly, BodyState, Inertia, LinkMasses, LOCK_FRICTION,
 };
 use crate::struts;
 use crate::RapierError;
@@ -92,6 +93,9 @@ impl RapierSimulation {
         sim.read_kinematics();
         sim.book.evaluate().map_err(|f| sim.diverged(f))?;
         let v = sim.vehicle_state();
+        sim.book
+            .evaluate_vehicle(sim.t, &v)
+            .map_err(|f| sim.diverged(f))?;
         let energy = sim.energy();
         sim.book.update_stability(sim.t, &v, None, &energy);
         Ok(sim)
@@ -267,21 +271,33 @@ impl Landing for RapierSimulation {
                 &self.book.forces[i],
             );
         }
+        if !self.book.applied.is_empty() {
+            // eqs. (72)-(74), (80)-(82): the engine and RCS loads, held over the step.
+            let a = &self.book.applied;
+            let rb = &mut self.assembly.world.bodies[self.assembly.vehicle];
+            rb.add_force(to_rapier(&a.force), true);
+            rb.add_torque(to_rapier(&a.torque), true);
+        }
         self.book.begin_step();
         for i in 0..self.book.legs.len() {
             self.pad_velocity[i] = self.contact_velocity(self.assembly.gears[i].footpad);
         }
-        let old_velocity = self.vehicle().linvel;
+        let before = self.vehicle_state();
         self.assembly.world.step();
         self.t += dt;
         self.steps += 1;
         self.read_kinematics();
+        let v = self.vehicle_state();
         self.book.book_struts();
         self.book_contacts();
+        self.book.book_vehicle(&before, &v, dt);
         self.book.evaluate().map_err(|f| self.diverged(f))?;
         let energy = self.energy();
         self.check_divergence(&energy)?;
-        let v = self.vehicle_state();
+        self.book
+            .evaluate_vehicle(self.t, &v)
+            .map_err(|f| self.diverged(f))?;
+        let old_velocity = before.velocity;
         self.book
             .update_stability(self.t, &v, Some(&old_velocity), &energy);
         self.book.update_extremes(self.t, &v);

@@ -198,19 +198,19 @@ impl Scenario {
     }
 
     /// Refuses `engine` unless the scenario lists it in `engines.applicable` and the engine
-    /// models every mechanism the scene declares ([`model::Mechanism::supported_by`]): every
+    /// models every mechanism the scene declares ([`model::Mechanism::unsupported_by`]): every
     /// engine calls this before it builds anything.
     pub fn require_engine(&self, engine: schema::Engine) -> Result<(), ScenarioError> {
-        if let Some(m) = self
+        if let Some((m, why)) = self
             .mechanisms()
             .into_iter()
-            .find(|m| !m.supported_by(engine))
+            .find_map(|m| m.unsupported_by(engine).map(|why| (m, why)))
         {
             return Err(ScenarioError::field(
                 self.file_of(m.field()),
                 m.field(),
                 format!(
-                    "the {engine} engine does not model {} (docs/engines.md lists what each engine supports); run this scene on the core",
+                    "the {engine} engine does not model {}: {why} (docs/engines.md lists what each engine supports); run this scene on the core",
                     m.name()
                 ),
             ));

@@ -373,15 +373,33 @@ impl Mechanism {
         }
     }
 
-    /// Whether `engine` models this mechanism. The core models them all; the multibody engines
-    /// take the trunnion springs through the shared strut laws and refuse the others for now
-    /// (docs/engines.md).
-    pub fn supported_by(self, engine: schema::Engine) -> bool {
-        match engine {
-            schema::Engine::Core => true,
-            schema::Engine::Rapier | schema::Engine::Mujoco => {
-                matches!(self, Mechanism::TrunnionSprings)
-            }
+    /// Why `engine` does not model this mechanism, or `None` if it does. The core models them
+    /// all; the multibody engines take the trunnion springs through the shared strut laws and
+    /// the engine and RCS as loads on the vehicle body (docs/engines.md).
+    pub fn unsupported_by(self, engine: schema::Engine) -> Option<&'static str> {
+        if engine == schema::Engine::Core {
+            return None;
+        }
+        match self {
+            Mechanism::TrunnionSprings
+            | Mechanism::Thrust
+            | Mechanism::NozzleCrushing
+            | Mechanism::Rcs => None,
+            Mechanism::Bending => Some(
+                "its primary strut is a rigid stroke joint; a beam-column would need a flexible link",
+            ),
+            Mechanism::Tripod => Some(
+                "its gear is built as the cantilever arrangement, the secondaries meeting the primary at point 1 above the footpad",
+            ),
+            Mechanism::Soil => Some(
+                "soil holds a resting footpad rigid-plastically (eq. 103), a load-limited constraint its contact solver cannot take from an applied force",
+            ),
+            Mechanism::Curbs => Some(
+                "its footpads are bodies in contact with a plane; the curbs' crush memory on the footpad's in-plane path (eqs. 86-95) is not wired to them",
+            ),
+            Mechanism::Slosh => Some(
+                "the slosh mass is a degree of freedom its exported body tree does not have",
+            ),
         }
     }
 

@@ -1,0 +1,118 @@
+//! The vehicle-level mechanisms a multibody engine applies to its vehicle body as an external
+//! force and torque: the descent engine with its nozzle (eqs. 69-74) and the RCS (eqs. 75-82),
+//! the same laws the core applies (`touchdown_laws::scene::Propulsion`). The loads are
+//! evaluated at the state before a step and held over it (the engines' user forces are
+//! explicit), their work is booked on the step's displacement and rotation, and the nozzle
+//! crush is committed at each state once the loads there are evaluated (as the core commits
+//! after evaluating its accepted state: the rim pushes with the crush of the state before).
+
+use crate::book::{Fault, VehicleState};
+use nalgebra::Vector3;
+use touchdown_laws::scene::{Attitude, Propulsion};
+use touchdown_scenario::model::Mechanism;
+use touchdown_scenario::{frames, Scenario, ScenarioError};
+
+/// The propulsion of a multibody landing and the loads it applies over the current step.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct VehicleLoads {
+    /// The scene's engine and RCS, with the committed nozzle crush.
+    pub propulsion: Propulsion,
+    /// Force on the vehicle's centre of mass over the current step, N, inertial axes.
+    pub force: Vector3<f64>,
+    /// Torque on the vehicle over the current step, N·m, inertial axes.
+    pub torque: Vector3<f64>,
+    /// Evaluations so far (one per step).
+    evaluations: u64,
+    /// The mechanisms evaluated with each evaluation (thrust, nozzle crushing, RCS), as
+    /// declared.
+    declared: Vec<Mechanism>,
+}
+
+impl VehicleLoads {
+    /// What `sc` declares of the engine and the RCS (nothing evaluated without them).
+    pub fn new(sc: &Scenario) -> Result<VehicleLoads, ScenarioError> {
+        let declared = sc
+            .mechanisms()
+            .into_iter()
+            .filter(|m| {
+                matches!(
+                    m,
+                    Mechanism::Thrust | Mechanism::NozzleCrushing | Mechanism::Rcs
+                )
+            })
+            .collect();
+        Ok(VehicleLoads {
+            propulsion: Propulsion::from_scenario(sc)?,
+            declared,
+            ..Default::default()
+        })
+    }
+
+    /// Whether the scene declares neither an engine nor an RCS.
+    pub fn is_empty(&self) -> bool {
+        self.propulsion.is_empty()
+    }
+
+    /// Evaluates the loads at time `t` (s) with the vehicle in state `v` and its first footpad
+    /// contact at `first_contact` (s), for the coming step, then commits the nozzle crush at
+    /// `v`; a non-finite load is a fault of the mechanism that produced it.
+    pub fn evaluate(
+        &mut self,
+        t: f64,
+        v: &VehicleState,
+        first_contact: Option<f64>,
+    ) -> Result<(), Fault> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        self.evaluations += 1;
+        let r = &v.rotation;
+        let omega = r.transpose() * v.angular_velocity;
+        let theta = frames::euler_from_t_bi(r);
+        let attitude = Attitude {
+            position: &v.position,
+            t_bi: r,
+            theta: &theta,
+            omega: &omega,
+        };
+        let body = self.propulsion.loads(t, || first_contact, &attitude);
+        self.propulsion.commit(&v.position, r);
+        self.force = r * body.force; // eqs. (74), (82)
+        self.torque = r * body.torque;
+        if (self.force.norm() + self.torque.norm()).is_finite() {
+            Ok(())
+        } else {
+            Err(Fault {
+                law: if self.propulsion.engine.is_some() {
+                    "thrust"
+                } else {
+                    "RCS"
+                },
+                leg: None,
+                message: format!(
+                    "non-finite applied load: force {:?} N, torque {:?} N·m",
+                    self.force, self.torque
+                ),
+            })
+        }
+    }
+
+    /// Work of the loads held over the step from `before` to `after` (`dt` s long) on the
+    /// vehicle, J: the force on the centre of mass's displacement, the torque on the mean
+    /// angular velocity.
+    pub fn step_work(&self, before: &VehicleState, after: &VehicleState, dt: f64) -> f64 {
+        if self.is_empty() {
+            return 0.0;
+        }
+        self.force.dot(&(after.position - before.position))
+            + self
+                .torque
+                .dot(&(0.5 * (before.angular_velocity + after.angular_velocity)))
+                * dt
+    }
+
+    /// Evaluations of each declared engine or RCS mechanism so far.
+    pub fn evaluations(&self) -> impl Iterator<Item = (Mechanism, u64)> + '_ {
+        self.declared.iter().map(|m| (*m, self.evaluations))
+    }
+}
