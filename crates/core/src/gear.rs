@@ -299,6 +299,19 @@ mod tests {
         bp + Vector3::new(-0.03, 0.04, 0.08)
     }
 
+    /// The forces `on_body` (trunnion point, force; body axes) balance −FP in force and its
+    /// moment BP × (−FP) about the origin (eq. 66), for the footpad force `fp` at `bp`.
+    fn assert_body_balances(
+        on_body: &[(Vector3<f64>, Vector3<f64>)],
+        bp: &Vector3<f64>,
+        fp: &Vector3<f64>,
+    ) {
+        let total: Vector3<f64> = on_body.iter().map(|(_, f)| *f).sum();
+        let moment: Vector3<f64> = on_body.iter().map(|(p, f)| p.cross(f)).sum();
+        assert!((total + fp).norm() < 1e-9 * fp.norm());
+        assert!((moment - bp.cross(&(-fp))).norm() < 1e-9 * fp.norm());
+    }
+
     /// Independent statics of the massless gear (review check_forces.py): the primary pinned
     /// at 2, secondaries two-force members, pad force FP; the forces at the trunnions on the
     /// body must balance −FP and their moments about the origin must equal BP × (−FP) (eq. 66).
@@ -322,11 +335,7 @@ mod tests {
         // Primary equilibrium: forces on it are −FP (pad), −(f3 + f4) (secondaries pull point 1
         // toward their trunnions when in tension) and R2 at point 2.
         let r2 = g.fp + f3 + f4; // force of the body on the primary at 2
-        let on_body = [(leg.b2, -r2), (leg.b3, f3), (leg.b4, f4)];
-        let total: Vector3<f64> = on_body.iter().map(|(_, f)| *f).sum();
-        let moment: Vector3<f64> = on_body.iter().map(|(p, f)| p.cross(f)).sum();
-        assert!((total + g.fp).norm() < 1e-9 * g.fp.norm());
-        assert!((moment - bp.cross(&(-g.fp))).norm() < 1e-9 * g.fp.norm());
+        assert_body_balances(&[(leg.b2, -r2), (leg.b3, f3), (leg.b4, f4)], &bp, &g.fp);
         // Moment balance of the primary about point 2 (the check that fails with printed eq. 54).
         let m2 = (bp - leg.b2).cross(&(-g.fp)) + (b1 - leg.b2).cross(&(-(f3 + f4)));
         assert!(
@@ -386,10 +395,7 @@ mod tests {
             (tripod.b3, u3 * f[0]),
             (tripod.b4, u4 * f[1]),
         ];
-        let total: Vector3<f64> = on_body.iter().map(|(_, f)| *f).sum();
-        let moment: Vector3<f64> = on_body.iter().map(|(p, f)| p.cross(f)).sum();
-        assert!((total + g.fp).norm() < 1e-9 * g.fp.norm());
-        assert!((moment - bp.cross(&(-g.fp))).norm() < 1e-9 * g.fp.norm());
+        assert_body_balances(&on_body, &bp, &g.fp);
     }
 
     /// Bending: the point-1 deflection is the beam-column's under FN and F2P, perpendicular to

@@ -159,14 +159,8 @@ impl Mechanisms {
         if p.is_empty() && self.slosh.is_none() {
             return None;
         }
-        if let Some(engine) = &p.engine {
-            self.evaluations.tick(Mechanism::Thrust);
-            if engine.nozzle.is_some() {
-                self.evaluations.tick(Mechanism::NozzleCrushing);
-            }
-        }
-        if p.rcs.is_some() {
-            self.evaluations.tick(Mechanism::Rcs);
+        for m in p.mechanisms() {
+            self.evaluations.tick(m);
         }
         let attitude = Attitude {
             position: &v.position,

@@ -174,7 +174,7 @@ pub fn normal_load(
 /// `S_eff = S_i1 + λ_i` (lagged η; review A8). Check: a lone strut in tension (FC > 0) pulls
 /// point 1 toward its trunnion, so FN̂·V̂i1 < 0 and λ_i < 0: bending acts as a softer spring in
 /// series, as eq. (48) intends. Eq. (47)'s δ_i = η·(FN̂·V̂i1) with the printed η ≤ 0 is −λ_i
-/// ([`secondary_shortening`]).
+/// (docs/errata.md).
 #[inline]
 pub fn secondary_lengthening(
     displacement: Vector3<f64>,
@@ -182,18 +182,6 @@ pub fn secondary_lengthening(
     u41: Vector3<f64>,
 ) -> [f64; 2] {
     [displacement.dot(&u31), displacement.dot(&u41)]
-}
-
-/// Eq. (47) δ_i = η·(FN̂·V̂i1) in the printed convention (η ≤ 0): the apparent **shortening** of
-/// secondaries 3 and 4, m, `δ_i = −λ_i` ([`secondary_lengthening`]); `S_eff = S_i1 − δ_i`.
-#[inline]
-pub fn secondary_shortening(
-    displacement: Vector3<f64>,
-    u31: Vector3<f64>,
-    u41: Vector3<f64>,
-) -> [f64; 2] {
-    let [l3, l4] = secondary_lengthening(displacement, u31, u41);
-    [-l3, -l4]
 }
 
 #[cfg(test)]
@@ -359,6 +347,11 @@ mod tests {
         assert!((l4 - eta / 2.04f64.sqrt()).abs() < 1e-15);
         // The loaded tensile strut is apparently shortened: series softening.
         assert!(l3 < 0.0 && (l3 + eta / 2f64.sqrt()).abs() < 1e-15);
-        assert_eq!(secondary_shortening(disp, u31, u41), [-l3, -l4]);
+        // Eq. (47) as printed, δ_i = η·(FN̂·V̂i1) with η ≤ 0, is the apparent shortening −λ_i.
+        let printed = [
+            -eta * fnv.normalize().dot(&u31),
+            -eta * fnv.normalize().dot(&u41),
+        ];
+        assert!((printed[0] + l3).abs() < 1e-15 && (printed[1] + l4).abs() < 1e-15);
     }
 }

@@ -145,11 +145,6 @@ impl FootpadCrush {
         self.table.commit(pstrk, memory)
     }
 
-    /// Permanent crushing of the pad normal to this curb, m.
-    pub fn permanent_set(&self, memory: CrushMemory) -> f64 {
-        self.table.permanent_set(memory)
-    }
-
     /// Recoverable elastic energy at `pstrk` (m), J.
     #[inline]
     pub fn stored_energy(&self, pstrk: f64, memory: CrushMemory) -> f64 {
@@ -245,7 +240,7 @@ mod tests {
         assert!((pad.force(x, mem) - f).abs() < 1e-3);
         // Unload: the pad rebounds along K_B; permanent set G = x_max − F/K_B = 0.018 m.
         run(0.0, kb, &mut pos, &mut mem);
-        let g = pad.permanent_set(mem);
+        let g = pad.table.permanent_set(mem);
         assert!((g - (f / k - f / kb)).abs() < 1e-8, "G = {g}");
         assert!(c.crush(td, pos, pr) <= g + 1e-9);
         assert!(!pad.in_contact(g - 1e-6, mem) && pad.force(g - 1e-6, mem) == 0.0);

@@ -31,10 +31,7 @@ pub mod soil;
 pub mod thrust;
 pub mod viscous;
 
-pub use beam::{
-    euler_load, normal_load, secondary_lengthening, secondary_shortening, Bending, Deflection,
-    EULER_CAP,
-};
+pub use beam::{euler_load, normal_load, secondary_lengthening, Bending, Deflection, EULER_CAP};
 pub use bearing::{side_load, Bearing, BearingLoads};
 pub use curb::{Curb, FootpadCrush};
 pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw};

@@ -97,16 +97,6 @@ impl Rcs {
         })
     }
 
-    /// Effective attitude gains k_i1 (zero in rate command), dimensionless.
-    pub fn attitude_gain(&self) -> Vector3<f64> {
-        self.k1
-    }
-
-    /// Effective commanded body rates Cω (zero in attitude hold), rad/s.
-    pub fn commanded_rates(&self) -> Vector3<f64> {
-        self.cmd_omega
-    }
-
     /// Switching errors (EX, EY, EZ), rad, for Euler angles `theta` (rad) and body rates
     /// `omega` (rad/s):
     /// - Eω = ω − Cω (eq. 75);
@@ -247,7 +237,7 @@ mod tests {
     fn attitude_hold_ignores_commanded_rates() {
         // params() gives Cω_x = 2°/s; attitude hold zeroes it, so ω = 0 gives no rate error.
         let rcs = Rcs::new(params(RcsMode::AttitudeHold)).unwrap();
-        assert_eq!(rcs.commanded_rates(), Vector3::zeros());
+        assert_eq!(rcs.cmd_omega, Vector3::zeros());
         assert_eq!(
             rcs.errors(&Vector3::zeros(), &Vector3::zeros()),
             Vector3::zeros()
@@ -257,7 +247,7 @@ mod tests {
     #[test]
     fn rate_command_ignores_attitude_errors() {
         let rcs = Rcs::new(params(RcsMode::RateCommand)).unwrap();
-        assert_eq!(rcs.attitude_gain(), Vector3::zeros(), "k11 = k21 = k31 = 0");
+        assert_eq!(rcs.k1, Vector3::zeros(), "k11 = k21 = k31 = 0");
         // A 20° attitude error and the commanded 2°/s roll rate: no error, no torque.
         let theta = Vector3::new(20.0 * DEG, -20.0 * DEG, 20.0 * DEG);
         let omega = Vector3::new(2.0 * DEG, 0.0, 0.0);

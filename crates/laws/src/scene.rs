@@ -6,6 +6,7 @@
 use crate::thrust::{engine_loads, nozzle_clearance, Amplification, EngineLoads, Nozzle, Tailoff};
 use crate::{LawError, Rcs, Slosh};
 use nalgebra::{Matrix3, Vector3};
+use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Height of the surface plane the nozzle meets, m: the nominal plane Z = 0 (the holes of the
@@ -149,6 +150,19 @@ impl Propulsion {
     /// Whether the scene declares neither an engine nor an RCS.
     pub fn is_empty(&self) -> bool {
         self.engine.is_none() && self.rcs.is_none()
+    }
+
+    /// The mechanisms each evaluation of [`Propulsion::loads`] evaluates: thrust, nozzle
+    /// crushing and the RCS, as declared.
+    pub fn mechanisms(&self) -> impl Iterator<Item = Mechanism> {
+        let nozzle = self.engine.is_some_and(|e| e.nozzle.is_some());
+        [
+            (Mechanism::Thrust, self.engine.is_some()),
+            (Mechanism::NozzleCrushing, nozzle),
+            (Mechanism::Rcs, self.rcs.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(m, declared)| declared.then_some(m))
     }
 
     /// Engine and RCS loads in body axes at simulation time `t` (s) with the vehicle at `a`;

@@ -144,7 +144,7 @@ impl Slosh {
         lateral_specific_force: &Vector2<f64>,
         axial: f64,
     ) -> Vector2<f64> {
-        -lateral_specific_force - q * (self.omega2 * axial) // eq. (109)
+        -lateral_specific_force - q * self.natural_frequency_squared(axial) // eq. (109)
     }
 
     /// Force of the sloshing propellant on the tank wall, i.e. on the rigid vehicle, N (body
@@ -171,7 +171,8 @@ impl Slosh {
     /// ½·M_s·ω²·Z̈_B,eff·|q|², for amplitude `q` (m), rate `q_dot` (m/s) and `axial` (m/s²).
     #[inline]
     pub fn energy(&self, q: &Vector2<f64>, q_dot: &Vector2<f64>, axial: f64) -> f64 {
-        0.5 * self.ms * (q_dot.norm_squared() + self.omega2 * axial * q.norm_squared())
+        0.5 * self.ms
+            * (q_dot.norm_squared() + self.natural_frequency_squared(axial) * q.norm_squared())
     }
 }
 

@@ -14,8 +14,6 @@
 //!   ([`Soil::advance_vertical`]), with friction-like stops at ṗ = 0.
 //! - eq. (104): FGRND = FDRAG + FDRAGP, both along −v̂: the caller adds the magnitudes.
 
-use nalgebra::Vector2;
-
 use crate::{non_negative, positive, LawError};
 use touchdown_scenario::model;
 
@@ -106,23 +104,6 @@ impl Soil {
                 + self.k.k6 * displacement.abs()
                 + self.k.k7 * depth.max(0.0)
                 + self.k.k8 * speed * speed)
-    }
-
-    /// Lateral drag vector FDRAG, N: [`Soil::lateral_drag`] along −v̂ for the in-plane pad
-    /// velocity `velocity` (m/s); zero when the pad is not moving (stick logic is the caller's).
-    #[inline]
-    pub fn drag_force(
-        &self,
-        depth: f64,
-        displacement: f64,
-        velocity: Vector2<f64>,
-    ) -> Vector2<f64> {
-        let speed = velocity.norm();
-        if speed > 0.0 {
-            -velocity * (self.lateral_drag(depth, displacement, speed) / speed)
-        } else {
-            Vector2::zeros()
-        }
     }
 
     /// One vertical step of a footpad in soil, eq. (103) with constant forces over the step.
@@ -325,12 +306,6 @@ mod tests {
         // Frontal area saturates at the pad height (0.05 m) and is 0 out of the soil.
         assert!((s.frontal_area(0.5) - 2.0 * 0.2 * 0.05).abs() < 1e-15);
         assert_eq!(s.frontal_area(-0.1), 0.0);
-        // The vector opposes the velocity.
-        let v = Vector2::new(0.9, -1.2);
-        let f = s.drag_force(0.03, 0.1, v);
-        assert!((f.norm() - s.lateral_drag(0.03, 0.1, 1.5)).abs() < 1e-9);
-        assert!((f.normalize() + v.normalize()).norm() < 1e-12);
-        assert_eq!(s.drag_force(0.03, 0.1, Vector2::zeros()), Vector2::zeros());
         assert!(Soil::new(
             constants([1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
             0.1,

@@ -102,11 +102,6 @@ impl Tailoff {
         Ok(curve)
     }
 
-    /// Constant thrust `f1` (N, ≥ 0) for all time: no tailoff.
-    pub fn constant(f1: f64) -> Result<Self, LawError> {
-        Tailoff::new(f1, f64::INFINITY, 0.0, None, &[])
-    }
-
     /// Eq. (70) before clamping, N, at τ = t_curve − t2 ≥ 0 s.
     #[inline]
     fn tail(&self, tau: f64) -> f64 {
@@ -255,18 +250,6 @@ impl Nozzle {
         })
     }
 
-    /// Nozzle clearance ZNOZ, m ([`nozzle_clearance`] of this nozzle's exit centroid).
-    #[inline]
-    pub fn clearance(
-        &self,
-        crush: f64,
-        position: &Vector3<f64>,
-        t_bi: &Matrix3<f64>,
-        surface_z: f64,
-    ) -> f64 {
-        nozzle_clearance(&self.exit_centroid, crush, position, t_bi, surface_z)
-    }
-
     /// The rim's contact with the surface plane Z = `surface_z` (m, inertial), sampled at
     /// [`RIM_SAMPLES`] equally spaced points, for stored crush `crush` (m), CM `position`
     /// (inertial, m) and body → inertial rotation `t_bi` (eq. 3). A point is in contact when its
@@ -370,7 +353,8 @@ mod tests {
         assert_eq!(t.thrust(0.0), F1, "eq. (69)");
         assert_eq!(t.thrust(0.5), F1, "eq. (69) up to and including t2");
         assert!(t.thrust(0.6) < F1, "tailing off after t2");
-        assert_eq!(Tailoff::constant(F1).unwrap().thrust(1e6), F1);
+        let constant = Tailoff::new(F1, f64::INFINITY, 0.0, None, &[]).unwrap();
+        assert_eq!(constant.thrust(1e6), F1, "no tailoff: constant thrust");
     }
 
     #[test]
@@ -440,7 +424,8 @@ mod tests {
         assert_eq!(c.fraction, 0.0);
         assert_eq!(c.penetration, 0.0);
         assert_eq!(n.force(&c), 0.0);
-        assert!((n.clearance(0.0, &pos, &Matrix3::identity(), 0.0) - 0.1).abs() < 1e-12);
+        let clearance = nozzle_clearance(&n.exit_centroid, 0.0, &pos, &Matrix3::identity(), 0.0);
+        assert!((clearance - 0.1).abs() < 1e-12);
     }
 
     #[test]

@@ -23,27 +23,13 @@ pub struct VehicleLoads {
     pub torque: Vector3<f64>,
     /// Evaluations so far (one per step).
     evaluations: u64,
-    /// The mechanisms evaluated with each evaluation (thrust, nozzle crushing, RCS), as
-    /// declared.
-    declared: Vec<Mechanism>,
 }
 
 impl VehicleLoads {
     /// What `sc` declares of the engine and the RCS (nothing evaluated without them).
     pub fn new(sc: &Scenario) -> Result<VehicleLoads, ScenarioError> {
-        let declared = sc
-            .mechanisms()
-            .into_iter()
-            .filter(|m| {
-                matches!(
-                    m,
-                    Mechanism::Thrust | Mechanism::NozzleCrushing | Mechanism::Rcs
-                )
-            })
-            .collect();
         Ok(VehicleLoads {
             propulsion: Propulsion::from_scenario(sc)?,
-            declared,
             ..Default::default()
         })
     }
@@ -53,14 +39,15 @@ impl VehicleLoads {
         self.propulsion.is_empty()
     }
 
-    /// Evaluates the loads at time `t` (s) with the vehicle in state `v` and its first footpad
-    /// contact at `first_contact` (s), for the coming step, then commits the nozzle crush at
-    /// `v`; a non-finite load is a fault of the mechanism that produced it.
+    /// Evaluates the loads at time `t` (s) with the vehicle in state `v`, `first_contact`
+    /// giving its first footpad contact (s; asked only by a translating RCS), for the coming
+    /// step, then commits the nozzle crush at `v`; a non-finite load is a fault of the
+    /// mechanism that produced it.
     pub fn evaluate(
         &mut self,
         t: f64,
         v: &VehicleState,
-        first_contact: Option<f64>,
+        first_contact: impl Fn() -> Option<f64>,
     ) -> Result<(), Fault> {
         if self.is_empty() {
             return Ok(());
@@ -75,7 +62,7 @@ impl VehicleLoads {
             theta: &theta,
             omega: &omega,
         };
-        let body = self.propulsion.loads(t, || first_contact, &attitude);
+        let body = self.propulsion.loads(t, first_contact, &attitude);
         self.propulsion.commit(&v.position, r);
         self.force = r * body.force; // eqs. (74), (82)
         self.torque = r * body.torque;
@@ -113,6 +100,6 @@ impl VehicleLoads {
 
     /// Evaluations of each declared engine or RCS mechanism so far.
     pub fn evaluations(&self) -> impl Iterator<Item = (Mechanism, u64)> + '_ {
-        self.declared.iter().map(|m| (*m, self.evaluations))
+        self.propulsion.mechanisms().map(|m| (m, self.evaluations))
     }
 }

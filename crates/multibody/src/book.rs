@@ -226,11 +226,13 @@ impl GearBook {
     /// Evaluates the engine and RCS loads at time `t` (s) with the vehicle in state `v`, for
     /// the coming step, and commits the nozzle crush there.
     pub fn evaluate_vehicle(&mut self, t: f64, v: &VehicleState) -> Result<(), Fault> {
-        let first_contact = self
-            .contacts
-            .iter()
-            .filter_map(|c| c.first_contact)
-            .reduce(f64::min);
+        let contacts = &self.contacts;
+        let first_contact = || {
+            contacts
+                .iter()
+                .filter_map(|c| c.first_contact)
+                .reduce(f64::min)
+        };
         self.applied.evaluate(t, v, first_contact)
     }
 
