@@ -12,7 +12,8 @@ model with the pinned `mujoco` package and steps it:
     mj_step1   positions, velocities, tendons and sensors of the state
     advance    (Rust) book the last step, commit the honeycombs, evaluate the laws, write
                ctrl and the stroke joint's dry friction (bearing friction + plateau),
-               and the engine and RCS loads on the vehicle (qfrc_applied)
+               and the engine and RCS loads on the vehicle (qfrc_applied),
+               the curbs' force on the footpads (xfrc_applied)
     mj_step2   forces, constraints, integration
 
 Options:
@@ -70,6 +71,7 @@ class MjPointers(ctypes.Structure):
         ("ctrl", ctypes.c_void_p),
         ("dof_frictionloss", ctypes.c_void_p),
         ("qfrc_applied", ctypes.c_void_p),
+        ("xfrc_applied", ctypes.c_void_p),
     ]
 
 
@@ -205,6 +207,7 @@ def main(argv):
             pointer(data.ctrl, f64),
             pointer(model.dof_frictionloss, f64),
             pointer(data.qfrc_applied, f64),
+            pointer(data.xfrc_applied, f64),
         )
         os.makedirs(args.out, exist_ok=True)
         history = os.path.join(args.out, "history.csv").encode() if args.history else None

@@ -5,9 +5,11 @@
 use nalgebra::Vector3;
 use std::path::Path;
 use touchdown_core::{Landing, Simulation};
+use touchdown_laws::scene::curbs_from_scenario;
+use touchdown_laws::{CrushMemory, Curbs};
 use touchdown_mujoco::Launch;
 use touchdown_rapier::RapierSimulation;
-use touchdown_record::{Sample, Summary};
+use touchdown_record::{History, Summary};
 use touchdown_scenario::model::{LoadStroke, Mechanism};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -227,19 +229,36 @@ fn a_footpad_on_soil_rests_where_bearing_equals_its_largest_load() {
     assert!(e.mechanisms_j > 0.0 && e.residual_j.abs() < 1e-3 * e.kinetic_initial_j);
 }
 
+/// The curb-slide scene with frictionless curbs, so that the curbs' work is the crushing's.
+const FRICTIONLESS_CURBS: &str = "[[surface.curbs]]\nleg = 1\ndistance = 0.277\nangle = 90.0\n\
+     [[surface.curbs]]\nleg = 2\ndistance = 0.277\nangle = 90.0\n\
+     [[surface.curbs]]\nleg = 3\ndistance = 0.277\nangle = 90.0\n\
+     [[surface.curbs]]\nleg = 4\ndistance = 0.277\nangle = 90.0\n";
+
+/// The work a footpad crushing table (one stage) takes from a footpad crushed to `x_max` (m)
+/// and backed off to `x_now` (m), with `memory` committed: the virgin curve's area to `x_max`
+/// less the elastic energy given back, J. Also checks the crush stays within the table.
+fn crush_work(sc: &Scenario, curbs: &Curbs, memory: &CrushMemory, x_now: f64, what: &str) -> f64 {
+    let table: &LoadStroke = sc.footpad.crush.as_ref().unwrap();
+    let (f, end) = table.stages[0];
+    let x_a = f / table.onset_rate;
+    let x_max = memory.max_stroke;
+    assert!(x_max > 0.0 && x_max < end, "{what}: crush {x_max} m");
+    let virgin = if x_max <= x_a {
+        0.5 * table.onset_rate * x_max * x_max
+    } else {
+        0.5 * f * x_a + f * (x_max - x_a)
+    };
+    virgin - (curbs.crush.stored_energy(x_max, *memory) - curbs.crush.stored_energy(x_now, *memory))
+}
+
 /// Footpads sliding into curbs (eqs. 86-95) crush as the footpad table says: the energy the run
 /// books for the curbs equals the table's crushing work at each curb's largest crush less the
 /// elastic energy it gave back, and no crush goes beyond the table.
 #[test]
 fn footpads_sliding_into_curbs_crush_as_their_table_says() {
-    let overrides: Vec<(String, f64)> = (0..4)
-        .map(|i| (format!("surface.curbs[{i}].friction"), 0.0))
-        .collect();
-    let refs: Vec<(&str, f64)> = overrides.iter().map(|(f, v)| (f.as_str(), *v)).collect();
-    let sc = load("curb-slide.toml", &refs);
-    let table: &LoadStroke = sc.footpad.crush.as_ref().unwrap();
-    let (f, end) = table.stages[0];
-    let x_a = f / table.onset_rate;
+    let sc = Scenario::load(variant("curb-slide.toml", "core-curbs", FRICTIONLESS_CURBS))
+        .unwrap_or_else(|e| panic!("{e}"));
     let sim = run(&sc);
     let curbs = sim.mechanisms().curbs.as_ref().unwrap();
     let mut expected = 0.0;
@@ -247,16 +266,7 @@ fn footpads_sliding_into_curbs_crush_as_their_table_says() {
         let pad = &sim.footpads()[*leg];
         let xy = nalgebra::Vector2::new(pad.position.x, pad.position.y);
         let x_now = curb.crush(pad.touchdown_xy, xy, sc.footpad.radius);
-        let x_max = memory.max_stroke;
-        assert!(x_max > 0.0 && x_max < end, "curb {n}: crush {x_max} m");
-        let virgin = if x_max <= x_a {
-            0.5 * table.onset_rate * x_max * x_max
-        } else {
-            0.5 * f * x_a + f * (x_max - x_a)
-        };
-        let given_back =
-            curbs.crush.stored_energy(x_max, *memory) - curbs.crush.stored_energy(x_now, *memory);
-        expected += virgin - given_back;
+        expected += crush_work(&sc, curbs, memory, x_now, &format!("curb {n}"));
     }
     // The footpad equations freeze the curb force over a step (eq. 97), so the booked work
     // lags the table's area by the force's change over a step on the stiff onset.
@@ -362,12 +372,11 @@ fn tripod_drop_is_symmetric_and_closes_its_energy_balance() {
 }
 
 /// The multibody engines refuse a mechanism they do not model, naming the scenario field and
-/// saying why; they accept the engine and the RCS.
+/// saying why; they accept the engine, the RCS and the curbs.
 #[test]
 fn multibody_engines_refuse_mechanisms_they_do_not_model() {
     for (name, field) in [
         ("soil-drop.toml", "surface.soil"),
-        ("curb-slide.toml", "surface.curbs"),
         ("slosh-drop.toml", "slosh"),
         ("bending-2-2-vv8.toml", "primary_strut.bending"),
         ("tripod-drop.toml", "gear.arrangement"),
@@ -386,6 +395,7 @@ fn multibody_engines_refuse_mechanisms_they_do_not_model() {
         "trunnion-springs.toml",
         "thrust-tailoff.toml",
         "rcs-attitude-hold.toml",
+        "curb-slide.toml",
     ] {
         let sc = load(name, &[]);
         for engine in Engine::ALL {
@@ -394,46 +404,71 @@ fn multibody_engines_refuse_mechanisms_they_do_not_model() {
     }
 }
 
-/// The end of a landing on a multibody engine: its summary and its last sample's body rates
-/// (rad/s, body axes).
-fn multibody_run(engine: Engine, path: &Path) -> (Summary, Vector3<f64>) {
+/// A landing's history, one row per step (`history.csv` as written).
+struct Rows {
+    header: Vec<String>,
+    rows: Vec<Vec<f64>>,
+}
+
+impl Rows {
+    fn read(path: &Path) -> Rows {
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{e}"));
+        let mut lines = text.lines();
+        let header = lines.next().unwrap().split(',').map(String::from).collect();
+        let rows = lines
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect();
+        Rows { header, rows }
+    }
+
+    /// The column `name` over the run.
+    fn column(&self, name: &str) -> Vec<f64> {
+        let k = self.header.iter().position(|h| h == name).unwrap();
+        self.rows.iter().map(|r| r[k]).collect()
+    }
+
+    /// The body rates at the end, rad/s, body axes.
+    fn final_omega(&self) -> Vector3<f64> {
+        let last = |name: &str| *self.column(name).last().unwrap();
+        Vector3::new(
+            last("omega_x_rad_s"),
+            last("omega_y_rad_s"),
+            last("omega_z_rad_s"),
+        )
+    }
+}
+
+/// A landing on a multibody engine: its summary and its history.
+fn multibody_run(engine: Engine, path: &Path) -> (Summary, Rows) {
     let sc = Scenario::load(path).unwrap_or_else(|e| panic!("{e}"));
-    match engine {
+    let out = path.with_extension(engine.to_string());
+    let summary = match engine {
         Engine::Rapier => {
             let mut sim = RapierSimulation::new(&sc).unwrap_or_else(|e| panic!("{e}"));
-            while !sim.finished() {
+            std::fs::create_dir_all(&out).unwrap();
+            let mut h = History::create(&out.join("history.csv"), sc.legs.len()).unwrap();
+            loop {
+                sim.sample(h.sample_mut());
+                h.write();
+                if sim.finished() {
+                    break;
+                }
                 sim.step().unwrap_or_else(|e| panic!("{e}"));
             }
-            let mut last = Sample::new(sc.legs.len());
-            sim.sample(&mut last);
-            (sim.summary(), last.omega)
+            h.finish().unwrap();
+            sim.summary()
         }
         Engine::Mujoco => {
-            let out = path.with_extension("mujoco");
             let launch = Launch::locate().unwrap_or_else(|e| panic!("{e}"));
-            let summary = launch
+            launch
                 .run(path, &out, true)
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
-            let mut lines = history.lines();
-            let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-            let row: Vec<f64> = lines
-                .last()
-                .unwrap()
-                .split(',')
-                .map(|x| x.parse().unwrap())
-                .collect();
-            let column = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
-            let omega = Vector3::new(
-                column("omega_x_rad_s"),
-                column("omega_y_rad_s"),
-                column("omega_z_rad_s"),
-            );
-            let _ = std::fs::remove_dir_all(&out);
-            (summary, omega)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
         }
         Engine::Core => unreachable!("the core is checked by the tests above"),
-    }
+    };
+    let rows = Rows::read(&out.join("history.csv"));
+    let _ = std::fs::remove_dir_all(&out);
+    (summary, rows)
 }
 
 /// The multibody engines apply the descent engine's thrust through the shared law: thrust equal
@@ -510,7 +545,8 @@ fn rcs_stops_the_multibody_engines_at_their_deadband_edge() {
     );
     let edge = 2.0f64.to_radians() / 0.5;
     for engine in [Engine::Rapier, Engine::Mujoco] {
-        let (s, omega) = multibody_run(engine, &path);
+        let (s, rows) = multibody_run(engine, &path);
+        let omega = rows.final_omega();
         assert!(s.t_end_s > 0.199, "{engine}: ended at {} s", s.t_end_s);
         assert!(
             omega.z <= edge && omega.z > 0.9 * edge,
@@ -530,6 +566,52 @@ fn rcs_stops_the_multibody_engines_at_their_deadband_edge() {
             "{engine}: residual {:e} J of {:e} J",
             s.energy.residual_j,
             s.energy.kinetic_initial_j
+        );
+    }
+}
+
+/// The multibody engines apply the curbs through the shared law, as a force on each footpad
+/// body: frictionless footpads sliding into curbs crush as the table says (the booked work equals
+/// the table's crushing work at the largest crush, read from the footpad path, less the elastic
+/// energy given back), the crush stays within the table, and the energy balance closes.
+#[test]
+fn footpads_crush_against_curbs_as_their_table_says_on_the_multibody_engines() {
+    let path = variant("curb-slide.toml", "multibody-curbs", FRICTIONLESS_CURBS);
+    let sc = Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    for engine in [Engine::Rapier, Engine::Mujoco] {
+        let (s, rows) = multibody_run(engine, &path);
+        let mut curbs = curbs_from_scenario(&sc).unwrap().unwrap();
+        let mut expected = 0.0;
+        for (n, (leg, curb)) in curbs.list.clone().into_iter().enumerate() {
+            let column = |what: &str| rows.column(&format!("leg{}_{what}", leg + 1));
+            let (x, y, contact) = (column("pad_x_m"), column("pad_y_m"), column("contact"));
+            // The footpad's path from its first contact, as the engine commits it.
+            let first = contact.iter().position(|c| *c != 0.0).unwrap();
+            let xy = |k: usize| nalgebra::Vector2::new(x[k], y[k]);
+            let mut memory = CrushMemory::default();
+            for k in first..x.len() {
+                curbs
+                    .crush
+                    .commit(curb.crush(xy(first), xy(k), sc.footpad.radius), &mut memory);
+            }
+            let x_now = curb.crush(xy(first), xy(x.len() - 1), sc.footpad.radius);
+            curbs.memory[n] = memory;
+            expected += crush_work(&sc, &curbs, &memory, x_now, &format!("{engine}, curb {n}"));
+        }
+        let e = &s.energy;
+        assert!(
+            (e.mechanisms_j / expected - 1.0).abs() < 0.03,
+            "{engine}: booked {} J vs table {expected} J",
+            e.mechanisms_j
+        );
+        assert!(
+            e.residual_j.abs() < 2e-3 * e.kinetic_initial_j,
+            "{engine}: {e:?}"
+        );
+        let n = s.mechanisms.get("curbs").copied().unwrap_or(0);
+        assert!(
+            (s.steps..=s.steps + 1).contains(&n),
+            "{engine}: {n} evaluations"
         );
     }
 }

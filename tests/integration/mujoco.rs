@@ -271,6 +271,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
     let mut ctrl = vec![0.0; 3 * n];
     let mut friction = vec![0.0; sizes.nv as usize];
     let mut applied = vec![0.0; sizes.nv as usize];
+    let mut body_applied = vec![0.0; 6 * sizes.nbody as usize];
     let mut arrays = MjArrays {
         qpos: &qpos,
         qvel: &qvel,
@@ -284,6 +285,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
         ctrl: &mut ctrl,
         dof_frictionloss: &mut friction,
         qfrc_applied: &mut applied,
+        xfrc_applied: &mut body_applied,
     };
     match landing.advance(&mut arrays) {
         Err(MujocoError::Diverged(d)) => {

@@ -9,56 +9,9 @@ use crate::simulation::VehicleState;
 use nalgebra::{Vector2, Vector3};
 use std::cell::Cell;
 use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion};
-use touchdown_laws::{Bending, CrushMemory, Curb, FootpadCrush, Slosh, Soil};
+use touchdown_laws::{Bending, Curbs, Slosh, Soil};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{Scenario, ScenarioError};
-
-/// The curbs of a scene: each (leg, curb) with its crush memory, and the footpad crushing
-/// diagram (fig. 18) they share.
-#[derive(Debug, Clone)]
-pub struct Curbs {
-    /// (leg index, curb), at most two per leg.
-    pub list: Vec<(usize, Curb)>,
-    /// Footpad crushing diagram with memory.
-    pub crush: FootpadCrush,
-    /// Committed crush memory per curb (review A14).
-    pub memory: Vec<CrushMemory>,
-}
-
-impl Curbs {
-    /// In-plane force of leg `leg`'s curbs on its footpad, N, with the footpad at `pad_xy`
-    /// (m) moving at `velocity` (m/s), its first contact at `touchdown_xy` (m), radius `radius`
-    /// (m): eqs. (91)-(95) per curb, summed over the footpad's curbs (eq. 96 corrected).
-    pub fn force(
-        &self,
-        leg: usize,
-        touchdown_xy: Vector2<f64>,
-        pad_xy: Vector2<f64>,
-        velocity: Vector2<f64>,
-        radius: f64,
-    ) -> Vector2<f64> {
-        let mut f = Vector2::zeros();
-        for ((l, curb), m) in self.list.iter().zip(&self.memory) {
-            if *l == leg {
-                let pstrk = curb.crush(touchdown_xy, pad_xy, radius); // eq. (93)
-                let pfrc = self.crush.force(pstrk, *m); // fig. 18 with memory
-                if pfrc > 0.0 {
-                    f += curb.force(pfrc, velocity); // eqs. (94)-(95)
-                }
-            }
-        }
-        f
-    }
-
-    /// Commits the crush of leg `leg`'s curbs with the footpad at `pad_xy` (accepted state).
-    pub fn commit(&mut self, leg: usize, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>, r: f64) {
-        for ((l, curb), m) in self.list.iter().zip(&mut self.memory) {
-            if *l == leg {
-                self.crush.commit(curb.crush(touchdown_xy, pad_xy, r), m);
-            }
-        }
-    }
-}
 
 /// Evaluation counts per mechanism.
 #[derive(Debug, Clone, Default)]
@@ -105,16 +58,11 @@ impl Mechanisms {
     /// from the total vehicle before `s` was re-referenced to the rigid one
     /// (`touchdown_laws::scene::rigid_vehicle`).
     pub fn new(s: &Scenario, slosh: Option<Slosh>) -> Result<Mechanisms, ScenarioError> {
-        let curbs = scene::curbs_from_scenario(s)?.map(|(list, crush)| Curbs {
-            memory: vec![CrushMemory::default(); list.len()],
-            list,
-            crush,
-        });
         Ok(Mechanisms {
             propulsion: Propulsion::from_scenario(s)?,
             slosh,
             soil: scene::soil_from_scenario(s)?,
-            curbs,
+            curbs: scene::curbs_from_scenario(s)?,
             bending: scene::bending_from_scenario(s)?,
             slosh_specific_force: Vector3::new(0.0, 0.0, s.vehicle.gravity),
             declared: s.mechanisms(),

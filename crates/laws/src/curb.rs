@@ -156,6 +156,53 @@ impl FootpadCrush {
     }
 }
 
+/// The curbs of a scene: each (leg, curb) with its crush memory, and the footpad crushing
+/// diagram (fig. 18) they share.
+#[derive(Debug, Clone)]
+pub struct Curbs {
+    /// (leg index, curb), at most two per leg.
+    pub list: Vec<(usize, Curb)>,
+    /// Footpad crushing diagram with memory.
+    pub crush: FootpadCrush,
+    /// Committed crush memory per curb (review A14).
+    pub memory: Vec<CrushMemory>,
+}
+
+impl Curbs {
+    /// In-plane force of leg `leg`'s curbs on its footpad, N, with the footpad at `pad_xy`
+    /// (m) moving at `velocity` (m/s), its first contact at `touchdown_xy` (m), radius `radius`
+    /// (m): eqs. (91)-(95) per curb, summed over the footpad's curbs (eq. 96 corrected).
+    pub fn force(
+        &self,
+        leg: usize,
+        touchdown_xy: Vector2<f64>,
+        pad_xy: Vector2<f64>,
+        velocity: Vector2<f64>,
+        radius: f64,
+    ) -> Vector2<f64> {
+        let mut f = Vector2::zeros();
+        for ((l, curb), m) in self.list.iter().zip(&self.memory) {
+            if *l == leg {
+                let pstrk = curb.crush(touchdown_xy, pad_xy, radius); // eq. (93)
+                let pfrc = self.crush.force(pstrk, *m); // fig. 18 with memory
+                if pfrc > 0.0 {
+                    f += curb.force(pfrc, velocity); // eqs. (94)-(95)
+                }
+            }
+        }
+        f
+    }
+
+    /// Commits the crush of leg `leg`'s curbs with the footpad at `pad_xy` (accepted state).
+    pub fn commit(&mut self, leg: usize, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>, r: f64) {
+        for ((l, curb), m) in self.list.iter().zip(&mut self.memory) {
+            if *l == leg {
+                self.crush.commit(curb.crush(touchdown_xy, pad_xy, r), m);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

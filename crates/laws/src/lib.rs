@@ -33,7 +33,7 @@ pub mod viscous;
 
 pub use beam::{euler_load, normal_load, secondary_lengthening, Bending, Deflection, EULER_CAP};
 pub use bearing::{side_load, Bearing, BearingLoads};
-pub use curb::{Curb, FootpadCrush};
+pub use curb::{Curb, Curbs, FootpadCrush};
 pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw};
 pub use honeycomb::{
     CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,

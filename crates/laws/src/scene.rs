@@ -265,12 +265,8 @@ pub fn soil_from_scenario(s: &Scenario) -> Result<Option<crate::Soil>, ScenarioE
         .map_err(field(s, "surface.soil"))
 }
 
-/// A scene's curbs: (leg index, curb) in the scenario's order, and the footpad crushing
-/// diagram (fig. 18) they share.
-pub type SceneCurbs = (Vec<(usize, crate::Curb)>, crate::FootpadCrush);
-
 /// The scene's curbs (eqs. 86-95); `None` when the scene has no curbs.
-pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<SceneCurbs>, ScenarioError> {
+pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<crate::Curbs>, ScenarioError> {
     let Some(table) = &s.footpad.crush else {
         return Ok(None);
     };
@@ -284,7 +280,11 @@ pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<SceneCurbs>, ScenarioE
             .map_err(field(s, &format!("surface.curbs[{i}]")))?;
         curbs.push((c.leg, curb));
     }
-    Ok(Some((curbs, crush)))
+    Ok(Some(crate::Curbs {
+        memory: vec![crate::CrushMemory::default(); curbs.len()],
+        list: curbs,
+        crush,
+    }))
 }
 
 /// The scene's primary-strut bending law (eqs. 40-48), if it declares one. The coupling is

@@ -49,6 +49,8 @@ pub struct MjPointers {
     pub dof_frictionloss: *mut f64,
     /// `data.qfrc_applied`.
     pub qfrc_applied: *mut f64,
+    /// `data.xfrc_applied`.
+    pub xfrc_applied: *mut f64,
 }
 
 /// A runner's state behind the C ABI.
@@ -105,6 +107,7 @@ impl Runner {
                 ctrl: std::slice::from_raw_parts_mut(p.ctrl, n(s.nu)),
                 dof_frictionloss: std::slice::from_raw_parts_mut(p.dof_frictionloss, n(s.nv)),
                 qfrc_applied: std::slice::from_raw_parts_mut(p.qfrc_applied, n(s.nv)),
+                xfrc_applied: std::slice::from_raw_parts_mut(p.xfrc_applied, 6 * n(s.nbody)),
             }
         };
         Ok(i32::from(landing.advance(&mut arrays)?))

@@ -11,7 +11,8 @@
 //! 3. evaluate the laws at state n with the committed memories, check for divergence, update the
 //!    stability criteria, the extremes and the history;
 //! 4. unless the run has ended, write the forces for the step n → n+1: the engine and RCS loads
-//!    on the vehicle (`qfrc_applied`, if the scene has them), the explicit primary
+//!    on the vehicle (`qfrc_applied`, if the scene has them), the curbs' force on the footpads
+//!    (`xfrc_applied`, if the scene has curbs), the explicit primary
 //!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
 //!    joint's dry friction `frictionloss`: the bearing bound plus, while the honeycomb crushes
 //!    on a plateau, the crush load (a bound that stops the stroke but never drives it; it is
@@ -117,6 +118,9 @@ pub struct MjArrays<'a> {
     /// `qfrc_applied` (nv), written: the engine and RCS loads on the vehicle's free joint
     /// (force N, world axes; torque N·m, body axes); the gear's entries stay 0.
     pub qfrc_applied: &'a mut [f64],
+    /// `xfrc_applied` (nbody × 6), written: the curbs' force on each footpad body at its centre
+    /// of mass BP (force N, then torque N·m, world axes); the other bodies' entries stay 0.
+    pub xfrc_applied: &'a mut [f64],
 }
 
 /// A landing driven on MuJoCo's arrays (see the module documentation).
@@ -145,6 +149,8 @@ pub struct MujocoLanding {
     /// Footpad contact-point velocities at this state and before the last step, m/s.
     pad_velocity: Vec<Vector3<f64>>,
     old_pad_velocity: Vec<Vector3<f64>>,
+    /// Footpad velocities at BP at this state, m/s.
+    footpad_velocity: Vec<Vector3<f64>>,
     /// Vehicle position at touchdown, m.
     position0: Vector3<f64>,
     /// Kinetic plus potential energy of the gear links (MuJoCo's total minus the vehicle's), J.
@@ -238,6 +244,7 @@ impl MujocoLanding {
             old_velocity: Vector3::zeros(),
             pad_velocity: vec![Vector3::zeros(); n],
             old_pad_velocity: vec![Vector3::zeros(); n],
+            footpad_velocity: vec![Vector3::zeros(); n],
             position0: Vector3::zeros(),
             gear_energy: 0.0,
             gear_energy0: 0.0,
@@ -273,7 +280,7 @@ impl MujocoLanding {
             self.steps += 1;
             self.book.book_struts();
             self.book_contacts(mj);
-            self.book.book_vehicle(&before, &self.vehicle, self.dt);
+            self.book.book_applied(&before, &self.vehicle, self.dt);
         } else {
             self.started = true;
             self.position0 = self.vehicle.position;
@@ -296,8 +303,9 @@ impl MujocoLanding {
         if self.finished() {
             return Ok(true);
         }
+        let pads = &self.footpad_velocity;
         self.book
-            .evaluate_vehicle(self.t, &self.vehicle)
+            .evaluate_applied(self.t, &self.vehicle, |i| pads[i])
             .map_err(|f| self.diverged(f))?;
         self.apply(mj);
         Ok(false)
@@ -359,7 +367,8 @@ impl MujocoLanding {
             self.book.kin[i] = k;
             // The contact point: the bottom of the footpad's contact sphere.
             let r = Vector3::new(0.0, 0.0, -self.contact_radius[i]);
-            self.pad_velocity[i] = sensor(g.pad_velocity) + sensor(g.pad_rate).cross(&r);
+            self.footpad_velocity[i] = sensor(g.pad_velocity);
+            self.pad_velocity[i] = self.footpad_velocity[i] + sensor(g.pad_rate).cross(&r);
         }
         let total = mj.energy[0] + mj.energy[1];
         self.gear_energy = total - self.kinetic_energy()
@@ -406,6 +415,13 @@ impl MujocoLanding {
             let torque = self.vehicle.rotation.transpose() * a.torque;
             mj.qfrc_applied[..3].copy_from_slice(a.force.as_slice());
             mj.qfrc_applied[3..6].copy_from_slice(torque.as_slice());
+        }
+        if self.book.curbs.is_some() {
+            // eqs. (94)-(95): the curbs' force on each footpad body, at BP (its centre of mass).
+            for (g, f) in self.index.iter().zip(&self.book.curb_forces) {
+                let k = 6 * g.footpad as usize;
+                mj.xfrc_applied[k..k + 3].copy_from_slice(f.as_slice());
+            }
         }
     }
 

@@ -1,22 +1,27 @@
 //! The gear bookkeeping a multibody engine keeps around its own stepping, the same for every
 //! multibody engine: each gear's kinematics before and after a step, the laws' forces, the
 //! honeycomb memories (committed once per step), the footpads' contact states, the energy
-//! ledger, the stability criteria, the extremes, and what the summary and the history report.
+//! ledger, the stability criteria, the extremes, and what the summary and the history report;
+//! and the loads applied to its bodies: the engine and RCS on the vehicle, the curbs on the
+//! footpads (eqs. 86-95, the crush memory committed once per step).
 //!
-//! A step of an engine, with `book: GearBook`: apply `book.forces` to its joints (its own
-//! way); [`GearBook::begin_step`]; step; read the new kinematics into `book.kin`;
-//! [`GearBook::book_struts`]; [`GearBook::book_contact`] per footpad; [`GearBook::evaluate`];
-//! [`GearBook::check`]; [`GearBook::update_stability`]; [`GearBook::update_extremes`].
+//! A step of an engine, with `book: GearBook`: apply `book.forces` to its joints,
+//! `book.applied` to its vehicle and `book.curb_forces` to its footpads (its own way);
+//! [`GearBook::begin_step`]; step; read the new kinematics into `book.kin`;
+//! [`GearBook::book_struts`]; [`GearBook::book_contact`] per footpad;
+//! [`GearBook::book_applied`]; [`GearBook::evaluate`]; [`GearBook::check`];
+//! [`GearBook::evaluate_applied`]; [`GearBook::update_stability`];
+//! [`GearBook::update_extremes`].
 
 use crate::applied::VehicleLoads;
 use crate::strut::{strut_forces, StrutForces, StrutKinematics};
-use nalgebra::{Matrix3, Vector3};
-use touchdown_laws::{GearLaws, GearMemory};
+use nalgebra::{Matrix3, Vector2, Vector3};
+use touchdown_laws::{Curbs, GearLaws, GearMemory};
 use touchdown_record::{
     Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
     Summary,
 };
-use touchdown_scenario::model::{Leg, PadSurface, Stability};
+use touchdown_scenario::model::{Leg, Mechanism, PadSurface, Stability};
 use touchdown_scenario::{frames, Scenario, ScenarioError};
 
 /// Contact state of one footpad.
@@ -108,6 +113,10 @@ pub struct GearBook {
     pub contacts: Vec<PadContact>,
     /// The engine and RCS loads on the vehicle (nothing without them).
     pub applied: VehicleLoads,
+    /// The curbs with their footpad crushing and its committed memory (nothing without them).
+    pub curbs: Option<Curbs>,
+    /// The curbs' force on each footpad over the current step, N, inertial axes (z = 0).
+    pub curb_forces: Vec<Vector3<f64>>,
     /// Work exchanged with each mechanism.
     pub ledger: EnergyLedger,
     /// Deepest footpad penetration into its plane so far, m.
@@ -119,6 +128,11 @@ pub struct GearBook {
     criteria: Stability,
     gravity: Vector3<f64>,
     pad_views: Vec<PadView>,
+    /// Each footpad's first contact point (XPI, YPI), m (eq. 86).
+    touchdown_xy: Vec<Vector2<f64>>,
+    /// Undeformed footpad radius PR, m (eq. 93).
+    pad_radius: f64,
+    curb_evaluations: u64,
 }
 
 impl GearBook {
@@ -136,6 +150,8 @@ impl GearBook {
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
             applied: VehicleLoads::new(sc)?,
+            curbs: touchdown_laws::scene::curbs_from_scenario(sc)?,
+            curb_forces: vec![Vector3::zeros(); n],
             ledger: EnergyLedger::default(),
             max_penetration: 0.0,
             stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
@@ -143,6 +159,9 @@ impl GearBook {
             criteria: sc.stability.clone(),
             gravity,
             pad_views: vec![PadView::default(); n],
+            touchdown_xy: vec![Vector2::zeros(); n],
+            pad_radius: sc.footpad.radius,
+            curb_evaluations: 0,
         })
     }
 
@@ -207,6 +226,7 @@ impl GearBook {
         c.in_contact = touching && impulse.z > 0.0;
         if c.in_contact && c.first_contact.is_none() {
             c.first_contact = Some(t);
+            self.touchdown_xy[i] = self.kin[i].footpad.xy();
         }
     }
 
@@ -223,9 +243,18 @@ impl GearBook {
         Ok(())
     }
 
-    /// Evaluates the engine and RCS loads at time `t` (s) with the vehicle in state `v`, for
-    /// the coming step, and commits the nozzle crush there.
-    pub fn evaluate_vehicle(&mut self, t: f64, v: &VehicleState) -> Result<(), Fault> {
+    /// Evaluates the loads applied over the coming step at time `t` (s) with the vehicle in
+    /// state `v`: the engine and RCS loads on the vehicle, committing the nozzle crush there,
+    /// and the curbs' force on each footpad that has touched down (eqs. 91-95, the footpad's
+    /// velocity at BP `pad_velocity(i)`, m/s, inertial), committing the footpad crush there.
+    /// Each is evaluated with the memory of the state before and committed after, as the core
+    /// does at an accepted state.
+    pub fn evaluate_applied(
+        &mut self,
+        t: f64,
+        v: &VehicleState,
+        pad_velocity: impl Fn(usize) -> Vector3<f64>,
+    ) -> Result<(), Fault> {
         let contacts = &self.contacts;
         let first_contact = || {
             contacts
@@ -233,13 +262,46 @@ impl GearBook {
                 .filter_map(|c| c.first_contact)
                 .reduce(f64::min)
         };
-        self.applied.evaluate(t, v, first_contact)
+        self.applied.evaluate(t, v, first_contact)?;
+        let Some(curbs) = &mut self.curbs else {
+            return Ok(());
+        };
+        self.curb_evaluations += 1;
+        for (i, f) in self.curb_forces.iter_mut().enumerate() {
+            *f = Vector3::zeros();
+            // The curbs stand from the surface up (their height is not modelled): they act on
+            // a footpad from its first contact on, bearing or not. (The core applies them in
+            // the footpad's sliding equations, eq. 97, while it bears.)
+            if self.contacts[i].first_contact.is_none() {
+                continue;
+            }
+            let (td, xy) = (self.touchdown_xy[i], self.kin[i].footpad.xy());
+            let on_pad = curbs.force(i, td, xy, pad_velocity(i).xy(), self.pad_radius);
+            curbs.commit(i, td, xy, self.pad_radius);
+            if !on_pad.norm().is_finite() {
+                return Err(Fault {
+                    law: "curbs",
+                    leg: Some(i),
+                    message: format!("non-finite curb force {on_pad:?} N"),
+                });
+            }
+            *f = Vector3::new(on_pad.x, on_pad.y, 0.0);
+        }
+        Ok(())
     }
 
-    /// Books the work of the engine and RCS loads over the step from `before` to `after`
-    /// (`dt` s long) into the mechanisms account (done on the vehicle, so it counts negative).
-    pub fn book_vehicle(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
+    /// Books the work of the applied loads over the step from `before` to `after` (`dt` s long)
+    /// into the mechanisms account (done on the vehicle and the footpads, so it counts
+    /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements.
+    pub fn book_applied(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
         self.ledger.mechanisms -= self.applied.step_work(before, after, dt);
+        if self.curbs.is_some() {
+            let steps = self.previous.iter().zip(&self.kin).zip(&self.curb_forces);
+            let work: f64 = steps
+                .map(|((a, b), f)| f.dot(&(b.footpad - a.footpad)))
+                .sum();
+            self.ledger.mechanisms -= work;
+        }
     }
 
     /// The divergence checks after a step: the first non-finite force or gear geometry, a
@@ -366,9 +428,14 @@ impl GearBook {
             &self.extremes,
             energy,
         );
+        let curbs = self
+            .curbs
+            .is_some()
+            .then_some((Mechanism::Curbs, self.curb_evaluations));
         summary.mechanisms = self
             .applied
             .evaluations()
+            .chain(curbs)
             .map(|(m, n)| (m.name().to_string(), n))
             .collect();
         summary

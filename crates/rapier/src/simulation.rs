@@ -93,9 +93,7 @@ impl RapierSimulation {
         sim.read_kinematics();
         sim.book.evaluate().map_err(|f| sim.diverged(f))?;
         let v = sim.vehicle_state();
-        sim.book
-            .evaluate_vehicle(sim.t, &v)
-            .map_err(|f| sim.diverged(f))?;
+        sim.evaluate_applied(&v)?;
         let energy = sim.energy();
         sim.book.update_stability(sim.t, &v, None, &energy);
         Ok(sim)
@@ -228,6 +226,16 @@ impl RapierSimulation {
         }
     }
 
+    /// Evaluates the engine, RCS and curb loads for the coming step at the current state, the
+    /// vehicle in state `v`.
+    fn evaluate_applied(&mut self, v: &VehicleState) -> Result<(), RapierError> {
+        let (world, gears) = (&self.assembly.world, &self.assembly.gears);
+        let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
+        self.book
+            .evaluate_applied(self.t, v, pad_velocity)
+            .map_err(|f| self.diverged(f))
+    }
+
     fn diverged(&self, fault: Fault) -> RapierError {
         RapierError::Diverged(fault.at(self.t, &self.vehicle_state()))
     }
@@ -278,6 +286,13 @@ impl Landing for RapierSimulation {
             rb.add_force(to_rapier(&a.force), true);
             rb.add_torque(to_rapier(&a.torque), true);
         }
+        if self.book.curbs.is_some() {
+            // eqs. (94)-(95): the curbs' force on each footpad (at BP, its centre of mass).
+            for (g, f) in self.assembly.gears.iter().zip(&self.book.curb_forces) {
+                let rb = &mut self.assembly.world.bodies[g.footpad];
+                rb.add_force(to_rapier(f), true);
+            }
+        }
         self.book.begin_step();
         for i in 0..self.book.legs.len() {
             self.pad_velocity[i] = self.contact_velocity(self.assembly.gears[i].footpad);
@@ -290,13 +305,11 @@ impl Landing for RapierSimulation {
         let v = self.vehicle_state();
         self.book.book_struts();
         self.book_contacts();
-        self.book.book_vehicle(&before, &v, dt);
+        self.book.book_applied(&before, &v, dt);
         self.book.evaluate().map_err(|f| self.diverged(f))?;
         let energy = self.energy();
         self.check_divergence(&energy)?;
-        self.book
-            .evaluate_vehicle(self.t, &v)
-            .map_err(|f| self.diverged(f))?;
+        self.evaluate_applied(&v)?;
         let old_velocity = before.velocity;
         self.book
             .update_stability(self.t, &v, Some(&old_velocity), &energy);

@@ -384,7 +384,8 @@ impl Mechanism {
             Mechanism::TrunnionSprings
             | Mechanism::Thrust
             | Mechanism::NozzleCrushing
-            | Mechanism::Rcs => None,
+            | Mechanism::Rcs
+            | Mechanism::Curbs => None,
             Mechanism::Bending => Some(
                 "its primary strut is a rigid stroke joint; a beam-column would need a flexible link",
             ),
@@ -393,9 +394,6 @@ impl Mechanism {
             ),
             Mechanism::Soil => Some(
                 "soil holds a resting footpad rigid-plastically (eq. 103), a load-limited constraint its contact solver cannot take from an applied force",
-            ),
-            Mechanism::Curbs => Some(
-                "its footpads are bodies in contact with a plane; the curbs' crush memory on the footpad's in-plane path (eqs. 86-95) is not wired to them",
             ),
             Mechanism::Slosh => Some(
                 "the slosh mass is a degree of freedom its exported body tree does not have",
