@@ -33,27 +33,35 @@ fn allocations() -> u64 {
     ALLOCATIONS.with(|c| c.get())
 }
 
+/// With every integration scheme (the report's, the fourth-order Runge–Kutta method and the
+/// adaptive Dormand–Prince pair, which also rejects steps).
 #[test]
 fn stepping_a_landing_does_not_allocate() {
-    let sc =
-        touchdown_scenario::Scenario::load(touchdown_tests::scenario("fig-25-26.toml")).unwrap();
-    let mut sim = touchdown_core::Simulation::new(&sc).unwrap();
-    let before = allocations();
-    let mut steps = 0;
-    while !sim.finished() {
-        sim.step().unwrap();
-        steps += 1;
+    for scheme in ["report", "rk4", "dopri5"] {
+        let path = touchdown_tests::variant(
+            "fig-25-26.toml",
+            &format!("allocation-{scheme}"),
+            &format!("[integrator]\nscheme = \"{scheme}\"\n"),
+        );
+        let sc = touchdown_scenario::Scenario::load(path).unwrap();
+        let mut sim = touchdown_core::Simulation::new(&sc).unwrap();
+        let before = allocations();
+        let mut steps = 0;
+        while !sim.finished() {
+            sim.step().unwrap();
+            steps += 1;
+        }
+        let during = allocations() - before;
+        assert!(
+            steps > 500,
+            "{scheme}: the landing should take many steps, took {steps}"
+        );
+        // The counter itself must work: the summary allocates.
+        let _ = sim.summary();
+        assert!(
+            allocations() > before,
+            "the counting allocator is not counting"
+        );
+        assert_eq!(during, 0, "{scheme}: {during} allocations in {steps} steps");
     }
-    let during = allocations() - before;
-    assert!(
-        steps > 500,
-        "the landing should take many steps, took {steps}"
-    );
-    // The counter itself must work: the summary allocates.
-    let _ = sim.summary();
-    assert!(
-        allocations() > before,
-        "the counting allocator is not counting"
-    );
-    assert_eq!(during, 0, "{during} allocations in {steps} steps");
 }

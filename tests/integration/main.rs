@@ -20,6 +20,7 @@
 
 mod allocation;
 mod docs;
+mod integrators;
 mod layering;
 mod mechanisms;
 mod mujoco;

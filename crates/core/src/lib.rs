@@ -10,6 +10,7 @@
 //! | [`gear`] | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
 //! | [`surface`] | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
 //! | [`mechanisms`] | the scene's optional mechanisms: thrust and nozzle crushing (69-74), RCS (75-82), slosh (108-117), soil (101-104), curbs (86-95), bending (40-48) |
+//! | [`integrator`] | beyond the report: fourth-order and embedded Dormand–Prince Runge–Kutta schemes, a quaternion attitude |
 //! | [`simulation`] | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
 //!
 //! The stability criteria (eqs. 105-107) and the summary are shared with the other engines in
@@ -19,6 +20,7 @@
 //! `docs/errata.md`.
 
 pub mod gear;
+pub mod integrator;
 pub mod kinematics;
 pub mod mechanisms;
 pub mod rigid_body;

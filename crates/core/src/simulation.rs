@@ -13,15 +13,24 @@
 //!    a_{k+1}; energy and stability are updated;
 //! 8. the next Δt follows eq. (25).
 //!
+//! With a Runge–Kutta scheme (`integrator.scheme = "rk4"` or `"dopri5"`, [`crate::integrator`])
+//! steps 3-5 are the method's stages instead: each evaluates the forces at its stage state (the
+//! sliding footpads interpolated along their step, nothing committed); the strut and mechanism
+//! work is the method's quadrature of the stage powers. An adaptive step whose error estimate
+//! exceeds the tolerance is rejected: the footpads go back to the start and the step is retried
+//! shorter. Steps 6-8 are the same for every scheme, so the hysteresis is committed only at
+//! accepted states.
+//!
 //! Nothing in the step allocates.
 
 use crate::gear::{self, GearOptions, GearState};
-use crate::kinematics::{euler_acceleration, t_eb, GIMBAL_LOCK_COS};
+use crate::integrator::{self, Ode, Tableau, DOPRI5, MAX_STAGES, RK4};
+use crate::kinematics::{euler_acceleration, t_be, t_eb, GIMBAL_LOCK_COS};
 use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
 use crate::CoreError;
-use nalgebra::{Matrix3, Vector2, Vector3};
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
 use touchdown_record::{
     Divergence, EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, Sample,
@@ -29,8 +38,12 @@ use touchdown_record::{
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, Mechanism, PadSurface};
-use touchdown_scenario::schema::{Arrangement, Engine, ReleaseRule};
+use touchdown_scenario::schema::{Arrangement, AttitudeForm, Engine, ReleaseRule, Scheme};
 use touchdown_scenario::Scenario;
+
+/// How far past its plane a footpad may be at the end of an adaptive step (an airborne one
+/// below, a leaving one above) before the step is shortened to locate the event, m.
+pub const CONTACT_EVENT_DEPTH: f64 = 1e-9;
 
 /// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,8 +64,11 @@ pub struct VehicleState {
     pub omega: Vector3<f64>,
     /// Body angular acceleration ω̇, rad/s² (eqs. 13-15).
     pub omega_dot: Vector3<f64>,
-    /// T_BI (eq. 3) at θ.
+    /// T_BI (eq. 3) at θ (or from the quaternion).
     pub t_bi: Matrix3<f64>,
+    /// Body → inertial unit quaternion (with `integrator.attitude = "quaternion"`; else the
+    /// quaternion of the touchdown attitude, unused).
+    pub quaternion: Quaternion<f64>,
     /// Slosh amplitude q (X_B, Y_B), m (eq. 109; zero without sloshing).
     pub slosh_q: Vector2<f64>,
     /// Slosh rate q̇, m/s.
@@ -68,6 +84,75 @@ impl VehicleState {
         self.theta_dot = theta_dot;
         self.t_bi = frames::t_bi(&theta);
         self.omega = t_eb(&theta) * theta_dot; // eq. (6)
+    }
+
+    /// Sets θ and ω (rad, rad/s), with θ̇ = T_BE·ω (eq. 7) and T_BI.
+    fn set_euler(&mut self, theta: Vector3<f64>, omega: Vector3<f64>) {
+        self.theta = theta;
+        self.omega = omega;
+        self.t_bi = frames::t_bi(&theta);
+        self.theta_dot = t_be(&theta) * omega; // eq. (7)
+    }
+
+    /// Sets the attitude from a quaternion `q` (normalised here) and ω (rad/s); θ is read from
+    /// T_BI for the output, θ̇ by eq. (7) where it is defined.
+    fn set_quaternion(&mut self, q: Quaternion<f64>, omega: Vector3<f64>) {
+        let q = UnitQuaternion::from_quaternion(q);
+        self.quaternion = q.into_inner();
+        self.omega = omega;
+        self.t_bi = q.to_rotation_matrix().into_inner();
+        self.theta = frames::euler_from_t_bi(&self.t_bi);
+        self.theta_dot = if self.theta.y.cos().abs() < GIMBAL_LOCK_COS {
+            Vector3::zeros()
+        } else {
+            t_be(&self.theta) * omega
+        };
+    }
+
+    /// The integrated part of the state.
+    fn ode(&self) -> Ode {
+        Ode {
+            position: self.position,
+            velocity: self.velocity,
+            theta: self.theta,
+            quaternion: self.quaternion,
+            omega: self.omega,
+            slosh_q: self.slosh_q,
+            slosh_q_dot: self.slosh_q_dot,
+        }
+    }
+
+    /// Its time derivative (the accelerations set), the attitude in the form `form` (the other
+    /// form's rate is zero).
+    fn rate(&self, form: AttitudeForm) -> Ode {
+        let (theta, quaternion) = match form {
+            AttitudeForm::Euler => (self.theta_dot, Quaternion::new(0.0, 0.0, 0.0, 0.0)),
+            AttitudeForm::Quaternion => (
+                Vector3::zeros(),
+                integrator::quaternion_rate(&self.quaternion, &self.omega),
+            ),
+        };
+        Ode {
+            position: self.velocity,
+            velocity: self.acceleration,
+            theta,
+            quaternion,
+            omega: self.omega_dot,
+            slosh_q: self.slosh_q_dot,
+            slosh_q_dot: self.slosh_q_ddot,
+        }
+    }
+
+    /// Sets the integrated part of the state from `y`, the attitude in the form `form`.
+    fn set_ode(&mut self, y: &Ode, form: AttitudeForm) {
+        self.position = y.position;
+        self.velocity = y.velocity;
+        self.slosh_q = y.slosh_q;
+        self.slosh_q_dot = y.slosh_q_dot;
+        match form {
+            AttitudeForm::Euler => self.set_euler(y.theta, y.omega),
+            AttitudeForm::Quaternion => self.set_quaternion(y.quaternion, y.omega),
+        }
     }
 
     /// Inertial position of a body-fixed point `b` (body axes), m.
@@ -122,6 +207,64 @@ pub struct Simulation {
     extremes: Extremes,
     /// Footpad views for the stability criteria (reused every step).
     pad_views: Vec<PadView>,
+    /// Footpad positions and velocities at the start of the step (Runge–Kutta stages
+    /// interpolate the sliding footpads between these and their end of step), m, m/s.
+    pad_start: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// The footpads at the start of the step, restored when an adaptive step is rejected.
+    pads_saved: Vec<Footpad>,
+    /// The adaptive scheme's next step, s.
+    next_dt: f64,
+    /// Steps the adaptive scheme rejected, and steps it took at `dt_min` without meeting its
+    /// tolerance.
+    rejected: u64,
+    forced: u64,
+}
+
+/// Work of the struts and the vehicle-level mechanisms over one Runge–Kutta step: the method's
+/// quadrature Δt·Σ b_i·P_i of each power, J.
+#[derive(Debug, Clone, Copy, Default)]
+struct StageWork {
+    honeycomb: f64,
+    viscous: f64,
+    bearing: f64,
+    applied: f64,
+}
+
+impl StageWork {
+    /// Adds weight `w` (s) of the powers of the gear states `gear` and the applied power
+    /// `applied` (W).
+    fn add(&mut self, w: f64, gear: &[GearState], applied: f64) {
+        for g in gear {
+            self.honeycomb += w
+                * (g.fcp * g.primary_rate
+                    + g.fc_secondary[0] * g.secondary_rate[0]
+                    + g.fc_secondary[1] * g.secondary_rate[1]);
+            self.viscous += w
+                * (g.fvp * g.primary_rate
+                    + g.fv_secondary[0] * g.secondary_rate[0]
+                    + g.fv_secondary[1] * g.secondary_rate[1]);
+            self.bearing += w * g.fbr * g.primary_rate;
+        }
+        self.applied += w * applied;
+    }
+}
+
+/// How the strut work of a step is booked.
+enum Quadrature {
+    /// The report's scheme: trapezoids of the accepted and trial forces (eq. 24), with the
+    /// mechanisms' power at the trial, W.
+    Trapezoid { trial_power: f64 },
+    /// A Runge–Kutta method's own quadrature.
+    Stages(StageWork),
+}
+
+/// Work of the sliding footpads' step (eq. 97), J.
+#[derive(Debug, Clone, Copy, Default)]
+struct PadWork {
+    gear: f64,
+    energy_change: f64,
+    soil: f64,
+    curbs: f64,
 }
 
 /// Net loads on the vehicle (eqs. 66-68, 83-84): force in inertial axes excluding gravity,
@@ -163,6 +306,7 @@ impl Simulation {
             omega: init.omega,
             omega_dot: Vector3::zeros(),
             t_bi: init.t_bi,
+            quaternion: UnitQuaternion::from_matrix(&init.t_bi).into_inner(),
             slosh_q: scenario
                 .slosh
                 .map_or(Vector2::zeros(), |s| Vector2::from(s.initial_amplitude)),
@@ -214,6 +358,11 @@ impl Simulation {
             stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
             extremes: Extremes::new(n),
             pad_views: vec![PadView::default(); n],
+            pad_start: vec![(Vector3::zeros(), Vector3::zeros()); n],
+            pads_saved: vec![Footpad::default(); n],
+            next_dt: scenario.integrator.dt_max,
+            rejected: 0,
+            forced: 0,
         };
         sim.potential0 = sim.potential_energy();
         sim.stability =
@@ -320,20 +469,34 @@ impl Simulation {
     fn settings(&self) -> serde_json::Map<String, serde_json::Value> {
         let it = &self.integrator;
         let mut m = serde_json::Map::new();
-        m.insert(
-            "scheme".into(),
-            "report predictor-corrector, eqs. (20)-(25)".into(),
-        );
-        m.insert("dist_m".into(), it.dist.into());
+        let scheme = match it.scheme {
+            Scheme::Report => "report predictor-corrector, eqs. (20)-(25)",
+            Scheme::Rk4 => "classical fourth-order Runge-Kutta, fixed step dt_max",
+            Scheme::Dopri5 => "Dormand-Prince 5(4), error control",
+        };
+        m.insert("scheme".into(), scheme.into());
+        let attitude = match it.attitude {
+            AttitudeForm::Euler => "Euler angles, eqs. (5)-(9)",
+            AttitudeForm::Quaternion => "unit quaternion",
+        };
+        m.insert("attitude".into(), attitude.into());
+        if it.scheme == Scheme::Report {
+            m.insert("dist_m".into(), it.dist.into());
+        }
         m.insert("dt_min_s".into(), it.dt_min.into());
         m.insert("dt_max_s".into(), it.dt_max.into());
+        if it.scheme == Scheme::Dopri5 {
+            m.insert("rtol".into(), it.rtol.into());
+            m.insert("atol".into(), it.atol.into());
+            m.insert("rejected_steps".into(), self.rejected.into());
+            m.insert("steps_forced_at_dt_min".into(), self.forced.into());
+        }
         m.insert("energy_tolerance".into(), it.energy_tolerance.into());
         m
     }
 
-    /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], shortened so that an
-    /// airborne footpad lands on its plane (review A12) and so that the end time is met.
-    fn step_size(&self) -> f64 {
+    /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max].
+    fn report_step_size(&self) -> f64 {
         let it = &self.integrator;
         let v = &self.vehicle;
         let mut vel: f64 = 0.0;
@@ -345,8 +508,15 @@ impl Simulation {
             };
             vel = vel.max(rel.norm());
         }
-        let mut dt = if vel > 0.0 { it.dist / vel } else { it.dt_max }; // eq. (25)
-        dt = dt.clamp(it.dt_min, it.dt_max);
+        let dt = if vel > 0.0 { it.dist / vel } else { it.dt_max }; // eq. (25)
+        dt.clamp(it.dt_min, it.dt_max)
+    }
+
+    /// `dt` (s) shortened so that an airborne footpad lands on its plane (review A12) and so
+    /// that the end time is met.
+    fn limit_step(&self, mut dt: f64) -> f64 {
+        let it = &self.integrator;
+        let v = &self.vehicle;
         if it.contact_step_limit {
             for (p, s) in self.pads.iter().zip(&self.surfaces) {
                 if p.state != ContactState::Contact {
@@ -364,6 +534,18 @@ impl Simulation {
     /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
     /// written into `out` (eqs. 26-68, 83-84). Footpads not in contact carry no load.
     fn loads(&self, t: f64, v: &VehicleState, out: &mut [GearState]) -> Result<Loads, CoreError> {
+        self.loads_at(t, v, 1.0, out)
+    }
+
+    /// [`Simulation::loads`] with each sliding footpad a fraction `blend` of the way from its
+    /// start of step to where it is now (a Runge–Kutta stage; 1 is now).
+    fn loads_at(
+        &self,
+        t: f64,
+        v: &VehicleState,
+        blend: f64,
+        out: &mut [GearState],
+    ) -> Result<Loads, CoreError> {
         let t_ib = v.t_bi.transpose();
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
@@ -378,8 +560,14 @@ impl Simulation {
                 };
                 continue;
             }
-            let bp = t_ib * (pad.position - v.position);
-            let bp_dot = t_ib * (pad.velocity - v.velocity) - v.omega.cross(&bp);
+            let (position, velocity) = if blend >= 1.0 {
+                (pad.position, pad.velocity)
+            } else {
+                let (p0, v0) = self.pad_start[i];
+                (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
+            };
+            let bp = t_ib * (position - v.position);
+            let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
             if self.arrangement == Arrangement::Tripod {
                 self.mechanisms.tick(Mechanism::Tripod);
             }
@@ -428,17 +616,21 @@ impl Simulation {
 
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c).
     fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), CoreError> {
-        if v.theta.y.cos().abs() < GIMBAL_LOCK_COS {
+        let euler = self.integrator.attitude == AttitudeForm::Euler;
+        // θy stays within ±90° unless it crossed the singularity (cos θy < 0 beyond).
+        if euler && v.theta.y.cos() < GIMBAL_LOCK_COS {
             return Err(self.diverged(
                 v,
-                "Euler-angle singularity: θy reached ±90° (eqs. 5 and 9a divide by cos θy)".into(),
+                "Euler-angle singularity: θy reached or crossed ±90° (eqs. 5 and 9a divide by cos θy); integrator.attitude = \"quaternion\" (schemes rk4, dopri5) goes through it".into(),
                 "kinematics",
                 usize::MAX,
             ));
         }
         v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
         v.omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
-        v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
+        if euler {
+            v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
+        }
         v.slosh_q_ddot = self.mechanisms.slosh_acceleration(v); // eq. (109), corrected
         Ok(())
     }
@@ -468,9 +660,9 @@ impl Simulation {
         let mut changed = false;
         for i in 0..self.pads.len() {
             let s = self.surfaces[i];
-            let pad = &mut self.pads[i];
-            match pad.state {
+            match self.pads[i].state {
                 ContactState::Free | ContactState::Detached => {
+                    let pad = &mut self.pads[i];
                     let tentative = v.point(&pad.bp_attached);
                     if tentative.z <= s.plane() {
                         let vel = v.point_velocity(&pad.bp_attached);
@@ -494,21 +686,8 @@ impl Simulation {
                     }
                 }
                 ContactState::Contact => {
-                    // Tentative position with the previous step's geometry; the footpad stays
-                    // on the surface while the primary strut is compressive.
-                    let tentative = v.point(&pad.bp);
-                    let g = &self.gear[i];
-                    let compressive = match self.release {
-                        ReleaseRule::StrutForce => g.f2p > 0.0,
-                        ReleaseRule::HoneycombForce => g.fcp > 0.0,
-                    };
-                    // On soil the footpad leaves when it has risen out of the soil (A15).
-                    let height = if self.mechanisms.soil.is_some() {
-                        pad.position.z
-                    } else {
-                        tentative.z
-                    };
-                    if height > s.plane() && !compressive {
+                    if self.releases(i, &v, &self.gear[i]) {
+                        let pad = &mut self.pads[i];
                         pad.state = ContactState::Detached;
                         pad.stuck = false;
                         pad.bp_attached = v.t_bi.transpose() * (pad.position - v.position);
@@ -519,6 +698,30 @@ impl Simulation {
             }
         }
         changed
+    }
+
+    /// Whether footpad `i`, in contact, leaves its surface with the vehicle in state `v` and its
+    /// gear in state `g`.
+    fn releases(&self, i: usize, v: &VehicleState, g: &GearState) -> bool {
+        self.release_height(i, v, g).is_some_and(|h| h > 0.0)
+    }
+
+    /// Height above its plane of footpad `i`, in contact, whose strut is no longer compressive,
+    /// m (`None` while it is): the footpad stays on its surface while the primary strut is
+    /// compressive (text before eq. 85; review A4), its tentative position taken with the
+    /// previous step's geometry; on soil it leaves when it has risen out of the soil (A15).
+    fn release_height(&self, i: usize, v: &VehicleState, g: &GearState) -> Option<f64> {
+        let pad = &self.pads[i];
+        let compressive = match self.release {
+            ReleaseRule::StrutForce => g.f2p > 0.0,
+            ReleaseRule::HoneycombForce => g.fcp > 0.0,
+        };
+        let height = if self.mechanisms.soil.is_some() {
+            pad.position.z
+        } else {
+            v.point(&pad.bp).z
+        };
+        (!compressive).then_some(height - self.surfaces[i].plane())
     }
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
@@ -554,30 +757,47 @@ impl Simulation {
         }
     }
 
-    /// Adds the strut work of the step with the forces the corrector used (eq. 24: the
-    /// accepted state k and the trial at the prediction), so that the ledger and the vehicle's
-    /// energy see the same forces even when a footpad leaves the surface in the step:
-    /// honeycomb ½(F_k + F*)·(x_{k+1} − x_k), viscous and bearing friction ½(P_k + P*)·Δt.
-    fn book_strut_work(&mut self, dt: f64) {
+    /// Adds the strut work of the step. The report's scheme books it with the forces the
+    /// corrector used (eq. 24: the accepted state k and the trial at the prediction), so that
+    /// the ledger and the vehicle's energy see the same forces even when a footpad leaves the
+    /// surface in the step: honeycomb ½(F_k + F*)·(x_{k+1} − x_k), viscous and bearing
+    /// friction ½(P_k + P*)·Δt. A Runge–Kutta scheme books its own quadrature of the stage
+    /// powers.
+    fn book_strut_work(&mut self, dt: f64, quadrature: &Quadrature) {
         let steps = self.previous.iter().zip(&self.trial).zip(&self.gear);
         for ((a, t), b) in steps {
             let l = &mut self.ledger;
-            l.honeycomb += 0.5 * (a.fcp + t.fcp) * (b.primary_stroke - a.primary_stroke);
-            l.viscous += 0.5 * (a.fvp * a.primary_rate + t.fvp * t.primary_rate) * dt;
-            l.bearing += 0.5 * (a.fbr * a.primary_rate + t.fbr * t.primary_rate) * dt;
+            // The force at the end of the step: the trial's (report) or the accepted state's.
+            let end = match quadrature {
+                Quadrature::Trapezoid { .. } => {
+                    l.honeycomb += 0.5 * (a.fcp + t.fcp) * (b.primary_stroke - a.primary_stroke);
+                    l.viscous += 0.5 * (a.fvp * a.primary_rate + t.fvp * t.primary_rate) * dt;
+                    l.bearing += 0.5 * (a.fbr * a.primary_rate + t.fbr * t.primary_rate) * dt;
+                    t
+                }
+                Quadrature::Stages(_) => b,
+            };
             for j in 0..2 {
-                let (fa, ft) = (a.fc_secondary[j], t.fc_secondary[j]);
-                l.honeycomb += 0.5 * (fa + ft) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                let (fa, ft) = (a.fc_secondary[j], end.fc_secondary[j]);
                 // The honeycombs see the bending-corrected strokes; the change of the bending
                 // lengthening is work the vehicle did not do on the struts (eq. 47, lagged).
                 let dl = b.bending_lengthening[j] - a.bending_lengthening[j];
                 l.mechanisms -= 0.5 * (fa + ft) * dl;
-                let (pa, pt) = (
-                    a.fv_secondary[j] * a.secondary_rate[j],
-                    t.fv_secondary[j] * t.secondary_rate[j],
-                );
-                l.viscous += 0.5 * (pa + pt) * dt;
+                if let Quadrature::Trapezoid { .. } = quadrature {
+                    l.honeycomb +=
+                        0.5 * (fa + ft) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                    let (pa, pt) = (
+                        a.fv_secondary[j] * a.secondary_rate[j],
+                        t.fv_secondary[j] * t.secondary_rate[j],
+                    );
+                    l.viscous += 0.5 * (pa + pt) * dt;
+                }
             }
+        }
+        if let Quadrature::Stages(w) = quadrature {
+            self.ledger.honeycomb += w.honeycomb;
+            self.ledger.viscous += w.viscous;
+            self.ledger.bearing += w.bearing;
         }
     }
 
@@ -690,25 +910,17 @@ impl Simulation {
         self.extremes
             .update_pitch_rate(self.t, self.vehicle.omega_inertial().x);
     }
-}
 
-impl Landing for Simulation {
-    type Error = CoreError;
-
-    /// One integration step (see the module documentation).
-    fn step(&mut self) -> Result<(), CoreError> {
-        let dt = self.step_size();
-        let old = self.vehicle;
-        self.previous.copy_from_slice(&self.gear);
-        // 2. sliding footpads, forces frozen at t_k (eq. 97)
-        let mut pad_work = 0.0;
-        let mut pad_energy_change = 0.0;
-        let (mut soil_work, mut curb_work) = (0.0, 0.0);
+    /// Step 2: the sliding footpads advance over `dt` (s) with their forces frozen at the
+    /// accepted state `old` (eq. 97); their start is kept for the stages.
+    fn advance_pads(&mut self, dt: f64, old: &VehicleState) -> PadWork {
+        let mut w = PadWork::default();
         for i in 0..self.pads.len() {
+            self.pad_start[i] = (self.pads[i].position, self.pads[i].velocity);
             if self.pads[i].state != ContactState::Contact || self.surfaces[i].locked() {
                 continue;
             }
-            let f = self.sliding_forces(i, &old);
+            let f = self.sliding_forces(i, old);
             let m = self.footpad_mass;
             let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
             advance_sliding(&mut self.pads[i], &f, dt);
@@ -721,18 +933,28 @@ impl Landing for Simulation {
                 let pad = &mut self.pads[i];
                 pad.position.z = plane - step.depth;
                 pad.velocity.z = -step.rate;
-                pad_work -= f.fzi * (pad.position.z - p0.z);
-                soil_work += step.work;
+                w.gear -= f.fzi * (pad.position.z - p0.z);
+                w.soil += step.work;
             }
             let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
             let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
-            pad_work += f.gear_xy.dot(&dp);
-            curb_work += f.curb_xy.dot(&dp);
-            pad_energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
+            w.gear += f.gear_xy.dot(&dp);
+            w.curbs += f.curb_xy.dot(&dp);
+            w.energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
                 - m * self.gravity.dot(&(p1 - p0));
         }
+        w
+    }
+
+    /// Steps 3-5 of the report's scheme from the accepted state `old` over `dt` (s): the
+    /// corrected state, and the vehicle-level mechanisms' power at the trial (W).
+    fn predict_correct(
+        &mut self,
+        dt: f64,
+        old: &VehicleState,
+    ) -> Result<(VehicleState, f64), CoreError> {
         // 3. predictor, c = 0 (eqs. 22-23)
-        let mut pred = old;
+        let mut pred = *old;
         pred.position = old.position + old.velocity * dt + old.acceleration * (0.5 * dt * dt);
         pred.velocity = old.velocity + old.acceleration * dt;
         pred.set_attitude(
@@ -751,7 +973,7 @@ impl Landing for Simulation {
         self.evaluations += 1;
         self.accelerate(&mut pred, &loads)?;
         // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
-        let mut new = old;
+        let mut new = *old;
         new.velocity = old.velocity + (old.acceleration + pred.acceleration) * (0.5 * dt);
         new.position = old.position
             + old.velocity * dt
@@ -767,7 +989,141 @@ impl Landing for Simulation {
                 + old.slosh_q_dot * dt
                 + (old.slosh_q_ddot / 3.0 + pred.slosh_q_ddot / 6.0) * (dt * dt);
         }
-        let power_old = self.applied_power;
+        Ok((new, loads.applied_power))
+    }
+
+    /// One step of the Runge–Kutta method `tab` from the accepted state `old` over `dt` (s),
+    /// the sliding footpads already advanced: the new state, the work of the stage powers and
+    /// the error ratio (0 without an embedded estimate). Each stage evaluates the forces at its
+    /// own state into the trial gear states, committing nothing.
+    fn runge_kutta(
+        &mut self,
+        dt: f64,
+        old: &VehicleState,
+        tab: &Tableau,
+    ) -> Result<(VehicleState, StageWork, f64), CoreError> {
+        let form = self.integrator.attitude;
+        let y0 = old.ode();
+        let mut k = [Ode::zeros(); MAX_STAGES];
+        k[0] = old.rate(form);
+        let mut work = StageWork::default();
+        work.add(tab.b[0] * dt, &self.previous, self.applied_power);
+        let mut v = *old;
+        let mut trial = std::mem::take(&mut self.trial);
+        let mut stages = || -> Result<(), CoreError> {
+            for i in 1..tab.stages {
+                let mut y = y0;
+                for (a, kj) in tab.a[i].iter().zip(&k).take(i) {
+                    if *a != 0.0 {
+                        y.add_scaled(dt * a, kj);
+                    }
+                }
+                v.set_ode(&y, form);
+                let loads = self.loads_at(self.t + tab.c[i] * dt, &v, tab.c[i], &mut trial)?;
+                self.evaluations += 1;
+                self.accelerate(&mut v, &loads)?;
+                k[i] = v.rate(form);
+                work.add(tab.b[i] * dt, &trial, loads.applied_power);
+            }
+            Ok(())
+        };
+        let result = stages();
+        self.trial = trial;
+        result?;
+        let mut y1 = y0;
+        for (b, ki) in tab.b.iter().zip(&k).take(tab.stages) {
+            y1.add_scaled(dt * b, ki);
+        }
+        let ratio = match &tab.e {
+            Some(e) => {
+                let mut error = Ode::zeros();
+                for (w, ki) in e.iter().zip(&k).take(tab.stages) {
+                    error.add_scaled(dt * w, ki);
+                }
+                let it = &self.integrator;
+                integrator::error_ratio(&y0, &y1, &error, it.rtol, it.atol)
+            }
+            None => 0.0,
+        };
+        let mut new = *old;
+        new.set_ode(&y1, form);
+        Ok((new, work, ratio))
+    }
+
+    /// One accepted step of the adaptive Dormand–Prince scheme from `old`: steps whose error
+    /// ratio exceeds 1 are rejected (the footpads restored) and retried shorter; a step at
+    /// `dt_min` is accepted whatever its error, and counted.
+    fn adaptive_step(
+        &mut self,
+        old: &VehicleState,
+    ) -> Result<(f64, VehicleState, Quadrature, PadWork), CoreError> {
+        let (dt_min, dt_max) = (self.integrator.dt_min, self.integrator.dt_max);
+        self.pads_saved.copy_from_slice(&self.pads);
+        loop {
+            let planned = self.next_dt.clamp(dt_min, dt_max);
+            let dt = self.limit_step(planned);
+            let pads = self.advance_pads(dt, old);
+            let (new, work, ratio) = self.runge_kutta(dt, old, &DOPRI5)?;
+            let ratio = if ratio.is_finite() {
+                ratio
+            } else {
+                f64::INFINITY
+            };
+            let floor = dt <= dt_min * (1.0 + 1e-9);
+            // A footpad that lands or leaves within the step is located to dt_min: the step is
+            // retried at half its length until it ends within dt_min of the event.
+            let event = !floor && self.contact_event(&new);
+            if (ratio <= 1.0 && !event) || floor {
+                self.forced += u64::from(ratio > 1.0);
+                let proposal = integrator::next_step(dt, ratio, DOPRI5.error_order);
+                // A step shortened to land a footpad or to end keeps the plan it cut short.
+                let shortened = dt < planned * (1.0 - 1e-9);
+                self.next_dt = if shortened {
+                    proposal.max(planned)
+                } else {
+                    proposal
+                };
+                return Ok((dt, new, Quadrature::Stages(work), pads));
+            }
+            self.rejected += 1;
+            self.next_dt = if ratio <= 1.0 {
+                0.5 * dt
+            } else {
+                integrator::next_step(dt, ratio, DOPRI5.error_order)
+            };
+            self.pads.copy_from_slice(&self.pads_saved);
+        }
+    }
+
+    /// Whether a footpad's contact changes within the step just taken to `v`, the gear's forces
+    /// there in the trial states (the Dormand–Prince pair's last stage is the new state): a
+    /// footpad in contact that leaves (rising more than [`CONTACT_EVENT_DEPTH`] above its plane:
+    /// a pulled footpad resting on it leaves by rounding, which is no event to locate), or an
+    /// airborne one below its plane by more than that.
+    fn contact_event(&self, v: &VehicleState) -> bool {
+        self.pads.iter().enumerate().any(|(i, p)| match p.state {
+            ContactState::Contact => self
+                .release_height(i, v, &self.trial[i])
+                .is_some_and(|h| h > CONTACT_EVENT_DEPTH),
+            ContactState::Free | ContactState::Detached => {
+                v.point(&p.bp_attached).z < self.surfaces[i].plane() - CONTACT_EVENT_DEPTH
+            }
+        })
+    }
+
+    /// Steps 6-8 for every scheme: the new state `new` after `dt` (s) from `old` is evaluated,
+    /// the contact logic runs, the hysteresis is committed, the work of the step booked
+    /// (`quadrature`, the footpads' `pads`, `power_old` the mechanisms' power at `old`, W), the
+    /// divergence checks and the stability criteria run.
+    fn finish_step(
+        &mut self,
+        dt: f64,
+        old: &VehicleState,
+        mut new: VehicleState,
+        quadrature: &Quadrature,
+        pads: &PadWork,
+        power_old: f64,
+    ) -> Result<(), CoreError> {
         // 6. evaluate, contact logic, re-evaluate on a change
         self.t += dt;
         self.accept(&mut new)?;
@@ -796,20 +1152,49 @@ impl Landing for Simulation {
             }
         }
         self.mechanisms.commit(&new, &self.gravity);
-        // Work of the vehicle-level mechanisms on the vehicle with the forces the corrector
-        // used (trapezoid of their power), and of the soil and curbs on the footpads.
-        let applied_work = 0.5 * (power_old + loads.applied_power) * dt;
-        self.ledger.mechanisms += -applied_work - soil_work - curb_work;
-        self.ledger.sliding += pad_work + curb_work + soil_work - pad_energy_change;
-        self.book_strut_work(dt);
+        // Work of the vehicle-level mechanisms on the vehicle with the forces the step used
+        // (the report: trapezoid of their power), and of the soil and curbs on the footpads.
+        let applied_work = match quadrature {
+            Quadrature::Trapezoid { trial_power } => 0.5 * (power_old + trial_power) * dt,
+            Quadrature::Stages(w) => w.applied,
+        };
+        self.ledger.mechanisms += -applied_work - pads.soil - pads.curbs;
+        self.ledger.sliding += pads.gear + pads.curbs + pads.soil - pads.energy_change;
+        self.book_strut_work(dt, quadrature);
         self.steps += 1;
         let energy = self.energy();
         self.check_divergence(&energy)?;
-        self.update_stability(Some(&old), &energy);
+        self.update_stability(Some(old), &energy);
         self.update_extremes();
         Ok(())
     }
+}
 
+impl Landing for Simulation {
+    type Error = CoreError;
+
+    /// One integration step (see the module documentation).
+    fn step(&mut self) -> Result<(), CoreError> {
+        let old = self.vehicle;
+        self.previous.copy_from_slice(&self.gear);
+        let power_old = self.applied_power;
+        let (dt, new, quadrature, pads) = match self.integrator.scheme {
+            Scheme::Report => {
+                let dt = self.limit_step(self.report_step_size());
+                let pads = self.advance_pads(dt, &old);
+                let (new, trial_power) = self.predict_correct(dt, &old)?;
+                (dt, new, Quadrature::Trapezoid { trial_power }, pads)
+            }
+            Scheme::Rk4 => {
+                let dt = self.limit_step(self.integrator.dt_max);
+                let pads = self.advance_pads(dt, &old);
+                let (new, work, _) = self.runge_kutta(dt, &old, &RK4)?;
+                (dt, new, Quadrature::Stages(work), pads)
+            }
+            Scheme::Dopri5 => self.adaptive_step(&old)?,
+        };
+        self.finish_step(dt, &old, new, &quadrature, &pads, power_old)
+    }
     /// Whether the run has ended (end time, or a decision with termination on).
     fn finished(&self) -> bool {
         self.t >= self.integrator.t_end * (1.0 - 1e-12) || self.stability.terminates()

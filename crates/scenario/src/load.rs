@@ -848,9 +848,18 @@ fn resolve(
         t_end: c.positive("integrator.t_end", it.t_end)? * u.time(),
         contact_step_limit: it.contact_step_limit,
         energy_tolerance: c.positive("integrator.energy_tolerance", it.energy_tolerance)?,
+        attitude: it.attitude,
+        rtol: c.positive("integrator.rtol", it.rtol)?,
+        atol: c.positive("integrator.atol", it.atol)?,
     };
     if integrator.dt_min > integrator.dt_max {
         return Err(c.err("integrator.dt_min", "expected dt_min ≤ dt_max"));
+    }
+    if it.attitude == schema::AttitudeForm::Quaternion && it.scheme == schema::Scheme::Report {
+        return Err(c.err(
+            "integrator.attitude",
+            "expected \"euler\" with scheme \"report\" (the report's predictor-corrector integrates Euler angles, eqs. 20-25); \"quaternion\" needs scheme \"rk4\" or \"dopri5\"",
+        ));
     }
     let st = &file.stability;
     let frac = c.positive(

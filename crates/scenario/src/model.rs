@@ -480,6 +480,12 @@ pub struct Integrator {
     pub contact_step_limit: bool,
     /// Divergence guard on the energy residual (fraction of the energy scale).
     pub energy_tolerance: f64,
+    /// Attitude representation.
+    pub attitude: schema::AttitudeForm,
+    /// `dopri5` relative tolerance.
+    pub rtol: f64,
+    /// `dopri5` absolute tolerance, SI units of each state component.
+    pub atol: f64,
 }
 
 /// Stability criteria, SI.

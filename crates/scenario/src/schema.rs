@@ -599,6 +599,35 @@ pub struct Touchdown {
 pub enum Scheme {
     /// The report's linear-acceleration predictor-corrector with Δt = DIST/VEL (eqs. 20-25).
     Report,
+    /// The classical fourth-order Runge–Kutta method at the fixed step `dt_max` (shortened only
+    /// to land an airborne footpad on its plane and to meet the end time).
+    Rk4,
+    /// The Dormand–Prince 5(4) embedded Runge–Kutta pair with error control (`rtol`, `atol`),
+    /// its steps within [`dt_min`, `dt_max`].
+    Dopri5,
+}
+
+impl Scheme {
+    /// The scheme's name in a scenario file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Report => "report",
+            Scheme::Rk4 => "rk4",
+            Scheme::Dopri5 => "dopri5",
+        }
+    }
+}
+
+/// How the core represents the vehicle's attitude.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum AttitudeForm {
+    /// Euler angles θ (eqs. 3-9, the report): singular at θy = ±90°.
+    #[default]
+    Euler,
+    /// A unit quaternion, q̇ = ½·q⊗ω: no singularity (not in the report; with the `rk4` and
+    /// `dopri5` schemes only). The Euler angles are still reported, read from T_BI.
+    Quaternion,
 }
 
 fn default_scheme() -> Scheme {
@@ -610,16 +639,22 @@ fn yes() -> bool {
 fn default_energy_tolerance() -> f64 {
     0.02
 }
+fn default_rtol() -> f64 {
+    1e-6
+}
+fn default_atol() -> f64 {
+    1e-9
+}
 
 /// Integration settings (eqs. 20-25).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Integrator {
-    /// "report".
+    /// "report" (default), "rk4" or "dopri5".
     #[serde(default = "default_scheme")]
     pub scheme: Scheme,
-    /// DIST: allowed relative movement between any footpad and the centre of mass per step;
-    /// length.
+    /// DIST: allowed relative movement between any footpad and the centre of mass per step
+    /// (the `report` scheme's step rule, eq. 25); length.
     pub dist: f64,
     /// Smallest step; time.
     pub dt_min: f64,
@@ -635,6 +670,16 @@ pub struct Integrator {
     /// scale (initial kinetic energy plus all energy exchanged); dimensionless.
     #[serde(default = "default_energy_tolerance")]
     pub energy_tolerance: f64,
+    /// "euler" (default) or "quaternion" (`rk4` and `dopri5` only).
+    #[serde(default)]
+    pub attitude: AttitudeForm,
+    /// `dopri5`: relative error tolerance per step; dimensionless (default 1e-6).
+    #[serde(default = "default_rtol")]
+    pub rtol: f64,
+    /// `dopri5`: absolute error tolerance per step, applied to every state component in SI
+    /// units (m, m/s, rad, rad/s; whatever the file's units); default 1e-9.
+    #[serde(default = "default_atol")]
+    pub atol: f64,
 }
 
 /// Which stability walls count for the unstable declaration.

@@ -1,0 +1,154 @@
+//! The core's integration schemes beyond the report's (issue 8): the fourth-order Runge–Kutta
+//! method and the adaptive Dormand–Prince pair converge to the report scheme's fine-step answer,
+//! the quaternion attitude agrees with the Euler angles away from their singularity and goes
+//! through it, and the report's scheme refuses the quaternion.
+
+use nalgebra::{Matrix3, Vector3};
+use touchdown_core::{Landing, Simulation, Summary};
+use touchdown_scenario::{frames, Scenario};
+use touchdown_tests::variant;
+
+/// Runs `name` (a variant of `base` with `extra` TOML) on the core to its end.
+fn run(base: &str, name: &str, extra: &str) -> (Simulation, Summary) {
+    let sc = Scenario::load(variant(base, name, extra)).unwrap_or_else(|e| panic!("{e}"));
+    let mut sim = Simulation::new(&sc).unwrap_or_else(|e| panic!("{e}"));
+    while !sim.finished() {
+        sim.step().unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+    let summary = sim.summary();
+    (sim, summary)
+}
+
+/// The largest relative difference between two landings' maximum strokes (primary, secondary
+/// compression and tension), relative to the largest primary stroke.
+fn stroke_difference(a: &Summary, b: &Summary) -> f64 {
+    let scale = a.max_primary_stroke_m.iter().copied().fold(0.0, f64::max);
+    let mut d: f64 = 0.0;
+    for i in 0..a.max_primary_stroke_m.len() {
+        d = d.max((a.max_primary_stroke_m[i] - b.max_primary_stroke_m[i]).abs());
+        for j in 0..2 {
+            d = d.max(
+                (a.max_secondary_compression_m[i][j] - b.max_secondary_compression_m[i][j]).abs(),
+            );
+            d = d.max((a.max_secondary_tension_m[i][j] - b.max_secondary_tension_m[i][j]).abs());
+        }
+    }
+    d / scale
+}
+
+/// On the Table I 2-2 landing at 8 ft/s, the report's scheme at a hundredth of its steps, the
+/// fourth-order Runge–Kutta method at 20 µs and the Dormand–Prince pair at 1e-6 agree on every
+/// maximum stroke within 0.3 % of the largest; the adaptive pair rejects steps (its error control
+/// and contact-event location at work) and its energy balance closes as tightly as the others'.
+#[test]
+fn runge_kutta_schemes_converge_to_the_reports_fine_step_answer() {
+    let base = "table-i-2-2-vv8.toml";
+    let (_, report) = run(
+        base,
+        "fine-report",
+        "[integrator]\ndist = 1.4e-5\ndt_max = 2.0e-6\n",
+    );
+    let (_, rk4) = run(
+        base,
+        "rk4",
+        "[integrator]\nscheme = \"rk4\"\ndt_max = 2.0e-5\n",
+    );
+    let (_, dopri) = run(
+        base,
+        "dopri5",
+        "[integrator]\nscheme = \"dopri5\"\nrtol = 1e-6\natol = 1e-6\n",
+    );
+    for (name, s) in [("rk4", &rk4), ("dopri5", &dopri)] {
+        let d = stroke_difference(&report, s);
+        assert!(d < 3e-3, "{name}: strokes differ by {d} of the largest");
+        let e = &s.energy;
+        assert!(
+            e.residual_j.abs() < 1e-4 * e.kinetic_initial_j,
+            "{name}: {e:?}"
+        );
+    }
+    let rejected = dopri.engine_settings["rejected_steps"].as_u64().unwrap();
+    assert!(rejected > 0, "the adaptive scheme never rejected a step");
+    assert!(
+        dopri.steps < rk4.steps / 2,
+        "{} vs {} steps",
+        dopri.steps,
+        rk4.steps
+    );
+}
+
+/// Away from θy = ±90° the quaternion attitude gives the Euler angles' landing: the same
+/// maximum strokes and peak pitch rate within 1e-6.
+#[test]
+fn quaternion_attitude_matches_euler_angles_away_from_the_singularity() {
+    let base = "table-i-2-2-vv8.toml";
+    let scheme = "[integrator]\nscheme = \"rk4\"\ndt_max = 2.0e-5\nt_end = 0.15\n";
+    let (_, euler) = run(base, "euler", scheme);
+    let (_, quaternion) = run(
+        base,
+        "quaternion",
+        &format!("{scheme}attitude = \"quaternion\"\n"),
+    );
+    assert!(stroke_difference(&euler, &quaternion) < 1e-6);
+    assert!((euler.peak_pitch_rate_rad_s - quaternion.peak_pitch_rate_rad_s).abs() < 1e-6);
+}
+
+/// A vehicle tumbling in free flight about its body y axis (a principal axis) at 5 rad/s passes
+/// θy = 90° at 0.31 s. The Euler angles stop there with a diagnostic naming the singularity; the
+/// quaternion goes through, keeps the kinetic energy, and ends at the analytic attitude
+/// T_BI = R_y(ω·t).
+#[test]
+fn quaternion_attitude_goes_through_theta_y_90_degrees() {
+    let tumble = "[touchdown]\nclearance = 10.0\nvertical_velocity = 0.0\n\
+                  horizontal_velocity = [0.0, 0.0]\nattitude = [0.0, 0.0, 0.0]\n\
+                  body_rates = [0.0, 286.4788975654116, 0.0]\n\
+                  [stability]\nterminate_on_decision = false\n\
+                  [integrator]\nscheme = \"rk4\"\ndt_max = 1.0e-3\nt_end = 0.4\n";
+    let sc = Scenario::load(variant("flat-drop.toml", "tumble-euler", tumble)).unwrap();
+    let mut sim = Simulation::new(&sc).unwrap();
+    let error = loop {
+        match sim.step() {
+            Ok(()) if sim.finished() => panic!("the Euler angles went through θy = 90°"),
+            Ok(()) => {}
+            Err(e) => break e.to_string(),
+        }
+    };
+    assert!(
+        error.contains("singularity") && error.contains("quaternion"),
+        "{error}"
+    );
+    let (sim, s) = run(
+        "flat-drop.toml",
+        "tumble-quaternion",
+        &format!("{tumble}attitude = \"quaternion\"\n"),
+    );
+    assert!(s.t_end_s > 0.399, "ended at {} s", s.t_end_s);
+    let e = &s.energy;
+    assert!(
+        (e.kinetic_j - e.kinetic_initial_j - (-e.potential_change_j)).abs()
+            < 1e-6 * e.kinetic_initial_j,
+        "{e:?}"
+    );
+    let omega = 5.0;
+    let (sn, cs) = (omega * s.t_end_s).sin_cos();
+    let expected = Matrix3::new(cs, 0.0, sn, 0.0, 1.0, 0.0, -sn, 0.0, cs);
+    let t_bi = frames::t_bi(&sim.vehicle().theta);
+    assert!((t_bi - expected).abs().max() < 1e-9, "{t_bi} vs {expected}");
+    assert!((sim.vehicle().omega - Vector3::new(0.0, omega, 0.0)).norm() < 1e-12);
+}
+
+/// The report's predictor-corrector integrates Euler angles: asked for a quaternion, the
+/// scenario is refused, naming the field.
+#[test]
+fn the_reports_scheme_refuses_the_quaternion_attitude() {
+    let path = variant(
+        "flat-drop.toml",
+        "report-quaternion",
+        "[integrator]\nattitude = \"quaternion\"\n",
+    );
+    let e = Scenario::load(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("integrator.attitude") && e.contains("rk4") && e.contains("report-quaternion"),
+        "{e}"
+    );
+}
