@@ -254,8 +254,13 @@ enum Quadrature {
     /// The report's scheme: trapezoids of the accepted and trial forces (eq. 24), with the
     /// mechanisms' power at the trial, W.
     Trapezoid { trial_power: f64 },
-    /// A Runge–Kutta method's own quadrature.
-    Stages(StageWork),
+    /// A Runge–Kutta method's own quadrature; `evaluated` is the mechanisms' power at the new
+    /// state (W) when the method's last stage already evaluated it (its forces in the trial
+    /// gear states).
+    Stages {
+        work: StageWork,
+        evaluated: Option<f64>,
+    },
 }
 
 /// Work of the sliding footpads' step (eq. 97), J.
@@ -775,7 +780,7 @@ impl Simulation {
                     l.bearing += 0.5 * (a.fbr * a.primary_rate + t.fbr * t.primary_rate) * dt;
                     t
                 }
-                Quadrature::Stages(_) => b,
+                Quadrature::Stages { .. } => b,
             };
             for j in 0..2 {
                 let (fa, ft) = (a.fc_secondary[j], end.fc_secondary[j]);
@@ -794,7 +799,7 @@ impl Simulation {
                 }
             }
         }
-        if let Quadrature::Stages(w) = quadrature {
+        if let Quadrature::Stages { work: w, .. } = quadrature {
             self.ledger.honeycomb += w.honeycomb;
             self.ledger.viscous += w.viscous;
             self.ledger.bearing += w.bearing;
@@ -993,15 +998,16 @@ impl Simulation {
     }
 
     /// One step of the Runge–Kutta method `tab` from the accepted state `old` over `dt` (s),
-    /// the sliding footpads already advanced: the new state, the work of the stage powers and
-    /// the error ratio (0 without an embedded estimate). Each stage evaluates the forces at its
-    /// own state into the trial gear states, committing nothing.
+    /// the sliding footpads already advanced: the new state, the step's quadrature and the error
+    /// ratio (0 without an embedded estimate). Each stage evaluates the forces at its own state
+    /// into the trial gear states, committing nothing. With a first-same-as-last method the last
+    /// stage is the new state: it comes back evaluated, its forces in the trial gear states.
     fn runge_kutta(
         &mut self,
         dt: f64,
         old: &VehicleState,
         tab: &Tableau,
-    ) -> Result<(VehicleState, StageWork, f64), CoreError> {
+    ) -> Result<(VehicleState, Quadrature, f64), CoreError> {
         let form = self.integrator.attitude;
         let y0 = old.ode();
         let mut k = [Ode::zeros(); MAX_STAGES];
@@ -1009,6 +1015,7 @@ impl Simulation {
         let mut work = StageWork::default();
         work.add(tab.b[0] * dt, &self.previous, self.applied_power);
         let mut v = *old;
+        let mut last_power = 0.0;
         let mut trial = std::mem::take(&mut self.trial);
         let mut stages = || -> Result<(), CoreError> {
             for i in 1..tab.stages {
@@ -1024,6 +1031,7 @@ impl Simulation {
                 self.accelerate(&mut v, &loads)?;
                 k[i] = v.rate(form);
                 work.add(tab.b[i] * dt, &trial, loads.applied_power);
+                last_power = loads.applied_power;
             }
             Ok(())
         };
@@ -1045,9 +1053,15 @@ impl Simulation {
             }
             None => 0.0,
         };
+        if tab.fsal {
+            // The last stage's state is y1 (its coupling row is b).
+            let evaluated = Some(last_power);
+            return Ok((v, Quadrature::Stages { work, evaluated }, ratio));
+        }
         let mut new = *old;
         new.set_ode(&y1, form);
-        Ok((new, work, ratio))
+        let evaluated = None;
+        Ok((new, Quadrature::Stages { work, evaluated }, ratio))
     }
 
     /// One accepted step of the adaptive Dormand–Prince scheme from `old`: steps whose error
@@ -1063,7 +1077,7 @@ impl Simulation {
             let planned = self.next_dt.clamp(dt_min, dt_max);
             let dt = self.limit_step(planned);
             let pads = self.advance_pads(dt, old);
-            let (new, work, ratio) = self.runge_kutta(dt, old, &DOPRI5)?;
+            let (new, quadrature, ratio) = self.runge_kutta(dt, old, &DOPRI5)?;
             let ratio = if ratio.is_finite() {
                 ratio
             } else {
@@ -1083,7 +1097,7 @@ impl Simulation {
                 } else {
                     proposal
                 };
-                return Ok((dt, new, Quadrature::Stages(work), pads));
+                return Ok((dt, new, quadrature, pads));
             }
             self.rejected += 1;
             self.next_dt = if ratio <= 1.0 {
@@ -1124,9 +1138,18 @@ impl Simulation {
         pads: &PadWork,
         power_old: f64,
     ) -> Result<(), CoreError> {
-        // 6. evaluate, contact logic, re-evaluate on a change
+        // 6. evaluate (unless the last stage did), contact logic, re-evaluate on a change
         self.t += dt;
-        self.accept(&mut new)?;
+        match quadrature {
+            Quadrature::Stages {
+                evaluated: Some(power),
+                ..
+            } => {
+                std::mem::swap(&mut self.gear, &mut self.trial);
+                self.applied_power = *power;
+            }
+            _ => self.accept(&mut new)?,
+        }
         self.vehicle = new;
         let pads_before = self.footpad_energy();
         if self.contact_logic() {
@@ -1156,7 +1179,7 @@ impl Simulation {
         // (the report: trapezoid of their power), and of the soil and curbs on the footpads.
         let applied_work = match quadrature {
             Quadrature::Trapezoid { trial_power } => 0.5 * (power_old + trial_power) * dt,
-            Quadrature::Stages(w) => w.applied,
+            Quadrature::Stages { work, .. } => work.applied,
         };
         self.ledger.mechanisms += -applied_work - pads.soil - pads.curbs;
         self.ledger.sliding += pads.gear + pads.curbs + pads.soil - pads.energy_change;
@@ -1188,8 +1211,8 @@ impl Landing for Simulation {
             Scheme::Rk4 => {
                 let dt = self.limit_step(self.integrator.dt_max);
                 let pads = self.advance_pads(dt, &old);
-                let (new, work, _) = self.runge_kutta(dt, &old, &RK4)?;
-                (dt, new, Quadrature::Stages(work), pads)
+                let (new, quadrature, _) = self.runge_kutta(dt, &old, &RK4)?;
+                (dt, new, quadrature, pads)
             }
             Scheme::Dopri5 => self.adaptive_step(&old)?,
         };

@@ -607,17 +607,6 @@ pub enum Scheme {
     Dopri5,
 }
 
-impl Scheme {
-    /// The scheme's name in a scenario file.
-    pub fn name(self) -> &'static str {
-        match self {
-            Scheme::Report => "report",
-            Scheme::Rk4 => "rk4",
-            Scheme::Dopri5 => "dopri5",
-        }
-    }
-}
-
 /// How the core represents the vehicle's attitude.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
