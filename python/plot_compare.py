@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Engine-comparison plots for Touchdown (`touchdown compare --plot`, `touchdown boundary --plot`).
+"""Engine-comparison plots for Touchdown (`touchdown compare --plot`, `touchdown boundary --plot`,
+`touchdown precision --plot`).
 
-Two kinds, both drawn from data the `touchdown` CLI writes, so that a plot shows exactly the
+Three kinds, both drawn from data the `touchdown` CLI writes, so that a plot shows exactly the
 series and boundaries the Rust side measured (nothing is recomputed here):
 
 * traces      one landing on several engines, overlaid: the vertical acceleration over the
@@ -12,11 +13,16 @@ series and boundaries the Rust side measured (nothing is recomputed here):
               with the bracket (last stable, first unstable) as a bar. Input: the JSON of
               `touchdown boundary --engines ... --format json` (one point per engine and
               descent speed, each naming its engine).
+* precision   work-precision: log-log error against wall time, one line per engine and
+              scheme over its ladder of steps or tolerances (strokes; pitch-rate history;
+              final attitude), failed rungs left out, the 1 % stroke error marked. Input: the
+              JSON of `touchdown precision --format json`.
 
 Usage:
   python/plot_compare.py traces --data DIR --stem STEM --engines core,rapier,mujoco \
       --title TITLE --out FILE.png
   python/plot_compare.py boundaries --data FILE.json --unit ft/s --title TITLE --out FILE.png
+  python/plot_compare.py precision --data FILE.json --title TITLE --out FILE.png
 
 Run it with the project's venv (`scripts/setup-python`, then `.venv/bin/python`); the CLI does.
 The output is deterministic as far as matplotlib allows: Agg backend, fixed sizes and DPI, no
@@ -146,6 +152,46 @@ def boundaries(args: argparse.Namespace) -> None:
     fig.savefig(args.out, dpi=DPI, metadata=PNG_METADATA)
 
 
+# One colour and marker per integration method of the work-precision plot.
+METHODS = {
+    "report": ("core report", COLOURS["core"], "o"),
+    "rk4": ("core rk4", "#7570b3", "s"),
+    "dopri5": ("core dopri5", "#e7298a", "^"),
+    "rapier": ("rapier", COLOURS["rapier"], "D"),
+    "mujoco": ("mujoco", COLOURS["mujoco"], "v"),
+}
+
+
+def precision(args: argparse.Namespace) -> None:
+    study = json.loads(Path(args.data).read_text())
+    panels = [
+        ("max_stroke", "maximum-stroke error\n(fraction of the largest primary stroke)"),
+        ("pitch_rate_rms", "pitch-rate history RMS error\n(fraction of its peak)"),
+        ("final_attitude_rad", "final-attitude error, rad"),
+    ]
+    fig, axes = plt.subplots(1, 3, figsize=(15, 5))
+    for ax, (key, label) in zip(axes, panels):
+        for method, (name, colour, marker) in METHODS.items():
+            rungs = [r for r in study["rungs"] if r["method"] == method and r["measured"]]
+            # A log axis cannot show an exact zero: such a rung sits at the axis floor.
+            points = [
+                (r["measured"]["wall_time_s"], max(r["measured"]["errors"][key], 1e-12))
+                for r in rungs
+            ]
+            if points:
+                ax.loglog(*zip(*points), marker=marker, color=colour, lw=1.4, label=name)
+        if key == "max_stroke":
+            ax.axhline(study["fixed_error"], color="grey", ls="--", lw=1, label="1 % of stroke")
+        ax.set_xlabel("wall time per landing, s (median)")
+        ax.set_ylabel(label)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    build = "" if study["optimised_build"] else " (debug build: times not representative)"
+    fig.suptitle(f"{args.title}: work-precision against the converged reference{build}", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=DPI, metadata=PNG_METADATA)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     sub = ap.add_subparsers(dest="kind", required=True)
@@ -160,8 +206,12 @@ def main() -> int:
     b.add_argument("--title", default="")
     b.add_argument("--unit", default="ft/s")
     b.add_argument("--out", required=True)
+    p = sub.add_parser("precision")
+    p.add_argument("--data", required=True)
+    p.add_argument("--title", default="")
+    p.add_argument("--out", required=True)
     args = ap.parse_args()
-    {"traces": traces, "boundaries": boundaries}[args.kind](args)
+    {"traces": traces, "boundaries": boundaries, "precision": precision}[args.kind](args)
     return 0
 
 

@@ -72,6 +72,62 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         plot: Option<PathBuf>,
     },
+    /// Work-precision: each engine and integration scheme over a ladder of step sizes or
+    /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
+    /// final attitude) against its cost (steps, force evaluations, wall time). Build with
+    /// --release: wall times of a debug build say nothing.
+    Precision {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        /// Engines to measure, comma-separated (the core with each of its three schemes);
+        /// those the scenario's engines.applicable lists.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Timed runs per rung (the wall time is their median).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Only the first N (coarsest) rungs of each ladder.
+        #[arg(long, value_name = "N")]
+        rungs: Option<usize>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Also draw the log-log work-precision plot into this PNG (matplotlib, in the project's
+        /// Python environment), with its data beside it as JSON.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+    /// The stiff and extreme catalogue (docs/robustness.md): every case on every engine that
+    /// applies, classified as completed (bounded energy, strokes within the struts), stopped or
+    /// refused with a diagnostic, or failed; with --search, the largest stable step of each
+    /// stiff case and fixed-step method. Build with --release.
+    Robustness {
+        /// Engines, comma-separated.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Only these cases, comma-separated (default: the whole catalogue).
+        #[arg(long, value_delimiter = ',')]
+        cases: Option<Vec<String>>,
+        /// Also search the largest stable step of each stiff case.
+        #[arg(long)]
+        search: bool,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Workspace root holding scenarios/.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+    },
     /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
     /// how to open it in MuJoCo's viewer.
     ExportMjcf {
@@ -193,6 +249,21 @@ fn run(cli: Cli) -> Result<()> {
             format,
             plot,
         } => compare(&scenarios, &engines, format, plot.as_deref()),
+        Command::Precision {
+            scenario,
+            engines,
+            repeats,
+            rungs,
+            format,
+            plot,
+        } => precision(&scenario, &engines, repeats, rungs, format, plot.as_deref()),
+        Command::Robustness {
+            engines,
+            cases,
+            search,
+            format,
+            root,
+        } => robustness(&root, &engines, cases, search, format),
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
             sc.require_engine(Engine::Mujoco)?;
@@ -315,6 +386,87 @@ fn compare(
             touchdown_compare::report::tolerances_text()
         ),
         Format::Json => println!("[{}]", json.join(",\n")),
+    }
+    Ok(())
+}
+
+/// `touchdown precision`: the work-precision study of a scenario.
+fn precision(
+    scenario: &Path,
+    engines: &[Engine],
+    repeats: usize,
+    rungs: Option<usize>,
+    format: Format,
+    plot: Option<&Path>,
+) -> Result<()> {
+    use touchdown_compare::precision::{self, Method};
+    if repeats == 0 {
+        anyhow::bail!("--repeats: expected at least 1 timed run per rung");
+    }
+    if rungs == Some(0) {
+        anyhow::bail!("--rungs: expected at least 1 rung per ladder");
+    }
+    let methods: Vec<Method> = Method::ALL
+        .into_iter()
+        .filter(|m| engines.contains(&m.engine()))
+        .collect();
+    eprintln!("computing the converged reference ...");
+    let study = precision::work_precision(scenario, &methods, rungs, repeats, |rung| {
+        eprintln!(
+            "  {} {}: {}",
+            rung.method.name(),
+            precision::setting_label(rung.method, rung.value),
+            match (&rung.measured, &rung.failure) {
+                (Some(m), _) => format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
+                (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
+            }
+        );
+    })?;
+    let json = serde_json::to_string_pretty(&study)?;
+    if let Some(png) = plot {
+        plots::precision(&json, &study.scenario, png)?;
+    }
+    match format {
+        Format::Text => print!("{}", precision::text(&study)),
+        Format::Json => println!("{json}"),
+    }
+    Ok(())
+}
+
+/// `touchdown robustness`: the stiff and extreme catalogue.
+fn robustness(
+    root: &Path,
+    engines: &[Engine],
+    cases: Option<Vec<String>>,
+    search: bool,
+    format: Format,
+) -> Result<()> {
+    use touchdown_compare::robustness::{self, CATALOGUE};
+    let chosen: Vec<_> = match &cases {
+        None => CATALOGUE.to_vec(),
+        Some(names) => names
+            .iter()
+            .map(|n| {
+                CATALOGUE
+                    .iter()
+                    .find(|c| c.name == n)
+                    .copied()
+                    .ok_or_else(|| {
+                        let known: Vec<_> = CATALOGUE.iter().map(|c| c.name).collect();
+                        anyhow::anyhow!(
+                            "--cases: no case {n:?} (the catalogue: {})",
+                            known.join(", ")
+                        )
+                    })
+            })
+            .collect::<Result<_>>()?,
+    };
+    let r = robustness::run_catalogue(&root.join("scenarios"), &chosen, engines, search, |m| {
+        eprintln!("  {m}")
+    })?;
+    match format {
+        Format::Text => print!("{}", robustness::text(&r, &chosen)),
+        Format::Json => println!("{}", serde_json::to_string_pretty(&r)?),
     }
     Ok(())
 }

@@ -56,15 +56,21 @@ pub fn comparison(c: &ScenarioComparison, scenario: &Path, dir: &Path) -> Result
     ])
 }
 
-/// `touchdown boundary --plot FILE`: the boundary points (JSON, written beside FILE) overlaid
-/// per engine into FILE.
-/// `unit` is the velocity unit of the points.
-pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()> {
+/// Writes `json` beside `png` (same stem, .json), creating its folder; returns the data file.
+fn data_beside(json: &str, png: &Path) -> Result<PathBuf> {
     if let Some(dir) = png.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     let data = png.with_extension("json");
     std::fs::write(&data, json).with_context(|| format!("cannot write {}", data.display()))?;
+    Ok(data)
+}
+
+/// `touchdown boundary --plot FILE`: the boundary points (JSON, written beside FILE) overlaid
+/// per engine into FILE.
+/// `unit` is the velocity unit of the points.
+pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()> {
+    let data = data_beside(json, png)?;
     draw(&[
         "boundaries".as_ref(),
         "--data".as_ref(),
@@ -73,6 +79,21 @@ pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()>
         title.as_ref(),
         "--unit".as_ref(),
         unit.as_ref(),
+        "--out".as_ref(),
+        png.as_os_str(),
+    ])
+}
+
+/// `touchdown precision --plot FILE`: the work-precision study (JSON, written beside FILE) as
+/// log-log plots of error against wall time, one line per engine and scheme, into FILE.
+pub fn precision(json: &str, title: &str, png: &Path) -> Result<()> {
+    let data = data_beside(json, png)?;
+    draw(&[
+        "precision".as_ref(),
+        "--data".as_ref(),
+        data.as_os_str(),
+        "--title".as_ref(),
+        title.as_ref(),
         "--out".as_ref(),
         png.as_os_str(),
     ])

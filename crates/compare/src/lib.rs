@@ -6,13 +6,17 @@
 //! | [`metrics`] | divergence of two engines, channel by channel, against written tolerances |
 //! | [`report`] | a scenario's comparison as text (rounded for snapshot review) and JSON |
 //! | [`plot`] | the traces behind the metrics, as CSV for `python/plot_compare.py` |
+//! | [`robustness`] | the stiff and extreme catalogue: every case on every engine, classified; the largest stable steps |
+//! | [`precision`] | work-precision: every engine and scheme over a ladder of steps or tolerances against a converged reference |
 //!
 //! An engine's run is its summary plus its trace; every pair of the engines asked for is
 //! compared, the first engine of the pair being the reference of its relative channels.
 
 pub mod metrics;
 pub mod plot;
+pub mod precision;
 pub mod report;
+pub mod robustness;
 pub mod trace;
 
 use serde::Serialize;

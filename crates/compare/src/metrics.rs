@@ -172,7 +172,7 @@ fn channel(name: String, a: f64, b: f64, difference: f64, t: &Tolerance) -> Chan
 
 /// Time-aligned pitch-rate differences over the common span: RMS and largest, rad/s (`b`
 /// interpolated at `a`'s times).
-fn pitch_rate_differences(a: &Trace, b: &Trace) -> (f64, f64) {
+pub(crate) fn pitch_rate_differences(a: &Trace, b: &Trace) -> (f64, f64) {
     let end = a.end().min(b.end());
     let (mut sum, mut n, mut max) = (0.0, 0usize, 0.0f64);
     for (t, q) in a.t.iter().zip(&a.pitch_rate) {

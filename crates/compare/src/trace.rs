@@ -1,5 +1,5 @@
 //! The time series a comparison needs of a landing, the same for every engine: time, vertical
-//! velocity, pitch rate and primary strokes at every accepted state.
+//! velocity, pitch rate, attitude and primary strokes at every accepted state.
 
 use std::path::Path;
 use touchdown_record::Sample;
@@ -18,6 +18,8 @@ pub struct Trace {
     pub vz: Vec<f64>,
     /// Pitch rate, angular velocity about the inertial X axis, rad/s.
     pub pitch_rate: Vec<f64>,
+    /// Euler angles θ relative to the surface frame (eq. 3 order), rad.
+    pub attitude: Vec<[f64; 3]>,
     /// Primary strokes, m (compression positive): `legs` values per time, leg by leg.
     pub primary_stroke: Vec<f64>,
     /// Legs per time in `primary_stroke`.
@@ -30,6 +32,7 @@ impl Trace {
         self.t.push(s.t);
         self.vz.push(s.velocity.z);
         self.pitch_rate.push(s.pitch_rate);
+        self.attitude.push(s.theta.into());
         self.legs = s.legs.len();
         self.primary_stroke
             .extend(s.legs.iter().map(|l| l.primary_stroke));
@@ -51,6 +54,11 @@ impl Trace {
             column("vz_m_s")?,
             column("pitch_rate_rad_s")?,
         );
+        let ca = [
+            column("theta_x_rad")?,
+            column("theta_y_rad")?,
+            column("theta_z_rad")?,
+        ];
         let strokes = (1..)
             .map(|n| format!("leg{n}_primary_stroke_m"))
             .map_while(|name| header.iter().position(|h| h == name))
@@ -69,6 +77,7 @@ impl Trace {
             trace.t.push(num(ct)?);
             trace.vz.push(num(cz)?);
             trace.pitch_rate.push(num(cq)?);
+            trace.attitude.push([num(ca[0])?, num(ca[1])?, num(ca[2])?]);
             for &c in &strokes {
                 trace.primary_stroke.push(num(c)?);
             }
@@ -142,6 +151,7 @@ mod tests {
         let trace = Trace {
             vz: t.iter().map(|t| v(*t)).collect(),
             pitch_rate: vec![0.0; t.len()],
+            attitude: vec![[0.0; 3]; t.len()],
             primary_stroke: t.iter().flat_map(|t| [*t, 2.0 * t]).collect(),
             legs: 2,
             t,

@@ -60,6 +60,22 @@ pub struct EnergyLedger {
     pub mechanisms: f64,
 }
 
+impl EnergyReport {
+    /// The energy scale of the balance, J: the touchdown kinetic energy plus the magnitude of
+    /// every exchange (potential energy, honeycombs, viscous, bearing and sliding friction,
+    /// contact events, mechanisms).
+    pub fn scale(&self) -> f64 {
+        self.kinetic_initial_j
+            + self.potential_change_j.abs()
+            + (self.honeycomb_dissipated_j + self.honeycomb_stored_j).abs()
+            + self.viscous_j.abs()
+            + self.bearing_friction_j.abs()
+            + self.sliding_friction_j.abs()
+            + self.contact_events_j.abs()
+            + self.mechanisms_j.abs()
+    }
+}
+
 impl EnergyLedger {
     /// The energy report of a state with vehicle kinetic energy `kinetic` (J; `kinetic_initial`
     /// at first contact), potential-energy change `potential_change` (J), gear energy
@@ -102,14 +118,7 @@ impl EnergyLedger {
         tolerance: f64,
         hint: &str,
     ) -> Result<(), String> {
-        let scale = e.kinetic_initial_j
-            + e.potential_change_j.abs()
-            + self.honeycomb.abs()
-            + self.viscous.abs()
-            + self.bearing.abs()
-            + self.sliding.abs()
-            + self.events.abs()
-            + self.mechanisms.abs();
+        let scale = e.scale();
         if e.residual_j.abs() <= tolerance * scale.max(f64::MIN_POSITIVE) {
             return Ok(());
         }

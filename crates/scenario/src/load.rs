@@ -384,6 +384,36 @@ fn resolve_mujoco(
     })
 }
 
+/// The integrator settings, SI, checked.
+fn resolve_integrator(
+    c: &Check,
+    it: &schema::Integrator,
+    u: &Units,
+) -> Result<model::Integrator, ScenarioError> {
+    let integrator = model::Integrator {
+        scheme: it.scheme,
+        dist: c.positive("integrator.dist", it.dist)? * u.length(),
+        dt_min: c.positive("integrator.dt_min", it.dt_min)? * u.time(),
+        dt_max: c.positive("integrator.dt_max", it.dt_max)? * u.time(),
+        t_end: c.positive("integrator.t_end", it.t_end)? * u.time(),
+        contact_step_limit: it.contact_step_limit,
+        energy_tolerance: c.positive("integrator.energy_tolerance", it.energy_tolerance)?,
+        attitude: it.attitude,
+        rtol: c.positive("integrator.rtol", it.rtol)?,
+        atol: c.positive("integrator.atol", it.atol)?,
+    };
+    if integrator.dt_min > integrator.dt_max {
+        return Err(c.err("integrator.dt_min", "expected dt_min ≤ dt_max"));
+    }
+    if it.attitude == schema::AttitudeForm::Quaternion && it.scheme == schema::Scheme::Report {
+        return Err(c.err(
+            "integrator.attitude",
+            "expected \"euler\" with scheme \"report\" (the report's predictor-corrector integrates Euler angles, eqs. 20-25); \"quaternion\" needs scheme \"rk4\" or \"dopri5\"",
+        ));
+    }
+    Ok(integrator)
+}
+
 /// The multibody engines' gear links.
 fn resolve_links(c: &Check, l: &schema::GearLinks) -> Result<model::GearLinks, ScenarioError> {
     Ok(model::GearLinks {
@@ -407,6 +437,21 @@ impl Scenario {
             layers: &self.layers,
         };
         self.rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.file.units)?;
+        Ok(self)
+    }
+
+    /// The scenario with its integrator settings changed by `change` (file units, as in the
+    /// file), checked as the file's own would be; the resolved scenario written out shows the
+    /// new values.
+    pub fn with_integrator(
+        mut self,
+        change: impl FnOnce(&mut schema::Integrator),
+    ) -> Result<Scenario, ScenarioError> {
+        change(&mut self.file.integrator);
+        let c = Check {
+            layers: &self.layers,
+        };
+        self.integrator = resolve_integrator(&c, &self.file.integrator, &self.file.units)?;
         Ok(self)
     }
 
@@ -839,28 +884,7 @@ fn resolve(
         body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
         clearance: c.non_negative("touchdown.clearance", td.clearance)? * u.length(),
     };
-    let it = &file.integrator;
-    let integrator = model::Integrator {
-        scheme: it.scheme,
-        dist: c.positive("integrator.dist", it.dist)? * u.length(),
-        dt_min: c.positive("integrator.dt_min", it.dt_min)? * u.time(),
-        dt_max: c.positive("integrator.dt_max", it.dt_max)? * u.time(),
-        t_end: c.positive("integrator.t_end", it.t_end)? * u.time(),
-        contact_step_limit: it.contact_step_limit,
-        energy_tolerance: c.positive("integrator.energy_tolerance", it.energy_tolerance)?,
-        attitude: it.attitude,
-        rtol: c.positive("integrator.rtol", it.rtol)?,
-        atol: c.positive("integrator.atol", it.atol)?,
-    };
-    if integrator.dt_min > integrator.dt_max {
-        return Err(c.err("integrator.dt_min", "expected dt_min ≤ dt_max"));
-    }
-    if it.attitude == schema::AttitudeForm::Quaternion && it.scheme == schema::Scheme::Report {
-        return Err(c.err(
-            "integrator.attitude",
-            "expected \"euler\" with scheme \"report\" (the report's predictor-corrector integrates Euler angles, eqs. 20-25); \"quaternion\" needs scheme \"rk4\" or \"dopri5\"",
-        ));
-    }
+    let integrator = resolve_integrator(&c, &file.integrator, &u)?;
     let st = &file.stability;
     let frac = c.positive(
         "stability.kinetic_energy_fraction",

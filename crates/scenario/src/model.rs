@@ -129,6 +129,13 @@ pub struct LoadStroke {
     pub stages: Vec<(f64, f64)>,
 }
 
+impl LoadStroke {
+    /// Stroke at which the last stage ends (bottoming begins), m.
+    pub fn capacity(&self) -> f64 {
+        self.stages.last().map_or(0.0, |s| s.1)
+    }
+}
+
 /// Viscous law, SI: F = coefficient·sgn(v)·|v|^exponent, N with v in m/s.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Viscous {

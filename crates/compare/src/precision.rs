@@ -1,0 +1,693 @@
+//! Work-precision: each engine and integration scheme run over a ladder of step sizes or
+//! tolerances, its error against a converged reference set against what it cost (steps, force
+//! evaluations, wall time). `touchdown precision` prints it; docs/performance.md records it.
+//!
+//! The reference is the core with the Dormand–Prince pair at tolerances far below any rung's,
+//! refined ([`reference_level`]) until two successive refinements agree within
+//! [`REFERENCE_AGREEMENT`]. The multibody engines are measured against the same reference, so
+//! their error holds the model's difference (a gear with masses and a contact solver against the
+//! report's massless gear) besides the numerical one; [`Errors::self_max_stroke`] separates the
+//! two by measuring each rung against the finest rung of its own ladder.
+
+use crate::metrics::pitch_rate_differences;
+use crate::{land, run, CompareError, Engine, EngineRun, Trace};
+use nalgebra::{Matrix3, Vector3};
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+use touchdown_record::{Outcome, Summary};
+use touchdown_scenario::frames::t_bi;
+use touchdown_scenario::schema::Scheme;
+use touchdown_scenario::Scenario;
+
+/// An integration method whose accuracy one number sets: a core scheme or a multibody engine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// The core with the report's predictor-corrector (eqs. 20-25); the rung divides DIST and
+    /// dt_max by its value.
+    Report,
+    /// The core with the classical fourth-order Runge–Kutta method; the rung is its step, s.
+    Rk4,
+    /// The core with the Dormand–Prince 5(4) pair; the rung is `rtol` (`atol` = 1e-3 `rtol`, in
+    /// SI units of the state), within the scenario's dt_min and dt_max.
+    Dopri5,
+    /// The rapier rebuild; the rung is its fixed step, s.
+    Rapier,
+    /// The MuJoCo engine; the rung is its fixed step, s.
+    Mujoco,
+}
+
+/// `atol` of a [`Method::Dopri5`] rung as a fraction of its `rtol` (state components are of
+/// order 0.001 to 1 in SI: strokes in m, rates in rad/s).
+pub const DOPRI5_ATOL_PER_RTOL: f64 = 1.0e-3;
+
+impl Method {
+    /// Every method, in table order.
+    pub const ALL: [Method; 5] = [
+        Method::Report,
+        Method::Rk4,
+        Method::Dopri5,
+        Method::Rapier,
+        Method::Mujoco,
+    ];
+
+    /// The engine that runs the method.
+    pub fn engine(self) -> Engine {
+        match self {
+            Method::Report | Method::Rk4 | Method::Dopri5 => Engine::Core,
+            Method::Rapier => Engine::Rapier,
+            Method::Mujoco => Engine::Mujoco,
+        }
+    }
+
+    /// Name in tables and plots.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Report => "core report",
+            Method::Rk4 => "core rk4",
+            Method::Dopri5 => "core dopri5",
+            Method::Rapier => "rapier",
+            Method::Mujoco => "mujoco",
+        }
+    }
+
+    /// What a rung's value is.
+    pub fn setting(self) -> &'static str {
+        match self {
+            Method::Report => "DIST and dt_max divided by",
+            Method::Rk4 | Method::Rapier | Method::Mujoco => "step, s",
+            Method::Dopri5 => "rtol",
+        }
+    }
+
+    /// The default ladder, coarsest rung first.
+    pub fn ladder(self) -> &'static [f64] {
+        match self {
+            Method::Report => &[1.0, 2.0, 4.0, 8.0, 16.0, 32.0],
+            Method::Rk4 => &[2.0e-4, 1.0e-4, 5.0e-5, 2.0e-5, 1.0e-5, 5.0e-6],
+            Method::Dopri5 => &[1.0e-2, 1.0e-3, 1.0e-4, 1.0e-5, 1.0e-6, 1.0e-7, 1.0e-8],
+            Method::Rapier | Method::Mujoco => &[1.0e-4, 5.0e-5, 2.0e-5, 1.0e-5, 5.0e-6],
+        }
+    }
+
+    /// The scenario `sc` set to the rung `value` of this method.
+    pub fn apply(
+        self,
+        sc: &Scenario,
+        value: f64,
+    ) -> Result<Scenario, touchdown_scenario::ScenarioError> {
+        let time = sc.file.units.time();
+        let sc = sc.clone();
+        match self {
+            Method::Report => sc.with_integrator(|it| {
+                it.scheme = Scheme::Report;
+                it.dist /= value;
+                it.dt_max /= value;
+                it.dt_min = it.dt_min.min(it.dt_max);
+            }),
+            Method::Rk4 => sc.with_integrator(|it| {
+                it.scheme = Scheme::Rk4;
+                it.dt_max = value / time;
+                it.dt_min = it.dt_min.min(it.dt_max);
+            }),
+            Method::Dopri5 => sc.with_integrator(|it| {
+                it.scheme = Scheme::Dopri5;
+                it.rtol = value;
+                it.atol = value * DOPRI5_ATOL_PER_RTOL;
+            }),
+            Method::Rapier => sc.with_rapier(|r| r.timestep = value / time),
+            Method::Mujoco => sc.with_mujoco(|m| m.timestep = value / time),
+        }
+    }
+}
+
+/// How far a run lands from another (the reference), on the channels of issue 8.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Errors {
+    /// Largest difference of any maximum stroke (primary; secondary compression and tension),
+    /// as a fraction of the reference's largest primary stroke.
+    pub max_stroke: f64,
+    /// RMS difference of the pitch-rate history over the common span (interpolated at the
+    /// reference's times), as a fraction of the reference's peak pitch-rate magnitude (at least
+    /// 0.1 rad/s).
+    pub pitch_rate_rms: f64,
+    /// Angle of the rotation between the two attitudes at the common end time, rad.
+    pub final_attitude_rad: f64,
+    /// [`Errors::max_stroke`] against the finest rung of the run's own ladder instead of the
+    /// reference (the ladder's own convergence; `None` outside a ladder, and for the finest
+    /// rung itself).
+    pub self_max_stroke: Option<f64>,
+}
+
+/// Every maximum stroke of a summary, m, in a fixed order.
+fn max_strokes(s: &Summary) -> impl Iterator<Item = f64> + '_ {
+    s.max_primary_stroke_m.iter().copied().chain(
+        s.max_secondary_compression_m
+            .iter()
+            .chain(&s.max_secondary_tension_m)
+            .flatten()
+            .copied(),
+    )
+}
+
+/// Largest maximum-stroke difference of `run` from `reference`, as a fraction of the reference's
+/// largest primary stroke.
+fn stroke_error(reference: &Summary, run: &Summary) -> f64 {
+    let scale = reference
+        .max_primary_stroke_m
+        .iter()
+        .fold(0.0f64, |m, s| m.max(*s))
+        .max(f64::MIN_POSITIVE);
+    max_strokes(reference)
+        .zip(max_strokes(run))
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / scale
+}
+
+/// The attitude of `trace` at time `t`, as the rotation body ← surface.
+fn attitude_at(trace: &Trace, t: f64) -> Matrix3<f64> {
+    let angle = |k: usize| {
+        let values: Vec<f64> = trace.attitude.iter().map(|a| a[k]).collect();
+        trace.at(&values, t)
+    };
+    t_bi(&Vector3::new(angle(0), angle(1), angle(2)))
+}
+
+/// The errors of `run` against `reference` (the self-convergence left unset).
+pub fn errors(reference: &EngineRun, run: &EngineRun) -> Errors {
+    let (rms, _) = pitch_rate_differences(&reference.trace, &run.trace);
+    // As the comparison's pitch-rate channels: a peak under 0.1 rad/s counts as 0.1 rad/s (a
+    // symmetric drop does not pitch).
+    let peak = reference.summary.peak_pitch_rate_rad_s.abs().max(0.1);
+    let end = reference.trace.end().min(run.trace.end());
+    let gap = attitude_at(&reference.trace, end) - attitude_at(&run.trace, end);
+    // ‖R_a − R_b‖_F = 2√2 sin(φ/2) for the angle φ between the rotations (precise when small).
+    let final_attitude_rad = 2.0 * (gap.norm() / 8f64.sqrt()).min(1.0).asin();
+    Errors {
+        max_stroke: stroke_error(&reference.summary, &run.summary),
+        pitch_rate_rms: rms / peak,
+        final_attitude_rad,
+        self_max_stroke: None,
+    }
+}
+
+/// How closely two successive refinements of the reference must agree.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Agreement {
+    /// On every maximum stroke, fraction of the largest primary stroke.
+    pub max_stroke: f64,
+    /// On the pitch-rate history, RMS as a fraction of its peak.
+    pub pitch_rate_rms: f64,
+    /// On the final attitude, rad.
+    pub final_attitude_rad: f64,
+}
+
+/// The agreement asked of the reference: a hundredth of the 1 % stroke error the work-precision
+/// tables are read at, a thousandth of the pitch-rate peak, 10 µrad of attitude.
+pub const REFERENCE_AGREEMENT: Agreement = Agreement {
+    max_stroke: 1.0e-4,
+    pitch_rate_rms: 1.0e-3,
+    final_attitude_rad: 1.0e-5,
+};
+
+/// Refinements tried for the reference before giving up.
+pub const REFERENCE_LEVELS: usize = 5;
+
+/// The reference's `level`-th refinement (from 0): the Dormand–Prince pair at
+/// `rtol` = 1e-9 / 10^level (`atol` = 1e-3 `rtol`), dt_max = the scenario's / 2^(level+2) (the
+/// cap keeps a mirror-symmetric landing's step sequence from splitting symmetric legs), dt_min
+/// 1e-10 s (events located to 0.1 ns).
+pub fn reference_level(
+    sc: &Scenario,
+    level: usize,
+) -> Result<Scenario, touchdown_scenario::ScenarioError> {
+    let rtol = 1.0e-9 / 10f64.powi(level as i32);
+    let time = sc.file.units.time();
+    sc.clone().with_integrator(|it| {
+        it.scheme = Scheme::Dopri5;
+        it.rtol = rtol;
+        it.atol = rtol * DOPRI5_ATOL_PER_RTOL;
+        it.dt_max /= 2f64.powi(level as i32 + 2);
+        it.dt_min = 1.0e-10 / time;
+    })
+}
+
+/// The converged reference of a scenario.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reference {
+    /// The finest refinement's settings: `rtol`, `atol` (SI), dt_max, dt_min (s).
+    pub rtol: f64,
+    /// `atol`, SI units of the state.
+    pub atol: f64,
+    /// Largest step, s.
+    pub dt_max_s: f64,
+    /// Smallest step, s.
+    pub dt_min_s: f64,
+    /// Refinements run.
+    pub levels: usize,
+    /// How far the finest refinement lands from the one before it.
+    pub agreement: Errors,
+    /// The agreement asked.
+    pub asked: Agreement,
+    /// Steps and force evaluations of the finest refinement.
+    pub steps: u64,
+    /// Force evaluations of the finest refinement.
+    pub force_evaluations: u64,
+    /// The finest refinement's outcome.
+    pub outcome: Outcome,
+    /// The finest refinement's run.
+    #[serde(skip)]
+    pub run: EngineRun,
+}
+
+/// Computes the converged reference of `sc` (read from `path`): refinements until two
+/// successive ones agree within [`REFERENCE_AGREEMENT`]; an error if none do within
+/// [`REFERENCE_LEVELS`].
+pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> {
+    let mut previous: Option<EngineRun> = None;
+    let mut worst = String::new();
+    for level in 0..REFERENCE_LEVELS {
+        let scl = reference_level(sc, level)?;
+        let current = run(Engine::Core, path, &scl)?;
+        if let Some(prev) = previous {
+            let e = errors(&current, &prev);
+            let a = REFERENCE_AGREEMENT;
+            if e.max_stroke <= a.max_stroke
+                && e.pitch_rate_rms <= a.pitch_rate_rms
+                && e.final_attitude_rad <= a.final_attitude_rad
+            {
+                let it = &scl.integrator;
+                return Ok(Reference {
+                    rtol: it.rtol,
+                    atol: it.atol,
+                    dt_max_s: it.dt_max,
+                    dt_min_s: it.dt_min,
+                    levels: level + 1,
+                    agreement: e,
+                    asked: a,
+                    steps: current.summary.steps,
+                    force_evaluations: current.summary.force_evaluations,
+                    outcome: current.summary.outcome,
+                    run: current,
+                });
+            }
+            worst = format!(
+                "refinements {level} and {} differ by {:.2e} on the strokes, {:.2e} on the pitch rate, {:.2e} rad on the final attitude",
+                level + 1,
+                e.max_stroke,
+                e.pitch_rate_rms,
+                e.final_attitude_rad
+            );
+        }
+        previous = Some(current);
+    }
+    Err(CompareError::Engine {
+        engine: Engine::Core.name(),
+        scenario: path.display().to_string(),
+        message: format!(
+            "no converged reference within {REFERENCE_LEVELS} refinements of the Dormand-Prince pair: {worst} (asked: {:.0e}, {:.0e}, {:.0e} rad)",
+            REFERENCE_AGREEMENT.max_stroke,
+            REFERENCE_AGREEMENT.pitch_rate_rms,
+            REFERENCE_AGREEMENT.final_attitude_rad
+        ),
+    })
+}
+
+/// What a rung cost and how far it landed from the reference.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Measured {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Gear-force evaluations.
+    pub force_evaluations: u64,
+    /// Wall time of a whole landing, median of the repeated runs, s (for MuJoCo with the
+    /// runner's start-up: the Python interpreter, imports, model compilation).
+    pub wall_time_s: f64,
+    /// Outcome.
+    pub outcome: Outcome,
+    /// Errors against the reference.
+    pub errors: Errors,
+}
+
+/// One rung of a ladder.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Rung {
+    /// The method.
+    pub method: Method,
+    /// Its setting ([`Method::setting`]).
+    pub value: f64,
+    /// What it measured; `None` if the run failed.
+    pub measured: Option<Measured>,
+    /// Why the run failed (the engine's diagnostic).
+    pub failure: Option<String>,
+    /// The run itself.
+    #[serde(skip)]
+    pub run: Option<EngineRun>,
+}
+
+/// The cheapest rung of a method within a stroke error.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AtError {
+    /// The method.
+    pub method: Method,
+    /// The cheapest rung's setting, if any rung is within the error.
+    pub value: Option<f64>,
+    /// Its wall time, s.
+    pub wall_time_s: Option<f64>,
+    /// Its wall time over the fastest method's.
+    pub ratio_to_fastest: Option<f64>,
+    /// The same measured against the method's own finest rung instead of the reference (what
+    /// the numerics alone cost): setting, wall time, ratio to the fastest on this measure.
+    pub self_value: Option<f64>,
+    /// Wall time of [`AtError::self_value`], s.
+    pub self_wall_time_s: Option<f64>,
+    /// Its ratio to the fastest on this measure.
+    pub self_ratio_to_fastest: Option<f64>,
+}
+
+/// A scenario's work-precision study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorkPrecision {
+    /// Scenario name.
+    pub scenario: String,
+    /// Scenario file.
+    pub file: String,
+    /// SHA-256 of the resolved scenario.
+    pub scenario_sha256: String,
+    /// Runs per rung whose median is the wall time.
+    pub repeats: usize,
+    /// Whether this binary was built with optimisations (wall times of a debug build are not
+    /// representative).
+    pub optimised_build: bool,
+    /// The reference.
+    pub reference: Reference,
+    /// Every rung, method by method, coarsest first.
+    pub rungs: Vec<Rung>,
+    /// Stroke error at which [`WorkPrecision::at_error`] is read.
+    pub fixed_error: f64,
+    /// For each method, the cheapest rung within [`WorkPrecision::fixed_error`].
+    pub at_error: Vec<AtError>,
+}
+
+/// The stroke error at which the methods' costs are compared: 1 % of the largest primary stroke.
+pub const FIXED_ERROR: f64 = 0.01;
+
+/// Median of `values` (sorted in place).
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+/// Runs one rung: once with the trace for the errors, then `repeats` times untraced for the wall
+/// time.
+fn measure(
+    path: &Path,
+    sc: &Scenario,
+    reference: &EngineRun,
+    method: Method,
+    value: f64,
+    repeats: usize,
+) -> Rung {
+    let attempt = || -> Result<(Measured, EngineRun), CompareError> {
+        let scr = method.apply(sc, value)?;
+        let engine = method.engine();
+        let traced = run(engine, path, &scr)?;
+        let mut times = Vec::with_capacity(repeats);
+        for _ in 0..repeats.max(1) {
+            let start = Instant::now();
+            land(engine, path, &scr, &mut (), None)?;
+            times.push(start.elapsed().as_secs_f64());
+        }
+        let s = &traced.summary;
+        Ok((
+            Measured {
+                steps: s.steps,
+                force_evaluations: s.force_evaluations,
+                wall_time_s: median(&mut times),
+                outcome: s.outcome,
+                errors: errors(reference, &traced),
+            },
+            traced,
+        ))
+    };
+    match attempt() {
+        Ok((measured, traced)) => Rung {
+            method,
+            value,
+            measured: Some(measured),
+            failure: None,
+            run: Some(traced),
+        },
+        Err(e) => Rung {
+            method,
+            value,
+            measured: None,
+            failure: Some(e.to_string()),
+            run: None,
+        },
+    }
+}
+
+/// The cheapest rung of each method within `error`, on the reference's and on its own measure.
+fn at_error(rungs: &[Rung], methods: &[Method], error: f64) -> Vec<AtError> {
+    let cheapest = |method: Method, pick: &dyn Fn(&Measured) -> Option<f64>| {
+        rungs
+            .iter()
+            .filter(|r| r.method == method)
+            .filter_map(|r| r.measured.as_ref().map(|m| (r.value, m)))
+            .filter(|(_, m)| pick(m).is_some_and(|e| e <= error))
+            .min_by(|a, b| a.1.wall_time_s.total_cmp(&b.1.wall_time_s))
+            .map(|(v, m)| (v, m.wall_time_s))
+    };
+    let reference: Vec<_> = methods
+        .iter()
+        .map(|m| cheapest(*m, &|x| Some(x.errors.max_stroke)))
+        .collect();
+    let own: Vec<_> = methods
+        .iter()
+        .map(|m| cheapest(*m, &|x| x.errors.self_max_stroke))
+        .collect();
+    let fastest = |found: &[Option<(f64, f64)>]| {
+        found
+            .iter()
+            .flatten()
+            .map(|(_, t)| *t)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (f_ref, f_own) = (fastest(&reference), fastest(&own));
+    methods
+        .iter()
+        .zip(reference.iter().zip(&own))
+        .map(|(method, (r, o))| AtError {
+            method: *method,
+            value: r.map(|x| x.0),
+            wall_time_s: r.map(|x| x.1),
+            ratio_to_fastest: r.map(|x| x.1 / f_ref),
+            self_value: o.map(|x| x.0),
+            self_wall_time_s: o.map(|x| x.1),
+            self_ratio_to_fastest: o.map(|x| x.1 / f_own),
+        })
+        .collect()
+}
+
+/// The work-precision study of the scenario at `path` for `methods` (those whose engine the
+/// scenario's `engines.applicable` lists), each over its default ladder (or the first `rungs`
+/// of it), with `repeats` timed runs per rung; `progress` hears of each rung when it is done.
+pub fn work_precision(
+    path: &Path,
+    methods: &[Method],
+    rungs: Option<usize>,
+    repeats: usize,
+    mut progress: impl FnMut(&Rung),
+) -> Result<WorkPrecision, CompareError> {
+    let sc = Scenario::load(path)?;
+    let reference = reference(path, &sc)?;
+    let methods: Vec<Method> = methods
+        .iter()
+        .copied()
+        .filter(|m| sc.applicable_engines.contains(&m.engine()))
+        .collect();
+    let mut all = Vec::new();
+    for &method in &methods {
+        let ladder = method.ladder();
+        let ladder = &ladder[..rungs.unwrap_or(ladder.len()).min(ladder.len())];
+        let mut measured: Vec<Rung> = ladder
+            .iter()
+            .map(|&value| {
+                let rung = measure(path, &sc, &reference.run, method, value, repeats);
+                progress(&rung);
+                rung
+            })
+            .collect();
+        // The ladder's own convergence: every rung against its finest completed rung.
+        if let Some(finest) = measured.iter().rposition(|r| r.run.is_some()) {
+            let best = measured[finest].run.clone();
+            for (i, rung) in measured.iter_mut().enumerate() {
+                if let (Some(m), Some(run), Some(best), true) =
+                    (rung.measured.as_mut(), &rung.run, &best, i != finest)
+                {
+                    m.errors.self_max_stroke = Some(stroke_error(&best.summary, &run.summary));
+                }
+            }
+        }
+        all.extend(measured);
+    }
+    Ok(WorkPrecision {
+        scenario: sc.file.name.clone(),
+        file: path.display().to_string(),
+        scenario_sha256: sc.sha256(),
+        repeats,
+        optimised_build: !cfg!(debug_assertions),
+        at_error: at_error(&all, &methods, FIXED_ERROR),
+        fixed_error: FIXED_ERROR,
+        reference,
+        rungs: all,
+    })
+}
+
+/// A rung's setting as the tables print it.
+pub fn setting_label(method: Method, value: f64) -> String {
+    match method {
+        Method::Report => format!("÷{value}"),
+        Method::Rk4 | Method::Rapier | Method::Mujoco => {
+            format!("{:.3} µs", value * 1e6).replace(".000", "")
+        }
+        Method::Dopri5 => format!("rtol {value:.0e}"),
+    }
+}
+
+/// A duration, s, in a readable unit.
+fn duration(t: f64) -> String {
+    if t < 1.0e-3 {
+        format!("{:.1} µs", t * 1e6)
+    } else if t < 1.0 {
+        format!("{:.2} ms", t * 1e3)
+    } else {
+        format!("{t:.2} s")
+    }
+}
+
+fn percent(x: f64) -> String {
+    format!("{:.3} %", 100.0 * x)
+}
+
+/// The study as a text table.
+pub fn text(w: &WorkPrecision) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let r = &w.reference;
+    let _ = writeln!(s, "work-precision: {} ({})", w.scenario, w.file);
+    let _ = writeln!(
+        s,
+        "reference: core dopri5, rtol {:.0e}, atol {:.0e}, dt_max {:.3e} s, dt_min {:.0e} s ({} refinements; {} steps, {} force evaluations, {:?}); against the refinement before it: strokes {:.1e}, pitch rate {:.1e}, final attitude {:.1e} rad (asked {:.0e}, {:.0e}, {:.0e} rad)",
+        r.rtol,
+        r.atol,
+        r.dt_max_s,
+        r.dt_min_s,
+        r.levels,
+        r.steps,
+        r.force_evaluations,
+        r.outcome,
+        r.agreement.max_stroke,
+        r.agreement.pitch_rate_rms,
+        r.agreement.final_attitude_rad,
+        r.asked.max_stroke,
+        r.asked.pitch_rate_rms,
+        r.asked.final_attitude_rad,
+    );
+    let _ = writeln!(
+        s,
+        "errors: maximum strokes as a fraction of the reference's largest primary stroke (against the reference; against the method's own finest rung), pitch-rate history RMS as a fraction of its peak, angle between the final attitudes"
+    );
+    let _ = writeln!(
+        s,
+        "wall time: one whole landing, median of {} runs{}",
+        w.repeats,
+        if w.optimised_build {
+            ""
+        } else {
+            " (DEBUG BUILD: not representative; run with `cargo run --release`)"
+        }
+    );
+    let _ = writeln!(
+        s,
+        "\n{:<12} {:>14} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}  outcome",
+        "method",
+        "setting",
+        "steps",
+        "evaluations",
+        "wall time",
+        "strokes",
+        "own ladder",
+        "pitch rate",
+        "attitude"
+    );
+    for rung in &w.rungs {
+        let label = setting_label(rung.method, rung.value);
+        match (&rung.measured, &rung.failure) {
+            (Some(m), _) => {
+                let _ = writeln!(
+                    s,
+                    "{:<12} {:>14} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11.1e}  {:?}",
+                    rung.method.name(),
+                    label,
+                    m.steps,
+                    m.force_evaluations,
+                    duration(m.wall_time_s),
+                    percent(m.errors.max_stroke),
+                    m.errors
+                        .self_max_stroke
+                        .map(percent)
+                        .unwrap_or_else(|| "finest".into()),
+                    percent(m.errors.pitch_rate_rms),
+                    m.errors.final_attitude_rad,
+                    m.outcome,
+                );
+            }
+            (None, failure) => {
+                let _ = writeln!(
+                    s,
+                    "{:<12} {:>14}  failed: {}",
+                    rung.method.name(),
+                    label,
+                    failure.as_deref().unwrap_or("?")
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\nat {} stroke error, the cheapest rung within it: against the reference | against the method's own finest rung",
+        percent(w.fixed_error)
+    );
+    let cell = |v: Option<f64>, t: Option<f64>, ratio: Option<f64>, m: Method| match (v, t, ratio) {
+        (Some(v), Some(t), Some(ratio)) => format!(
+            "{:>14} {:>11} ×{:<7.1}",
+            setting_label(m, v),
+            duration(t),
+            ratio
+        ),
+        _ => format!("{:>34}", "no rung within it"),
+    };
+    for a in &w.at_error {
+        let _ = writeln!(
+            s,
+            "{:<12} {} | {}",
+            a.method.name(),
+            cell(a.value, a.wall_time_s, a.ratio_to_fastest, a.method),
+            cell(
+                a.self_value,
+                a.self_wall_time_s,
+                a.self_ratio_to_fastest,
+                a.method
+            ),
+        );
+    }
+    s
+}

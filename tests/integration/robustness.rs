@@ -1,0 +1,154 @@
+//! The reduced stiff and extreme catalogue (docs/robustness.md) and the work-precision study
+//! (docs/performance.md): every run completes with a bounded energy balance and strokes within
+//! the struts, or stops with a diagnostic that names the time and the law; never a garbage
+//! result.
+
+use touchdown_compare::precision::{self, Method, REFERENCE_AGREEMENT};
+use touchdown_compare::robustness::{self, Verdict, CATALOGUE};
+use touchdown_compare::Engine;
+
+fn scenarios() -> std::path::PathBuf {
+    touchdown_tests::root().join("scenarios")
+}
+
+#[test]
+fn every_case_completes_or_stops_with_a_named_cause_on_the_core() {
+    let r =
+        robustness::run_catalogue(&scenarios(), CATALOGUE, &[Engine::Core], false, |_| {}).unwrap();
+    assert_eq!(r.runs.len(), CATALOGUE.len());
+    for run in &r.runs {
+        match run.verdict {
+            Verdict::Completed => {
+                let e = run.energy_residual.unwrap();
+                assert!(
+                    e.is_finite() && e.abs() <= 0.02,
+                    "{}: residual {e}",
+                    run.case
+                );
+            }
+            Verdict::Stopped => {
+                let m = run.message.as_deref().unwrap();
+                assert!(
+                    m.contains("simulation stopped at t =") && m.contains("state:"),
+                    "{}: {m}",
+                    run.case
+                );
+            }
+            v => panic!("{}: {v:?}: {:?}", run.case, run.message),
+        }
+    }
+    // The stiffest honeycombs are beyond the default step: the energy guard stops the run and
+    // says so; ×100 still completes.
+    let verdict = |name: &str| r.runs.iter().find(|x| x.case == name).unwrap();
+    let x1000 = verdict("onset-x1000");
+    assert_eq!(x1000.verdict, Verdict::Stopped);
+    assert!(x1000.message.as_deref().unwrap().contains("energy balance"));
+    assert_eq!(verdict("onset-x100").verdict, Verdict::Completed);
+    // Bottoming: the primaries go past their capacity on the elastic stop, a little.
+    let out = verdict("vv-30").primary_stroke_over_capacity.unwrap();
+    assert!((1.0..1.2).contains(&out), "{out}");
+}
+
+#[test]
+fn the_overturn_passes_theta_y_90_degrees_with_the_quaternion_attitude() {
+    let case = CATALOGUE
+        .iter()
+        .find(|c| c.name == "overturn-through-90")
+        .unwrap();
+    let (path, sc) = case.scenario(&scenarios()).unwrap();
+    let run = touchdown_compare::run(Engine::Core, &path, &sc).unwrap();
+    let peak = run
+        .trace
+        .attitude
+        .iter()
+        .map(|a| a[1])
+        .fold(0.0f64, f64::max);
+    assert!(peak > 1.57, "θy peaks at {peak} rad");
+    // Past 90° the Euler angles flip: θx and θz jump to ±π while θy comes back down.
+    let last = run.trace.attitude.last().unwrap();
+    assert!(last[0].abs() > 3.0 && last[2].abs() > 3.0, "{last:?}");
+}
+
+#[test]
+fn cheap_cases_complete_or_stop_with_a_named_cause_on_the_multibody_engines() {
+    let cases: Vec<_> = CATALOGUE
+        .iter()
+        .filter(|c| ["attitude-30", "onset-x1000"].contains(&c.name))
+        .copied()
+        .collect();
+    let r = robustness::run_catalogue(
+        &scenarios(),
+        &cases,
+        &[Engine::Rapier, Engine::Mujoco],
+        false,
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(r.runs.len(), 4);
+    for run in &r.runs {
+        assert_ne!(run.verdict, Verdict::Failed, "{run:?}");
+        if run.verdict != Verdict::Completed {
+            assert!(!run.message.as_deref().unwrap_or("").is_empty(), "{run:?}");
+        }
+    }
+}
+
+#[test]
+fn the_largest_stable_step_is_bracketed_by_a_named_failure() {
+    let case = CATALOGUE.iter().find(|c| c.name == "onset-x1000").unwrap();
+    let (path, sc) = case.scenario(&scenarios()).unwrap();
+    // The report's scheme at its default step is stopped by the energy guard on this case.
+    let s = robustness::largest_stable_step(case.name, &path, &sc, Method::Report);
+    let dt = s.largest_stable_step_s.expect("a stable step");
+    assert!(dt < s.default_step_s, "{s:?}");
+    let (above, why) = s.first_unstable.expect("an unstable step above it");
+    assert!((above / dt - 2.0).abs() < 1e-9, "{dt} {above}");
+    assert!(why.contains("simulation stopped at t ="), "{why}");
+}
+
+#[test]
+fn work_precision_has_a_converged_reference_and_converging_ladders() {
+    let path = touchdown_tests::scenario("flat-drop.toml");
+    let w = precision::work_precision(
+        &path,
+        &[Method::Report, Method::Rk4, Method::Dopri5],
+        Some(3),
+        1,
+        |_| {},
+    )
+    .unwrap();
+    let a = w.reference.agreement;
+    assert!(a.max_stroke <= REFERENCE_AGREEMENT.max_stroke, "{a:?}");
+    assert!(
+        a.pitch_rate_rms <= REFERENCE_AGREEMENT.pitch_rate_rms,
+        "{a:?}"
+    );
+    assert_eq!(w.rungs.len(), 9);
+    let errors: Vec<f64> = w
+        .rungs
+        .iter()
+        .map(|r| {
+            r.measured
+                .as_ref()
+                .expect("every rung runs")
+                .errors
+                .max_stroke
+        })
+        .collect();
+    // The report's scheme and RK4 converge as their steps shrink.
+    assert!(errors[2] < errors[0], "report: {errors:?}");
+    assert!(errors[5] < errors[3], "rk4: {errors:?}");
+    assert!(
+        errors.iter().all(|e| e.is_finite() && *e < 0.05),
+        "{errors:?}"
+    );
+    // Each method's cheapest rung within 1 % is found, the fastest has ratio 1.
+    assert_eq!(w.at_error.len(), 3);
+    let ratios: Vec<f64> = w
+        .at_error
+        .iter()
+        .filter_map(|x| x.ratio_to_fastest)
+        .collect();
+    assert!(ratios.contains(&1.0), "{ratios:?}");
+    assert!(precision::text(&w).contains("core dopri5"));
+}
