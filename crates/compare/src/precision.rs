@@ -141,7 +141,7 @@ pub struct Errors {
 }
 
 /// Every maximum stroke of a summary, m, in a fixed order.
-fn max_strokes(s: &Summary) -> impl Iterator<Item = f64> + '_ {
+pub(crate) fn max_strokes(s: &Summary) -> impl Iterator<Item = f64> + '_ {
     s.max_primary_stroke_m.iter().copied().chain(
         s.max_secondary_compression_m
             .iter()

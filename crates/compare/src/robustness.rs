@@ -229,18 +229,7 @@ pub fn implausible(sc: &Scenario, s: &Summary) -> Option<String> {
         e.honeycomb_dissipated_j,
         e.honeycomb_stored_j,
     ];
-    let strokes: Vec<f64> = s
-        .max_primary_stroke_m
-        .iter()
-        .copied()
-        .chain(
-            s.max_secondary_compression_m
-                .iter()
-                .chain(&s.max_secondary_tension_m)
-                .flatten()
-                .copied(),
-        )
-        .collect();
+    let strokes: Vec<f64> = crate::precision::max_strokes(s).collect();
     if let Some(x) = numbers.iter().chain(&strokes).find(|x| !x.is_finite()) {
         return Some(format!("a non-finite output ({x})"));
     }
