@@ -167,11 +167,7 @@ fn stroke_error(reference: &Summary, run: &Summary) -> f64 {
 
 /// The attitude of `trace` at time `t`, as the rotation body ← surface.
 fn attitude_at(trace: &Trace, t: f64) -> Matrix3<f64> {
-    let angle = |k: usize| {
-        let values: Vec<f64> = trace.attitude.iter().map(|a| a[k]).collect();
-        trace.at(&values, t)
-    };
-    t_bi(&Vector3::new(angle(0), angle(1), angle(2)))
+    t_bi(&Vector3::from(trace.attitude_at(t)))
 }
 
 /// The errors of `run` against `reference` (the self-convergence left unset).
@@ -341,9 +337,9 @@ pub struct Rung {
     pub measured: Option<Measured>,
     /// Why the run failed (the engine's diagnostic).
     pub failure: Option<String>,
-    /// The run itself.
+    /// The run's summary.
     #[serde(skip)]
-    pub run: Option<EngineRun>,
+    pub summary: Option<Summary>,
 }
 
 /// The cheapest rung of a method within a stroke error.
@@ -442,14 +438,14 @@ fn measure(
             value,
             measured: Some(measured),
             failure: None,
-            run: Some(traced),
+            summary: Some(traced.summary),
         },
         Err(e) => Rung {
             method,
             value,
             measured: None,
             failure: Some(e.to_string()),
-            run: None,
+            summary: None,
         },
     }
 }
@@ -526,13 +522,14 @@ pub fn work_precision(
             })
             .collect();
         // The ladder's own convergence: every rung against its finest completed rung.
-        if let Some(finest) = measured.iter().rposition(|r| r.run.is_some()) {
-            let best = measured[finest].run.clone();
-            for (i, rung) in measured.iter_mut().enumerate() {
-                if let (Some(m), Some(run), Some(best), true) =
-                    (rung.measured.as_mut(), &rung.run, &best, i != finest)
+        if let Some(finest) = measured.iter().rposition(|r| r.summary.is_some()) {
+            let (coarser, rest) = measured.split_at_mut(finest);
+            let best = rest[0].summary.as_ref();
+            for rung in coarser {
+                if let (Some(m), Some(run), Some(best)) =
+                    (rung.measured.as_mut(), &rung.summary, best)
                 {
-                    m.errors.self_max_stroke = Some(stroke_error(&best.summary, &run.summary));
+                    m.errors.self_max_stroke = Some(stroke_error(best, run));
                 }
             }
         }

@@ -10,7 +10,7 @@ use crate::{land, CompareError, Engine};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use touchdown_record::{Outcome, Summary};
-use touchdown_scenario::Scenario;
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// A change to one field of a base scenario (file units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -182,12 +182,13 @@ impl Case {
             let (field, value) = match *change {
                 Change::Set(field, v) => (field, v),
                 Change::Scale(field, k) => {
-                    let v =
-                        Scenario::value_at(&path, field)?.ok_or_else(|| CompareError::Engine {
-                            engine: "catalogue",
-                            scenario: path.display().to_string(),
-                            message: format!("case {}: no number at {field} to scale", self.name),
-                        })?;
+                    let v = Scenario::value_at(&path, field)?.ok_or_else(|| {
+                        ScenarioError::field(
+                            &path.display().to_string(),
+                            field,
+                            format!("expected a number for case {} to scale", self.name),
+                        )
+                    })?;
                     (field, v * k)
                 }
             };

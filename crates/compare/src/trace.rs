@@ -88,16 +88,32 @@ impl Trace {
     /// `values` (one per time of this trace) linearly interpolated at time `t`, s, within the
     /// trace's span.
     pub fn at(&self, values: &[f64], t: f64) -> f64 {
+        let (i, j, w) = self.bracket(t);
+        values[i] + w * (values[j] - values[i])
+    }
+
+    /// The Euler angles (as [`Trace::attitude`]) linearly interpolated at time `t`, s, within
+    /// the trace's span.
+    pub fn attitude_at(&self, t: f64) -> [f64; 3] {
+        let (i, j, w) = self.bracket(t);
+        let (a, b) = (self.attitude[i], self.attitude[j]);
+        [0, 1, 2].map(|k| a[k] + w * (b[k] - a[k]))
+    }
+
+    /// The samples around time `t`, s, and the weight of the later one (the first or last
+    /// sample alone outside the span).
+    fn bracket(&self, t: f64) -> (usize, usize, f64) {
         let i = self.t.partition_point(|x| *x < t);
         if i == 0 {
-            return values[0];
+            return (0, 0, 0.0);
         }
         if i >= self.t.len() {
-            return values[values.len() - 1];
+            let last = self.t.len() - 1;
+            return (last, last, 0.0);
         }
         let (t0, t1) = (self.t[i - 1], self.t[i]);
         let w = if t1 > t0 { (t - t0) / (t1 - t0) } else { 1.0 };
-        values[i - 1] + w * (values[i] - values[i - 1])
+        (i - 1, i, w)
     }
 
     /// End of the trace, s.
