@@ -12,14 +12,12 @@
 //! * `plots`: the validation plots regenerate from the committed data with the project's venv;
 //! * `rapier`: the rapier rebuild against the core: start state, energy balance, outcomes, and
 //!   the two mechanisms that part them;
-//! * `robustness`: the reduced stiff and extreme catalogue (every case on the core, cheap ones on
-//!   the multibody engines), the overturn through θy = 90°, a largest-stable-step search, and
-//!   the work-precision study's converged reference and ladders;
 //! * `mujoco`: every scenario exports to MJCF that the pinned MuJoCo loads, in the touchdown
 //!   state.
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
-//! `crates/cli/tests/`.
+//! `crates/cli/tests/`; the robustness catalogue and the work-precision study, which live in the
+//! comparison crate, in `crates/compare/tests/robustness.rs`.
 
 mod allocation;
 mod docs;
@@ -30,5 +28,4 @@ mod mujoco;
 mod physics;
 mod plots;
 mod rapier;
-mod robustness;
 mod scenario_errors;

@@ -8,7 +8,7 @@ use touchdown_compare::robustness::{self, Verdict, CATALOGUE};
 use touchdown_compare::Engine;
 
 fn scenarios() -> std::path::PathBuf {
-    touchdown_tests::root().join("scenarios")
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
 }
 
 #[test]
@@ -108,7 +108,7 @@ fn the_largest_stable_step_is_bracketed_by_a_named_failure() {
 
 #[test]
 fn work_precision_has_a_converged_reference_and_converging_ladders() {
-    let path = touchdown_tests::scenario("flat-drop.toml");
+    let path = scenarios().join("flat-drop.toml");
     let w = precision::work_precision(
         &path,
         &[Method::Report, Method::Rk4, Method::Dopri5],
