@@ -101,7 +101,7 @@ pub const CATALOGUE: &[Case] = &[
         what: "vertical drop at 30 ft/s (flat ground; every primary bottoms)",
         base: "stroke-out.toml",
         changes: &[Change::Set("touchdown.vertical_velocity", -30.0)],
-        stiff: false,
+        stiff: true,
     },
     Case {
         name: "vh-15",
@@ -150,7 +150,7 @@ pub const CATALOGUE: &[Case] = &[
         what: "every primary strut bottoms (vertical drop at 20 ft/s)",
         base: "stroke-out.toml",
         changes: &[],
-        stiff: false,
+        stiff: true,
     },
     Case {
         name: "stroke-out-secondary",
@@ -169,7 +169,7 @@ pub const CATALOGUE: &[Case] = &[
         what: "overturn through θy = 90° (locked footpads, 1-2-1 at 40 ft/s; quaternion attitude on the core)",
         base: "robustness/overturn-through-90.toml",
         changes: &[],
-        stiff: false,
+        stiff: true,
     },
 ];
 

@@ -392,8 +392,14 @@ impl MujocoLanding {
             let v_mean = 0.5 * (self.old_pad_velocity[i] + self.pad_velocity[i]);
             // The contact sphere is centred on BP; its plane is lowered by its radius.
             let depth = self.book.surfaces[i].plane() - self.book.kin[i].footpad.z;
-            self.book
-                .book_contact(i, self.t, &impulse, &v_mean, depth, found > 0.0);
+            self.book.book_contact(
+                i,
+                self.t,
+                &impulse,
+                &impulse.component_mul(&v_mean),
+                depth,
+                found > 0.0,
+            );
         }
     }
 

@@ -199,22 +199,23 @@ impl GearBook {
     }
 
     /// Books footpad `i`'s contact over the step ending at time `t` (s): the `impulse` (N·s,
-    /// inertial) its surface gave it, working on `v_mean` (m/s, the mean of the contact point's
-    /// velocities before and after the step): the normal part (and a locked footpad's lateral
-    /// part) into the contact-event account, sliding friction into the sliding account; its
-    /// penetration `depth` (m); whether it bears on its surface (`touching` and a pushing
-    /// normal impulse).
+    /// inertial) its surface gave it and that impulse's `work` (J) along each inertial axis
+    /// (the impulse on the mean of the contact point's velocities before and after the step,
+    /// plus whatever the engine's contact solver moved the footpad by beyond its velocities):
+    /// the normal part (and a locked footpad's lateral part) into the contact-event account,
+    /// sliding friction into the sliding account; its penetration `depth` (m); whether it bears
+    /// on its surface (`touching` and a pushing normal impulse).
     pub fn book_contact(
         &mut self,
         i: usize,
         t: f64,
         impulse: &Vector3<f64>,
-        v_mean: &Vector3<f64>,
+        work: &Vector3<f64>,
         depth: f64,
         touching: bool,
     ) {
-        let normal_work = impulse.z * v_mean.z;
-        let lateral_work = impulse.x * v_mean.x + impulse.y * v_mean.y;
+        let normal_work = work.z;
+        let lateral_work = work.x + work.y;
         self.ledger.events += normal_work;
         if self.surfaces[i].locked() {
             self.ledger.events += lateral_work;
