@@ -338,8 +338,64 @@ impl GearBook {
             .map_err(|message| Fault {
                 law: "energy balance",
                 leg: None,
-                message,
+                message: format!("{message}; {}", self.largest_strut_load()),
             })
+    }
+
+    /// The largest strut force at the current state, with its leg, strut, stroke and the
+    /// branch of its law: where an explicit law is stiffest, its force is largest, so this
+    /// names the law a step too large for it has mistreated (a diagnostic's text).
+    pub fn largest_strut_load(&self) -> String {
+        let primary = &self.laws.primary.honeycomb.curve;
+        let (tension, compression) = (
+            &self.laws.secondary.honeycomb.tension.curve,
+            &self.laws.secondary.honeycomb.compression.curve,
+        );
+        let mut largest: Option<(usize, &str, f64, f64, &str)> = None;
+        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
+            let branch = if k.c < 0.0 {
+                "its extension stop"
+            } else if k.c > primary.capacity() {
+                "its stroke-out (bottoming) stop"
+            } else if f.crush_load > 0.0 {
+                "its crush plateau"
+            } else {
+                "its elastic onset or rebound"
+            };
+            let force = f.honeycomb + f.crush_load + f.viscous;
+            let secondary = |j: usize| {
+                let s = k.s[j];
+                let bottomed = s > tension.capacity() || -s > compression.capacity();
+                let branch = if bottomed {
+                    "its stroke-out (bottoming) stop"
+                } else {
+                    "its honeycomb"
+                };
+                (
+                    i,
+                    ["secondary strut 3-1", "secondary strut 4-1"][j],
+                    f.secondary()[j],
+                    s,
+                    branch,
+                )
+            };
+            for candidate in [
+                (i, "primary strut", force, k.c, branch),
+                secondary(0),
+                secondary(1),
+            ] {
+                if largest.is_none_or(|l| candidate.2.abs() > l.2.abs()) {
+                    largest = Some(candidate);
+                }
+            }
+        }
+        match largest {
+            Some((i, strut, force, stroke, branch)) => format!(
+                "the largest strut force now: leg {} {strut}, {force:.4e} N at stroke {stroke:.4e} m, on {branch}",
+                i + 1
+            ),
+            None => "no strut".into(),
+        }
     }
 
     /// Updates the stability criteria at time `t` (s) with the vehicle in state `v`, its
