@@ -31,7 +31,7 @@ use crate::rigid_body::MassProperties;
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
 use crate::CoreError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector2, Vector3};
-use touchdown_laws::{sliding_friction, GearLaws, GearMemory};
+use touchdown_laws::{sliding_friction, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
     Divergence, EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, Sample,
     StabilityTracker, Summary,
@@ -869,7 +869,19 @@ impl Simulation {
                 self.integrator.energy_tolerance,
                 "step too large for the stiffest mode?",
             )
-            .map_err(|message| self.diverged(v, message, "energy balance", usize::MAX))
+            .map_err(|message| {
+                let loads =
+                    (self.gear.iter().zip(&self.memory))
+                        .enumerate()
+                        .flat_map(|(i, (g, m))| {
+                            let primary = (g.primary_stroke, g.fcp + g.fvp + g.fbr);
+                            let secondary = [0, 1].map(|j| g.fc_secondary[j] + g.fv_secondary[j]);
+                            self.laws
+                                .strut_loads(i, m, primary, (g.secondary_stroke, secondary))
+                        });
+                let message = format!("{message}; {}", StrutLoad::stiffest(loads));
+                self.diverged(v, message, "energy balance", usize::MAX)
+            })
     }
 
     /// Stability distances, the unstable crossing and the four stable conditions

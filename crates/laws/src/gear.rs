@@ -2,7 +2,7 @@
 //! builds its laws here, so the mapping from scenario to law exists once.
 
 use crate::{
-    Bearing, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LawError,
+    Bearing, Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LawError,
     LoadStroke, Stage, Viscous,
 };
 use nalgebra::Vector3;
@@ -33,6 +33,19 @@ impl PrimaryStrutLaw {
             self.honeycomb.force(c, memory)
         } else {
             self.honeycomb.curve.stroke_out_rate() * c
+        }
+    }
+
+    /// The branch compression stroke `c` (m) lies on and its rate, N/m: the extension stop
+    /// below 0, the honeycomb's above.
+    pub fn branch(&self, c: f64, memory: CrushMemory) -> (Branch, f64) {
+        if c < 0.0 {
+            (
+                Branch::ExtensionStop,
+                self.honeycomb.curve.stroke_out_rate(),
+            )
+        } else {
+            self.honeycomb.branch(c, memory)
         }
     }
 
@@ -148,6 +161,56 @@ fn viscous(v: &model::Viscous) -> Viscous {
     }
 }
 
+/// One strut's load at a state, for a divergence diagnostic: the stiffest law engaged is the
+/// one a step too large mistreats first.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StrutLoad {
+    /// Leg, from 0.
+    pub leg: usize,
+    /// Which strut of the leg.
+    pub strut: &'static str,
+    /// Axial force, N (primary: compression positive; secondaries: tension positive).
+    pub force: f64,
+    /// Stroke, m (same signs).
+    pub stroke: f64,
+    /// The branch of its honeycomb law at that stroke.
+    pub branch: Branch,
+    /// The branch's rate (the law's local stiffness), N/m.
+    pub rate: f64,
+}
+
+impl StrutLoad {
+    /// The stiffest law engaged (a non-zero force) among `loads`, the larger force between
+    /// equal rates, as a diagnostic's text.
+    pub fn stiffest(loads: impl IntoIterator<Item = StrutLoad>) -> String {
+        let stiffest = loads
+            .into_iter()
+            .filter(|l| l.force.is_finite() && l.force != 0.0)
+            .max_by(|a, b| {
+                (a.rate.total_cmp(&b.rate)).then(a.force.abs().total_cmp(&b.force.abs()))
+            });
+        match stiffest {
+            Some(l) => format!("the stiffest strut law engaged now: {l}"),
+            None => "no strut law engaged".into(),
+        }
+    }
+}
+
+impl std::fmt::Display for StrutLoad {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "leg {} {} on {} ({:.4e} N/m), {:.4e} N at stroke {:.4e} m",
+            self.leg + 1,
+            self.strut,
+            self.branch,
+            self.rate,
+            self.force,
+            self.stroke
+        )
+    }
+}
+
 impl GearLaws {
     /// Commits an accepted state into the memory (honeycomb x_max per side): primary
     /// compression stroke `c` and secondary strokes `s` (tension positive), m.
@@ -157,6 +220,42 @@ impl GearLaws {
         for (s, m) in s.into_iter().zip(&mut memory.secondary) {
             self.secondary.honeycomb.commit(s, m);
         }
+    }
+
+    /// The three struts of leg `leg` (from 0) at primary compression stroke `c` and secondary
+    /// strokes `s` (m, tension positive) with their axial forces `primary` (N, compression
+    /// positive) and `secondary` (N, tension positive): for a diagnostic.
+    pub fn strut_loads(
+        &self,
+        leg: usize,
+        memory: &GearMemory,
+        (c, primary): (f64, f64),
+        (s, secondary): ([f64; 2], [f64; 2]),
+    ) -> [StrutLoad; 3] {
+        let side = |j: usize, strut| {
+            let (branch, rate) = self.secondary.honeycomb.branch(s[j], memory.secondary[j]);
+            StrutLoad {
+                leg,
+                strut,
+                force: secondary[j],
+                stroke: s[j],
+                branch,
+                rate,
+            }
+        };
+        let (branch, rate) = self.primary.branch(c, memory.primary);
+        [
+            StrutLoad {
+                leg,
+                strut: "primary strut",
+                force: primary,
+                stroke: c,
+                branch,
+                rate,
+            },
+            side(0, "secondary strut 3-1"),
+            side(1, "secondary strut 4-1"),
+        ]
     }
 
     /// Elastic energy stored in the gear's honeycombs and stops (recoverable), J, at primary
@@ -215,5 +314,34 @@ impl GearLaws {
             viscous: viscous(&q.viscous),
         };
         Ok(GearLaws { primary, secondary })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stiffest_law_engaged_is_named_with_its_branch() {
+        let load = |leg, force, branch, rate| StrutLoad {
+            leg,
+            strut: "primary strut",
+            force,
+            stroke: -0.001,
+            branch,
+            rate,
+        };
+        let text = StrutLoad::stiffest([
+            load(0, 9e5, Branch::Plateau, 0.0),
+            load(1, -1.0e3, Branch::ExtensionStop, 1e7),
+            load(2, -1.2e5, Branch::ExtensionStop, 1e7),
+            load(3, 0.0, Branch::Onset, 1e9),
+            load(3, f64::NAN, Branch::Onset, 1e9),
+        ]);
+        assert_eq!(
+            text,
+            "the stiffest strut law engaged now: leg 3 primary strut on its extension stop (1.0000e7 N/m), -1.2000e5 N at stroke -1.0000e-3 m"
+        );
+        assert_eq!(StrutLoad::stiffest([]), "no strut law engaged");
     }
 }

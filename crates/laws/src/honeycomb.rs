@@ -126,6 +126,18 @@ impl LoadStroke {
             .map(|i| self.f[i])
     }
 
+    /// Slope of the virgin curve at stroke `x` (m), N/m: its segment's up to the capacity
+    /// (zero on a plateau), the stroke-out rate beyond; zero for x ≤ 0.
+    pub fn slope(&self, x: f64) -> f64 {
+        if x <= 0.0 {
+            return 0.0;
+        }
+        match (1..self.n).find(|&i| x <= self.x[i]) {
+            Some(i) => (self.f[i] - self.f[i - 1]) / (self.x[i] - self.x[i - 1]),
+            None => self.stroke_out_rate,
+        }
+    }
+
     /// Stroke at which the last stage is exhausted (bottoming begins), m.
     pub fn capacity(&self) -> f64 {
         self.x[self.n - 1]
@@ -156,6 +168,33 @@ impl LoadStroke {
         }
         out.stroke_out_rate = series_rate(self.stroke_out_rate, k_t);
         Ok(out)
+    }
+}
+
+/// The branch of a honeycomb law a stroke lies on (for diagnostics).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Branch {
+    /// On the virgin curve, on an elastic onset ramp.
+    Onset,
+    /// On the virgin curve, on a crush plateau.
+    Plateau,
+    /// Below the largest stroke reached: the elastic backoff (rebound) line.
+    Rebound,
+    /// Past the capacity: the elastic stroke-out (bottoming) stop.
+    StrokeOut,
+    /// A primary strut past its full extension: its elastic extension stop.
+    ExtensionStop,
+}
+
+impl std::fmt::Display for Branch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Branch::Onset => "its elastic onset ramp",
+            Branch::Plateau => "its crush plateau",
+            Branch::Rebound => "its elastic rebound",
+            Branch::StrokeOut => "its stroke-out (bottoming) stop",
+            Branch::ExtensionStop => "its extension stop",
+        })
     }
 }
 
@@ -223,6 +262,21 @@ impl Honeycomb {
     #[inline]
     fn crushed(&self, memory: CrushMemory) -> f64 {
         memory.max_stroke.min(self.curve.capacity())
+    }
+
+    /// The branch stroke `x` (m, ≥ 0) lies on, given the committed memory, and its rate
+    /// (the law's local stiffness), N/m.
+    pub fn branch(&self, x: f64, memory: CrushMemory) -> (Branch, f64) {
+        if x > self.curve.capacity() {
+            (Branch::StrokeOut, self.curve.stroke_out_rate())
+        } else if x < self.crushed(memory) {
+            (Branch::Rebound, self.backoff_rate)
+        } else {
+            match self.curve.slope(x) {
+                0.0 => (Branch::Plateau, 0.0),
+                k => (Branch::Onset, k),
+            }
+        }
     }
 
     /// Commits an accepted stroke `x` (m) into the memory.
@@ -294,6 +348,16 @@ impl DoubleActingHoneycomb {
             self.tension.commit(s, &mut memory.tension)
         } else {
             self.compression.commit(-s, &mut memory.compression)
+        }
+    }
+
+    /// The branch stroke `s` (m, tension positive) lies on and its rate, N/m: the tension
+    /// side's for s ≥ 0, the compression side's below.
+    pub fn branch(&self, s: f64, memory: DoubleActingMemory) -> (Branch, f64) {
+        if s >= 0.0 {
+            self.tension.branch(s, memory.tension)
+        } else {
+            self.compression.branch(-s, memory.compression)
         }
     }
 
@@ -412,6 +476,25 @@ mod tests {
         // Stored energy: the rebound triangle plus the stop's own.
         let e = 3000.0f64.powi(2) / 2e6 + (103_000.0f64.powi(2) - 3000.0f64.powi(2)) / 2e7;
         assert!((h.stored_energy(0.21, m) - e).abs() < 1e-9);
+    }
+
+    #[test]
+    fn each_stroke_names_its_branch() {
+        let h = primary();
+        let mut m = CrushMemory::default();
+        assert_eq!(h.branch(0.005, m), (Branch::Onset, 1e5));
+        assert_eq!(h.branch(0.05, m), (Branch::Plateau, 0.0));
+        let (b, k) = h.branch(0.105, m);
+        assert_eq!(b, Branch::Onset, "onset to the second stage");
+        assert!((k - 1e5).abs() < 1e-6, "{k}");
+        assert_eq!(h.branch(0.21, m), (Branch::StrokeOut, 1e7));
+        h.commit(0.15, &mut m);
+        assert_eq!(h.branch(0.149, m), (Branch::Rebound, 1e6));
+        assert_eq!(h.branch(0.15, m), (Branch::Plateau, 0.0));
+        assert_eq!(
+            Branch::StrokeOut.to_string(),
+            "its stroke-out (bottoming) stop"
+        );
     }
 
     #[test]

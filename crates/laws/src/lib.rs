@@ -34,9 +34,11 @@ pub mod viscous;
 pub use beam::{euler_load, normal_load, secondary_lengthening, Bending, Deflection, EULER_CAP};
 pub use bearing::{side_load, Bearing, BearingLoads};
 pub use curb::{Curb, Curbs, FootpadCrush};
-pub use gear::{GearLaws, GearMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw};
+pub use gear::{
+    GearLaws, GearMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw, StrutLoad,
+};
 pub use honeycomb::{
-    CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
+    Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
 };
 pub use rcs::{Rcs, RcsLoads, RcsMode};
 pub use sliding::sliding_friction;

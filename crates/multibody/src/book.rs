@@ -16,7 +16,7 @@
 use crate::applied::VehicleLoads;
 use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use nalgebra::{Matrix3, Vector2, Vector3};
-use touchdown_laws::{Curbs, GearLaws, GearMemory};
+use touchdown_laws::{Curbs, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
     Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
     Summary,
@@ -338,64 +338,21 @@ impl GearBook {
             .map_err(|message| Fault {
                 law: "energy balance",
                 leg: None,
-                message: format!("{message}; {}", self.largest_strut_load()),
+                message: format!("{message}; {}", self.stiffest_strut_law()),
             })
     }
 
-    /// The largest strut force at the current state, with its leg, strut, stroke and the
-    /// branch of its law: where an explicit law is stiffest, its force is largest, so this
-    /// names the law a step too large for it has mistreated (a diagnostic's text).
-    pub fn largest_strut_load(&self) -> String {
-        let primary = &self.laws.primary.honeycomb.curve;
-        let (tension, compression) = (
-            &self.laws.secondary.honeycomb.tension.curve,
-            &self.laws.secondary.honeycomb.compression.curve,
-        );
-        let mut largest: Option<(usize, &str, f64, f64, &str)> = None;
-        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
-            let branch = if k.c < 0.0 {
-                "its extension stop"
-            } else if k.c > primary.capacity() {
-                "its stroke-out (bottoming) stop"
-            } else if f.crush_load > 0.0 {
-                "its crush plateau"
-            } else {
-                "its elastic onset or rebound"
-            };
-            let force = f.honeycomb + f.crush_load + f.viscous;
-            let secondary = |j: usize| {
-                let s = k.s[j];
-                let bottomed = s > tension.capacity() || -s > compression.capacity();
-                let branch = if bottomed {
-                    "its stroke-out (bottoming) stop"
-                } else {
-                    "its honeycomb"
-                };
-                (
-                    i,
-                    ["secondary strut 3-1", "secondary strut 4-1"][j],
-                    f.secondary()[j],
-                    s,
-                    branch,
-                )
-            };
-            for candidate in [
-                (i, "primary strut", force, k.c, branch),
-                secondary(0),
-                secondary(1),
-            ] {
-                if largest.is_none_or(|l| candidate.2.abs() > l.2.abs()) {
-                    largest = Some(candidate);
-                }
-            }
-        }
-        match largest {
-            Some((i, strut, force, stroke, branch)) => format!(
-                "the largest strut force now: leg {} {strut}, {force:.4e} N at stroke {stroke:.4e} m, on {branch}",
-                i + 1
-            ),
-            None => "no strut".into(),
-        }
+    /// The stiffest strut law engaged at the current state, with its leg, strut, branch, rate,
+    /// force and stroke (a diagnostic's text, [`StrutLoad::stiffest`]).
+    pub fn stiffest_strut_law(&self) -> String {
+        let loads = (self.kin.iter().zip(&self.forces).zip(&self.memory))
+            .enumerate()
+            .flat_map(|(i, ((k, f), m))| {
+                let primary = f.honeycomb + f.crush_load + f.viscous;
+                self.laws
+                    .strut_loads(i, m, (k.c, primary), (k.s, f.secondary()))
+            });
+        StrutLoad::stiffest(loads)
     }
 
     /// Updates the stability criteria at time `t` (s) with the vehicle in state `v`, its
