@@ -339,6 +339,9 @@ pub struct StepSearch {
     /// The next step of the ladder above it, s, and why it did not complete (`None` if the
     /// ceiling completed).
     pub first_unstable: Option<(f64, String)>,
+    /// Why the method does not apply to the case at any step (the report's scheme refuses a
+    /// quaternion attitude), if it does not; nothing is searched then.
+    pub refused: Option<String>,
 }
 
 /// Largest step of the search, s.
@@ -386,7 +389,17 @@ pub fn largest_stable_step(
         default_step_s: default,
         largest_stable_step_s: None,
         first_unstable: None,
+        refused: None,
     };
+    // A method the case's own fields rule out is not a step's failure: no step would do.
+    let own_step = match method {
+        Method::Report => 1.0,
+        _ => default,
+    };
+    if let Err(e) = method.apply(sc, own_step) {
+        search.refused = Some(e.to_string());
+        return search;
+    }
     let mut dt = default;
     match completes(case, path, sc, method, dt) {
         Ok(()) => {
@@ -460,11 +473,15 @@ pub fn run_catalogue(
                 engines.contains(&m.engine()) && sc.applicable_engines.contains(&m.engine())
             }) {
                 let s = largest_stable_step(case.name, &path, &sc, method);
+                let found = match (&s.refused, s.largest_stable_step_s) {
+                    (Some(_), _) => "refused".to_string(),
+                    (None, Some(dt)) => format!("{:.3} µs", dt * 1e6),
+                    (None, None) => "none".to_string(),
+                };
                 progress(&format!(
-                    "{} on {}: largest stable step {:?}",
+                    "{} on {}: largest stable step {found}",
                     case.name,
-                    method.name(),
-                    s.largest_stable_step_s
+                    method.name()
                 ));
                 out.steps.push(s);
             }
@@ -508,6 +525,10 @@ pub fn text(r: &Robustness, cases: &[Case]) -> String {
             "\nlargest stable step (from the scenario's own step, doubled or halved, within {STEP_SEARCH_FLOOR} s to {STEP_SEARCH_CEILING} s)"
         );
         for st in &r.steps {
+            if let Some(why) = &st.refused {
+                let _ = writeln!(s, "{:<22} {:<12} refused: {why}", st.case, st.method.name());
+                continue;
+            }
             let _ = writeln!(
                 s,
                 "{:<22} {:<12} default {:>9} {:>12}  first unstable: {}",
