@@ -142,9 +142,12 @@ where
             let resolved = dir.join("scenario.resolved.toml");
             std::fs::write(&resolved, sc.to_toml())
                 .map_err(|e| fail(format!("cannot write {}: {e}", resolved.display())))?;
-            launch
-                .run(&resolved, dir, out.is_some())
-                .map_err(|e| fail(e.to_string()))
+            launch.run(&resolved, dir, out.is_some()).map_err(|e| {
+                // A scratch folder's name changes from run to run: the error names what the
+                // file holds instead, so that the same failure reads the same.
+                let message = e.to_string();
+                fail(message.replace(&resolved.display().to_string(), "the scenario as resolved"))
+            })
         }
     }
 }

@@ -168,3 +168,23 @@ fn work_precision_has_a_converged_reference_and_converging_ladders() {
     assert!(ratios.contains(&1.0), "{ratios:?}");
     assert!(precision::text(&w).contains("core dopri5"));
 }
+
+#[test]
+fn footpads_sinking_into_a_soft_contact_fail_the_checks() {
+    // rapier's contact at 100 Hz instead of 5 kHz: the footpads sink 2.4 mm into the ground
+    // (a hundred times as deep), the balance still closes (the contact's work is booked), and the run
+    // must not pass as completed.
+    let path = scenarios().join("flat-drop.toml");
+    let sc = touchdown_scenario::Scenario::load(&path)
+        .unwrap()
+        .with_rapier(|r| r.contact_frequency = 100.0)
+        .unwrap();
+    let run = robustness::classify("soft-contact", &path, &sc, Engine::Rapier);
+    assert_eq!(run.verdict, Verdict::Failed, "{run:?}");
+    let m = run.message.as_deref().unwrap();
+    assert!(m.contains("into its surface"), "{m}");
+    // At the default 5 kHz it completes.
+    let sc = touchdown_scenario::Scenario::load(&path).unwrap();
+    let run = robustness::classify("flat-drop", &path, &sc, Engine::Rapier);
+    assert_eq!(run.verdict, Verdict::Completed, "{run:?}");
+}
