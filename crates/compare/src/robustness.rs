@@ -366,6 +366,15 @@ pub const STEP_SEARCH_CEILING: f64 = 2.0e-3;
 /// Smallest step of the search, s.
 pub const STEP_SEARCH_FLOOR: f64 = 1.0e-6;
 
+/// The case `sc` with `method` at step `dt` (s); the report's scheme scales DIST with dt_max.
+fn at_step(sc: &Scenario, method: Method, dt: f64) -> Result<Scenario, ScenarioError> {
+    let value = match method {
+        Method::Report => sc.integrator.dt_max / dt,
+        _ => dt,
+    };
+    method.apply(sc, value)
+}
+
 /// Whether `method` at step `dt` (s) completes on the case `sc`; else the diagnostic.
 fn completes(
     case: &'static str,
@@ -374,12 +383,7 @@ fn completes(
     method: Method,
     dt: f64,
 ) -> Result<(), String> {
-    let value = match method {
-        // The report's scheme scales DIST with dt_max.
-        Method::Report => sc.integrator.dt_max / dt,
-        _ => dt,
-    };
-    let scm = method.apply(sc, value).map_err(|e| e.to_string())?;
+    let scm = at_step(sc, method, dt).map_err(|e| e.to_string())?;
     let run = classify(case, path, &scm, method.engine());
     match run.verdict {
         Verdict::Completed => Ok(()),
@@ -408,11 +412,7 @@ pub fn largest_stable_step(
         refused: None,
     };
     // A method the case's own fields rule out is not a step's failure: no step would do.
-    let own_step = match method {
-        Method::Report => 1.0,
-        _ => default,
-    };
-    if let Err(e) = method.apply(sc, own_step) {
+    if let Err(e) = at_step(sc, method, default) {
         search.refused = Some(e.to_string());
         return search;
     }

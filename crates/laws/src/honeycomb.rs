@@ -98,19 +98,26 @@ impl LoadStroke {
         })
     }
 
+    /// The segment i of the curve, from vertex i − 1 to vertex i, that holds stroke `x` (m,
+    /// > 0); `None` past the capacity.
+    #[inline]
+    fn segment(&self, x: f64) -> Option<usize> {
+        (1..self.n).find(|&i| x <= self.x[i])
+    }
+
     /// Virgin-curve force F_v(x), N, at stroke `x`, m (zero for x ≤ 0).
     #[inline]
     pub fn force(&self, x: f64) -> f64 {
         if x <= 0.0 {
             return 0.0;
         }
-        for i in 1..self.n {
-            if x <= self.x[i] {
+        match self.segment(x) {
+            Some(i) => {
                 let (x0, x1, f0, f1) = (self.x[i - 1], self.x[i], self.f[i - 1], self.f[i]);
-                return f0 + (f1 - f0) * (x - x0) / (x1 - x0);
+                f0 + (f1 - f0) * (x - x0) / (x1 - x0)
             }
+            None => self.f[self.n - 1] + self.stroke_out_rate * (x - self.x[self.n - 1]),
         }
-        self.f[self.n - 1] + self.stroke_out_rate * (x - self.x[self.n - 1])
     }
 
     /// The crush load, N, if stroke `x` (m) lies on a plateau of the curve (a stage crushing at
@@ -120,8 +127,7 @@ impl LoadStroke {
         if x <= 0.0 {
             return None;
         }
-        (1..self.n)
-            .find(|&i| x <= self.x[i])
+        self.segment(x)
             .filter(|&i| self.f[i] == self.f[i - 1])
             .map(|i| self.f[i])
     }
@@ -132,7 +138,7 @@ impl LoadStroke {
         if x <= 0.0 {
             return 0.0;
         }
-        match (1..self.n).find(|&i| x <= self.x[i]) {
+        match self.segment(x) {
             Some(i) => (self.f[i] - self.f[i - 1]) / (self.x[i] - self.x[i - 1]),
             None => self.stroke_out_rate,
         }

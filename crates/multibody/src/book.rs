@@ -344,7 +344,7 @@ impl GearBook {
 
     /// The stiffest strut law engaged at the current state, with its leg, strut, branch, rate,
     /// force and stroke (a diagnostic's text, [`StrutLoad::stiffest`]).
-    pub fn stiffest_strut_law(&self) -> String {
+    fn stiffest_strut_law(&self) -> String {
         let loads = (self.kin.iter().zip(&self.forces).zip(&self.memory))
             .enumerate()
             .flat_map(|(i, ((k, f), m))| {

@@ -37,8 +37,9 @@ pub struct RapierSimulation {
     // state
     t: f64,
     steps: u64,
-    /// Footpad states before the current step (reused every step).
-    pad_before: Vec<BodyState>,
+    /// Footpad states at the current state: before the coming step, and kept from the booking
+    /// of the last one.
+    pad_state: Vec<BodyState>,
     /// Vehicle and link positions at touchdown (for potential energies).
     position0: Vec<Vector3<f64>>,
     /// Kinetic energy of the gear links at touchdown, J.
@@ -57,7 +58,6 @@ impl RapierSimulation {
             scenario.rapier.timestep,
             "engines.rapier.timestep",
         )?;
-        let n = scenario.legs.len();
         let settings = settings(scenario, &assembly.masses);
         let mut sim = RapierSimulation {
             name: scenario.file.name.clone(),
@@ -81,11 +81,14 @@ impl RapierSimulation {
             settings,
             t: 0.0,
             steps: 0,
-            pad_before: Vec::with_capacity(n),
+            pad_state: Vec::new(),
             position0: Vec::new(),
             links_kinetic0: 0.0,
             assembly,
         };
+        sim.pad_state = (sim.assembly.gears.iter())
+            .map(|g| sim.state(g.footpad))
+            .collect();
         sim.position0 = sim.body_positions();
         sim.links_kinetic0 = sim.gear_energy();
         let ke = sim.kinetic_energy();
@@ -188,7 +191,7 @@ impl RapierSimulation {
     /// Contact states, penetration and the work of the contact impulses over the last step
     /// `dt` (s): normal impulses (and locked footpads' lateral impulses) into the contact-event
     /// account, sliding friction into the sliding account. Each impulse works on the mean of the
-    /// contact point's velocities before the step (`pad_before`) and after it, plus the normal
+    /// contact point's velocities before the step (`pad_state`) and after it, plus the normal
     /// impulse's work on the footpad's normal drift: rapier's soft contact integrates positions
     /// with a velocity biased against the penetration, then removes the bias, so the footpad
     /// moves δ = Δz − v_z·Δt further than its final velocity v accounts for. Over δ the contact
@@ -229,7 +232,7 @@ impl RapierSimulation {
                     }
                 }
             }
-            let (before, after) = (&self.pad_before[i], self.state(g.footpad));
+            let (before, after) = (&self.pad_state[i], self.state(g.footpad));
             let mass = g.footpad_inertia.mass;
             let drift_rate =
                 (after.pose.translation.z - before.pose.translation.z) / dt - after.linvel.z;
@@ -238,6 +241,7 @@ impl RapierSimulation {
             let work = impulse.component_mul(&v_mean) + Vector3::z() * (pushed * drift_rate);
             self.book
                 .book_contact(i, self.t, &impulse, &work, depth, active);
+            self.pad_state[i] = after;
         }
     }
 
@@ -309,11 +313,6 @@ impl Landing for RapierSimulation {
             }
         }
         self.book.begin_step();
-        self.pad_before.clear();
-        for g in &self.assembly.gears {
-            self.pad_before
-                .push(body_state(&self.assembly.world, g.footpad));
-        }
         let before = self.vehicle_state();
         self.assembly.world.step();
         self.t += dt;
