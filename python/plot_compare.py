@@ -9,8 +9,10 @@ series and boundaries the Rust side measured (nothing is recomputed here):
               comparison's 2 ms window, the pitch rate, and every leg's primary stroke against
               time. Input: `<stem>.<engine>.csv` per engine (touchdown_compare::plot).
 * boundaries  the stability boundary of one configuration computed by each engine, overlaid:
-              descent speed against the horizontal speed at which the landing turns unstable,
-              with the bracket (last stable, first unstable) as a bar. Input: the JSON of
+              descent speed against the horizontal speed at which the landing turns unstable
+              (the lowest stable -> unstable transition), every transition's bracket as a bar
+              (dotted if unresolved), the further transitions marked > (stable -> unstable) or
+              < (unstable -> stable), and every undecided landing as x. Input: the JSON of
               `touchdown boundary --engines ... --format json` (one point per engine and
               descent speed, each naming its engine).
 * precision   work-precision: log-log error against wall time, one line per engine and
@@ -109,8 +111,20 @@ def boundaries(args: argparse.Namespace) -> None:
         by_engine.setdefault(p["engine"], []).append(p)
     fig, ax = plt.subplots(figsize=(7.5, 5.5))
     offsets = {e: 0.08 * (i - 1) for i, e in enumerate(COLOURS)}
+    # The arrows drawn by annotate do not widen the axes: the right end is set from them.
+    xmax = 1.0
+    # One legend entry per kind of mark, whichever engine drew it first.
+    labelled: set[str] = set()
+
+    def once(kind: str, label: str) -> str | None:
+        if kind in labelled:
+            return None
+        labelled.add(kind)
+        return label
+
     for engine, engine_points in by_engine.items():
         colour = COLOURS.get(engine, "black")
+        # The reported boundary: the lowest stable -> unstable transition at each Vv.
         found = [p for p in engine_points if p["vh"] is not None]
         ax.plot(
             [p["vh"] for p in found],
@@ -122,31 +136,82 @@ def boundaries(args: argparse.Namespace) -> None:
         )
         for p in engine_points:
             y = p["vv"] + offsets.get(engine, 0.0)
-            lo = p["stable_at"] if p["stable_at"] is not None else 0.0
-            if p["unstable_at"] is None:
-                # Stable up to the largest speed tried: an arrow past it.
+            transitions = p.get("transitions", [])
+            if not transitions and p["unstable_at"] is None and p["stable_at"] is not None:
+                # Stable up to the largest speed found stable: an arrow past it.
+                lo = p["stable_at"]
+                xmax = max(xmax, lo + 1.0)
                 ax.annotate(
                     "",
                     xy=(lo + 1.0, y),
                     xytext=(lo, y),
                     arrowprops={"arrowstyle": "->", "color": colour},
                 )
-            else:
-                ax.plot([lo, p["unstable_at"]], [y, y], color=colour, lw=4, alpha=0.35)
-            if p["undecided"]:
-                ax.annotate(
-                    f"{p['undecided']} undecided",
-                    (lo, y),
-                    fontsize=7,
+            if not transitions and p["unstable_at"] is not None:
+                # Unstable from the smallest speed found unstable, nothing stable below it.
+                ax.plot(
+                    p["unstable_at"],
+                    y,
+                    "|",
                     color=colour,
-                    textcoords="offset points",
-                    xytext=(3, 3),
+                    ms=10,
+                    ls="none",
+                    label=once("unstable", "unstable from here, nothing stable below"),
+                )
+            for t in transitions:
+                lo, hi = sorted((t["stable_at"], t["unstable_at"]))
+                if t["resolved"]:
+                    # Every transition's bracket as a bar; the ones beyond the reported
+                    # boundary also get a marker: > stable to unstable, < unstable to stable.
+                    ax.plot([lo, hi], [y, y], color=colour, lw=4, alpha=0.35)
+                    if t["vh"] != p["vh"]:
+                        up = t["direction"] == "stable_to_unstable"
+                        ax.plot(
+                            t["vh"],
+                            y,
+                            ">" if up else "<",
+                            color=colour,
+                            ms=6,
+                            ls="none",
+                            label=once(
+                                "up" if up else "down",
+                                "further transition, stable → unstable"
+                                if up
+                                else "transition unstable → stable",
+                            ),
+                        )
+                else:
+                    # Unresolved: an undecided landing inside the bracket.
+                    ax.plot(
+                        [lo, hi],
+                        [y, y],
+                        color=colour,
+                        lw=4,
+                        alpha=0.35,
+                        ls=":",
+                        label=once("unresolved", "unresolved bracket (undecided inside)"),
+                    )
+            undecided = p.get("undecided_at", [])
+            if undecided:
+                ax.plot(
+                    undecided,
+                    [y] * len(undecided),
+                    "x",
+                    color=colour,
+                    ms=6,
+                    ls="none",
+                    label=once("undecided", "undecided landing"),
                 )
     ax.set_xlabel(f"horizontal touchdown speed Vh, {args.unit}")
     ax.set_ylabel(f"descent speed Vv, {args.unit}")
     ax.grid(True, alpha=0.3)
-    ax.set_xlim(left=0.0)
-    ax.legend(title="unstable to the right of", fontsize=9)
+    left, right = ax.get_xlim()
+    ax.set_xlim(left=min(left, 0.0), right=max(right, 1.05 * xmax))
+    vvs = [p["vv"] for p in points]
+    if vvs:
+        pad = max(0.5, 0.1 * (max(vvs) - min(vvs)))
+        ax.set_ylim(min(vvs) - pad, max(vvs) + pad)
+    ax.legend(title="boundary: lowest stable → unstable", fontsize=8, loc="best")
     ax.set_title(args.title, fontsize=10)
     fig.tight_layout()
     fig.savefig(args.out, dpi=DPI, metadata=PNG_METADATA)

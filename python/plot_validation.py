@@ -283,7 +283,8 @@ def plot_boundary(boundary, out: Path):
         xmax = max(xmax, max(x for x, _ in found))
     first_arrow = True
     for vv, p in pts:
-        if p.get("vh") is None and p.get("stable_at") is not None:
+        # No boundary and nothing unstable (an unresolved boundary has both bracket ends).
+        if p.get("vh") is None and p.get("stable_at") is not None and p.get("unstable_at") is None:
             s = p["stable_at"]
             ax.annotate("", xy=(s, vv), xytext=(0, vv),
                         arrowprops=dict(arrowstyle="-|>", color="#009E73", lw=2, mutation_scale=18))

@@ -171,23 +171,25 @@ enum Command {
         #[arg(long, default_value = ".")]
         root: PathBuf,
     },
-    /// The report's stability-boundary search: for each descent speed, the horizontal speed at
-    /// which the landing turns unstable (velocities in the scenario's length unit per second;
-    /// the horizontal direction is the scenario's).
+    /// The report's stability-boundary search: for each descent speed, every horizontal speed
+    /// at which the landing changes between stable and unstable, found on a grid of Vh and
+    /// bisected; undecided landings are listed, never counted as either (velocities in the
+    /// scenario's length unit per second; the horizontal direction is the scenario's).
     Boundary {
         /// Scenario file (TOML).
         scenario: PathBuf,
         /// Descent speeds FROM:TO:STEP (positive down).
         #[arg(long)]
         vv: String,
-        /// First horizontal speed tried.
-        #[arg(long, default_value_t = 0.0)]
+        /// First horizontal speed of the grid.
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         vh_start: f64,
-        /// Horizontal-speed step while bracketing.
+        /// Step of the horizontal-speed grid: every grid point is landed, and every change of
+        /// outcome between neighbours is bisected.
         #[arg(long, default_value_t = 2.0)]
         vh_step: f64,
-        /// Largest horizontal speed tried.
-        #[arg(long, default_value_t = 30.0)]
+        /// Largest horizontal speed of the grid.
+        #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
         vh_max: f64,
         /// Bisection tolerance on the horizontal speed.
         #[arg(long, default_value_t = 0.05)]

@@ -67,7 +67,9 @@ fn data_beside(json: &str, png: &Path) -> Result<PathBuf> {
 }
 
 /// `touchdown boundary --plot FILE`: the boundary points (JSON, written beside FILE) overlaid
-/// per engine into FILE.
+/// per engine into FILE: the boundary (lowest stable → unstable transition) per descent speed,
+/// every transition's bracket, the further transitions, the unresolved brackets and the
+/// undecided landings, each kind with a legend entry.
 /// `unit` is the velocity unit of the points.
 pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()> {
     let data = data_beside(json, png)?;

@@ -7,7 +7,7 @@ use std::io::IsTerminal;
 use std::path::Path;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
-use touchdown_validation::boundary::{self, BoundaryPoint, Settings};
+use touchdown_validation::boundary::{self, BoundaryPoint, Direction, Settings, Transition};
 use touchdown_validation::reference::{self, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
 use touchdown_validation::table::{Role, Validation};
@@ -194,7 +194,8 @@ pub fn sensitivity_text(table: &[ParameterSensitivity], fraction: f64) -> String
     o
 }
 
-/// Parses FROM:TO:STEP.
+/// Parses the descent speeds FROM:TO:STEP: finite, 0 ≤ FROM ≤ TO, STEP > 0 and at most
+/// [`boundary::MAX_GRID_POINTS`] speeds, each FROM + i·STEP.
 fn range(spec: &str) -> Result<Vec<f64>> {
     let parts: Vec<f64> = spec
         .split(':')
@@ -204,11 +205,21 @@ fn range(spec: &str) -> Result<Vec<f64>> {
     let [from, to, step] = parts[..] else {
         bail!("--vv {spec:?}: expected FROM:TO:STEP")
     };
+    if !(from.is_finite() && to.is_finite() && step.is_finite()) {
+        bail!("--vv {spec:?}: expected finite FROM:TO:STEP numbers");
+    }
     if !(step > 0.0 && to >= from && from >= 0.0) {
         bail!("--vv {spec:?}: expected 0 ≤ FROM ≤ TO and STEP > 0 (descent speeds, positive down)");
     }
-    let n = ((to - from) / step + 1e-9).floor() as usize;
-    Ok((0..=n).map(|i| from + step * i as f64).collect())
+    let n = ((to - from) / step + 1e-9).floor();
+    if n.is_nan() || n >= boundary::MAX_GRID_POINTS as f64 {
+        bail!(
+            "--vv {spec:?}: expected at most {} descent speeds from FROM to TO (a STEP ≥ {}), got {n} + 1",
+            boundary::MAX_GRID_POINTS,
+            (to - from) / (boundary::MAX_GRID_POINTS - 1) as f64
+        );
+    }
+    Ok((0..=n as usize).map(|i| from + step * i as f64).collect())
 }
 
 /// Output of `touchdown boundary`.
@@ -232,10 +243,7 @@ pub fn boundary(
     plot: Option<&Path>,
 ) -> Result<()> {
     let vvs = range(vv)?;
-    if !(settings.vh_step > 0.0 && settings.tolerance > 0.0 && settings.vh_max >= settings.vh_start)
-    {
-        bail!("expected --vh-step > 0, --tol > 0 and --vh-max ≥ --vh-start");
-    }
+    settings.validate()?;
     let mut engines = engines.to_vec();
     engines.sort();
     engines.dedup();
@@ -274,7 +282,8 @@ pub fn boundary(
     Ok(())
 }
 
-/// One engine's boundary at one descent speed.
+/// One engine's boundary at one descent speed: in JSON, `engine` beside the fields of
+/// [`BoundaryPoint`] (velocities in the scenario's velocity unit).
 #[derive(Serialize)]
 struct EnginePoint {
     engine: Engine,
@@ -286,56 +295,246 @@ fn opt(x: Option<f64>) -> String {
     x.map(|v| format!("{v:.3}")).unwrap_or_else(|| "—".into())
 }
 
+fn direction(d: Direction) -> &'static str {
+    match d {
+        Direction::StableToUnstable => "stable_to_unstable",
+        Direction::UnstableToStable => "unstable_to_stable",
+    }
+}
+
+/// Index of the transition a point reports as its boundary (its lowest stable → unstable).
+fn reported(p: &BoundaryPoint) -> Option<usize> {
+    p.transitions
+        .iter()
+        .position(|t| t.direction == Direction::StableToUnstable)
+}
+
+fn list(vhs: &[f64]) -> String {
+    let v: Vec<String> = vhs.iter().map(|v| format!("{v:.3}")).collect();
+    v.join(", ")
+}
+
+/// One line of the text table for a transition besides the reported boundary.
+fn transition_line(t: &Transition) -> String {
+    let arrow = match t.direction {
+        Direction::StableToUnstable => "stable → unstable",
+        Direction::UnstableToStable => "unstable → stable",
+    };
+    let at = match t.vh {
+        Some(vh) => format!("at Vh {vh:.3}"),
+        None => "unresolved".into(),
+    };
+    let mut bracket = format!(
+        "stable at {:.3}, unstable at {:.3}",
+        t.stable_at, t.unstable_at
+    );
+    if !t.undecided_at.is_empty() {
+        let _ = write!(bracket, "; undecided at {}", list(&t.undecided_at));
+    }
+    format!("           transition   {arrow}   {at:<16} ({bracket})")
+}
+
 fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
     let mut o = String::new();
-    let _ = writeln!(o, "stability boundary: horizontal velocity at which the landing turns unstable ({unit}; tolerance {})", s.tolerance);
+    let _ = writeln!(
+        o,
+        "stability boundary: horizontal velocity at which the landing turns unstable ({unit}; \
+         Vh grid {} to {} step {}, tolerance {})",
+        s.vh_start, s.vh_max, s.vh_step, s.tolerance
+    );
     let _ = writeln!(
         o,
         "  engine   descent Vv   boundary Vh   stable at   unstable at   landings   undecided"
     );
     for EnginePoint { engine, point: p } in points {
+        let boundary = match (p.vh, reported(p)) {
+            (None, Some(_)) => "unresolved".into(),
+            (vh, _) => opt(vh),
+        };
         let _ = writeln!(
             o,
             "  {:<6}   {:>10.3}   {:>11}   {:>9}   {:>11}   {:>8}   {:>9}",
             engine.name(),
             p.vv,
-            opt(p.vh),
+            boundary,
             opt(p.stable_at),
             opt(p.unstable_at),
             p.landings,
             p.undecided
         );
+        let own = reported(p);
+        for (i, t) in p.transitions.iter().enumerate() {
+            if Some(i) != own {
+                let _ = writeln!(o, "{}", transition_line(t));
+            }
+        }
+        if !p.undecided_at.is_empty() {
+            let _ = writeln!(o, "           undecided    at Vh {}", list(&p.undecided_at));
+        }
     }
     let _ = writeln!(
         o,
-        "(— : stable up to Vh = {} with no overturn, or unstable already at Vh = {})",
-        s.vh_max, s.vh_start
+        "(boundary Vh: the lowest stable → unstable transition, — if none, unresolved if an \
+         undecided landing lies inside its bracket;\n without one, stable at is the largest Vh \
+         found stable if none was unstable and unstable at the smallest Vh found unstable)"
     );
     o
 }
 
+/// One row per transition (engine, vv, direction, stable_at, unstable_at, vh, resolved,
+/// undecided: the landings undecided at that descent speed); a descent speed without a
+/// transition has one row with direction `none`, its `stable_at` / `unstable_at` and empty
+/// `vh` and `resolved`.
 fn boundary_csv(points: &[EnginePoint]) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "engine",
-        "vv_descent",
-        "vh_boundary",
-        "vh_stable",
-        "vh_unstable",
-        "landings",
+        "vv",
+        "direction",
+        "stable_at",
+        "unstable_at",
+        "vh",
+        "resolved",
         "undecided",
     ])?;
     let f = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
     for EnginePoint { engine, point: p } in points {
-        w.write_record([
-            engine.name().to_string(),
-            format!("{}", p.vv),
-            f(p.vh),
-            f(p.stable_at),
-            f(p.unstable_at),
-            p.landings.to_string(),
-            p.undecided.to_string(),
-        ])?;
+        let row = |direction: &str, stable_at, unstable_at, vh, resolved: String| {
+            [
+                engine.name().to_string(),
+                format!("{}", p.vv),
+                direction.to_string(),
+                f(stable_at),
+                f(unstable_at),
+                f(vh),
+                resolved,
+                p.undecided.to_string(),
+            ]
+        };
+        if p.transitions.is_empty() {
+            w.write_record(row("none", p.stable_at, p.unstable_at, None, String::new()))?;
+        }
+        for t in &p.transitions {
+            w.write_record(row(
+                direction(t.direction),
+                Some(t.stable_at),
+                Some(t.unstable_at),
+                t.vh,
+                t.resolved.to_string(),
+            ))?;
+        }
     }
     Ok(String::from_utf8(w.into_inner()?)?)
+}
+
+#[cfg(test)]
+mod boundary_tests {
+    use super::*;
+
+    fn transition(direction: Direction, s: f64, u: f64, vh: Option<f64>) -> Transition {
+        Transition {
+            direction,
+            stable_at: s,
+            unstable_at: u,
+            vh,
+            resolved: vh.is_some(),
+            undecided_at: if vh.is_some() {
+                vec![]
+            } else {
+                vec![s.max(u) - 1.0]
+            },
+        }
+    }
+
+    fn points() -> Vec<EnginePoint> {
+        let non_monotonic = BoundaryPoint {
+            vv: 8.0,
+            vh: Some(10.0),
+            stable_at: Some(9.99),
+            unstable_at: Some(10.01),
+            transitions: vec![
+                transition(Direction::StableToUnstable, 9.99, 10.01, Some(10.0)),
+                transition(Direction::UnstableToStable, 14.01, 13.99, Some(14.0)),
+                transition(Direction::StableToUnstable, 18.0, 22.0, None),
+            ],
+            undecided_at: vec![17.0, 21.0],
+            landings: 40,
+            undecided: 2,
+        };
+        let stable = BoundaryPoint {
+            vv: 10.0,
+            vh: None,
+            stable_at: Some(30.0),
+            unstable_at: None,
+            transitions: vec![],
+            undecided_at: vec![],
+            landings: 16,
+            undecided: 0,
+        };
+        [non_monotonic, stable]
+            .into_iter()
+            .map(|point| EnginePoint {
+                engine: Engine::Core,
+                point,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn boundary_csv_has_one_row_per_transition() {
+        let csv = boundary_csv(&points()).unwrap();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(
+            lines,
+            [
+                "engine,vv,direction,stable_at,unstable_at,vh,resolved,undecided",
+                "core,8,stable_to_unstable,9.99,10.01,10,true,2",
+                "core,8,unstable_to_stable,14.01,13.99,14,true,2",
+                "core,8,stable_to_unstable,18,22,,false,2",
+                "core,10,none,30,,,,0",
+            ]
+        );
+    }
+
+    #[test]
+    fn boundary_text_lists_every_transition_and_the_undecided_landings() {
+        let s = Settings {
+            vh_start: 0.0,
+            vh_step: 2.0,
+            vh_max: 30.0,
+            tolerance: 0.05,
+        };
+        let text = boundary_text(&points(), "ft/s", s);
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].contains("ft/s") && lines[0].contains("tolerance 0.05"));
+        assert!(
+            lines[2].starts_with("  core          8.000        10.000"),
+            "{text}"
+        );
+        assert!(lines[3].contains("unstable → stable") && lines[3].contains("at Vh 14.000"));
+        assert!(lines[4].contains("stable → unstable") && lines[4].contains("unresolved"));
+        assert!(lines[4].contains("undecided at 21.000"), "{text}");
+        assert!(lines[5].contains("undecided") && lines[5].ends_with("17.000, 21.000"));
+        assert!(
+            lines[6].starts_with("  core         10.000             —"),
+            "{text}"
+        );
+        assert_eq!(lines.len(), 9, "{text}");
+    }
+
+    #[test]
+    fn vv_ranges_are_finite_positive_and_bounded() {
+        assert_eq!(range("4:8:2").unwrap(), vec![4.0, 6.0, 8.0]);
+        assert_eq!(range("0:0.3:0.1").unwrap().len(), 4);
+        for bad in [
+            "12:4:1", "4:8:0", "4:8:-1", "nan:8:1", "4:inf:1", "0:1e9:1", "1:2",
+        ] {
+            let e = range(bad).unwrap_err().to_string();
+            assert!(
+                e.starts_with("--vv") && e.contains("expected"),
+                "{bad}: {e}"
+            );
+        }
+        assert!(range("0:9999:1").is_ok() && range("0:10000:1").is_err());
+    }
 }

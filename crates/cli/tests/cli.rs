@@ -296,22 +296,71 @@ fn boundary_prints_csv_and_json() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("engine,vv_descent,vh_boundary,vh_stable,vh_unstable,landings,undecided")
+        Some("engine,vv,direction,stable_at,unstable_at,vh,resolved,undecided")
     );
+    // One row per transition; the first is the boundary (the lowest stable -> unstable).
     let row: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(row[..2], ["core", "12"]);
-    let vh: f64 = row[2].parse().expect("a boundary was found");
+    assert_eq!(row[..3], ["core", "12", "stable_to_unstable"]);
+    let vh: f64 = row[5].parse().expect("a boundary was found");
     assert!(vh > 0.0 && vh < 12.0);
+    assert_eq!(row[6], "true");
+    let (lo, hi): (f64, f64) = (row[3].parse().unwrap(), row[4].parse().unwrap());
+    assert!(lo < vh && vh < hi && hi - lo <= 0.1 + 1e-12);
     let json = touchdown(&args("json").iter().map(String::as_str).collect::<Vec<_>>());
     let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
     assert!(
         (v[0]["vh"].as_f64().unwrap() - vh).abs() < 1e-12,
         "csv and json agree"
     );
+    let transitions = v[0]["transitions"].as_array().unwrap();
+    assert_eq!(
+        transitions.len(),
+        text.lines().count() - 1,
+        "a CSV row per transition"
+    );
+    for key in [
+        "stable_at",
+        "unstable_at",
+        "vh",
+        "direction",
+        "resolved",
+        "undecided_at",
+    ] {
+        assert!(transitions[0].get(key).is_some(), "transition field {key}");
+    }
+    assert_eq!(transitions[0]["vh"], v[0]["vh"]);
+    assert_eq!(
+        v[0]["undecided_at"].as_array().unwrap().len() as u64,
+        v[0]["undecided"].as_u64().unwrap()
+    );
+    assert!(
+        v[0]["landings"].as_u64().unwrap() >= 7,
+        "the whole grid 0, 2, ..., 12"
+    );
+    let table = touchdown(&args("text").iter().map(String::as_str).collect::<Vec<_>>());
+    let table = String::from_utf8(table.stdout).unwrap();
+    assert!(table.starts_with("stability boundary:"), "{table}");
+    assert!(
+        table
+            .lines()
+            .any(|l| l.starts_with("  core") && l.contains(&format!("{vh:.3}"))),
+        "{table}"
+    );
     // A bad range is a clear error.
     let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv", "12:4:1"]);
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("FROM"));
+    // So are bad search settings, naming the argument.
+    for (flag, value) in [("--vh-step", "0"), ("--tol", "1e-12"), ("--vh-max", "-1")] {
+        let arg = format!("{flag}={value}");
+        let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv", "12:12:1", &arg]);
+        assert!(!bad.status.success());
+        let e = String::from_utf8_lossy(&bad.stderr);
+        assert!(
+            e.contains(flag) && e.contains("expected"),
+            "{flag} {value}: {e}"
+        );
+    }
 }
 
 #[test]
@@ -477,8 +526,13 @@ fn boundary_plot_overlays_the_engines() {
         .unwrap()
         .iter()
         .all(|p| p["engine"] == "core"));
+    assert!(points
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| p["transitions"].is_array() && p["undecided_at"].is_array()));
     let csv = String::from_utf8(out.stdout).unwrap();
-    assert!(csv.starts_with("engine,vv_descent,"), "{csv}");
+    assert!(csv.starts_with("engine,vv,direction,"), "{csv}");
     // Refused: an engine the scenario leaves out.
     let f = extending(
         "boundary-applicable",

@@ -33,4 +33,14 @@ pub enum ValidationError {
     /// The optimiser failed.
     #[error("calibration: {0}")]
     Calibration(String),
+    /// A setting is out of its range (the stability-boundary search's, for one).
+    #[error("{argument}: expected {expected}, got {got}")]
+    Setting {
+        /// The command-line argument that carries the setting, e.g. `--vh-step`.
+        argument: &'static str,
+        /// What it must be.
+        expected: String,
+        /// The value given.
+        got: String,
+    },
 }

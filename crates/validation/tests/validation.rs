@@ -188,8 +188,8 @@ fn held_out_rows_never_enter_the_calibration() {
 }
 
 /// The search end to end on a real case that overturns (the figure 25-26 configuration on a
-/// 15° slope, Vv = 12 ft/s): the landings just either side of the boundary it reports are
-/// stable and unstable.
+/// 15° slope, Vv = 12 ft/s): the landings just either side of the boundary it reports, and of
+/// every transition, are stable and unstable.
 #[test]
 fn boundary_search_brackets_a_real_overturn() {
     let tmp = std::env::temp_dir().join(format!("touchdown-boundary-{}.toml", std::process::id()));
@@ -214,7 +214,13 @@ fn boundary_search_brackets_a_real_overturn() {
     let p = &points[0];
     let (lo, hi) = (p.stable_at.unwrap(), p.unstable_at.unwrap());
     assert!(hi - lo <= 0.05 + 1e-12 && p.vh.is_some());
-    assert_ne!(landing(12.0, lo).unwrap(), Outcome::Unstable);
+    // Both ends decided: an undecided landing is never taken as either.
+    assert_eq!(landing(12.0, lo).unwrap(), Outcome::Stable);
     assert_eq!(landing(12.0, hi).unwrap(), Outcome::Unstable);
+    assert_eq!(p.undecided, p.undecided_at.len());
+    for t in &p.transitions {
+        assert_eq!(landing(12.0, t.stable_at).unwrap(), Outcome::Stable);
+        assert_eq!(landing(12.0, t.unstable_at).unwrap(), Outcome::Unstable);
+    }
     let _ = std::fs::remove_file(&tmp);
 }
