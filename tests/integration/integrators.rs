@@ -37,7 +37,7 @@ fn stroke_difference(a: &Summary, b: &Summary) -> f64 {
 }
 
 /// On the Table I 2-2 landing at 8 ft/s, the report's scheme at a hundredth of its steps, the
-/// fourth-order Runge–Kutta method at 20 µs and the Dormand–Prince pair at 1e-6 agree on every
+/// fourth-order Runge–Kutta method at 5 µs and the Dormand–Prince pair at 1e-6 agree on every
 /// maximum stroke within 0.3 % of the largest; the adaptive pair rejects steps (its error control
 /// and contact-event location at work) and its energy balance closes as tightly as the others'.
 #[test]
@@ -48,10 +48,13 @@ fn runge_kutta_schemes_converge_to_the_reports_fine_step_answer() {
         "fine-report",
         "[integrator]\ndist = 1.4e-5\ndt_max = 2.0e-6\n",
     );
+    // RK4 at a fixed step locates no contact event: a footpad leaving within a step leaves at
+    // its end, an error first order in the step (49.59, 49.96, 50.05 mm of the largest
+    // secondary stroke at 20, 10 and 5 µs against the fine step's 50.15 mm).
     let (_, rk4) = run(
         base,
         "rk4",
-        "[integrator]\nscheme = \"rk4\"\ndt_max = 2.0e-5\n",
+        "[integrator]\nscheme = \"rk4\"\ndt_max = 5.0e-6\n",
     );
     let (_, dopri) = run(
         base,

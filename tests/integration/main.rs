@@ -13,7 +13,8 @@
 //! * `rapier`: the rapier rebuild against the core: start state, energy balance, outcomes, and
 //!   the two mechanisms that part them;
 //! * `mujoco`: every scenario exports to MJCF that the pinned MuJoCo loads, in the touchdown
-//!   state.
+//!   state;
+//! * `symmetry`: every landing against its mirror image and its legs renumbered.
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
 //! `crates/cli/tests/`; the robustness catalogue and the work-precision study, which live in the
@@ -29,3 +30,4 @@ mod physics;
 mod plots;
 mod rapier;
 mod scenario_errors;
+mod symmetry;

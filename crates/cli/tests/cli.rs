@@ -181,7 +181,7 @@ fn resolved_scenario_reloads_to_the_same_result() {
         "the resolved scenario stands alone"
     );
     assert!(
-        text.contains("release = \"strut_force\""),
+        text.contains("release = \"gear_force\"") && text.contains("stop_restitution = 0.5"),
         "defaults are written out"
     );
     let again = touchdown(&["run", resolved.to_str().unwrap(), "--format", "json"]);

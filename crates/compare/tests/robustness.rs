@@ -37,16 +37,9 @@ fn every_case_completes_or_stops_with_a_named_cause_on_the_core() {
             v => panic!("{}: {v:?}: {:?}", run.case, run.message),
         }
     }
-    // The stiffest honeycombs are beyond the default step: the energy guard stops the run and
-    // says so; ×100 still completes.
+    // ×100 completes at the default step; ×1000 sits at the edge of it (its largest stable step
+    // is the default one: the_largest_stable_step_is_bracketed_by_a_named_failure).
     let verdict = |name: &str| r.runs.iter().find(|x| x.case == name).unwrap();
-    let x1000 = verdict("onset-x1000");
-    assert_eq!(x1000.verdict, Verdict::Stopped);
-    let m = x1000.message.as_deref().unwrap();
-    assert!(
-        m.contains("energy balance") && m.contains("the stiffest strut law engaged now: leg"),
-        "{m}"
-    );
     assert_eq!(verdict("onset-x100").verdict, Verdict::Completed);
     // Bottoming: the primaries go past their capacity on the elastic stop, a little.
     let out = verdict("vv-30").primary_stroke_over_capacity.unwrap();
@@ -67,7 +60,8 @@ fn the_overturn_passes_theta_y_90_degrees_with_the_quaternion_attitude() {
         .iter()
         .map(|a| a[1])
         .fold(0.0f64, f64::max);
-    assert!(peak > 1.57, "θy peaks at {peak} rad");
+    // The trace's samples straddle 90° (its largest θy is that of the sample nearest it).
+    assert!(peak > 1.56, "θy peaks at {peak} rad");
     // Past 90° the Euler angles flip: θx and θz jump to ±π while θy comes back down.
     let last = run.trace.attitude.last().unwrap();
     assert!(last[0].abs() > 3.0 && last[2].abs() > 3.0, "{last:?}");
@@ -94,17 +88,14 @@ fn cheap_cases_complete_or_stop_with_a_named_cause_on_the_multibody_engines() {
         if run.verdict != Verdict::Completed {
             assert!(!run.message.as_deref().unwrap_or("").is_empty(), "{run:?}");
         }
-        // At 20 µs the explicit extension stop, hit as the bottomed struts throw the vehicle
-        // back up, costs the balance more than the guard allows; the guard names that law.
+        // The bottomed struts throw the vehicle back up onto its primaries' extension stops.
+        // An elastic stop, hit explicitly at 20 µs, cost the balance more than the guard
+        // allows; the stops' restitution (docs/errata.md, "End stops") takes that energy out
+        // as dissipation, and both engines complete within the balance tolerance.
         if run.case == "vv-30" {
-            assert_eq!(run.verdict, Verdict::Stopped, "{run:?}");
-            let m = run.message.as_deref().unwrap();
-            assert!(
-                m.contains("energy balance")
-                    && m.contains("primary strut")
-                    && m.contains("on its extension stop"),
-                "{m}"
-            );
+            assert_eq!(run.verdict, Verdict::Completed, "{run:?}");
+            let e = run.energy_residual.unwrap();
+            assert!(e.abs() <= 0.02, "{run:?}");
         }
     }
 }
@@ -113,13 +104,18 @@ fn cheap_cases_complete_or_stop_with_a_named_cause_on_the_multibody_engines() {
 fn the_largest_stable_step_is_bracketed_by_a_named_failure() {
     let case = CATALOGUE.iter().find(|c| c.name == "onset-x1000").unwrap();
     let (path, sc) = case.scenario(&scenarios()).unwrap();
-    // The report's scheme at its default step is stopped by the energy guard on this case.
+    // The report's scheme is stopped by the energy guard on this case at twice its default
+    // step, naming the stiffest law engaged.
     let s = robustness::largest_stable_step(case.name, &path, &sc, Method::Report);
     let dt = s.largest_stable_step_s.expect("a stable step");
-    assert!(dt < s.default_step_s, "{s:?}");
+    assert!(dt <= s.default_step_s, "{s:?}");
     let (above, why) = s.first_unstable.expect("an unstable step above it");
     assert!((above / dt - 2.0).abs() < 1e-9, "{dt} {above}");
-    assert!(why.contains("simulation stopped at t ="), "{why}");
+    assert!(
+        why.contains("simulation stopped at t =")
+            && why.contains("the stiffest strut law engaged now: leg"),
+        "{why}"
+    );
 }
 
 #[test]

@@ -222,6 +222,107 @@ fn evaluate_tripod(
     };
 }
 
+/// The gear of a footpad that has left its surface, relaxed (docs/errata.md, "Contact and
+/// release"): a massless gear cannot hold a load without a reaction, so each strut goes back
+/// along its unloading branch to the nearest stroke at which it carries no force (the
+/// honeycombs' permanent sets, the extension stop's set; bending unloads with them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Relaxed {
+    /// The footpad's body-frame position with the relaxed strokes, m.
+    pub bp: Vector3<f64>,
+    /// Primary compression stroke, m.
+    pub primary_stroke: f64,
+    /// Secondary strokes S31, S41 (tension positive), m.
+    pub secondary_stroke: [f64; 2],
+}
+
+/// Relaxes the gear of `leg` whose footpad is at `bp` (body axes, m) with strokes
+/// `primary_stroke` and `secondary_stroke` (m, the honeycombs' strokes, bending included) and
+/// the committed `memory` (the leaving state committed first): each stroke is clamped to the
+/// range over which its strut carries no force and the footpad is placed where the relaxed
+/// struts meet (point 1 from the secondaries and L21 for the cantilever, the footpad from all
+/// three for the tripod). `None` if the relaxed struts do not meet.
+pub fn relax(
+    leg: &Leg,
+    laws: &GearLaws,
+    memory: &GearMemory,
+    arrangement: Arrangement,
+    bp: &Vector3<f64>,
+    primary_stroke: f64,
+    secondary_stroke: [f64; 2],
+) -> Option<Relaxed> {
+    let p = &laws.primary.honeycomb;
+    let c = primary_stroke.clamp(
+        -p.stop.slack(memory.primary.extension.max_stroke),
+        p.permanent_set(memory.primary.compression),
+    );
+    let h = &laws.secondary.honeycomb;
+    let s = [0, 1].map(|j| {
+        let m = memory.secondary[j];
+        secondary_stroke[j].clamp(
+            -h.compression.permanent_set(m.compression),
+            h.tension.permanent_set(m.tension),
+        )
+    });
+    if c == primary_stroke && s == secondary_stroke {
+        return Some(Relaxed {
+            bp: *bp,
+            primary_stroke: c,
+            secondary_stroke: s,
+        });
+    }
+    let radii = [leg.l31 + s[0], leg.l41 + s[1]];
+    let bp = match arrangement {
+        Arrangement::Cantilever => {
+            let b1 = leg.b2 + (bp - leg.b2).normalize() * leg.l21;
+            let b1 = trilaterate([leg.b2, leg.b3, leg.b4], [leg.l21, radii[0], radii[1]], &b1)?;
+            leg.b2 + (b1 - leg.b2) * ((leg.l2p - c) / leg.l21)
+        }
+        Arrangement::Tripod => trilaterate(
+            [leg.b2, leg.b3, leg.b4],
+            [leg.l2p - c, radii[0], radii[1]],
+            bp,
+        )?,
+    };
+    Some(Relaxed {
+        bp,
+        primary_stroke: c,
+        secondary_stroke: s,
+    })
+}
+
+/// The point at distances `r` (m) from the three centres `c` (m) nearest to `near`: the
+/// intersection of three spheres; `None` if they do not meet (a negative square beyond
+/// rounding) or the centres are collinear.
+fn trilaterate(c: [Vector3<f64>; 3], r: [f64; 3], near: &Vector3<f64>) -> Option<Vector3<f64>> {
+    let d01 = c[1] - c[0];
+    let d = d01.norm();
+    let ex = d01 / d;
+    let d02 = c[2] - c[0];
+    let i = ex.dot(&d02);
+    let ey = d02 - ex * i;
+    let j = ey.norm();
+    if j.is_nan() || j <= 1e-12 * d {
+        return None;
+    }
+    let ey = ey / j;
+    let ez = ex.cross(&ey);
+    let x = (r[0] * r[0] - r[1] * r[1] + d * d) / (2.0 * d);
+    let y = (r[0] * r[0] - r[2] * r[2] + i * i + j * j) / (2.0 * j) - x * i / j;
+    let z2 = r[0] * r[0] - x * x - y * y;
+    if z2 < -1e-9 * r[0] * r[0] {
+        return None;
+    }
+    let base = c[0] + ex * x + ey * y;
+    let z = ez * z2.max(0.0).sqrt();
+    let (a, b) = (base + z, base - z);
+    Some(if (a - near).norm() <= (b - near).norm() {
+        a
+    } else {
+        b
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -261,6 +362,7 @@ mod tests {
                 )
                 .unwrap(),
                 1e6,
+                1.0,
             )
             .unwrap()
         };
@@ -453,5 +555,49 @@ mod tests {
         };
         let g = evaluated(&leg, &laws, &mem, &bp, &Vector3::zeros(), &options).unwrap();
         assert!(g.point1_deflection.norm() < 1e-9);
+    }
+
+    /// A leaving gear relaxes to strokes at which every strut carries no force, and the
+    /// footpad goes where the relaxed struts meet: the geometry gives back those strokes.
+    #[test]
+    fn a_released_gear_relaxes_to_zero_force_strokes() {
+        let laws = laws(0.0);
+        let cantilever = leg();
+        let l = cantilever;
+        let tripod = Leg::from_points(l.b2, l.b3, l.b4, l.bp, (l.bp - l.b2).norm());
+        for (leg, arrangement) in [
+            (cantilever, Arrangement::Cantilever),
+            (tripod, Arrangement::Tripod),
+        ] {
+            let options = GearOptions {
+                arrangement,
+                bending: None,
+            };
+            let bp = deformed(leg.bp);
+            let fresh = GearMemory::default();
+            let g = evaluated(&leg, &laws, &fresh, &bp, &Vector3::zeros(), &options).unwrap();
+            let mut memory = fresh;
+            laws.commit(g.primary_stroke, g.secondary_stroke, &mut memory);
+            assert!(laws.stored_energy(g.primary_stroke, g.secondary_stroke, &memory) > 0.0);
+            let r = relax(
+                &leg,
+                &laws,
+                &memory,
+                arrangement,
+                &bp,
+                g.primary_stroke,
+                g.secondary_stroke,
+            )
+            .unwrap();
+            let again =
+                evaluated(&leg, &laws, &memory, &r.bp, &Vector3::zeros(), &options).unwrap();
+            assert!((again.primary_stroke - r.primary_stroke).abs() < 1e-12);
+            for j in 0..2 {
+                assert!((again.secondary_stroke[j] - r.secondary_stroke[j]).abs() < 1e-12);
+            }
+            assert!(again.fp.norm() < 1e-6, "{arrangement:?}: {}", again.fp);
+            let stored = laws.stored_energy(r.primary_stroke, r.secondary_stroke, &memory);
+            assert!(stored < 1e-20, "{arrangement:?}: {stored} J left");
+        }
     }
 }

@@ -186,6 +186,12 @@ pub struct Simulation {
     arrangement: Arrangement,
     footpad_radius: f64,
     mechanisms: Mechanisms,
+    /// Footpads this close to their planes (m) touch: 1e-10 of the primary strut's length, far
+    /// above the rounding of positions, so mirror-image footpads touch together.
+    contact_tolerance: f64,
+    /// Forces within this of zero (N) count as zero in the contact decisions: 1e-9 of the
+    /// primary strut's last crush load.
+    force_rounding: f64,
     // state
     t: f64,
     steps: u64,
@@ -199,6 +205,15 @@ pub struct Simulation {
     scratch: Vec<GearState>,
     /// Point-1 bending displacement per leg at the last accepted state (lagged, review A8), m.
     bending_lag: Vec<Vector3<f64>>,
+    /// Per leg, how far the strokes went back when its footpad left in this step and its gear
+    /// relaxed (primary, secondaries), m: not work of the vehicle, so the strut work of the
+    /// step is booked to the strokes before it.
+    relaxation: Vec<(f64, [f64; 2])>,
+    /// Per footpad, the accepted states in a row it has been in contact: the adaptive scheme
+    /// locates the leaving of a footpad that has stayed (a footpad that lands and is pulled off
+    /// at once, as a dragged footpad of a massless gear does step after step, is not located:
+    /// locating it would hold the step at dt_min).
+    contact_steps: Vec<u32>,
     /// Power of the vehicle-level mechanisms on the vehicle at the accepted state, W.
     applied_power: f64,
     ledger: EnergyLedger,
@@ -333,6 +348,8 @@ impl Simulation {
             .collect();
         let mass = MassProperties::new(scenario.vehicle.mass, scenario.vehicle.inertia);
         let gravity = gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
+        let curve = &laws.primary.honeycomb.curve;
+        let force_rounding = 1e-9 * curve.force(curve.capacity());
         let mut sim = Simulation {
             name: scenario.file.name.clone(),
             legs: scenario.legs.clone(),
@@ -346,6 +363,8 @@ impl Simulation {
             arrangement: scenario.arrangement,
             footpad_radius: scenario.footpad.radius,
             mechanisms,
+            contact_tolerance: 1e-10 * scenario.legs[0].l2p,
+            force_rounding,
             t: 0.0,
             steps: 0,
             evaluations: 0,
@@ -357,6 +376,8 @@ impl Simulation {
             previous: vec![GearState::default(); n],
             scratch: vec![GearState::default(); n],
             bending_lag: vec![Vector3::zeros(); n],
+            relaxation: vec![(0.0, [0.0; 2]); n],
+            contact_steps: vec![0; n],
             applied_power: 0.0,
             ledger: EnergyLedger::default(),
             potential0: 0.0,
@@ -374,7 +395,7 @@ impl Simulation {
             StabilityTracker::new(&scenario.stability, gravity, n, sim.kinetic_energy());
         // First contact at t = 0, then the accepted state's forces and accelerations.
         let before = sim.footpad_energy();
-        sim.contact_logic();
+        sim.contact_logic()?;
         sim.ledger.events += sim.footpad_energy() - before;
         let mut v = sim.vehicle;
         sim.accept(&mut v)?;
@@ -551,7 +572,6 @@ impl Simulation {
         blend: f64,
         out: &mut [GearState],
     ) -> Result<Loads, CoreError> {
-        let t_ib = v.t_bi.transpose();
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
         for (i, slot) in out.iter_mut().enumerate() {
@@ -571,28 +591,7 @@ impl Simulation {
                 let (p0, v0) = self.pad_start[i];
                 (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
             };
-            let bp = t_ib * (position - v.position);
-            let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
-            if self.arrangement == Arrangement::Tripod {
-                self.mechanisms.tick(Mechanism::Tripod);
-            }
-            let options = GearOptions {
-                arrangement: self.arrangement,
-                bending: self.mechanisms.bending.as_ref().map(|b| {
-                    self.mechanisms.tick(Mechanism::Bending);
-                    (b, self.bending_lag[i])
-                }),
-            };
-            gear::evaluate(
-                &self.legs[i],
-                &self.laws,
-                &self.memory[i],
-                &bp,
-                &bp_dot,
-                &options,
-                slot,
-            )
-            .map_err(|f| self.diverged(v, f.error.to_string(), f.law, i))?;
+            let bp = self.evaluate_leg(i, v, &position, &velocity, slot)?;
             torque += bp.cross(&(-slot.fp)); // eq. (66)
             force -= v.t_bi * slot.fp; // eqs. (67)-(68)
         }
@@ -609,6 +608,43 @@ impl Simulation {
             torque,
             applied_power,
         })
+    }
+
+    /// Evaluates gear `i` (eqs. 26-65) into `slot` with the vehicle at `v` and its footpad at
+    /// `position` moving at `velocity` (inertial, m and m/s); returns the footpad's body-frame
+    /// position BP, m.
+    fn evaluate_leg(
+        &self,
+        i: usize,
+        v: &VehicleState,
+        position: &Vector3<f64>,
+        velocity: &Vector3<f64>,
+        slot: &mut GearState,
+    ) -> Result<Vector3<f64>, CoreError> {
+        let t_ib = v.t_bi.transpose();
+        let bp = t_ib * (position - v.position);
+        let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
+        if self.arrangement == Arrangement::Tripod {
+            self.mechanisms.tick(Mechanism::Tripod);
+        }
+        let options = GearOptions {
+            arrangement: self.arrangement,
+            bending: self.mechanisms.bending.as_ref().map(|b| {
+                self.mechanisms.tick(Mechanism::Bending);
+                (b, self.bending_lag[i])
+            }),
+        };
+        gear::evaluate(
+            &self.legs[i],
+            &self.laws,
+            &self.memory[i],
+            &bp,
+            &bp_dot,
+            &options,
+            slot,
+        )
+        .map_err(|f| self.diverged(v, f.error.to_string(), f.law, i))?;
+        Ok(bp)
     }
 
     /// Time of the first footpad contact, s.
@@ -658,75 +694,183 @@ impl Simulation {
         Ok(())
     }
 
-    /// Contact logic of the rigid surface (text before eq. 85; review A1-A2, A4-A5) at the
-    /// current vehicle state. Returns whether any footpad changed state.
-    fn contact_logic(&mut self) -> bool {
+    /// Contact logic of the surface (text before eq. 85; docs/errata.md, "Contact and release")
+    /// at the current vehicle state, the gear evaluated there: an airborne footpad whose
+    /// tentative rigid position reaches its plane (within [`Simulation::contact_tolerance`])
+    /// touches down unless its gear would pull it there; a footpad in contact leaves as soon as
+    /// its gear no longer presses it onto the surface, and its gear relaxes. Returns whether any
+    /// footpad changed state.
+    fn contact_logic(&mut self) -> Result<bool, CoreError> {
         let v = self.vehicle;
+        let soil = self.mechanisms.soil.is_some();
         let mut changed = false;
         for i in 0..self.pads.len() {
             let s = self.surfaces[i];
             match self.pads[i].state {
                 ContactState::Free | ContactState::Detached => {
-                    let pad = &mut self.pads[i];
-                    let tentative = v.point(&pad.bp_attached);
-                    if tentative.z <= s.plane() {
-                        let vel = v.point_velocity(&pad.bp_attached);
-                        let v_normal = if self.mechanisms.soil.is_some() {
-                            vel.z
-                        } else {
-                            0.0
-                        };
-                        touch_down(
-                            pad,
-                            &s,
-                            Vector2::new(tentative.x, tentative.y),
-                            Vector2::new(vel.x, vel.y),
-                            v_normal,
-                            self.t,
-                        );
-                        changed = true;
+                    let attached = self.pads[i].bp_attached;
+                    let tentative = v.point(&attached);
+                    let vel = v.point_velocity(&attached);
+                    self.pads[i].position = tentative;
+                    self.pads[i].velocity = vel;
+                    if tentative.z > s.plane() + self.contact_tolerance {
+                        continue;
+                    }
+                    let airborne = self.pads[i];
+                    let v_normal = if soil { vel.z } else { 0.0 };
+                    let mut xy = Vector2::new(tentative.x, tentative.y);
+                    if let (Some(curbs), true) =
+                        (&self.mechanisms.curbs, airborne.first_contact.is_some())
+                    {
+                        xy = curbs.landing(i, airborne.touchdown_xy, xy, self.footpad_radius);
+                    }
+                    touch_down(
+                        &mut self.pads[i],
+                        &s,
+                        xy,
+                        Vector2::new(vel.x, vel.y),
+                        v_normal,
+                        self.t,
+                    );
+                    // A (re)contact whose first evaluation would pull the footpad, or load its
+                    // primary's extension stop (a footpad put on its plane from just above it),
+                    // is no contact.
+                    // So is one whose strut would be stretched past its bearings there.
+                    let pad = self.pads[i];
+                    let mut g = GearState::default();
+                    let fits = self
+                        .evaluate_leg(i, &v, &pad.position, &pad.velocity, &mut g)
+                        .is_ok();
+                    let tol = self.force_rounding;
+                    if !fits || self.pressing(&v, &g) < -tol || g.fcp < -tol {
+                        self.pads[i] = airborne;
                     } else {
-                        pad.position = tentative;
-                        pad.velocity = v.point_velocity(&pad.bp_attached);
+                        changed = true;
                     }
                 }
                 ContactState::Contact => {
-                    if self.releases(i, &v, &self.gear[i]) {
-                        let pad = &mut self.pads[i];
-                        pad.state = ContactState::Detached;
-                        pad.stuck = false;
-                        pad.bp_attached = v.t_bi.transpose() * (pad.position - v.position);
-                        pad.velocity = v.point_velocity(&pad.bp_attached);
-                        changed = true;
+                    if self.leaves(i, &v, &self.gear[i]) {
+                        changed |= self.release(i, &v)?;
                     }
                 }
             }
         }
-        changed
+        Ok(changed)
+    }
+
+    /// The force that keeps a footpad on its surface under the release rule, with the vehicle
+    /// at `v` and its gear in state `g`, N (positive pressing): the surface's normal reaction on
+    /// the footpad at rest on it, FZI (the normal component of the gear's force on it, eqs. 67,
+    /// 85) plus its weight PMASS·g_n (a footpad is lifted only by a pull larger than its own
+    /// weight), or the report's stand-ins F2P or FCP.
+    fn pressing(&self, v: &VehicleState, g: &GearState) -> f64 {
+        match self.release {
+            // The surface's normal reaction on a footpad at rest on it: FZI plus its weight.
+            ReleaseRule::GearForce => -(v.t_bi * g.fp).z - self.footpad_mass * self.gravity.z,
+            ReleaseRule::StrutForce => g.f2p,
+            ReleaseRule::HoneycombForce => g.fcp,
+        }
     }
 
     /// Whether footpad `i`, in contact, leaves its surface with the vehicle in state `v` and its
-    /// gear in state `g`.
-    fn releases(&self, i: usize, v: &VehicleState, g: &GearState) -> bool {
-        self.release_height(i, v, g).is_some_and(|h| h > 0.0)
+    /// gear in state `g`: its gear pulls it (beyond rounding), or its primary strut's extension
+    /// stop is loaded (the vehicle is lifting it: no stop is loaded through a contact); a slack
+    /// gear (no force either way, within rounding) lets it go when the point of the vehicle it
+    /// hangs from moves away from the surface, and leaves it resting there otherwise (a massless
+    /// footpad between a slack gear and its surface is held by neither; its lightest-mass limit
+    /// rests). On soil, a footpad leaves once it is no longer pressed and has risen out of the
+    /// soil (review A15).
+    fn leaves(&self, i: usize, v: &VehicleState, g: &GearState) -> bool {
+        let pressing = self.pressing(v, g);
+        let tol = self.force_rounding;
+        if self.mechanisms.soil.is_some() {
+            return pressing <= tol && self.pads[i].position.z > self.surfaces[i].plane();
+        }
+        if pressing < -tol || g.fcp < -tol {
+            return true;
+        }
+        if pressing > tol {
+            return false;
+        }
+        let bp = v.t_bi.transpose() * (self.pads[i].position - v.position);
+        v.point_velocity(&bp).z > 0.0
     }
 
-    /// Height above its plane of footpad `i`, in contact, whose strut is no longer compressive,
-    /// m (`None` while it is): the footpad stays on its surface while the primary strut is
-    /// compressive (text before eq. 85; review A4), its tentative position taken with the
-    /// previous step's geometry; on soil it leaves when it has risen out of the soil (A15).
-    fn release_height(&self, i: usize, v: &VehicleState, g: &GearState) -> Option<f64> {
-        let pad = &self.pads[i];
-        let compressive = match self.release {
-            ReleaseRule::StrutForce => g.f2p > 0.0,
-            ReleaseRule::HoneycombForce => g.fcp > 0.0,
-        };
-        let height = if self.mechanisms.soil.is_some() {
-            pad.position.z
-        } else {
-            v.point(&pad.bp).z
-        };
-        (!compressive).then_some(height - self.surfaces[i].plane())
+    /// Footpad `i`, no longer pressed, leaves its surface at the accepted state `v`: its leaving
+    /// strokes are committed, its massless gear relaxes to strokes at which no strut carries a
+    /// force (the stored energy it releases counts as dissipated by the honeycombs, whose work
+    /// the ledger already holds) and the footpad is attached rigidly where the relaxed struts
+    /// put it. Returns whether it left (always: a relaxed gear that cannot be assembled is an
+    /// error).
+    fn release(&mut self, i: usize, v: &VehicleState) -> Result<bool, CoreError> {
+        let g = self.gear[i];
+        let (c, s) = (g.primary_stroke, g.secondary_stroke);
+        self.laws.commit(c, s, &mut self.memory[i]);
+        let bp = v.t_bi.transpose() * (self.pads[i].position - v.position);
+        let relaxed = gear::relax(
+            &self.legs[i],
+            &self.laws,
+            &self.memory[i],
+            self.arrangement,
+            &bp,
+            c,
+            s,
+        )
+        .ok_or_else(|| {
+            self.diverged(
+                v,
+                "the struts of a leaving gear, relaxed to zero force, no longer meet".into(),
+                "gear relaxation",
+                i,
+            )
+        })?;
+        let relaxed = self.above_plane(i, v, relaxed, c);
+        self.relaxation[i] = (
+            c - relaxed.primary_stroke,
+            [0, 1].map(|j| s[j] - relaxed.secondary_stroke[j]),
+        );
+        self.gear[i].primary_stroke = relaxed.primary_stroke;
+        self.gear[i].secondary_stroke = relaxed.secondary_stroke;
+        self.bending_lag[i] = Vector3::zeros();
+        let pad = &mut self.pads[i];
+        pad.state = ContactState::Detached;
+        pad.stuck = false;
+        pad.bp_attached = relaxed.bp;
+        pad.position = v.point(&relaxed.bp);
+        pad.velocity = v.point_velocity(&relaxed.bp);
+        Ok(true)
+    }
+
+    /// A leaving cantilever gear relaxed from primary stroke `c` (m) whose footpad would end
+    /// below its plane (relaxing a primary strut extends it toward the surface) keeps its
+    /// primary as compressed as puts the footpad on the plane: a footpad cannot leave through
+    /// its surface. That primary stroke's small load stays in the detached gear, stored and
+    /// counted, until the footpad lands again.
+    fn above_plane(
+        &self,
+        i: usize,
+        v: &VehicleState,
+        relaxed: gear::Relaxed,
+        c: f64,
+    ) -> gear::Relaxed {
+        let plane = self.surfaces[i].plane();
+        let leg = &self.legs[i];
+        let axis = (relaxed.bp - leg.b2).normalize();
+        let down = (v.t_bi * axis).z;
+        if self.arrangement != Arrangement::Cantilever
+            || v.point(&relaxed.bp).z >= plane
+            || down >= 0.0
+        {
+            return relaxed;
+        }
+        // (R + T_BI·(B2 + V̂2P·(L2P − c')))_z = plane
+        let length = (plane - v.point(&leg.b2).z) / down;
+        let held = (leg.l2p - length).clamp(relaxed.primary_stroke, c.max(relaxed.primary_stroke));
+        gear::Relaxed {
+            bp: leg.b2 + axis * (leg.l2p - held),
+            primary_stroke: held,
+            ..relaxed
+        }
     }
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
@@ -770,27 +914,30 @@ impl Simulation {
     /// powers.
     fn book_strut_work(&mut self, dt: f64, quadrature: &Quadrature) {
         let steps = self.previous.iter().zip(&self.trial).zip(&self.gear);
-        for ((a, t), b) in steps {
+        for (((a, t), b), relaxed) in steps.zip(&mut self.relaxation) {
             let l = &mut self.ledger;
+            // The strokes at the end of the step, before a leaving gear relaxed.
+            let (dc, ds) = std::mem::take(relaxed);
+            let c_end = b.primary_stroke + dc;
             // The force at the end of the step: the trial's (report) or the accepted state's.
             let end = match quadrature {
                 Quadrature::Trapezoid { .. } => {
-                    l.honeycomb += 0.5 * (a.fcp + t.fcp) * (b.primary_stroke - a.primary_stroke);
+                    l.honeycomb += 0.5 * (a.fcp + t.fcp) * (c_end - a.primary_stroke);
                     l.viscous += 0.5 * (a.fvp * a.primary_rate + t.fvp * t.primary_rate) * dt;
                     l.bearing += 0.5 * (a.fbr * a.primary_rate + t.fbr * t.primary_rate) * dt;
                     t
                 }
                 Quadrature::Stages { .. } => b,
             };
-            for j in 0..2 {
+            for (j, ds) in ds.into_iter().enumerate() {
                 let (fa, ft) = (a.fc_secondary[j], end.fc_secondary[j]);
                 // The honeycombs see the bending-corrected strokes; the change of the bending
                 // lengthening is work the vehicle did not do on the struts (eq. 47, lagged).
                 let dl = b.bending_lengthening[j] - a.bending_lengthening[j];
                 l.mechanisms -= 0.5 * (fa + ft) * dl;
                 if let Quadrature::Trapezoid { .. } = quadrature {
-                    l.honeycomb +=
-                        0.5 * (fa + ft) * (b.secondary_stroke[j] - a.secondary_stroke[j]);
+                    let s_end = b.secondary_stroke[j] + ds;
+                    l.honeycomb += 0.5 * (fa + ft) * (s_end - a.secondary_stroke[j]);
                     let (pa, pt) = (
                         a.fv_secondary[j] * a.secondary_rate[j],
                         t.fv_secondary[j] * t.secondary_rate[j],
@@ -1089,13 +1236,24 @@ impl Simulation {
             let planned = self.next_dt.clamp(dt_min, dt_max);
             let dt = self.limit_step(planned);
             let pads = self.advance_pads(dt, old);
-            let (new, quadrature, ratio) = self.runge_kutta(dt, old, &DOPRI5)?;
+            let floor = dt <= dt_min * (1.0 + 1e-9);
+            // A stage that takes a law out of its domain (a strut stretched past its bearings
+            // by a step too long to see its footpad leave) rejects the step, above dt_min.
+            let (new, quadrature, ratio) = match self.runge_kutta(dt, old, &DOPRI5) {
+                Ok(step) => step,
+                Err(_) if !floor => {
+                    self.rejected += 1;
+                    self.next_dt = 0.5 * dt;
+                    self.pads.copy_from_slice(&self.pads_saved);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
             let ratio = if ratio.is_finite() {
                 ratio
             } else {
                 f64::INFINITY
             };
-            let floor = dt <= dt_min * (1.0 + 1e-9);
             // A footpad that lands or leaves within the step is located to dt_min: the step is
             // retried at half its length until it ends within dt_min of the event.
             let event = !floor && self.contact_event(&new);
@@ -1123,16 +1281,16 @@ impl Simulation {
 
     /// Whether a footpad's contact changes within the step just taken to `v`, the gear's forces
     /// there in the trial states (the Dormand–Prince pair's last stage is the new state): a
-    /// footpad in contact that leaves (rising more than [`CONTACT_EVENT_DEPTH`] above its plane:
-    /// a pulled footpad resting on it leaves by rounding, which is no event to locate), or an
-    /// airborne one below its plane by more than that.
+    /// footpad that has stayed in contact and leaves ([`Simulation::contact_steps`]), or an
+    /// airborne one that crossed its plane in the step by
+    /// more than [`CONTACT_EVENT_DEPTH`] (one already below it at the start, kept off by a gear
+    /// that would pull it, is no event).
     fn contact_event(&self, v: &VehicleState) -> bool {
         self.pads.iter().enumerate().any(|(i, p)| match p.state {
-            ContactState::Contact => self
-                .release_height(i, v, &self.trial[i])
-                .is_some_and(|h| h > CONTACT_EVENT_DEPTH),
+            ContactState::Contact => self.contact_steps[i] > 1 && self.leaves(i, v, &self.trial[i]),
             ContactState::Free | ContactState::Detached => {
-                v.point(&p.bp_attached).z < self.surfaces[i].plane() - CONTACT_EVENT_DEPTH
+                let depth = self.surfaces[i].plane() - CONTACT_EVENT_DEPTH;
+                self.pad_start[i].0.z >= depth && v.point(&p.bp_attached).z < depth
             }
         })
     }
@@ -1164,13 +1322,20 @@ impl Simulation {
         }
         self.vehicle = new;
         let pads_before = self.footpad_energy();
-        if self.contact_logic() {
+        if self.contact_logic()? {
             let events = self.footpad_energy() - pads_before;
             self.ledger.events += events;
             self.accept(&mut new)?;
             self.vehicle = new;
         }
         // 7. commit hysteresis at the accepted state
+        for (n, p) in self.contact_steps.iter_mut().zip(&self.pads) {
+            *n = if p.state == ContactState::Contact {
+                n.saturating_add(1)
+            } else {
+                0
+            };
+        }
         for i in 0..self.legs.len() {
             if self.pads[i].state == ContactState::Contact {
                 let g = &self.gear[i];

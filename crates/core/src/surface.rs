@@ -10,6 +10,10 @@ use nalgebra::{Vector2, Vector3};
 use serde::Serialize;
 use touchdown_scenario::model::PadSurface;
 
+/// Velocities within this fraction of a sliding footpad's velocity scale (its speed plus the
+/// speed its forces give it in a step) count as zero in the stick logic.
+pub const VELOCITY_ROUNDING: f64 = 1e-9;
+
 /// Contact state of a footpad.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
 #[serde(rename_all = "snake_case")]
@@ -144,10 +148,15 @@ pub fn advance_sliding(pad: &mut Footpad, f: &SlidingForces, dt: f64) {
     let k4p = v_c;
     let mut v1 = v0 + (k1v + k2v * 2.0 + k3v * 2.0 + k4v) * (dt / 6.0);
     let mut p1 = p0 + (k1p + k2p * 2.0 + k3p * 2.0 + k4p) * (dt / 6.0);
-    // Sign-reversal (stick) logic, per component.
+    // Sign-reversal (stick) logic, per component. A component within rounding of zero counts
+    // as zero (it neither reverses nor moves), so mirror-image footpads decide alike
+    // (docs/errata.md, "Decisions at rounding level").
+    let noise = VELOCITY_ROUNDING * (speed + f.applied().norm().max(f.drag) / f.mass * dt);
     let mut reversed = [false; 2];
     for i in 0..2 {
-        if v0[i] * v1[i] < 0.0 {
+        if v1[i].abs() <= noise {
+            v1[i] = 0.0;
+        } else if v0[i].abs() > noise && v0[i] * v1[i] < 0.0 {
             reversed[i] = true;
             let t_star = dt * v0[i] / (v0[i] - v1[i]);
             p1[i] = p0[i] + 0.5 * v0[i] * t_star;

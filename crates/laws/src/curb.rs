@@ -193,6 +193,31 @@ impl Curbs {
         f
     }
 
+    /// Where a footpad of leg `leg` landing again at `pad_xy` (m; its first contact at
+    /// `touchdown_xy`, radius `r`, m) meets its curbs: moved back along each curb's normal to
+    /// the crushed face, where the curb carries no load (its permanent set), if it would land
+    /// beyond it. A footpad that comes down inside a curb's crushed zone lands against the curb,
+    /// as it does on its plane: it does not crush the curb without work.
+    pub fn landing(
+        &self,
+        leg: usize,
+        touchdown_xy: Vector2<f64>,
+        pad_xy: Vector2<f64>,
+        r: f64,
+    ) -> Vector2<f64> {
+        let mut xy = pad_xy;
+        for ((l, curb), m) in self.list.iter().zip(&self.memory) {
+            if *l == leg {
+                let face = self.crush.table.permanent_set(*m).max(0.0);
+                let beyond = curb.crush(touchdown_xy, xy, r) - face;
+                if beyond > 0.0 {
+                    xy -= curb.normal() * beyond;
+                }
+            }
+        }
+        xy
+    }
+
     /// Commits the crush of leg `leg`'s curbs with the footpad at `pad_xy` (accepted state).
     pub fn commit(&mut self, leg: usize, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>, r: f64) {
         for ((l, curb), m) in self.list.iter().zip(&mut self.memory) {
@@ -258,7 +283,7 @@ mod tests {
             stroke_end: 0.2,
         };
         let pad = FootpadCrush::new(
-            Honeycomb::new(LoadStroke::new(k, &[stage], 1e8).unwrap(), kb).unwrap(),
+            Honeycomb::new(LoadStroke::new(k, &[stage], 1e8).unwrap(), kb, 1.0).unwrap(),
         );
         let c = curb();
         let (pr, m) = (0.5, 20.0); // PR = DWALLI: touching at first contact

@@ -23,42 +23,67 @@ pub struct PrimaryStrutLaw {
 impl PrimaryStrutLaw {
     /// Stroke-dependent force FCP(c), N (compression positive), at compression stroke `c`, m:
     /// the honeycomb for c ≥ 0; for c < 0 the strut is past its full extension and its
-    /// extension stop pulls back elastically at the stroke-out rate (a tension force). The
-    /// report gives the primary no tension capacity beyond friction; without a stop a
-    /// laterally locked footpad lets the strut extend past its undeformed length
-    /// (docs/errata.md).
+    /// extension stop pulls back (a tension force), the same [`Stop`](crate::Stop) law as the bottoming stop
+    /// (its rate and restitution) with its own memory. The report gives the primary no tension
+    /// capacity beyond friction; a real telescoping strut has a stop at full extension
+    /// (docs/errata.md, "End stops").
     #[inline]
-    pub fn stroke_force(&self, c: f64, memory: CrushMemory) -> f64 {
+    pub fn stroke_force(&self, c: f64, memory: PrimaryMemory) -> f64 {
         if c >= 0.0 {
-            self.honeycomb.force(c, memory)
+            self.honeycomb.force(c, memory.compression)
         } else {
-            self.honeycomb.curve.stroke_out_rate() * c
+            -self.honeycomb.stop.force(-c, memory.extension.max_stroke)
         }
     }
 
     /// The branch compression stroke `c` (m) lies on and its rate, N/m: the extension stop
-    /// below 0, the honeycomb's above.
-    pub fn branch(&self, c: f64, memory: CrushMemory) -> (Branch, f64) {
+    /// below 0 (loading or unloading), the honeycomb's above.
+    pub fn branch(&self, c: f64, memory: PrimaryMemory) -> (Branch, f64) {
         if c < 0.0 {
-            (
-                Branch::ExtensionStop,
-                self.honeycomb.curve.stroke_out_rate(),
-            )
+            let stop = &self.honeycomb.stop;
+            let rate = if -c >= memory.extension.max_stroke {
+                stop.rate
+            } else {
+                stop.unloading_rate()
+            };
+            (Branch::ExtensionStop, rate)
         } else {
-            self.honeycomb.branch(c, memory)
+            self.honeycomb.branch(c, memory.compression)
         }
     }
 
-    /// Elastic energy at compression stroke `c`, J: the honeycomb's recoverable energy, or the
-    /// extension stop's ½·k·c².
+    /// Elastic energy at compression stroke `c`, J: the honeycomb's recoverable energy, or
+    /// what the extension stop would return.
     #[inline]
-    pub fn stored_energy(&self, c: f64, memory: CrushMemory) -> f64 {
+    pub fn stored_energy(&self, c: f64, memory: PrimaryMemory) -> f64 {
         if c >= 0.0 {
-            self.honeycomb.stored_energy(c, memory)
+            self.honeycomb.stored_energy(c, memory.compression)
         } else {
-            0.5 * self.honeycomb.curve.stroke_out_rate() * c * c
+            let f = -self.stroke_force(c, memory);
+            self.honeycomb.stop.stored_energy(0.0, -c, f)
         }
     }
+
+    /// Commits an accepted compression stroke `c` (m): the honeycomb's x_max, or the extension
+    /// stop's deepest extension.
+    #[inline]
+    pub fn commit(&self, c: f64, memory: &mut PrimaryMemory) {
+        if c >= 0.0 {
+            self.honeycomb.commit(c, &mut memory.compression);
+        } else {
+            self.honeycomb.commit(-c, &mut memory.extension);
+        }
+    }
+}
+
+/// Committed memory of a primary strut: the honeycomb's largest compression and the extension
+/// stop's largest extension past full length.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PrimaryMemory {
+    /// Honeycomb memory (largest compression stroke), m.
+    pub compression: CrushMemory,
+    /// Extension-stop memory (largest extension past the undeformed length), m.
+    pub extension: CrushMemory,
 }
 
 /// Secondary-strut laws: double-acting honeycomb and viscous force, tension positive.
@@ -109,8 +134,8 @@ impl SecondaryStrutLaw {
 /// Committed hysteresis of one gear: primary compression and both secondaries.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GearMemory {
-    /// Primary-strut compression memory.
-    pub primary: CrushMemory,
+    /// Primary-strut memory.
+    pub primary: PrimaryMemory,
     /// Secondary struts 3-1 and 4-1.
     pub secondary: [DoubleActingMemory; 2],
 }
@@ -147,7 +172,7 @@ pub(crate) fn honeycomb(
         ls.stroke_out_rate,
     )
     .map_err(err)?;
-    let h = Honeycomb::new(curve, ls.backoff_rate).map_err(err)?;
+    let h = Honeycomb::new(curve, ls.backoff_rate, ls.stop_restitution).map_err(err)?;
     match trunnion {
         Some(k) => h.with_trunnion(k).map_err(err),
         None => Ok(h),
@@ -216,7 +241,7 @@ impl GearLaws {
     /// compression stroke `c` and secondary strokes `s` (tension positive), m.
     #[inline]
     pub fn commit(&self, c: f64, s: [f64; 2], memory: &mut GearMemory) {
-        self.primary.honeycomb.commit(c, &mut memory.primary);
+        self.primary.commit(c, &mut memory.primary);
         for (s, m) in s.into_iter().zip(&mut memory.secondary) {
             self.secondary.honeycomb.commit(s, m);
         }

@@ -1,5 +1,5 @@
 //! Crushable honeycomb load-stroke law with elastic onset, plateaus, rebound and permanent set
-//! (figs. 8 and 9), and the trunnion-spring modification of eqs. (35)-(39).
+//! (figs. 8 and 9), the trunnion-spring modification of eqs. (35)-(39), and the end stops.
 //!
 //! Each loading direction is a *virgin curve* `F_v(x)`: from 0 the load rises at the onset rate
 //! to the first crush load FP1 (station A), stays on that plateau to the end of the first stage
@@ -12,11 +12,11 @@
 //! rebound along the backoff rate K_B, F → G in fig. 8). The permanent set is
 //! `G = x_max − F_v(x_max)/K_B`. Memories are committed only at accepted states.
 //!
-//! Bottoming is an elastic stop: beyond the capacity X_c (end of the last stage) the load
-//! follows the stroke-out line reversibly, and rebound from it starts at the last plateau,
-//! i.e. x_max is used as `min(x_max, X_c)`. (Rebounding from a bottomed load along K_B, which is
-//! far softer than the stop, would return the bottoming energy over a stroke longer than the
-//! strut; docs/errata.md.)
+//! Bottoming is a [`Stop`] with a coefficient of restitution e: it loads at the stroke-out rate
+//! K_so and unloads along the stiffer line K_so/e² from its deepest point, so it returns e² of
+//! the energy it took (docs/errata.md, "End stops"); below the last plateau load the strut
+//! rebounds along K_B from where the stop's unloading line meets that load. e = 1 is the
+//! lossless stop, e = 0 a perfectly plastic one.
 
 use crate::positive;
 use crate::{series_rate, LawError};
@@ -211,6 +211,80 @@ pub struct CrushMemory {
     pub max_stroke: f64,
 }
 
+/// An end stop: a strut bottoming past its capacity, or a primary strut pulled past its full
+/// extension. Past its start by a depth d (m) it loads at `rate` K_so (N/m); below its deepest
+/// committed depth d_max it unloads (and reloads) along `K_so·d_max·(d/d_max)^n` with
+/// `n = 2/e² − 1`, which leaves the stop at d_max with the loading force, returns to its start
+/// with no permanent set, and gives back the fraction e² of the energy K_so·d_max²/2 the stop
+/// took (docs/errata.md, "End stops").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stop {
+    /// Loading rate K_so, N/m.
+    pub rate: f64,
+    /// Coefficient of restitution e, in [0, 1]: the stop returns e² of its loading energy.
+    pub restitution: f64,
+}
+
+impl Stop {
+    /// A stop loading at `rate` (N/m, > 0) with restitution `restitution` (in [0, 1]).
+    pub fn new(rate: f64, restitution: f64) -> Result<Self, LawError> {
+        positive("stop rate", rate)?;
+        if !(0.0..=1.0).contains(&restitution) {
+            return Err(LawError::Restitution(restitution));
+        }
+        Ok(Stop { rate, restitution })
+    }
+
+    /// The exponent n = 2/e² − 1 of the unloading curve (1 for an elastic stop; infinite for
+    /// a plastic one).
+    #[inline]
+    fn exponent(&self) -> f64 {
+        2.0 / (self.restitution * self.restitution) - 1.0
+    }
+
+    /// The stop's force beyond its start load, N (≥ 0), at depth `d` (m) past its start, its
+    /// deepest committed depth being `d_max` (m).
+    #[inline]
+    pub fn force(&self, d: f64, d_max: f64) -> f64 {
+        if d <= 0.0 {
+            0.0
+        } else if d >= d_max {
+            self.rate * d
+        } else if self.restitution == 0.0 {
+            0.0
+        } else {
+            self.rate * d_max * (d / d_max).powf(self.exponent())
+        }
+    }
+
+    /// The energy the stop returns unloading from depth `d` (m), where it carries `f` (N) beyond
+    /// the strut's load `f0` (N) at which it began (which its whole stroke also carries), J:
+    /// `f0·d + f·d/(n + 1)`.
+    #[inline]
+    pub fn stored_energy(&self, f0: f64, d: f64, f: f64) -> f64 {
+        let d = d.max(0.0);
+        let e2 = self.restitution * self.restitution;
+        // f·d/(n + 1) = f·d·e²/2
+        f0 * d + 0.5 * e2 * f * d
+    }
+
+    /// The deepest point below d_max (m) at which the stop carries no force, m: 0, or d_max
+    /// for a plastic stop.
+    #[inline]
+    pub fn slack(&self, d_max: f64) -> f64 {
+        if self.restitution == 0.0 {
+            d_max.max(0.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The unloading rate at the deepest point, n·K_so, N/m (infinite for a plastic stop).
+    pub fn unloading_rate(&self) -> f64 {
+        self.rate * self.exponent()
+    }
+}
+
 /// A one-sided crushable honeycomb (the primary strut: compression only).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Honeycomb {
@@ -218,24 +292,31 @@ pub struct Honeycomb {
     pub curve: LoadStroke,
     /// Backoff (rebound) rate K_B, N/m.
     pub backoff_rate: f64,
+    /// The bottoming stop past the capacity (its rate is the curve's stroke-out rate).
+    pub stop: Stop,
 }
 
 impl Honeycomb {
-    /// A honeycomb from its virgin curve and backoff rate (N/m).
-    pub fn new(curve: LoadStroke, backoff_rate: f64) -> Result<Self, LawError> {
+    /// A honeycomb from its virgin curve, backoff rate (N/m) and the restitution of its
+    /// bottoming stop (in [0, 1]).
+    pub fn new(curve: LoadStroke, backoff_rate: f64, restitution: f64) -> Result<Self, LawError> {
         positive("backoff rate", backoff_rate)?;
         Ok(Honeycomb {
             curve,
             backoff_rate,
+            stop: Stop::new(curve.stroke_out_rate(), restitution)?,
         })
     }
 
     /// The same honeycomb behind a trunnion spring `k_t` (N/m): curve per
-    /// [`LoadStroke::with_trunnion`], backoff rate `K'_B` of eq. (36).
+    /// [`LoadStroke::with_trunnion`], backoff rate `K'_B` of eq. (36), the stop's rate the
+    /// series stroke-out rate and its restitution unchanged.
     pub fn with_trunnion(&self, k_t: f64) -> Result<Self, LawError> {
+        let curve = self.curve.with_trunnion(k_t)?;
         Ok(Honeycomb {
-            curve: self.curve.with_trunnion(k_t)?,
+            curve,
             backoff_rate: series_rate(self.backoff_rate, k_t),
+            stop: Stop::new(curve.stroke_out_rate(), self.stop.restitution)?,
         })
     }
 
@@ -243,11 +324,17 @@ impl Honeycomb {
     /// committed memory.
     #[inline]
     pub fn force(&self, x: f64, memory: CrushMemory) -> f64 {
-        let m = self.crushed(memory);
-        if x >= m || x >= self.curve.capacity() {
-            self.curve.force(x)
+        let m = memory.max_stroke;
+        if x >= m {
+            return self.curve.force(x);
+        }
+        let cap = self.curve.capacity();
+        let (x_top, f_top) = self.rebound_start(memory);
+        if x > cap {
+            // Bottomed, on the stop's unloading curve.
+            f_top + self.stop.force(x - cap, m - cap)
         } else {
-            (self.curve.force(m) - self.backoff_rate * (m - x)).max(0.0)
+            (f_top - self.backoff_rate * (x_top - x)).max(0.0)
         }
     }
 
@@ -263,19 +350,27 @@ impl Honeycomb {
         }
     }
 
-    /// The crushed stroke the rebound starts from: x_max, capped at the capacity (bottoming is
-    /// elastic), m.
+    /// Where the elastic rebound along K_B starts, (stroke m, force N): (x_max, F_v(x_max)),
+    /// x_max capped at the capacity (a bottomed strut unloads its stop back to the capacity
+    /// first).
     #[inline]
-    fn crushed(&self, memory: CrushMemory) -> f64 {
-        memory.max_stroke.min(self.curve.capacity())
+    fn rebound_start(&self, memory: CrushMemory) -> (f64, f64) {
+        let x = memory.max_stroke.min(self.curve.capacity());
+        (x, self.curve.force(x))
     }
 
     /// The branch stroke `x` (m, ≥ 0) lies on, given the committed memory, and its rate
-    /// (the law's local stiffness), N/m.
+    /// (the law's local stiffness; on a stop's unloading curve its largest), N/m.
     pub fn branch(&self, x: f64, memory: CrushMemory) -> (Branch, f64) {
-        if x > self.curve.capacity() {
-            (Branch::StrokeOut, self.curve.stroke_out_rate())
-        } else if x < self.crushed(memory) {
+        let cap = self.curve.capacity();
+        if x > cap {
+            let rate = if x >= memory.max_stroke {
+                self.stop.rate
+            } else {
+                self.stop.unloading_rate()
+            };
+            (Branch::StrokeOut, rate)
+        } else if x < self.rebound_start(memory).0 {
             (Branch::Rebound, self.backoff_rate)
         } else {
             match self.curve.slope(x) {
@@ -293,22 +388,23 @@ impl Honeycomb {
         }
     }
 
-    /// Permanent set G = x_max − F_v(x_max)/K_B, m (never negative).
+    /// Permanent set G, m (never negative): where the rebound line from
+    /// [`Honeycomb::rebound_start`] reaches zero load.
     pub fn permanent_set(&self, memory: CrushMemory) -> f64 {
-        let m = self.crushed(memory);
-        (m - self.curve.force(m) / self.backoff_rate).max(0.0)
+        let (x, f) = self.rebound_start(memory);
+        (x - f / self.backoff_rate).max(0.0)
     }
 
     /// Elastic energy stored at stroke `x` and recoverable, J: `F²/(2·K_B)` on the rebound
-    /// line, plus `(F² − F_c²)/(2·K_so)` on the bottoming stop (F_c: last plateau load).
+    /// line; bottomed, what the stop returns ([`Stop::stored_energy`]) plus the rebound triangle
+    /// of the last plateau load F_c.
     #[inline]
     pub fn stored_energy(&self, x: f64, memory: CrushMemory) -> f64 {
         let f = self.force(x, memory);
         let cap = self.curve.capacity();
         if x > cap {
             let fc = self.curve.force(cap);
-            fc * fc / (2.0 * self.backoff_rate)
-                + (f * f - fc * fc) / (2.0 * self.curve.stroke_out_rate())
+            fc * fc / (2.0 * self.backoff_rate) + self.stop.stored_energy(fc, x - cap, f - fc)
         } else {
             f * f / (2.0 * self.backoff_rate)
         }
@@ -402,7 +498,7 @@ mod tests {
                 stroke_end: 0.2,
             },
         ];
-        Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6).unwrap()
+        Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6, 1.0).unwrap()
     }
 
     #[test]
@@ -469,7 +565,7 @@ mod tests {
     }
 
     #[test]
-    fn bottoming_is_an_elastic_stop() {
+    fn a_lossless_stop_retraces_its_loading_line() {
         let h = primary();
         let mut m = CrushMemory::default();
         h.commit(0.21, &mut m); // 0.01 m into stroke-out: 3000 + 1e7·0.01 N
@@ -482,6 +578,65 @@ mod tests {
         // Stored energy: the rebound triangle plus the stop's own.
         let e = 3000.0f64.powi(2) / 2e6 + (103_000.0f64.powi(2) - 3000.0f64.powi(2)) / 2e7;
         assert!((h.stored_energy(0.21, m) - e).abs() < 1e-9);
+    }
+
+    /// Work done on the strut along strokes `path` (committing each), by the trapezoid rule on
+    /// fine steps, J.
+    fn work_along(h: &Honeycomb, m: &mut CrushMemory, path: &[f64]) -> f64 {
+        let mut w = 0.0;
+        for pair in path.windows(2) {
+            let n = 20_000;
+            for i in 0..n {
+                let a = pair[0] + (pair[1] - pair[0]) * i as f64 / n as f64;
+                let b = pair[0] + (pair[1] - pair[0]) * (i + 1) as f64 / n as f64;
+                w += 0.5 * (h.force(a, *m) + h.force(b, *m)) * (b - a);
+                h.commit(b, m);
+            }
+        }
+        w
+    }
+
+    /// A stop with restitution e returns e² of the energy it took, with no permanent set, and
+    /// the stored energy is what unloading returns.
+    #[test]
+    fn a_stop_returns_the_square_of_its_restitution() {
+        for e in [0.0, 0.5, 0.8, 1.0] {
+            let stages = [Stage {
+                crush_load: 3000.0,
+                stroke_end: 0.2,
+            }];
+            let h = Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6, e).unwrap();
+            let mut m = CrushMemory { max_stroke: 0.2 };
+            // Load the stop 10 mm deep from the capacity: F_c·d plus the stop's own K_so·d²/2.
+            let taken = work_along(&h, &mut m, &[0.2, 0.21]);
+            let own = 0.5 * 1e7 * 0.01f64.powi(2);
+            assert!((taken - (3000.0 * 0.01 + own)).abs() < 1e-6);
+            let stored = h.stored_energy(0.21, m) - 3000.0f64.powi(2) / 2e6;
+            let expected = 3000.0 * 0.01 + e * e * own;
+            assert!((stored - expected).abs() < 1e-9 * taken, "e = {e}");
+            // Unloading to the capacity gives it back, continuously from the deepest point
+            // (where it is n·K_so steep) unless the stop is plastic.
+            if e > 0.0 {
+                let drop = 103_000.0 - h.force(0.21 - 1e-9, m);
+                assert!(
+                    drop > 0.0 && drop < 2e-9 * h.stop.unloading_rate(),
+                    "{drop}"
+                );
+            }
+            let returned = -work_along(&h, &mut m, &[0.21, 0.2]);
+            assert!(
+                (returned - expected).abs() < 2e-3 * taken,
+                "e = {e}: {returned} vs {expected}"
+            );
+            // No permanent set: the rebound starts at the capacity along K_B.
+            assert!((h.force(0.199, m) - 2000.0).abs() < 1e-6);
+            assert!((h.permanent_set(m) - (0.2 - 3000.0 / 1e6)).abs() < 1e-12);
+            // Reloading climbs the unloading curve back to the deepest point, then the stop.
+            assert!((h.force(0.21, m) - 103_000.0).abs() < 1e-6);
+            assert!((h.force(0.211, m) - 113_000.0).abs() < 1e-6);
+        }
+        assert!(Stop::new(1e7, 1.2).is_err() && Stop::new(1e7, -0.1).is_err());
+        assert!(Stop::new(1e7, f64::NAN).is_err());
     }
 
     #[test]
@@ -517,6 +672,7 @@ mod tests {
                 )
                 .unwrap(),
                 1e6,
+                1.0,
             )
             .unwrap()
         };

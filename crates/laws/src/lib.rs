@@ -35,10 +35,12 @@ pub use beam::{euler_load, normal_load, secondary_lengthening, Bending, Deflecti
 pub use bearing::{side_load, Bearing, BearingLoads};
 pub use curb::{Curb, Curbs, FootpadCrush};
 pub use gear::{
-    GearLaws, GearMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw, StrutLoad,
+    GearLaws, GearMemory, PrimaryMemory, PrimaryStrutLaw, SecondaryForces, SecondaryStrutLaw,
+    StrutLoad,
 };
 pub use honeycomb::{
     Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
+    Stop,
 };
 pub use rcs::{Rcs, RcsLoads, RcsMode};
 pub use sliding::sliding_friction;
@@ -78,6 +80,9 @@ pub enum LawError {
     /// The slosh mass M_s = F_s/ω² (eq. 112) is not below the total vehicle mass M.
     #[error("slosh mass M_s = {slosh_mass} kg must be below the total mass M = {total_mass} kg")]
     SloshMass { slosh_mass: f64, total_mass: f64 },
+    /// A coefficient of restitution outside [0, 1].
+    #[error("stop restitution must be a number in [0, 1], got {0}")]
+    Restitution(f64),
     /// The primary-strut load point lies outside the beam (need 0 ≤ L21 ≤ V2P).
     #[error("beam: load point a = {a} m is outside the span [0, L = {l} m]")]
     BeamGeometry { a: f64, l: f64 },

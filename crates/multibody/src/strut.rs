@@ -140,7 +140,7 @@ pub fn strut_forces(
     let p = &laws.primary;
     let bearing_bound = p.bearing.friction_bound(fm, k.c)?; // eqs. (59)-(63)
     let crushing = if k.c_dot > 0.0 {
-        p.honeycomb.crush_load(k.c, memory.primary)
+        p.honeycomb.crush_load(k.c, memory.primary.compression)
     } else {
         None
     };

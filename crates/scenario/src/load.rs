@@ -561,11 +561,17 @@ impl Check<'_> {
             let end = self.positive(&format!("{f}.stroke_end"), s.stroke_end)? * u.length();
             stages.push((load, end));
         }
+        let field = format!("{field}.stop_restitution");
+        let e = self.non_negative(&field, ls.stop_restitution)?;
+        if e > 1.0 {
+            return Err(self.err(&field, format!("expected a number in [0, 1], got {e}")));
+        }
         Ok(model::LoadStroke {
             onset_rate,
             backoff_rate,
             stroke_out_rate,
             stages,
+            stop_restitution: e,
         })
     }
     fn trunnion(&self, field: &str, t: Trunnion, u: &Units) -> Result<Option<f64>, ScenarioError> {

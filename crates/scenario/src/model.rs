@@ -127,6 +127,8 @@ pub struct LoadStroke {
     pub stroke_out_rate: f64,
     /// (crush load N, stroke at end of plateau m), in loading order.
     pub stages: Vec<(f64, f64)>,
+    /// Coefficient of restitution of the end stops, in [0, 1].
+    pub stop_restitution: f64,
 }
 
 impl LoadStroke {

@@ -207,6 +207,19 @@ pub struct LoadStroke {
     pub stroke_out_rate: f64,
     /// Stages in loading order (1 to 3 for the primary, 1 to 4 for a secondary side).
     pub stages: Vec<Stage>,
+    /// Coefficient of restitution e of this diagram's end stops (bottoming past the last
+    /// stage; for the primary strut also its full-extension stop): a stop returns e² of the
+    /// energy it takes and dissipates the rest; dimensionless, in [0, 1]. Default 0.5: the
+    /// report gives no stroke-out law, and a bottoming honeycomb (densified core on its end
+    /// fitting) or a metal end stop dissipates much of its impact; 0.5 (a quarter of the
+    /// energy back) is a middle value for such impacts, not a measurement (docs/errata.md,
+    /// "End stops", with what the choice moves).
+    #[serde(default = "default_stop_restitution")]
+    pub stop_restitution: f64,
+}
+
+fn default_stop_restitution() -> f64 {
+    0.5
 }
 
 /// A trunnion spring: `"rigid"` (the load-stroke diagrams are already trunnion-modified, as
@@ -354,18 +367,27 @@ pub enum SurfaceKind {
     Soil,
 }
 
-/// When a footpad that lifts off leaves the surface (review A2).
+/// What keeps a footpad in contact with its surface (review A2; docs/errata.md, "Contact and
+/// release"): it stays while its gear presses it onto the surface and leaves as soon as it does
+/// not, whatever its tentative rigid height. The rules differ in the force that stands for
+/// "presses".
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ReleaseRule {
-    /// When the primary-strut force F2P = FCP + FVP + FBR is no longer compressive (literal).
+    /// The normal component of the gear's force on the footpad (FZI of eqs. 85 and 103, the
+    /// gear pressing the footpad into the surface) is positive: the physical condition, since
+    /// a surface cannot pull.
+    GearForce,
+    /// The primary-strut force F2P = FCP + FVP + FBR is compressive (the report's "compressive
+    /// forces remain", a stand-in for the normal force).
     StrutForce,
-    /// When the honeycomb force FCP is zero (the strut is back at its permanent set).
+    /// The primary honeycomb force FCP is compressive (the strut is not back at its permanent
+    /// set).
     HoneycombForce,
 }
 
 fn default_release() -> ReleaseRule {
-    ReleaseRule::StrutForce
+    ReleaseRule::GearForce
 }
 
 /// Landing surface: the inertial X-Y plane, sloped by α about X (+Y is downhill).
@@ -384,7 +406,7 @@ pub struct Surface {
     pub obstacle: PerPad,
     /// U_n: sliding friction coefficient; dimensionless.
     pub friction: PerPad,
-    /// When a footpad lifting off leaves the surface.
+    /// What keeps a footpad in contact (default `gear_force`).
     #[serde(default = "default_release")]
     pub release: ReleaseRule,
     /// Soil constants K1-K8 (eqs. 101-102); required with `kind = "soil"`.

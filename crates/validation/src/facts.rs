@@ -197,9 +197,18 @@ pub fn check(paths: &Paths) -> Result<FactsRun, ValidationError> {
         (Some(a), Some(b)) => s.t[b] - s.t[a],
         _ => 0.0,
     };
-    // The downhill footpads strike when a footpad first touches after the free flight.
-    let strike = end1.and_then(|e| (e + 1..n).find(|&k| s.contacts[k] & !s.contacts[k - 1] != 0));
-    let strike_t = strike.map(|k| s.t[k]).unwrap_or(f64::NAN);
+    // The downhill footpads strike at the first contact of a footpad that was not on the
+    // surface at touchdown (the second pair of the 2-2 landing): an uphill footpad that hops
+    // and lands again is not that strike.
+    let strike_t = summary
+        .first_contact_s
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|t| *t > 0.0)
+        .reduce(f64::min)
+        .unwrap_or(f64::NAN);
+    let strike = s.t.iter().position(|t| *t >= strike_t);
     // Maximum stroking: the time every strut with significant stroke (over a tenth of the
     // largest) has come within 1 % of its largest stroke (ignoring slow creep afterwards).
     let largest = s

@@ -108,11 +108,14 @@ fn targets_that_are_met_stay_met() {
             .find(|f| f.fact == name)
             .unwrap_or_else(|| panic!("no fact {name}"))
     };
+    // "primary stroke into the second stage" was met before the contact rule and the end stops
+    // changed (docs/errata.md, "Contact and release", "End stops") and the calibration moved
+    // FP1 from 149 to 223 lbf: the primaries now stop short of the second stage
+    // (docs/validation.md).
     for name in [
         "downhill footpads strike",
         "pitch rate at the downhill strike",
         "outcome",
-        "primary stroke into the second stage",
     ] {
         assert!(
             fact(name).agrees,

@@ -1,0 +1,348 @@
+//! Results that must not depend on the side a landing is seen from, nor on how the legs are
+//! numbered: every bundled scenario against its mirror image and against its legs renumbered,
+//! and every mirror-symmetric scenario against itself (docs/errata.md, "Decisions at rounding
+//! level").
+
+use nalgebra::{Matrix3, Vector3};
+use touchdown_record::Summary;
+use touchdown_scenario::model::Leg;
+use touchdown_scenario::Scenario;
+use touchdown_tests::scenario;
+
+/// Relative agreement required between a landing and its mirror image.
+const TOLERANCE: f64 = 1e-9;
+
+/// The bundled scenarios whose motion is itself unstable to asymmetric disturbances, with the
+/// growth the test measured: the mirror-image landing parts from the original smoothly, as a
+/// rounding-level asymmetry grows, and so does the original when a 1e-13 asymmetry is put in on
+/// purpose. None is known today; a scenario listed here must show that growth
+/// ([`instability_is_physical`]).
+const UNSTABLE_TO_ASYMMETRY: &[&str] = &[];
+
+/// Landings whose results still depend on their numbering or their side today, beyond
+/// [`TOLERANCE`]: decisions that rounding flips remain in the sliding stick logic
+/// (`level-sliding`: its end time, energies and friction work move by up to 2 %) and the soil's
+/// breakaway (`soil-drop`: strokes by up to 5e-6 relative when its legs are renumbered)
+/// (docs/errata.md, "Decisions at rounding level"). The
+/// test fails if one of them comes out consistent: then it leaves this list.
+const NOT_YET_CONSISTENT: &[&str] = &[
+    "level-sliding.toml",
+    "soil-drop.toml",
+];
+
+/// Every bundled landing (scenarios/*.toml; the vehicle files are not landings).
+fn landings() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(touchdown_tests::root().join("scenarios"))
+        .expect("scenarios/ is readable")
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().into_string().ok()?;
+            name.ends_with(".toml").then_some(name)
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+/// The mirror matrix M = diag(−1, 1, 1): x → −x in the gravity, surface and body frames.
+fn m() -> Matrix3<f64> {
+    Matrix3::from_diagonal(&Vector3::new(-1.0, 1.0, 1.0))
+}
+
+/// A pseudovector (body rates) mirrored: det(M)·M·ω.
+fn mirror_pseudo(w: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(w.x, -w.y, -w.z)
+}
+
+/// What a renumbering or mirroring does to the legs: new leg k is old leg `legs[k]`, with its
+/// secondaries swapped (3-1 ↔ 4-1) when `swap`.
+#[derive(Debug, Clone)]
+struct Map {
+    legs: Vec<usize>,
+    swap: bool,
+}
+
+/// The scenario seen in a mirror (x → −x), its legs renumbered counter-clockwise: new leg k is
+/// the mirror image of old leg (n − k) mod n, with its secondary trunnions B3 and B4 exchanged
+/// (a mirror reverses the sense of rotation). Per-footpad surface values follow their legs; the
+/// touchdown attitude becomes (θx, −θy, −θz), the velocity (−vx, vy, vz), the body rates
+/// (ωx, −ωy, −ωz); the products of inertia Ixy and Ixz change sign. `None`, with the reason, for
+/// a scene with a mechanism this does not mirror.
+fn mirrored(sc: &Scenario) -> Result<(Scenario, Map), &'static str> {
+    if sc.rcs.is_some() {
+        return Err("RCS commands are not mirrored here");
+    }
+    if !sc.surface.curbs.is_empty() {
+        return Err("curb angles are not mirrored here");
+    }
+    let n = sc.legs.len();
+    let map = Map {
+        legs: (0..n).map(|k| (n - k) % n).collect(),
+        swap: true,
+    };
+    let m = m();
+    let mut out = sc.clone();
+    out.legs = map
+        .legs
+        .iter()
+        .map(|&i| {
+            let l = sc.legs[i];
+            Leg {
+                b2: m * l.b2,
+                b3: m * l.b4,
+                b4: m * l.b3,
+                bp: m * l.bp,
+                l31: l.l41,
+                l41: l.l31,
+                ..l
+            }
+        })
+        .collect();
+    out.surface.pads = map.legs.iter().map(|&i| sc.surface.pads[i]).collect();
+    out.vehicle.inertia = m * sc.vehicle.inertia * m;
+    let td = &mut out.touchdown;
+    td.attitude = Vector3::new(td.attitude.x, -td.attitude.y, -td.attitude.z);
+    td.velocity_g = m * td.velocity_g;
+    td.body_rates = mirror_pseudo(&td.body_rates);
+    if let Some(t) = &mut out.thrust {
+        t.nozzle_exit = m * t.nozzle_exit;
+    }
+    if let Some(s) = &mut out.slosh {
+        s.initial_amplitude[0] = -s.initial_amplitude[0];
+    }
+    Ok((out, map))
+}
+
+/// The scenario with its legs renumbered one place on (new leg k is old leg k + 1).
+fn renumbered(sc: &Scenario) -> (Scenario, Map) {
+    let n = sc.legs.len();
+    let map = Map {
+        legs: (0..n).map(|k| (k + 1) % n).collect(),
+        swap: false,
+    };
+    let mut out = sc.clone();
+    out.legs = map.legs.iter().map(|&i| sc.legs[i]).collect();
+    out.surface.pads = map.legs.iter().map(|&i| sc.surface.pads[i]).collect();
+    (out, map)
+}
+
+/// The leg map under which a scenario is its own mirror image in the vertical plane X = x_cm of
+/// the gravity frame at touchdown (leg i's mirror image is leg `legs[i]`, secondaries swapped),
+/// or `None` if it is not mirror-symmetric: the touchdown geometry, velocity, rates, inertia,
+/// per-footpad surface and mechanisms are compared in inertial axes, to rounding.
+fn self_mirror(sc: &Scenario) -> Option<Map> {
+    let init = touchdown_scenario::frames::initial_state(sc);
+    let t = init.t_bi;
+    let m = m();
+    let close = |a: &Vector3<f64>, b: &Vector3<f64>| (a - b).norm() < 1e-12;
+    let w = t * init.omega;
+    if !close(&(m * init.velocity), &init.velocity) || !close(&mirror_pseudo(&w), &w) {
+        return None;
+    }
+    let inertia = t * sc.vehicle.inertia * t.transpose();
+    if (m * inertia * m - inertia).norm() > 1e-12 * inertia.norm() {
+        return None;
+    }
+    if let Some(thrust) = &sc.thrust {
+        let r = t * thrust.nozzle_exit;
+        if !close(&(m * r), &r) {
+            return None;
+        }
+    }
+    if sc.slosh.is_some_and(|s| s.initial_amplitude != [0.0, 0.0])
+        || sc.rcs.is_some()
+        || !sc.surface.curbs.is_empty()
+    {
+        return None;
+    }
+    let image = |l: &Leg| [m * t * l.b2, m * t * l.b4, m * t * l.b3, m * t * l.bp];
+    let legs = sc
+        .legs
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let mirrored = image(l);
+            sc.legs.iter().enumerate().position(|(j, k)| {
+                let own = [t * k.b2, t * k.b3, t * k.b4, t * k.bp];
+                mirrored.iter().zip(&own).all(|(a, b)| close(a, b))
+                    && sc.surface.pads[i] == sc.surface.pads[j]
+            })
+        })
+        .collect::<Option<Vec<usize>>>()?;
+    Some(Map { legs, swap: true })
+}
+
+/// Every per-leg and global figure of a summary, named, in the numbering of `map` applied to
+/// `s` (so that a run of the mapped scenario gives the same list).
+fn figures(s: &Summary, map: Option<&Map>) -> Vec<(String, f64)> {
+    let n = s.max_primary_stroke_m.len();
+    let identity = Map {
+        legs: (0..n).collect(),
+        swap: false,
+    };
+    let map = map.unwrap_or(&identity);
+    let pair = |p: [f64; 2]| if map.swap { [p[1], p[0]] } else { p };
+    let mut out = vec![];
+    for (k, &i) in map.legs.iter().enumerate() {
+        out.push((
+            format!("leg {} primary stroke", k + 1),
+            s.max_primary_stroke_m[i],
+        ));
+        let c = pair(s.max_secondary_compression_m[i]);
+        let t = pair(s.max_secondary_tension_m[i]);
+        for j in 0..2 {
+            out.push((format!("leg {} secondary {j} compression", k + 1), c[j]));
+            out.push((format!("leg {} secondary {j} tension", k + 1), t[j]));
+        }
+    }
+    let e = &s.energy;
+    out.extend([
+        ("end time".to_string(), s.t_end_s),
+        ("peak pitch rate".to_string(), s.peak_pitch_rate_rad_s),
+        (
+            "minimum stability distance".to_string(),
+            s.min_stability_distance_m,
+        ),
+        ("kinetic energy".to_string(), e.kinetic_j),
+        ("honeycomb dissipated".to_string(), e.honeycomb_dissipated_j),
+        ("honeycomb stored".to_string(), e.honeycomb_stored_j),
+        ("bearing friction".to_string(), e.bearing_friction_j),
+        ("sliding friction".to_string(), e.sliding_friction_j),
+        ("mechanisms".to_string(), e.mechanisms_j),
+    ]);
+    out
+}
+
+/// The figures of `a` and `b` that differ by more than [`TOLERANCE`] of their scale (the
+/// larger magnitude of that kind of figure in `a`: the largest stroke for strokes, the touchdown
+/// kinetic energy for energies, `rate_scale` (rad/s) for the pitch rate), and whether the
+/// outcomes differ.
+fn differences(a: &Summary, b: &Summary, map: &Map, rate_scale: f64) -> Vec<String> {
+    let fa = figures(a, None);
+    let fb = figures(b, Some(&inverse(map)));
+    let stroke_scale = fa
+        .iter()
+        .filter(|(n, _)| n.starts_with("leg"))
+        .fold(0.0f64, |m, (_, x)| m.max(x.abs()));
+    let energy_scale = a.energy.kinetic_initial_j;
+    let mut out = vec![];
+    if a.outcome != b.outcome {
+        out.push(format!("outcome {:?} vs {:?}", a.outcome, b.outcome));
+    }
+    for ((name, x), (_, y)) in fa.iter().zip(&fb) {
+        let scale = if name.starts_with("leg") {
+            stroke_scale
+        } else if name.contains("energy")
+            || name.contains("dissipated")
+            || name.contains("friction")
+            || name.contains("stored")
+            || name == "mechanisms"
+        {
+            energy_scale
+        } else if name == "peak pitch rate" {
+            rate_scale
+        } else {
+            x.abs().max(y.abs())
+        };
+        if (x - y).abs() > TOLERANCE * scale.max(f64::MIN_POSITIVE) {
+            out.push(format!("{name}: {x:.12e} vs {y:.12e}"));
+        }
+    }
+    out
+}
+
+/// The inverse of a leg map (old leg i is new leg inverse[i]).
+fn inverse(map: &Map) -> Map {
+    let mut legs = vec![0; map.legs.len()];
+    for (k, &i) in map.legs.iter().enumerate() {
+        legs[i] = k;
+    }
+    Map {
+        legs,
+        swap: map.swap,
+    }
+}
+
+fn core(sc: &Scenario) -> Summary {
+    touchdown_core::run(sc).unwrap_or_else(|e| panic!("{}: {e}", sc.source))
+}
+
+/// A scenario listed in [`UNSTABLE_TO_ASYMMETRY`] must part from its mirror image because a
+/// rounding-level asymmetry grows, not by an abrupt decision: a deliberate 1e-13 rad roll of the
+/// touchdown attitude must move its results about as far as the mirror does.
+fn instability_is_physical(sc: &Scenario, mirror_gap: f64) -> bool {
+    let mut nudged = sc.clone();
+    nudged.touchdown.attitude.x += 1e-13;
+    let (a, b) = (core(sc), core(&nudged));
+    let gap = (a.peak_pitch_rate_rad_s - b.peak_pitch_rate_rad_s).abs();
+    gap > 0.1 * mirror_gap
+}
+
+/// Every bundled landing run on the core: its mirror image gives the mirrored result and its
+/// renumbered legs the renumbered result, to 1e-9 relative; a mirror-symmetric landing is its
+/// own mirror image, so it comes out symmetric.
+#[test]
+fn mirror_symmetric_landings_come_out_symmetric() {
+    let mut failures = vec![];
+    let mut symmetric = vec![];
+    let mut checked = 0;
+    for name in landings() {
+        let sc = Scenario::load(scenario(&name)).unwrap_or_else(|e| panic!("{e}"));
+        let original = core(&sc);
+        // The pitch rate's scale: the touchdown speed over the primary strut's length.
+        let speed = sc
+            .touchdown
+            .velocity_g
+            .norm()
+            .max(1e-3 * sc.vehicle.gravity.sqrt());
+        let rate = speed / sc.legs[0].l2p;
+        let (renamed, map) = renumbered(&sc);
+        for d in differences(&original, &core(&renamed), &map, rate) {
+            failures.push(format!("{name}, legs renumbered: {d}"));
+        }
+        let (image, map) = match mirrored(&sc) {
+            Ok(m) => m,
+            Err(why) => {
+                eprintln!("{name}: mirror not checked ({why})");
+                continue;
+            }
+        };
+        checked += 1;
+        if let Some(own) = self_mirror(&sc) {
+            symmetric.push(name.clone());
+            for d in differences(&original, &original, &own, rate) {
+                failures.push(format!("{name}, its own mirror image: {d}"));
+            }
+        }
+        let diffs = differences(&original, &core(&image), &map, rate);
+        if diffs.is_empty() {
+            continue;
+        }
+        if UNSTABLE_TO_ASYMMETRY.contains(&name.as_str()) {
+            let gap = (original.peak_pitch_rate_rad_s - core(&image).peak_pitch_rate_rad_s).abs();
+            assert!(
+                instability_is_physical(&sc, gap),
+                "{name} is listed as unstable to asymmetry, but a 1e-13 nudge does not move it"
+            );
+            continue;
+        }
+        for d in diffs {
+            failures.push(format!("{name}, mirrored: {d}"));
+        }
+    }
+    assert!(checked >= 15, "only {checked} scenarios mirrored");
+    assert!(
+        symmetric.len() >= 5,
+        "expected the symmetric drops and the 2-2 landings to be their own mirror images: {symmetric:?}"
+    );
+    let (known, new): (Vec<_>, Vec<_>) = failures
+        .into_iter()
+        .partition(|f| NOT_YET_CONSISTENT.iter().any(|n| f.starts_with(n)));
+    for name in NOT_YET_CONSISTENT {
+        assert!(
+            known.iter().any(|f| f.starts_with(name)),
+            "{name} is now consistent: take it off NOT_YET_CONSISTENT"
+        );
+    }
+    eprintln!("not yet consistent (known):\n{}", known.join("\n"));
+    assert!(new.is_empty(), "{}", new.join("\n"));
+}
