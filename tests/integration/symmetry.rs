@@ -23,12 +23,9 @@ const UNSTABLE_TO_ASYMMETRY: &[&str] = &[];
 /// [`TOLERANCE`]: decisions that rounding flips remain in the sliding stick logic
 /// (`level-sliding`: its end time, energies and friction work move by up to 2 %) and the soil's
 /// breakaway (`soil-drop`: strokes by up to 5e-6 relative when its legs are renumbered)
-/// (docs/errata.md, "Decisions at rounding level"). The
-/// test fails if one of them comes out consistent: then it leaves this list.
-const NOT_YET_CONSISTENT: &[&str] = &[
-    "level-sliding.toml",
-    "soil-drop.toml",
-];
+/// (docs/errata.md, "Decisions at rounding level"). The test fails if one of them comes out
+/// consistent: then it leaves this list.
+const NOT_YET_CONSISTENT: &[&str] = &["level-sliding.toml", "soil-drop.toml"];
 
 /// Every bundled landing (scenarios/*.toml; the vehicle files are not landings).
 fn landings() -> Vec<String> {
