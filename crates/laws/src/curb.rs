@@ -14,7 +14,7 @@
 //!
 //! PFRC comes from the footpad force-deflection diagram (fig. 18, missing) with memory: the
 //! same virgin-curve/backoff law as the struts ([`Honeycomb`]), one [`CrushMemory`] per pad and
-//! curb (review A14). The pad bottom is rigid.
+//! curb (docs/errata.md, "Modelling choices the report leaves open"). The pad bottom is rigid.
 
 use nalgebra::Vector2;
 
@@ -109,7 +109,7 @@ impl Curb {
 ///
 /// Keep one [`CrushMemory`] per pad and curb ("retain deformed footpad geometry"; crush along
 /// different curbs is independent). Contact only while PSTRK exceeds the permanent set
-/// (review A14); the pad bottom is rigid.
+/// (docs/errata.md, "Modelling choices the report leaves open"); the pad bottom is rigid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FootpadCrush {
     /// The load-deflection law: stroke = PSTRK, m; force = PFRC, N.
@@ -164,7 +164,8 @@ pub struct Curbs {
     pub list: Vec<(usize, Curb)>,
     /// Footpad crushing diagram with memory.
     pub crush: FootpadCrush,
-    /// Committed crush memory per curb (review A14).
+    /// Committed crush memory per curb (one per footpad and curb: crush along different curbs is
+    /// independent).
     pub memory: Vec<CrushMemory>,
 }
 

@@ -367,7 +367,7 @@ pub enum SurfaceKind {
     Soil,
 }
 
-/// What keeps a footpad in contact with its surface (review A2; docs/errata.md, "Contact and
+/// What keeps a footpad in contact with its surface (docs/errata.md, "Contact and
 /// release"): it stays while its gear presses it onto the surface and leaves as soon as it does
 /// not, whatever its tentative rigid height. The rules differ in the force that stands for
 /// "presses".
