@@ -732,10 +732,9 @@ impl Simulation {
                         v_normal,
                         self.t,
                     );
-                    // A (re)contact whose first evaluation would pull the footpad, or load its
-                    // primary's extension stop (a footpad put on its plane from just above it),
-                    // is no contact.
-                    // So is one whose strut would be stretched past its bearings there.
+                    // A (re)contact whose first evaluation would pull the footpad, load its
+                    // primary's extension stop (a footpad put on its plane from just above it) or
+                    // stretch its strut past its bearings is no contact.
                     let pad = self.pads[i];
                     let mut g = GearState::default();
                     let fits = self
@@ -750,7 +749,8 @@ impl Simulation {
                 }
                 ContactState::Contact => {
                     if self.leaves(i, &v, &self.gear[i]) {
-                        changed |= self.release(i, &v)?;
+                        self.release(i, &v)?;
+                        changed = true;
                     }
                 }
             }
@@ -765,7 +765,6 @@ impl Simulation {
     /// weight), or the report's stand-ins F2P or FCP.
     fn pressing(&self, v: &VehicleState, g: &GearState) -> f64 {
         match self.release {
-            // The surface's normal reaction on a footpad at rest on it: FZI plus its weight.
             ReleaseRule::GearForce => -(v.t_bi * g.fp).z - self.footpad_mass * self.gravity.z,
             ReleaseRule::StrutForce => g.f2p,
             ReleaseRule::HoneycombForce => g.fcp,
@@ -779,7 +778,7 @@ impl Simulation {
     /// hangs from moves away from the surface, and leaves it resting there otherwise (a massless
     /// footpad between a slack gear and its surface is held by neither; its lightest-mass limit
     /// rests). On soil, a footpad leaves once it is no longer pressed and has risen out of the
-    /// soil (review A15).
+    /// soil (docs/errata.md, "Eq. (101)").
     fn leaves(&self, i: usize, v: &VehicleState, g: &GearState) -> bool {
         let pressing = self.pressing(v, g);
         let tol = self.force_rounding;
@@ -800,9 +799,8 @@ impl Simulation {
     /// strokes are committed, its massless gear relaxes to strokes at which no strut carries a
     /// force (the stored energy it releases counts as dissipated by the honeycombs, whose work
     /// the ledger already holds) and the footpad is attached rigidly where the relaxed struts
-    /// put it. Returns whether it left (always: a relaxed gear that cannot be assembled is an
-    /// error).
-    fn release(&mut self, i: usize, v: &VehicleState) -> Result<bool, CoreError> {
+    /// put it. A relaxed gear that cannot be assembled is an error.
+    fn release(&mut self, i: usize, v: &VehicleState) -> Result<(), CoreError> {
         let g = self.gear[i];
         let (c, s) = (g.primary_stroke, g.secondary_stroke);
         self.laws.commit(c, s, &mut self.memory[i]);
@@ -838,7 +836,7 @@ impl Simulation {
         pad.bp_attached = relaxed.bp;
         pad.position = v.point(&relaxed.bp);
         pad.velocity = v.point_velocity(&relaxed.bp);
-        Ok(true)
+        Ok(())
     }
 
     /// A leaving cantilever gear relaxed from primary stroke `c` (m) whose footpad would end
