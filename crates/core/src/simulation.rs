@@ -215,7 +215,7 @@ pub struct Simulation {
     /// locating it would hold the step at dt_min).
     contact_steps: Vec<u32>,
     /// Power of the vehicle-level mechanisms on the vehicle at the accepted state, W.
-    applied_power: f64,
+    applied_power: Power,
     ledger: EnergyLedger,
     potential0: f64,
     stability: StabilityTracker,
@@ -270,11 +270,11 @@ enum Quadrature {
     /// mechanisms' power at the trial, W.
     Trapezoid { trial_power: f64 },
     /// A Runge–Kutta method's own quadrature; `evaluated` is the mechanisms' power at the new
-    /// state (W) when the method's last stage already evaluated it (its forces in the trial
-    /// gear states).
+    /// state when the method's last stage already evaluated it (its forces in the trial gear
+    /// states).
     Stages {
         work: StageWork,
-        evaluated: Option<f64>,
+        evaluated: Option<Power>,
     },
 }
 
@@ -289,11 +289,19 @@ struct PadWork {
 
 /// Net loads on the vehicle (eqs. 66-68, 83-84): force in inertial axes excluding gravity,
 /// torque in body axes, and the power of the vehicle-level mechanisms (thrust, nozzle, RCS,
-/// slosh) on the vehicle, W.
+/// slosh) on the vehicle.
 struct Loads {
     force: Vector3<f64>,
     torque: Vector3<f64>,
-    applied_power: f64,
+    applied_power: Power,
+}
+
+/// Power of the vehicle-level mechanisms on the vehicle, W: all of them (`applied`), and the
+/// driving ones' part (`driving`: thrust and RCS, whose positive work is energy put in).
+#[derive(Debug, Clone, Copy, Default)]
+struct Power {
+    applied: f64,
+    driving: f64,
 }
 
 impl Simulation {
@@ -378,7 +386,7 @@ impl Simulation {
             bending_lag: vec![Vector3::zeros(); n],
             relaxation: vec![(0.0, [0.0; 2]); n],
             contact_steps: vec![0; n],
-            applied_power: 0.0,
+            applied_power: Power::default(),
             ledger: EnergyLedger::default(),
             potential0: 0.0,
             stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
@@ -596,12 +604,15 @@ impl Simulation {
             force -= v.t_bi * slot.fp; // eqs. (67)-(68)
         }
         // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms, if any.
-        let mut applied_power = 0.0;
+        let mut applied_power = Power::default();
         if let Some(a) = self.mechanisms.vehicle_loads(t, || self.first_contact(), v) {
             let applied_force = v.t_bi * a.force;
             force += applied_force; // eq. (83)
             torque += a.torque; // eq. (84)
-            applied_power = applied_force.dot(&v.velocity) + a.torque.dot(&v.omega);
+            applied_power = Power {
+                applied: applied_force.dot(&v.velocity) + a.torque.dot(&v.omega),
+                driving: a.driving_power(&(v.t_bi.transpose() * v.velocity), &v.omega),
+            };
         }
         Ok(Loads {
             force,
@@ -1151,7 +1162,7 @@ impl Simulation {
                 + old.slosh_q_dot * dt
                 + (old.slosh_q_ddot / 3.0 + pred.slosh_q_ddot / 6.0) * (dt * dt);
         }
-        Ok((new, loads.applied_power))
+        Ok((new, loads.applied_power.applied))
     }
 
     /// One step of the Runge–Kutta method `tab` from the accepted state `old` over `dt` (s),
@@ -1170,9 +1181,9 @@ impl Simulation {
         let mut k = [Ode::zeros(); MAX_STAGES];
         k[0] = old.rate(form);
         let mut work = StageWork::default();
-        work.add(tab.b[0] * dt, &self.previous, self.applied_power);
+        work.add(tab.b[0] * dt, &self.previous, self.applied_power.applied);
         let mut v = *old;
-        let mut last_power = 0.0;
+        let mut last_power = Power::default();
         let mut trial = std::mem::take(&mut self.trial);
         let mut stages = || -> Result<(), CoreError> {
             for i in 1..tab.stages {
@@ -1187,7 +1198,7 @@ impl Simulation {
                 self.evaluations += 1;
                 self.accelerate(&mut v, &loads)?;
                 k[i] = v.rate(form);
-                work.add(tab.b[i] * dt, &trial, loads.applied_power);
+                work.add(tab.b[i] * dt, &trial, loads.applied_power.applied);
                 last_power = loads.applied_power;
             }
             Ok(())
@@ -1304,7 +1315,7 @@ impl Simulation {
         mut new: VehicleState,
         quadrature: &Quadrature,
         pads: &PadWork,
-        power_old: f64,
+        power_old: Power,
     ) -> Result<(), CoreError> {
         // 6. evaluate (unless the last stage did), contact logic, re-evaluate on a change
         self.t += dt;
@@ -1353,10 +1364,14 @@ impl Simulation {
         // Work of the vehicle-level mechanisms on the vehicle with the forces the step used
         // (the report: trapezoid of their power), and of the soil and curbs on the footpads.
         let applied_work = match quadrature {
-            Quadrature::Trapezoid { trial_power } => 0.5 * (power_old + trial_power) * dt,
+            Quadrature::Trapezoid { trial_power } => 0.5 * (power_old.applied + trial_power) * dt,
             Quadrature::Stages { work, .. } => work.applied,
         };
         self.ledger.mechanisms += -applied_work - pads.soil - pads.curbs;
+        // The energy the driving mechanisms put in (a trapezoid of their positive power at the
+        // accepted states): the balance's scale, not the balance (docs/errata.md, "Energy guard").
+        let driving = 0.5 * (power_old.driving.max(0.0) + self.applied_power.driving.max(0.0));
+        self.ledger.driving_input += driving * dt;
         self.ledger.sliding += pads.gear + pads.curbs + pads.soil - pads.energy_change;
         self.book_strut_work(dt, quadrature);
         self.steps += 1;

@@ -109,6 +109,18 @@ pub struct AppliedLoads {
     pub force: Vector3<f64>,
     /// Torque about the centre of mass, N·m (body axes; MTF + MRCS + T_f, eqs. 73, 80, 117).
     pub torque: Vector3<f64>,
+    /// The driving mechanisms' part of `force` and `torque` (the engine's thrust and the RCS;
+    /// not the nozzle's crushing load or the slosh mass, which only exchange energy), N and
+    /// N·m, body axes: the energy balance counts their positive work as energy put in.
+    pub driving: (Vector3<f64>, Vector3<f64>),
+}
+
+impl AppliedLoads {
+    /// Power of the driving part on a vehicle whose centre of mass moves at `velocity` (m/s,
+    /// body axes) and which turns at `omega` (rad/s, body axes), W.
+    pub fn driving_power(&self, velocity: &Vector3<f64>, omega: &Vector3<f64>) -> f64 {
+        self.driving.0.dot(velocity) + self.driving.1.dot(omega)
+    }
 }
 
 /// The vehicle's attitude and rates, as the propulsion laws read them.
@@ -180,6 +192,8 @@ impl Propulsion {
             let e = engine.loads(t, a.position, a.t_bi, self.nozzle_crush);
             out.force += e.force; // eq. (72)
             out.torque += e.torque; // eq. (73)
+            out.driving.0 += e.thrust.0;
+            out.driving.1 += e.thrust.1;
         }
         if let Some(rcs) = &self.rcs {
             let first = if rcs.translates() {
@@ -190,6 +204,8 @@ impl Propulsion {
             let r = rcs.loads(t, first, a.theta, a.omega);
             out.force += r.force; // eq. (81)
             out.torque += r.torque; // eq. (80)
+            out.driving.0 += r.force;
+            out.driving.1 += r.torque;
         }
         out
     }

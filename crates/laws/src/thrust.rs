@@ -322,6 +322,9 @@ pub struct EngineLoads {
     pub force: Vector3<f64>,
     /// MTF = R_T×TAF + R_F×FFL, N·m (eq. 73), body axes, about the CM.
     pub torque: Vector3<f64>,
+    /// The thrust's part of `force` and `torque` (TAF and R_T×TAF), N and N·m, body axes: the
+    /// part that drives the vehicle (the nozzle's crushing load only absorbs).
+    pub thrust: (Vector3<f64>, Vector3<f64>),
 }
 
 /// Engine loads, eqs. (72)-(73), from the amplified thrust `taf` (TAF = AMP·F_THRUST, N, eq. 71)
@@ -332,9 +335,11 @@ pub struct EngineLoads {
 pub fn engine_loads(taf: f64, r_t: &Vector3<f64>, ffl: f64, r_f: &Vector3<f64>) -> EngineLoads {
     let taf_v = Vector3::new(0.0, 0.0, taf);
     let ffl_v = Vector3::new(0.0, 0.0, ffl);
+    let thrust_torque = r_t.cross(&taf_v);
     EngineLoads {
-        force: taf_v + ffl_v,                          // eq. (72)
-        torque: r_t.cross(&taf_v) + r_f.cross(&ffl_v), // eq. (73)
+        force: taf_v + ffl_v,                      // eq. (72)
+        torque: thrust_torque + r_f.cross(&ffl_v), // eq. (73)
+        thrust: (taf_v, thrust_torque),
     }
 }
 

@@ -21,6 +21,9 @@ pub struct VehicleLoads {
     pub force: Vector3<f64>,
     /// Torque on the vehicle over the current step, N·m, inertial axes.
     pub torque: Vector3<f64>,
+    /// The driving mechanisms' part (thrust and RCS) of `force` and `torque`, N and N·m,
+    /// inertial axes: their positive work is energy put in (the balance's scale).
+    pub driving: (Vector3<f64>, Vector3<f64>),
     /// Evaluations so far (one per step).
     evaluations: u64,
 }
@@ -66,6 +69,7 @@ impl VehicleLoads {
         self.propulsion.commit(&v.position, r);
         self.force = r * body.force; // eqs. (74), (82)
         self.torque = r * body.torque;
+        self.driving = (r * body.driving.0, r * body.driving.1);
         if (self.force.norm() + self.torque.norm()).is_finite() {
             Ok(())
         } else {
@@ -86,20 +90,30 @@ impl VehicleLoads {
 
     /// Work of the loads held over the step from `before` to `after` (`dt` s long) on the
     /// vehicle, J: the force on the centre of mass's displacement, the torque on the mean
-    /// angular velocity.
-    pub fn step_work(&self, before: &VehicleState, after: &VehicleState, dt: f64) -> f64 {
+    /// angular velocity; all the loads, and their driving part.
+    pub fn step_work(&self, before: &VehicleState, after: &VehicleState, dt: f64) -> StepWork {
         if self.is_empty() {
-            return 0.0;
+            return StepWork::default();
         }
-        self.force.dot(&(after.position - before.position))
-            + self
-                .torque
-                .dot(&(0.5 * (before.angular_velocity + after.angular_velocity)))
-                * dt
+        let displacement = after.position - before.position;
+        let turn = 0.5 * (before.angular_velocity + after.angular_velocity) * dt;
+        StepWork {
+            applied: self.force.dot(&displacement) + self.torque.dot(&turn),
+            driving: self.driving.0.dot(&displacement) + self.driving.1.dot(&turn),
+        }
     }
 
     /// Evaluations of each declared engine or RCS mechanism so far.
     pub fn evaluations(&self) -> impl Iterator<Item = (Mechanism, u64)> + '_ {
         self.propulsion.mechanisms().map(|m| (m, self.evaluations))
     }
+}
+
+/// Work of the vehicle-level loads over one step, J: all of them, and their driving part.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepWork {
+    /// Work of every vehicle-level load, J.
+    pub applied: f64,
+    /// Work of the thrust and the RCS, J.
+    pub driving: f64,
 }

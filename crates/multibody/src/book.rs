@@ -293,9 +293,12 @@ impl GearBook {
 
     /// Books the work of the applied loads over the step from `before` to `after` (`dt` s long)
     /// into the mechanisms account (done on the vehicle and the footpads, so it counts
-    /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements.
+    /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements;
+    /// the thrust's and the RCS's positive work is also booked as energy put in.
     pub fn book_applied(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
-        self.ledger.mechanisms -= self.applied.step_work(before, after, dt);
+        let applied = self.applied.step_work(before, after, dt);
+        self.ledger.mechanisms -= applied.applied;
+        self.ledger.driving_input += applied.driving.max(0.0);
         if self.curbs.is_some() {
             let steps = self.previous.iter().zip(&self.kin).zip(&self.curb_forces);
             let work: f64 = steps

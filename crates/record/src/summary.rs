@@ -38,6 +38,11 @@ pub struct EnergyReport {
     /// drive the vehicle, so their work counts negative. Zero without such mechanisms.
     #[serde(default)]
     pub mechanisms_j: f64,
+    /// Energy put in by the driving mechanisms (the descent engine's thrust and the RCS), J:
+    /// their power on the vehicle integrated over the intervals where it is positive. Part of
+    /// the balance's energy scale, not of the balance (`mechanisms_j` holds their net work).
+    #[serde(default)]
+    pub driving_input_j: f64,
     /// Balance residual (integration error), J.
     pub residual_j: f64,
 }
@@ -58,21 +63,19 @@ pub struct EnergyLedger {
     pub events: f64,
     /// Done on the scene's optional mechanisms, J (`EnergyReport::mechanisms_j`).
     pub mechanisms: f64,
+    /// Put in by the driving mechanisms, J (`EnergyReport::driving_input_j`).
+    pub driving_input: f64,
 }
 
 impl EnergyReport {
-    /// The energy scale of the balance, J: the touchdown kinetic energy plus the magnitude of
-    /// every exchange (potential energy, honeycombs, viscous, bearing and sliding friction,
-    /// contact events, mechanisms).
+    /// The energy scale of the balance, J: the energy put into the landing so far, that is the
+    /// touchdown kinetic energy, the vehicle's potential energy released since touchdown (if
+    /// it is lower now) and the driving mechanisms' input (docs/errata.md, "Energy guard").
+    /// The exchanges (honeycombs, friction, contact events, gear masses, passive mechanisms)
+    /// are not in it: a pair of large opposing exchanges, which a diverging law produces,
+    /// cannot hide its residual.
     pub fn scale(&self) -> f64 {
-        self.kinetic_initial_j
-            + self.potential_change_j.abs()
-            + (self.honeycomb_dissipated_j + self.honeycomb_stored_j).abs()
-            + self.viscous_j.abs()
-            + self.bearing_friction_j.abs()
-            + self.sliding_friction_j.abs()
-            + self.contact_events_j.abs()
-            + self.mechanisms_j.abs()
+        self.kinetic_initial_j + (-self.potential_change_j).max(0.0) + self.driving_input_j
     }
 }
 
@@ -103,6 +106,7 @@ impl EnergyLedger {
             sliding_friction_j: self.sliding,
             contact_events_j: self.events,
             mechanisms_j: self.mechanisms,
+            driving_input_j: self.driving_input,
             residual_j: kinetic + potential_change + footpad + absorbed
                 - self.events
                 - kinetic_initial,
@@ -110,8 +114,8 @@ impl EnergyLedger {
     }
 
     /// The divergence guard on the balance: an error message if the residual of `e` (this
-    /// ledger's report) exceeds `tolerance` of the energy scale (touchdown kinetic energy plus
-    /// every exchange's magnitude). `hint` names the likely cause for this engine.
+    /// ledger's report) exceeds `tolerance` of the energy scale ([`EnergyReport::scale`]: the
+    /// energy put in). `hint` names the likely cause for this engine.
     pub fn check_balance(
         &self,
         e: &EnergyReport,
@@ -304,6 +308,7 @@ mod tests {
             sliding: 0.0,
             events: -1.0,
             mechanisms: 0.0,
+            driving_input: 0.0,
         };
         let e = l.report(100.0, 10.0, -5.0, 0.0, 3.0);
         assert_eq!(e.residual_j, 0.0);
@@ -315,5 +320,27 @@ mod tests {
             .check_balance(&drifting, 0.01, "step too large")
             .unwrap_err();
         assert!(message.contains("step too large") && message.contains("honeycomb 8.0000e1 J"));
+    }
+
+    #[test]
+    fn opposing_exchanges_do_not_inflate_the_energy_scale() {
+        // A diverging curb law: 135 J at touchdown, the footpads gain 1.49 MJ that the
+        // mechanisms "give" (-1.49 MJ), and the balance is off by 487 J: judged on the 135 J
+        // put in, not on the megajoules exchanged.
+        let l = EnergyLedger {
+            mechanisms: -1.49e6,
+            ..Default::default()
+        };
+        let e = l.report(135.0, 112.0, 10.0, 1.49e6 + 500.0, 0.0);
+        assert!((e.residual_j - 487.0).abs() < 1e-6, "{}", e.residual_j);
+        assert_eq!(e.scale(), 135.0);
+        assert!(l.check_balance(&e, 0.02, "hint").is_err());
+        // The energy put in: potential released and the driving mechanisms' positive work.
+        let driven = EnergyLedger {
+            driving_input: 40.0,
+            ..Default::default()
+        };
+        assert_eq!(driven.report(100.0, 0.0, -25.0, 0.0, 0.0).scale(), 165.0);
+        assert_eq!(driven.report(100.0, 0.0, 25.0, 0.0, 0.0).scale(), 140.0);
     }
 }
