@@ -159,6 +159,13 @@ enum Command {
         #[arg(long, default_value = ".")]
         root: PathBuf,
     },
+    /// Estimate the figure 25-26 landing's touchdown velocities from the facts the text states
+    /// (reference/fig-25-26-velocity-protocol.toml) and write reference/fig-25-26-velocities.toml.
+    Estimate {
+        /// Workspace root holding reference/ and scenarios/.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
+    },
     /// How each estimated parameter (±fraction) moves each Table I stroke.
     Sensitivity {
         /// Relative change of each parameter.
@@ -278,6 +285,7 @@ fn run(cli: Cli) -> Result<()> {
             validation::validate(&root, matches!(format, Format::Json), out.as_deref())
         }
         Command::Calibrate { rows, root } => validation::calibrate(&root, rows),
+        Command::Estimate { root } => validation::estimate(&root),
         Command::Sensitivity {
             fraction,
             format,

@@ -82,14 +82,23 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
     for (name, v) in rows {
         let _ = writeln!(o, "  {name:<28}{v:12.4}");
     }
-    let rel = if e.kinetic_initial_j > 0.0 {
-        100.0 * e.residual_j / e.kinetic_initial_j
+    let scale = e.scale();
+    let _ = writeln!(
+        o,
+        "  {:<28}{:12.4}  (touchdown kinetic, potential released, thrust and RCS input)",
+        "energy put in", scale
+    );
+    let rel = if scale > 0.0 {
+        format!(
+            "{:+.3} % of the energy put in",
+            100.0 * e.residual_j / scale
+        )
     } else {
-        f64::NAN
+        "no energy put in".to_string()
     };
     let _ = writeln!(
         o,
-        "  {:<28}{:12.4}  ({rel:+.3} % of the initial kinetic energy)",
+        "  {:<28}{:12.4}  ({rel})",
         "balance residual", e.residual_j
     );
     o

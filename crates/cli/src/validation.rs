@@ -1,4 +1,4 @@
-//! The validation commands: validate, calibrate, sensitivity, boundary.
+//! The validation commands: validate, calibrate, estimate, sensitivity, boundary.
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
@@ -11,7 +11,7 @@ use touchdown_validation::boundary::{self, BoundaryPoint, Direction, Settings, T
 use touchdown_validation::reference::{self, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
 use touchdown_validation::table::{Role, Validation};
-use touchdown_validation::{calibrate, facts, sensitivity, table};
+use touchdown_validation::{calibrate, estimate, facts, sensitivity, table};
 
 /// `touchdown validate`.
 pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<()> {
@@ -155,6 +155,40 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>) -> Result<()> {
     println!(
         "wrote scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml"
     );
+    Ok(())
+}
+
+/// `touchdown estimate`.
+pub fn estimate(root: &Path) -> Result<()> {
+    let paths = Paths::new(root);
+    let e = estimate::estimate(&paths)?;
+    let path = paths.reference("fig-25-26-velocities.toml");
+    std::fs::write(&path, estimate::result_text(&e)?)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    let b = &e.best;
+    let m = &b.measured;
+    println!(
+        "figure 25-26 landing: Vv = {:.2} ft/s down, Vh = {:.2} ft/s (objective {:.3}; {} landings, {} failed)",
+        b.descent_speed_ft_s, b.horizontal_speed_ft_s, b.objective, e.landings, e.failed
+    );
+    println!(
+        "  within 1 of it ({} landings): Vv {:.2}-{:.2} ft/s, Vh {:.2}-{:.2} ft/s",
+        e.within_1,
+        e.descent_speed_within_1_ft_s[0],
+        e.descent_speed_within_1_ft_s[1],
+        e.horizontal_speed_within_1_ft_s[0],
+        e.horizontal_speed_within_1_ft_s[1]
+    );
+    println!(
+        "  free flight {:.3} s, downhill strike {:.3} s, pitch rate {:+.2} -> {:+.2} rad/s, second stage {:+.3} ft, {:?}",
+        m.free_flight_s,
+        m.downhill_strike_s,
+        m.pitch_rate_at_strike_rad_s,
+        m.pitch_rate_after_rad_s,
+        m.second_stage_depth_ft,
+        m.outcome
+    );
+    println!("wrote {}", path.display());
     Ok(())
 }
 

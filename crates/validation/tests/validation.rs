@@ -115,6 +115,8 @@ fn targets_that_are_met_stay_met() {
     for name in [
         "downhill footpads strike",
         "pitch rate at the downhill strike",
+        "pitch rate after the downhill impact (at maximum stroking)",
+        "maximum stroking reached by",
         "outcome",
     ] {
         assert!(
@@ -226,4 +228,24 @@ fn boundary_search_brackets_a_real_overturn() {
         assert_eq!(landing(12.0, t.unstable_at).unwrap(), Outcome::Unstable);
     }
     let _ = std::fs::remove_file(&tmp);
+}
+
+/// The figure 25-26 scenario lands at the velocities `touchdown estimate` chose from the text's
+/// facts (reference/fig-25-26-velocities.toml), in the scenario's horizontal direction.
+#[test]
+fn the_figure_25_26_landing_uses_the_estimated_velocities() {
+    let root = root();
+    let text = std::fs::read_to_string(root.join("reference/fig-25-26-velocities.toml")).unwrap();
+    let estimate: toml::Table = toml::from_str(&text).unwrap();
+    let best = estimate["best"].as_table().unwrap();
+    let vv = best["descent_speed_ft_s"].as_float().unwrap();
+    let vh = best["horizontal_speed_ft_s"].as_float().unwrap();
+    let sc = touchdown_scenario::Scenario::load(root.join("scenarios/fig-25-26.toml")).unwrap();
+    assert_eq!(
+        sc.file.units.length,
+        touchdown_scenario::units::LengthUnit::Foot
+    );
+    let t = &sc.file.touchdown;
+    assert_eq!(t.vertical_velocity, -vv);
+    assert_eq!(t.horizontal_velocity[0].hypot(t.horizontal_velocity[1]), vh);
 }
