@@ -912,6 +912,7 @@ impl Simulation {
             gravity_xy: Vector2::new(self.gravity.x, self.gravity.y),
             fzi,
             mass: self.footpad_mass,
+            rounding: self.force_rounding,
         }
     }
 

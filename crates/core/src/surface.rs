@@ -8,11 +8,8 @@
 
 use nalgebra::{Vector2, Vector3};
 use serde::Serialize;
+use touchdown_laws::sliding::VELOCITY_ROUNDING;
 use touchdown_scenario::model::PadSurface;
-
-/// Velocities within this fraction of a sliding footpad's velocity scale (its speed plus the
-/// speed its forces give it in a step) count as zero in the stick logic.
-pub const VELOCITY_ROUNDING: f64 = 1e-9;
 
 /// Contact state of a footpad.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
@@ -77,6 +74,9 @@ pub struct SlidingForces {
     pub fzi: f64,
     /// PMASS, kg.
     pub mass: f64,
+    /// Forces within this of each other count as equal, N (the simulation's force rounding:
+    /// a stuck footpad under rounding-level loads does not break away).
+    pub rounding: f64,
 }
 
 impl SlidingForces {
@@ -110,7 +110,7 @@ pub fn advance_sliding(pad: &mut Footpad, f: &SlidingForces, dt: f64) {
     if pad.stuck {
         let applied = f.applied();
         let mag = applied.norm();
-        if mag > f.drag {
+        if mag > f.drag + f.rounding {
             // Breakaway step: drag along −F̂XYP (text after eq. 100).
             let a = (applied - applied * (f.drag / mag)) / f.mass;
             let v1 = a * dt;
@@ -226,6 +226,7 @@ mod tests {
             gravity_xy: Vector2::zeros(),
             fzi: 0.0,
             mass: 1.0,
+            rounding: 0.0,
         };
         let mut p = pad(Vector2::new(1.0, 0.5));
         for _ in 0..20 {
@@ -253,6 +254,32 @@ mod tests {
     }
 
     #[test]
+    fn a_stuck_pad_under_rounding_level_loads_stays_stuck() {
+        // At touchdown a footpad carries no drag yet (FZI = 0) and its gear force is zero up to
+        // rounding: it does not break away, whatever that rounding's sign.
+        let f = SlidingForces {
+            gear_xy: Vector2::new(9.8e-14, -6.3e-14),
+            curb_xy: Vector2::zeros(),
+            drag: 0.0,
+            gravity_xy: Vector2::zeros(),
+            fzi: 0.0,
+            mass: 0.2,
+            rounding: 1e-6,
+        };
+        let mut p = pad(Vector2::zeros());
+        p.stuck = true;
+        advance_sliding(&mut p, &f, 1e-4);
+        assert!(p.stuck);
+        assert_eq!(p.velocity, Vector3::zeros());
+        let pulled = SlidingForces {
+            gear_xy: Vector2::new(1e-3, 0.0),
+            ..f
+        };
+        advance_sliding(&mut p, &pulled, 1e-4);
+        assert!(!p.stuck, "a load above rounding breaks it away");
+    }
+
+    #[test]
     fn frictionless_pad_follows_constant_force_exactly() {
         let f = SlidingForces {
             gear_xy: Vector2::new(2.0, -1.0),
@@ -261,6 +288,7 @@ mod tests {
             gravity_xy: Vector2::new(0.0, 0.5),
             fzi: 0.0,
             mass: 2.0,
+            rounding: 0.0,
         };
         let mut p = pad(Vector2::new(0.3, 0.0));
         advance_sliding(&mut p, &f, 0.1);

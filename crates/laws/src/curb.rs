@@ -18,6 +18,7 @@
 
 use nalgebra::Vector2;
 
+use crate::sliding::VELOCITY_ROUNDING;
 use crate::{finite, non_negative, positive, CrushMemory, Honeycomb, LawError};
 
 /// One curb of one footpad (figs. 19-20).
@@ -85,7 +86,9 @@ impl Curb {
     ///
     /// `crush_force` = PFRC (N, from [`FootpadCrush::force`]; negative values are taken as 0),
     /// `pad_velocity` = SṖ = (ẊP, ẎP), m/s. Returns `−PFRC·Â − UW·PFRC·sgn(SṖ·B̂)·B̂`
-    /// (eqs. 94-95); no friction when the along-curb velocity is exactly zero.
+    /// (eqs. 94-95); no friction when the along-curb velocity is zero to rounding (within
+    /// [`VELOCITY_ROUNDING`] of the footpad's speed: a footpad moving straight at a curb whose
+    /// direction is rounded, such as cos 90° = 6e-17, does not slide along it).
     #[inline]
     pub fn force(&self, crush_force: f64, pad_velocity: Vector2<f64>) -> Vector2<f64> {
         let pfrc = crush_force.max(0.0);
@@ -93,12 +96,10 @@ impl Curb {
         let normal = -self.a_hat * pfrc;
         // eq. (95), corrected: PFRC scalar, sign from SṖ·B̂
         let v_along = pad_velocity.dot(&self.b_hat);
-        let sgn = if v_along > 0.0 {
-            1.0
-        } else if v_along < 0.0 {
-            -1.0
-        } else {
+        let sgn = if v_along.abs() <= VELOCITY_ROUNDING * pad_velocity.norm() {
             0.0
+        } else {
+            v_along.signum()
         };
         normal - self.b_hat * (self.friction * pfrc * sgn)
     }
@@ -273,6 +274,15 @@ mod tests {
         // No friction for motion straight into the curb; no force when PFRC ≤ 0.
         assert!((c.force(1000.0, c.normal() * 3.0) - f).norm() < 1e-12);
         assert_eq!(c.force(-5.0, c.along()), Vector2::zeros());
+        // A curb at 90° has B̂ = (−1, 6e-17): a footpad moving straight along +Y into it meets no
+        // friction, like its mirror image, whose rounding has the other sign.
+        let ahead = Curb::new(0.5, std::f64::consts::FRAC_PI_2, 0.3).unwrap();
+        let straight = Vector2::new(0.0, 1.5);
+        assert_ne!(straight.dot(&ahead.along()), 0.0, "the rounding this guards against");
+        let f = ahead.force(1000.0, straight);
+        assert_eq!(f, -ahead.normal() * 1000.0);
+        let v = Vector2::new(1e-6, 1.5);
+        assert!((ahead.force(1000.0, v) - f).norm() > 299.0, "a real slide has friction");
     }
 
     #[test]

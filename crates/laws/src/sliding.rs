@@ -1,5 +1,11 @@
 //! Coulomb sliding friction on the footpad bottom, eq. (85) (printed as FDRAG; it is FDRAGP).
 
+/// Velocities within this fraction of their scale (a footpad's speed, and the speed its forces
+/// give it in a step) count as zero wherever a friction law decides a direction or a stop from
+/// them: a footpad at rest whose velocity is zero only to rounding neither slides nor reverses
+/// (docs/errata.md, "Decisions at rounding level").
+pub const VELOCITY_ROUNDING: f64 = 1e-9;
+
 /// Magnitude of the sliding-friction drag on a footpad, N (report FDRAGP):
 /// `U·max(FZI, 0)`, where `normal_load` is FZI, the inertial Z component of the gear force on
 /// the vehicle, positive when the gear presses the pad into the surface (eq. (85), corrected
