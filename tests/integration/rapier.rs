@@ -133,6 +133,19 @@ fn a_time_step_too_large_for_the_stiffest_law_is_refused() {
 }
 
 #[test]
+fn a_time_step_beyond_the_run_budget_is_refused_before_the_run() {
+    let sc = flat_drop().with_rapier(|r| r.timestep = 1e-300).unwrap();
+    match RapierSimulation::new(&sc) {
+        Err(RapierError::Scenario(ScenarioError::Field { field, message, .. })) => {
+            assert_eq!(field, "engines.rapier.timestep");
+            assert!(message.contains("run budget"), "{message}");
+        }
+        Err(e) => panic!("unexpected error {e}"),
+        Ok(_) => panic!("a 1e-300 s step was accepted"),
+    }
+}
+
+#[test]
 fn engine_settings_are_checked_like_file_fields() {
     let e = flat_drop().with_rapier(|r| r.timestep = 0.0).unwrap_err();
     assert!(e.to_string().contains("engines.rapier.timestep"), "{e}");

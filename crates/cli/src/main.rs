@@ -71,6 +71,9 @@ enum Command {
         /// stability boundaries.
         #[arg(long, value_name = "DIR")]
         plot: Option<PathBuf>,
+        /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
+        #[arg(long)]
+        report_only: bool,
     },
     /// Work-precision: each engine and integration scheme over a ladder of step sizes or
     /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
@@ -148,6 +151,9 @@ enum Command {
         /// Also write validation.json and fig-25-26-series.json (the data behind the plots) here.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Exit 0 whatever the verdict (by default a target not met exits with status 3).
+        #[arg(long)]
+        report_only: bool,
     },
     /// Fit the estimated parameters to the calibration rows (reference/calibration-protocol.toml)
     /// and write scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml.
@@ -233,9 +239,31 @@ enum Format {
     Json,
 }
 
+/// What a command found, for its exit status: 0 when it passes (or has no verdict), 3 when
+/// its verdict fails (`compare` with a failing pair, `validate` with a target not met; see
+/// `--report-only`); an error in the input or a run exits 1, a usage error 2 (clap's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Verdict {
+    Pass,
+    Fail,
+}
+
+/// Exit status of a failing verdict.
+const VERDICT_FAILED: u8 = 3;
+
 fn main() -> std::process::ExitCode {
+    // Output to a closed pipe (`touchdown compare ... | head -1`) ends the process quietly with
+    // the conventional status (killed by SIGPIPE), as other command-line tools do, instead of
+    // a panic in `println!`.
+    #[cfg(unix)]
+    // SAFETY: restoring the default disposition of SIGPIPE at start-up, before any thread or
+    // child process exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     match run(Cli::parse()) {
-        Ok(()) => std::process::ExitCode::SUCCESS,
+        Ok(Verdict::Pass) => std::process::ExitCode::SUCCESS,
+        Ok(Verdict::Fail) => std::process::ExitCode::from(VERDICT_FAILED),
         Err(e) => {
             eprintln!("error: {e:#}");
             std::process::ExitCode::FAILURE
@@ -243,8 +271,18 @@ fn main() -> std::process::ExitCode {
     }
 }
 
-fn run(cli: Cli) -> Result<()> {
-    match cli.command {
+/// The verdict of a command with one: `Fail` only if it failed and the user did not ask for
+/// the report only.
+fn verdict(passed: bool, report_only: bool) -> Verdict {
+    if passed || report_only {
+        Verdict::Pass
+    } else {
+        Verdict::Fail
+    }
+}
+
+fn run(cli: Cli) -> Result<Verdict> {
+    let () = match cli.command {
         Command::Run {
             scenario,
             format,
@@ -257,7 +295,11 @@ fn run(cli: Cli) -> Result<()> {
             engines,
             format,
             plot,
-        } => compare(&scenarios, &engines, format, plot.as_deref()),
+            report_only,
+        } => {
+            let passed = compare(&scenarios, &engines, format, plot.as_deref())?;
+            return Ok(verdict(passed, report_only));
+        }
         Command::Precision {
             scenario,
             engines,
@@ -281,8 +323,15 @@ fn run(cli: Cli) -> Result<()> {
                 .with_context(|| format!("cannot write {}", output.display()))?;
             Ok(())
         }
-        Command::Validate { format, root, out } => {
-            validation::validate(&root, matches!(format, Format::Json), out.as_deref())
+        Command::Validate {
+            format,
+            root,
+            out,
+            report_only,
+        } => {
+            let json = matches!(format, Format::Json);
+            let passed = validation::validate(&root, json, out.as_deref())?;
+            return Ok(verdict(passed, report_only));
         }
         Command::Calibrate { rows, root } => validation::calibrate(&root, rows),
         Command::Estimate { root } => validation::estimate(&root),
@@ -315,7 +364,8 @@ fn run(cli: Cli) -> Result<()> {
             };
             validation::boundary(&scenario, &vv, settings, &engines, format, plot.as_deref())
         }
-    }
+    }?;
+    Ok(Verdict::Pass)
 }
 
 /// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
@@ -367,12 +417,13 @@ fn run_landing(
 }
 
 /// `touchdown compare`: every scenario through every engine asked for, every pair compared.
+/// `touchdown compare`: whether every pair of engines passed on every scenario.
 fn compare(
     scenarios: &[PathBuf],
     engines: &[Engine],
     format: Format,
     plot: Option<&Path>,
-) -> Result<()> {
+) -> Result<bool> {
     let mut engines = engines.to_vec();
     engines.sort();
     engines.dedup();
@@ -380,8 +431,10 @@ fn compare(
         anyhow::bail!("--engines: name at least two engines to compare");
     }
     let mut json = Vec::new();
+    let mut passed = true;
     for path in scenarios {
         let c = touchdown_compare::compare_scenario(path, &engines)?;
+        passed &= c.pairs.iter().all(|p| p.pass);
         if let Some(dir) = plot {
             plots::comparison(&c, path, dir)?;
         }
@@ -397,7 +450,7 @@ fn compare(
         ),
         Format::Json => println!("[{}]", json.join(",\n")),
     }
-    Ok(())
+    Ok(passed)
 }
 
 /// `touchdown precision`: the work-precision study of a scenario.

@@ -13,8 +13,8 @@ use touchdown_validation::sensitivity::ParameterSensitivity;
 use touchdown_validation::table::{Role, Validation};
 use touchdown_validation::{calibrate, estimate, facts, sensitivity, table};
 
-/// `touchdown validate`.
-pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<()> {
+/// `touchdown validate`: whether the targets are met.
+pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
     let paths = Paths::new(root);
     let v = table::validate(&paths)?;
     if let Some(dir) = out {
@@ -34,7 +34,7 @@ pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<()> {
     } else {
         print!("{}", validation_text(&v));
     }
-    Ok(())
+    Ok(v.targets.held_out_within_10_pct && v.targets.mean_no_worse_than_report)
 }
 
 fn role(r: Role) -> &'static str {

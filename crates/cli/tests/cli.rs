@@ -230,7 +230,7 @@ fn bad_input_fails_with_the_file_and_field() {
 
 #[test]
 fn validate_json_carries_every_row_and_the_targets() {
-    let out = touchdown(&["validate", "--format", "json"]);
+    let out = touchdown(&["validate", "--format", "json", "--report-only"]);
     assert!(
         out.status.success(),
         "{}",
@@ -551,4 +551,72 @@ fn boundary_plot_overlays_the_engines() {
     ]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("does not apply to the rapier engine"));
+}
+
+/// A failing verdict exits with its own status (3), distinct from an input error (1) and a usage
+/// error (2), unless the user asks for the report only.
+#[test]
+fn a_failing_verdict_exits_3_unless_only_the_report_is_asked_for() {
+    // The slow 2-2 landing: the core and rapier part on its secondary strokes (a FAIL).
+    let args = [
+        "compare",
+        "scenarios/table-i-2-2-vv4.toml",
+        "--engines",
+        "core,rapier",
+    ];
+    let out = touchdown(&args);
+    assert_eq!(
+        out.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("core vs rapier: FAIL"));
+    let out = touchdown(&[&args[..], &["--report-only"]].concat());
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(
+        touchdown(&["compare", "no-such.toml"]).status.code(),
+        Some(1)
+    );
+    assert_eq!(
+        touchdown(&["compare", "--no-such-flag"]).status.code(),
+        Some(2)
+    );
+}
+
+/// Output to a closed pipe ends the process quietly, killed by SIGPIPE as other tools are, not
+/// with a panic message.
+#[cfg(unix)]
+#[test]
+fn output_to_a_closed_pipe_ends_quietly() {
+    use std::io::Read;
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_touchdown"))
+        .args([
+            "compare",
+            "scenarios/flat-drop.toml",
+            "scenarios/flat-drop.toml",
+        ])
+        .args(["--engines", "core,rapier", "--report-only"])
+        .current_dir(root())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child
+        .stdout
+        .as_mut()
+        .unwrap()
+        .read_exact(&mut first)
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

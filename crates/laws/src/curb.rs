@@ -278,11 +278,18 @@ mod tests {
         // friction, like its mirror image, whose rounding has the other sign.
         let ahead = Curb::new(0.5, std::f64::consts::FRAC_PI_2, 0.3).unwrap();
         let straight = Vector2::new(0.0, 1.5);
-        assert_ne!(straight.dot(&ahead.along()), 0.0, "the rounding this guards against");
+        assert_ne!(
+            straight.dot(&ahead.along()),
+            0.0,
+            "the rounding this guards against"
+        );
         let f = ahead.force(1000.0, straight);
         assert_eq!(f, -ahead.normal() * 1000.0);
         let v = Vector2::new(1e-6, 1.5);
-        assert!((ahead.force(1000.0, v) - f).norm() > 299.0, "a real slide has friction");
+        assert!(
+            (ahead.force(1000.0, v) - f).norm() > 299.0,
+            "a real slide has friction"
+        );
     }
 
     #[test]

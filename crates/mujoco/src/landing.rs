@@ -493,7 +493,7 @@ impl MujocoLanding {
     fn check_divergence(&self, energy: &EnergyReport) -> Result<(), MujocoError> {
         let finite = self.vehicle.is_finite() && self.gear_energy.is_finite();
         self.book
-            .check(energy, self.energy_tolerance, finite)
+            .check(energy, self.energy_tolerance, finite, self.steps)
             .map_err(|f| self.diverged(f))
     }
 }

@@ -308,10 +308,23 @@ impl GearBook {
         }
     }
 
-    /// The divergence checks after a step: the first non-finite force or gear geometry, a
-    /// non-finite body state (`state_finite` false, as the engine reads its bodies), or an
-    /// energy balance `e` (this landing's report) beyond `tolerance` of the energy scale.
-    pub fn check(&self, e: &EnergyReport, tolerance: f64, state_finite: bool) -> Result<(), Fault> {
+    /// The divergence checks after a step: the run budget spent after `steps` accepted steps,
+    /// the first non-finite force or gear geometry, a non-finite body state (`state_finite`
+    /// false, as the engine reads its bodies), or an energy balance `e` (this landing's report)
+    /// beyond `tolerance` of the energy scale.
+    pub fn check(
+        &self,
+        e: &EnergyReport,
+        tolerance: f64,
+        state_finite: bool,
+        steps: u64,
+    ) -> Result<(), Fault> {
+        // One force evaluation a step.
+        touchdown_record::check_budget(steps, steps).map_err(|message| Fault {
+            law: "run budget",
+            leg: None,
+            message,
+        })?;
         for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
             let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm() + k.axis.norm();
             let bad = f

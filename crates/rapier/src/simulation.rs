@@ -271,7 +271,7 @@ impl RapierSimulation {
                     .all(|x| x.is_finite())
         });
         self.book
-            .check(energy, self.energy_tolerance, finite)
+            .check(energy, self.energy_tolerance, finite, self.steps)
             .map_err(|f| self.diverged(f))
     }
 }

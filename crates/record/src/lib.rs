@@ -25,6 +25,32 @@ pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};
 
+/// Most accepted steps any engine takes in one landing; a run that reaches it stops with a
+/// diagnostic. A Table I landing takes about a thousand steps on the core and a hundred
+/// thousand on a multibody engine at 20 µs; ten million is about 10 s of the core and a few
+/// minutes of a multibody engine (docs/robustness.md, "Budgets").
+pub const STEP_BUDGET: u64 = 10_000_000;
+
+/// Most gear-force evaluations in one landing (a multibody engine evaluates once a step; the
+/// core's adaptive scheme up to about seven times, more when it rejects steps).
+pub const EVALUATION_BUDGET: u64 = 100_000_000;
+
+/// Checks a run's accepted `steps` and force `evaluations` against [`STEP_BUDGET`] and
+/// [`EVALUATION_BUDGET`]: the message of the budget exhausted, if one is.
+pub fn check_budget(steps: u64, evaluations: u64) -> Result<(), String> {
+    if steps >= STEP_BUDGET {
+        return Err(format!(
+            "step budget exhausted: {steps} accepted steps (at most {STEP_BUDGET}); the time step is too small for integrator.t_end"
+        ));
+    }
+    if evaluations >= EVALUATION_BUDGET {
+        return Err(format!(
+            "force-evaluation budget exhausted: {evaluations} evaluations (at most {EVALUATION_BUDGET}) after {steps} accepted steps; the error control rejects too many steps"
+        ));
+    }
+    Ok(())
+}
+
 /// A run stopped because it diverged or left the domain of a law: where and why, so that the
 /// user can tell which law or mechanism failed (every engine reports it the same way).
 #[derive(Debug, Clone, PartialEq)]

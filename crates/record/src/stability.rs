@@ -76,6 +76,8 @@ pub struct StabilityTracker {
     normal: Vec<Vector3<f64>>,
     /// Minimum over time of the smallest counted SD, m.
     min_sd: f64,
+    /// Minimum over time of the smallest SD of any wall, counted or not, m.
+    min_any: f64,
     /// Vehicle kinetic energy at first contact, J.
     ke0: f64,
     outcome: Option<(Outcome, f64)>,
@@ -84,7 +86,8 @@ pub struct StabilityTracker {
 
 impl StabilityTracker {
     /// A tracker for `legs` footpads under `gravity` (inertial, m/s²), with the vehicle's
-    /// kinetic energy at first contact `ke0`, J.
+    /// kinetic energy at first contact `ke0`, J. Without gravity the distances are measured
+    /// along the surface's normal (inertial −Z) instead, so that they stay defined.
     pub fn new(
         criteria: &Stability,
         gravity: Vector3<f64>,
@@ -93,10 +96,15 @@ impl StabilityTracker {
     ) -> StabilityTracker {
         StabilityTracker {
             criteria: criteria.clone(),
-            gravity,
+            gravity: if gravity.norm() > 0.0 {
+                gravity
+            } else {
+                -Vector3::z()
+            },
             sd: vec![f64::NAN; legs],
             normal: vec![Vector3::zeros(); legs],
             min_sd: f64::INFINITY,
+            min_any: f64::INFINITY,
             ke0,
             outcome: None,
             overturn_velocity: None,
@@ -133,6 +141,7 @@ impl StabilityTracker {
                 Some((sd, normal)) => {
                     self.sd[i] = sd;
                     self.normal[i] = normal;
+                    self.min_any = self.min_any.min(sd);
                     if counted && sd < min_now {
                         min_now = sd;
                         min_wall = i;
@@ -189,9 +198,15 @@ impl StabilityTracker {
         &self.sd
     }
 
-    /// Minimum over time of the smallest counted stability distance, m.
+    /// Minimum over time of the smallest counted stability distance, m; if no wall was ever
+    /// counted (walls counted only once touched down, and no two neighbouring footpads down),
+    /// the smallest distance of any wall.
     pub fn min_distance(&self) -> f64 {
-        self.min_sd
+        if self.min_sd.is_finite() {
+            self.min_sd
+        } else {
+            self.min_any
+        }
     }
 
     /// Vehicle kinetic energy at first contact, J.
@@ -271,6 +286,32 @@ mod tests {
             in_contact,
             touched: true,
         })
+    }
+
+    #[test]
+    fn distances_stay_defined_without_gravity_and_before_any_wall_counts() {
+        // No gravity: measured along the surface normal, the same as under a vertical g.
+        let criteria = Stability {
+            walls: WallRule::TouchedDown,
+            ..tracker().criteria
+        };
+        let mut t = StabilityTracker::new(&criteria, Vector3::zeros(), 4, 100.0);
+        let airborne = square().map(|position| PadView {
+            position,
+            in_contact: false,
+            touched: false,
+        });
+        let cm = Vector3::new(0.1, 0.2, 1.0);
+        t.update(0.0, &cm, &Vector3::zeros(), None, &e(50.0, 0.0), &airborne);
+        let mut g = tracker();
+        g.update(0.0, &cm, &Vector3::zeros(), None, &e(50.0, 0.0), &airborne);
+        for (a, b) in t.distances().iter().zip(g.distances()) {
+            assert!((a - b).abs() < 1e-15, "{a} vs {b}");
+        }
+        assert!(t.distances().iter().all(|d| d.is_finite()));
+        // No wall counted yet (no footpad down): the summary's minimum is that of every wall.
+        let smallest = t.distances().iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!(t.min_distance(), smallest);
     }
 
     #[test]
