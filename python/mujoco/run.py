@@ -51,6 +51,19 @@ except ImportError as e:
         SETUP_STATUS,
     )
 
+MUJOCO_LOG = "MUJOCO_LOG.TXT"
+
+
+def refuse_warnings(log, when):
+    """Fails if MuJoCo logged a warning (a setting it silently replaced, for one): a result
+    computed with settings the user did not ask for is not a result."""
+    if os.path.exists(log):
+        with open(log, encoding="utf-8", errors="replace") as f:
+            lines = [line.strip() for line in f if line.strip()]
+        os.remove(log)
+        fail(f"MuJoCo warned while {when}: {' / '.join(lines[-3:])}")
+
+
 LEG_FIELDS = 15  # GearIndex: 15 int32 per leg (crates/mujoco/src/landing.rs)
 
 
@@ -168,6 +181,15 @@ def main(argv):
     ap.add_argument("--profile", action="store_true")
     ap.add_argument("--viewer", action="store_true")
     args = ap.parse_args(argv)
+    # MuJoCo writes its warnings to MUJOCO_LOG.TXT in the current directory: run in the output
+    # directory, so that no log is left where the user stands and the warnings are read below.
+    for name in ("scenario", "out", "library"):
+        setattr(args, name, os.path.abspath(getattr(args, name)))
+    os.makedirs(args.out, exist_ok=True)
+    os.chdir(args.out)
+    log = os.path.join(args.out, MUJOCO_LOG)
+    if os.path.exists(log):
+        os.remove(log)
 
     lib = load_library(args.library)
     h = lib.touchdown_mujoco_open(args.scenario.encode(), args.timestep)
@@ -182,7 +204,11 @@ def main(argv):
         xml = lib.touchdown_mujoco_model_xml(h)
         if not xml:
             check(-1)
-        model = mujoco.MjModel.from_xml_string(xml.decode())
+        try:
+            model = mujoco.MjModel.from_xml_string(xml.decode())
+        except ValueError as e:
+            fail(f"MuJoCo cannot compile the scenario's model: {e}")
+        refuse_warnings(log, "compiling the scenario's model")
         data = mujoco.MjData(model)
         key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "touchdown")
         mujoco.mj_resetDataKeyframe(model, data, key)
@@ -226,6 +252,7 @@ def main(argv):
             status, steps = run(lib, h, model, data)
             timing = None
         check(status)
+        refuse_warnings(log, "running the landing")
         check(lib.touchdown_mujoco_finish(h, os.path.join(args.out, "summary.json").encode()))
         if timing is not None:
             print(json.dumps(timing))
@@ -328,4 +355,7 @@ def run_with_viewer(lib, h, model, data):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    try:
+        main(sys.argv[1:])
+    except Exception as e:  # noqa: BLE001 - the caller gets the project's message, never a traceback
+        fail(f"unexpected {type(e).__name__} in the MuJoCo runner: {e}")

@@ -7,8 +7,10 @@
 //! [`MujocoError::Setup`] that names the command to run.
 
 use crate::MujocoError;
+use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 use touchdown_record::Summary;
 
 /// The workspace this crate was built from (holds `.venv/`, `python/` and `scripts/`).
@@ -19,6 +21,11 @@ pub const SETUP_COMMAND: &str = "scripts/setup-python";
 
 /// Exit status of the runner when `mujoco` cannot be imported.
 pub const RUNNER_SETUP_STATUS: i32 = 3;
+
+/// Wall-clock guard on one run of the runner, s: a runner still going after it is stopped and
+/// the run fails saying so. The run budget (`touchdown_record::STEP_BUDGET` steps, a few
+/// minutes of MuJoCo) ends every run well before it; the guard is for a runner that hangs.
+pub const RUNNER_WALL_CLOCK_S: u64 = 1800;
 
 /// File name of this crate's C library on this platform.
 pub fn library_name() -> String {
@@ -107,11 +114,14 @@ impl Launch {
         if history {
             cmd.arg("--history");
         }
-        let output = cmd
-            .output()
+        let (status, stderr) = run_guarded(cmd, Duration::from_secs(RUNNER_WALL_CLOCK_S))
             .map_err(|e| setup_error(format!("cannot start {}: {e}", self.python.display())))?;
-        let stderr = String::from_utf8_lossy(&output.stderr).trim().to_string();
-        match output.status.code() {
+        let Some(status) = status else {
+            return Err(MujocoError::Runner(format!(
+                "the runner was still going after the {RUNNER_WALL_CLOCK_S} s wall-clock guard and was stopped"
+            )));
+        };
+        match status.code() {
             Some(0) => {}
             Some(RUNNER_SETUP_STATUS) => return Err(setup_error(stderr)),
             _ => return Err(MujocoError::Runner(stderr)),
@@ -123,6 +133,39 @@ impl Launch {
         serde_json::from_str(&text)
             .map_err(|e| MujocoError::Runner(format!("{}: not a summary: {e}", path.display())))
     }
+}
+
+/// Runs `cmd` (its standard output discarded, its standard error collected) for at most
+/// `limit`: its exit status, `None` if it was stopped at the limit, and its standard error.
+fn run_guarded(
+    mut cmd: Command,
+    limit: Duration,
+) -> std::io::Result<(Option<std::process::ExitStatus>, String)> {
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()?;
+    let mut pipe = child.stderr.take().expect("stderr is piped");
+    let reader = std::thread::spawn(move || {
+        let mut text = Vec::new();
+        let _ = pipe.read_to_end(&mut text);
+        text
+    });
+    let deadline = Instant::now() + limit;
+    let status = loop {
+        if let Some(status) = child.try_wait()? {
+            break Some(status);
+        }
+        if Instant::now() >= deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            break None;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let stderr = reader.join().unwrap_or_default();
+    Ok((status, String::from_utf8_lossy(&stderr).trim().to_string()))
 }
 
 /// The library next to the running executable (a binary in `target/<profile>/`, or a test or
@@ -147,4 +190,25 @@ fn find_library() -> Result<PathBuf, MujocoError> {
                     .join(", ")
             ))
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[cfg(unix)]
+    #[test]
+    fn a_runner_past_its_guard_is_stopped_and_one_within_it_reports_its_status() {
+        let mut sleeper = Command::new("sleep");
+        sleeper.arg("5");
+        let start = Instant::now();
+        let (status, _) = run_guarded(sleeper, Duration::from_millis(100)).unwrap();
+        assert!(status.is_none(), "stopped at the guard");
+        assert!(start.elapsed() < Duration::from_secs(4));
+        let mut failing = Command::new("sh");
+        failing.args(["-c", "echo 'run.py: why' >&2; exit 1"]);
+        let (status, stderr) = run_guarded(failing, Duration::from_secs(10)).unwrap();
+        assert_eq!(status.and_then(|s| s.code()), Some(1));
+        assert_eq!(stderr, "run.py: why");
+    }
 }
