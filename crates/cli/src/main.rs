@@ -380,13 +380,17 @@ fn run_landing(
     let mut sc = Scenario::load(scenario)?;
     sc.require_engine(engine)?;
     if let Some(t) = timestep {
-        sc = match engine {
+        if !(t.is_finite() && t > 0.0) {
+            anyhow::bail!("--timestep: expected a positive number of seconds, got {t:e}");
+        }
+        let changed = match engine {
             Engine::Core => anyhow::bail!(
                 "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"
             ),
-            Engine::Rapier => sc.with_rapier(|r| r.timestep = t)?,
-            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = t)?,
+            Engine::Rapier => sc.with_rapier(|r| r.timestep = t),
+            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = t),
         };
+        sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
     }
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
