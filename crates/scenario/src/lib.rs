@@ -2,21 +2,31 @@
 //! table and strict fields (unknown fields are errors), resolved into SI.
 //!
 //! * [`schema`]: the file as written, in its own units (each field documents its dimension);
-//! * [`units`]: the unit systems a file may declare;
-//! * [`model`]: the resolved, validated scenario in SI ([`Scenario`]);
+//! * [`units`]: the unit systems a file may declare, and [`units::short`], the short notation
+//!   every number in a message is printed in;
+//! * [`ranges`]: the range of physical plausibility of every number, checked on load in SI;
+//! * [`model`]: the resolved, validated scenario in SI ([`Scenario`]), with the
+//!   [`Scenario::warnings`] of values legal but outside their usual range;
 //! * [`frames`]: the report's frames and initial state (eqs. 1-4, 19), shared by every engine.
 //!
 //! A file may `extends = "other.toml"`: tables are merged key by key, the extending file
-//! winning. Errors name the file that holds the offending field.
+//! winning; it may not change the `[units]` of the file it extends. Errors name the file that
+//! holds the offending field. Only regular files are read (a FIFO or a device is refused before
+//! it is opened), and a table of the schema is read only from a TOML table (never from an
+//! array, which serde's derived structs would otherwise accept field by field).
 
 pub mod error;
 pub mod frames;
 mod load;
 mod mechanisms;
 pub mod model;
+pub mod ranges;
 pub mod schema;
+mod strict;
+#[cfg(test)]
+mod tests;
 pub mod units;
 
-pub use error::ScenarioError;
+pub use error::{ScenarioError, Warning};
 pub use load::{merged_table, set_field};
 pub use model::Scenario;

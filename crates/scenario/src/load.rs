@@ -5,8 +5,11 @@ use crate::error::ScenarioError;
 use crate::frames;
 use crate::mechanisms;
 use crate::model::{self, Scenario};
+use crate::ranges;
 use crate::schema::{self, PerPad, ScenarioFile, Trunnion, SCHEMA_VERSION};
-use crate::units::Units;
+use crate::strict::Strict;
+use crate::units::{short, Units};
+use crate::Warning;
 use nalgebra::{Matrix3, Vector3};
 use std::path::{Path, PathBuf};
 
@@ -20,16 +23,111 @@ struct Merged {
     layers: Vec<(String, toml::Table)>,
 }
 
+/// Largest scenario file read, bytes: a scenario is a few kilobytes; this keeps a hostile path
+/// (a huge log, a disk image) from being read into memory.
+const MAX_FILE_BYTES: u64 = 16 << 20;
+
+/// What a path is when it is not a regular file, for [`ScenarioError::NotAFile`].
+fn special_kind(t: &std::fs::FileType) -> Option<&'static str> {
+    if t.is_file() {
+        return None;
+    }
+    if t.is_dir() {
+        return Some("a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    Some("neither a file nor a directory")
+}
+
+/// Reads a scenario file: refused unless it is a regular file (checked with `stat` before it is
+/// opened, so a FIFO cannot block, and again on the open handle), at most [`MAX_FILE_BYTES`],
+/// valid UTF-8 TOML, and not empty.
 fn read_table(path: &Path) -> Result<toml::Table, ScenarioError> {
+    use std::io::Read;
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::Io {
+    let io = |e: std::io::Error| ScenarioError::Io {
         file: file.clone(),
         message: e.to_string(),
+    };
+    let not_a_file = |kind: &str| ScenarioError::NotAFile {
+        file: file.clone(),
+        kind: kind.to_string(),
+    };
+    let too_large = |bytes: u64| ScenarioError::Io {
+        file: file.clone(),
+        message: format!(
+            "the file is {} bytes; a scenario file is at most {} bytes",
+            short(bytes as f64),
+            short(MAX_FILE_BYTES as f64)
+        ),
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if let Some(kind) = special_kind(&meta.file_type()) {
+        return Err(not_a_file(kind));
+    }
+    let handle = std::fs::File::open(path).map_err(io)?;
+    let meta = handle.metadata().map_err(io)?;
+    if let Some(kind) = special_kind(&meta.file_type()) {
+        return Err(not_a_file(kind));
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    let mut text = String::new();
+    handle
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_string(&mut text)
+        .map_err(io)?;
+    if text.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(text.len() as u64));
+    }
+    parse(&file, &text)
+}
+
+/// Parses TOML text; `file` names it in messages. An empty table (no key at all) is refused.
+fn parse(file: &str, text: &str) -> Result<toml::Table, ScenarioError> {
+    let table = toml::from_str::<toml::Table>(text).map_err(|e| ScenarioError::Syntax {
+        file: file.to_string(),
+        message: clipped_lines(&e.to_string()),
     })?;
-    toml::from_str::<toml::Table>(&text).map_err(|e| ScenarioError::Syntax {
-        file,
-        message: e.to_string(),
-    })
+    if table.is_empty() {
+        return Err(ScenarioError::Empty {
+            file: file.to_string(),
+        });
+    }
+    Ok(table)
+}
+
+/// Longest line of a TOML parser message kept (the parser quotes the offending line, which a
+/// hostile file makes a megabyte long).
+const MAX_MESSAGE_LINE: usize = 200;
+
+/// `message` with every line cut to [`MAX_MESSAGE_LINE`] characters.
+fn clipped_lines(message: &str) -> String {
+    message
+        .lines()
+        .map(|line| match line.char_indices().nth(MAX_MESSAGE_LINE) {
+            Some((cut, _)) => format!("{}…", &line[..cut]),
+            None => line.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        + if message.ends_with('\n') { "\n" } else { "" }
 }
 
 /// Deep-merges `over` onto `base`: tables merge key by key, anything else is replaced.
@@ -77,8 +175,14 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
             "extends",
             format!("cannot read {missing}: {message}"),
         ),
+        ScenarioError::NotAFile { file: target, kind } => ScenarioError::field(
+            &file,
+            "extends",
+            format!("{target} is not a regular file ({kind}): expected a scenario file"),
+        ),
         other => other,
     })?;
+    check_same_units(&file, &own, &base)?;
     let mut over = own.clone();
     over.remove("extends");
     base.table.remove("extends");
@@ -87,14 +191,77 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
     Ok(base)
 }
 
+/// Refuses a file whose `[units]` differ from those of the file it extends: every number is
+/// read in the units of the file that wrote it, and the merged file has one unit system, so a
+/// changed unit would silently reinterpret every inherited number.
+fn check_same_units(file: &str, own: &toml::Table, base: &Merged) -> Result<(), ScenarioError> {
+    let (Some(toml::Value::Table(mine)), Some(toml::Value::Table(inherited))) =
+        (own.get("units"), base.table.get("units"))
+    else {
+        return Ok(());
+    };
+    for (key, value) in mine {
+        let Some(theirs) = inherited.get(key) else {
+            continue;
+        };
+        // An unknown unit is the schema's to report ("unknown variant"), not a change.
+        if theirs != value && is_unit(key, value) {
+            let field = format!("units.{key}");
+            let base_file = owner_of(&base.layers, &field);
+            return Err(ScenarioError::field(
+                file,
+                &field,
+                format!(
+                    "{value} here but {theirs} in {base_file}, which this file extends: a file's numbers are in the units of the file that wrote them, so a file may not change the units of the file it extends (leave [units] out, or write the file standalone)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether `value` is a unit the format knows for the `[units]` key `key`.
+fn is_unit(key: &str, value: &toml::Value) -> bool {
+    use crate::units::{AngleUnit, ForceUnit, LengthUnit, MassUnit, TimeUnit};
+    let v = value.clone();
+    match key {
+        "length" => v.try_into::<LengthUnit>().is_ok(),
+        "mass" => v.try_into::<MassUnit>().is_ok(),
+        "force" => v.try_into::<ForceUnit>().is_ok(),
+        "angle" => v.try_into::<AngleUnit>().is_ok(),
+        "time" => v.try_into::<TimeUnit>().is_ok(),
+        _ => false,
+    }
+}
+
+/// Name of the layer [`Scenario::load_with`] puts its overrides in.
+const OVERRIDES: &str = "overrides";
+
 /// The file (of an `extends` chain) that sets the value at a serde path such as
-/// `primary_strut.compression.stages[1].crush_load`: the first layer that has it.
+/// `primary_strut.compression.stages[1].crush_load`: the first layer that has it, or, for a
+/// field no layer has (a missing field), the first that has its closest enclosing table, or the
+/// top file.
 fn owner_of<'a>(layers: &'a [(String, toml::Table)], path: &str) -> &'a str {
     let keys: Vec<&str> = path
         .split('.')
         .map(|k| k.split('[').next().unwrap_or(k))
         .filter(|k| !k.is_empty())
         .collect();
+    for n in (1..=keys.len()).rev() {
+        if let Some(file) = first_layer_with(layers, &keys[..n]) {
+            return file;
+        }
+    }
+    layers
+        .iter()
+        .find(|(file, _)| file != OVERRIDES)
+        .unwrap_or(&layers[0])
+        .0
+        .as_str()
+}
+
+/// The first layer that sets the value at `keys` (or a non-table value on the way to it).
+fn first_layer_with<'a>(layers: &'a [(String, toml::Table)], keys: &[&str]) -> Option<&'a str> {
     for (file, table) in layers {
         let mut node = Some(table);
         let mut found = !keys.is_empty();
@@ -109,10 +276,10 @@ fn owner_of<'a>(layers: &'a [(String, toml::Table)], path: &str) -> &'a str {
             }
         }
         if found {
-            return file;
+            return Some(file);
         }
     }
-    &layers[0].0
+    None
 }
 
 impl Scenario {
@@ -135,10 +302,10 @@ impl Scenario {
         let mut layer = toml::Table::new();
         for (field, value) in overrides {
             set_path(&mut merged.table, field, *value)
-                .map_err(|m| ScenarioError::field("overrides", *field, m))?;
+                .map_err(|m| ScenarioError::field(OVERRIDES, *field, m))?;
             set_path_creating(&mut layer, field, *value);
         }
-        merged.layers.insert(0, ("overrides".to_string(), layer));
+        merged.layers.insert(0, (OVERRIDES.to_string(), layer));
         resolve_layers(path.display().to_string(), merged)
     }
 
@@ -164,10 +331,7 @@ impl Scenario {
 
     /// Parses a scenario from TOML text (no `extends`); `source` names it in messages.
     pub fn from_toml(source: &str, text: &str) -> Result<Scenario, ScenarioError> {
-        let table = toml::from_str::<toml::Table>(text).map_err(|e| ScenarioError::Syntax {
-            file: source.to_string(),
-            message: e.to_string(),
-        })?;
+        let table = parse(source, text)?;
         let layers = vec![(source.to_string(), table.clone())];
         resolve_layers(source.to_string(), Merged { table, layers })
     }
@@ -299,13 +463,31 @@ fn set_path_creating(table: &mut toml::Table, field: &str, value: f64) {
     );
 }
 
-/// Schema check (types, required and unknown fields), then resolution.
+/// Schema check (types, required and unknown fields, tables only as tables), then resolution.
 fn resolve_layers(source: String, merged: Merged) -> Result<Scenario, ScenarioError> {
+    let t = &merged.table;
+    if !t.contains_key("surface")
+        && !t.contains_key("touchdown")
+        && (t.contains_key("vehicle") || t.contains_key("gear"))
+    {
+        return Err(ScenarioError::NotALanding { file: source });
+    }
     let value = toml::Value::Table(merged.table);
-    let file: ScenarioFile = serde_path_to_error::deserialize(value).map_err(|e| {
-        let field = e.path().to_string();
+    let file: ScenarioFile = serde_path_to_error::deserialize(Strict(value)).map_err(|e| {
+        let mut field = e.path().to_string();
         let message = e.inner().to_string();
         let message = message.lines().next().unwrap_or_default().to_string();
+        // "missing field `x`" is about the field x, not about the table that lacks it.
+        if let Some(name) = message
+            .strip_prefix("missing field `")
+            .and_then(|rest| rest.split('`').next())
+        {
+            field = if field == "." || field.is_empty() {
+                name.to_string()
+            } else {
+                format!("{field}.{name}")
+            };
+        }
         let file = owner_of(&merged.layers, &field).to_string();
         ScenarioError::Field {
             file,
@@ -346,12 +528,16 @@ fn resolve_rapier(
     u: &Units,
 ) -> Result<model::Rapier, ScenarioError> {
     Ok(model::Rapier {
-        timestep: c.positive("engines.rapier.timestep", r.timestep)? * u.time(),
-        contact_frequency: c.positive("engines.rapier.contact_frequency", r.contact_frequency)?
-            / u.time(),
-        contact_damping_ratio: c.non_negative(
+        timestep: c.positive_si("engines.rapier.timestep", r.timestep, u.time())?,
+        contact_frequency: c.positive_si(
+            "engines.rapier.contact_frequency",
+            r.contact_frequency,
+            1.0 / u.time(),
+        )?,
+        contact_damping_ratio: c.non_negative_si(
             "engines.rapier.contact_damping_ratio",
             r.contact_damping_ratio,
+            1.0,
         )?,
     })
 }
@@ -362,24 +548,28 @@ fn resolve_mujoco(
     m: &schema::Mujoco,
     u: &Units,
 ) -> Result<model::Mujoco, ScenarioError> {
-    let timestep = c.positive("engines.mujoco.timestep", m.timestep)? * u.time();
-    let contact_timeconst =
-        c.positive("engines.mujoco.contact_timeconst", m.contact_timeconst)? * u.time();
-    if contact_timeconst < 2.0 * timestep {
+    let timestep = c.positive_si("engines.mujoco.timestep", m.timestep, u.time())?;
+    let contact_timeconst = c.positive("engines.mujoco.contact_timeconst", m.contact_timeconst)?;
+    if contact_timeconst * u.time() < 2.0 * timestep {
         return Err(c.err(
             "engines.mujoco.contact_timeconst",
             format!(
                 "expected at least twice engines.mujoco.timestep, {} in the file's time unit (MuJoCo would silently raise it)",
-                2.0 * m.timestep
+                short(2.0 * m.timestep)
             ),
         ));
     }
     Ok(model::Mujoco {
         timestep,
-        contact_timeconst,
-        contact_damping_ratio: c.non_negative(
+        contact_timeconst: c.si(
+            "engines.mujoco.contact_timeconst",
+            contact_timeconst,
+            u.time(),
+        )?,
+        contact_damping_ratio: c.non_negative_si(
             "engines.mujoco.contact_damping_ratio",
             m.contact_damping_ratio,
+            1.0,
         )?,
     })
 }
@@ -392,15 +582,15 @@ fn resolve_integrator(
 ) -> Result<model::Integrator, ScenarioError> {
     let integrator = model::Integrator {
         scheme: it.scheme,
-        dist: c.positive("integrator.dist", it.dist)? * u.length(),
-        dt_min: c.positive("integrator.dt_min", it.dt_min)? * u.time(),
-        dt_max: c.positive("integrator.dt_max", it.dt_max)? * u.time(),
-        t_end: c.positive("integrator.t_end", it.t_end)? * u.time(),
+        dist: c.positive_si("integrator.dist", it.dist, u.length())?,
+        dt_min: c.positive_si("integrator.dt_min", it.dt_min, u.time())?,
+        dt_max: c.positive_si("integrator.dt_max", it.dt_max, u.time())?,
+        t_end: c.positive_si("integrator.t_end", it.t_end, u.time())?,
         contact_step_limit: it.contact_step_limit,
-        energy_tolerance: c.positive("integrator.energy_tolerance", it.energy_tolerance)?,
+        energy_tolerance: c.positive_si("integrator.energy_tolerance", it.energy_tolerance, 1.0)?,
         attitude: it.attitude,
-        rtol: c.positive("integrator.rtol", it.rtol)?,
-        atol: c.positive("integrator.atol", it.atol)?,
+        rtol: c.positive_si("integrator.rtol", it.rtol, 1.0)?,
+        atol: c.positive_si("integrator.atol", it.atol, 1.0)?,
     };
     if integrator.dt_min > integrator.dt_max {
         return Err(c.err("integrator.dt_min", "expected dt_min ≤ dt_max"));
@@ -417,11 +607,16 @@ fn resolve_integrator(
 /// The multibody engines' gear links.
 fn resolve_links(c: &Check, l: &schema::GearLinks) -> Result<model::GearLinks, ScenarioError> {
     Ok(model::GearLinks {
-        outer_cylinder_mass_ratio: c.positive(
+        outer_cylinder_mass_ratio: c.positive_si(
             "engines.links.outer_cylinder_mass_ratio",
             l.outer_cylinder_mass_ratio,
+            1.0,
         )?,
-        link_radius_ratio: c.positive("engines.links.link_radius_ratio", l.link_radius_ratio)?,
+        link_radius_ratio: c.positive_si(
+            "engines.links.link_radius_ratio",
+            l.link_radius_ratio,
+            1.0,
+        )?,
     })
 }
 
@@ -433,10 +628,11 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Rapier),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.rapier);
-        let c = Check {
-            layers: &self.layers,
-        };
-        self.rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.file.units)?;
+        let c = Check::new(&self.layers);
+        let rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.file.units)?;
+        let warnings = c.into_warnings();
+        self.rapier = rapier;
+        self.replace_warnings("engines.rapier.", warnings);
         Ok(self)
     }
 
@@ -448,10 +644,11 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Integrator),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.integrator);
-        let c = Check {
-            layers: &self.layers,
-        };
-        self.integrator = resolve_integrator(&c, &self.file.integrator, &self.file.units)?;
+        let c = Check::new(&self.layers);
+        let integrator = resolve_integrator(&c, &self.file.integrator, &self.file.units)?;
+        let warnings = c.into_warnings();
+        self.integrator = integrator;
+        self.replace_warnings("integrator.", warnings);
         Ok(self)
     }
 
@@ -462,44 +659,147 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Mujoco),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.mujoco);
-        let c = Check {
-            layers: &self.layers,
-        };
-        self.mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.file.units)?;
+        let c = Check::new(&self.layers);
+        let mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.file.units)?;
+        let warnings = c.into_warnings();
+        self.mujoco = mujoco;
+        self.replace_warnings("engines.mujoco.", warnings);
         Ok(self)
+    }
+
+    /// The warnings of the fields under `prefix` replaced by `warnings` (a table re-checked).
+    fn replace_warnings(&mut self, prefix: &str, warnings: Vec<Warning>) {
+        self.warnings.retain(|w| !w.field.starts_with(prefix));
+        self.warnings.extend(warnings);
     }
 }
 
 /// Field checker bound to one file and the chain it extends: an error names the file that
-/// sets the field.
+/// sets the field. It also collects the warnings of values outside their usual range.
 pub(crate) struct Check<'a> {
     pub(crate) layers: &'a [(String, toml::Table)],
+    warnings: std::cell::RefCell<Vec<Warning>>,
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Fields range-checked on this thread (tests: every field of a scenario is checked).
+    pub(crate) static RANGE_CHECKED: std::cell::RefCell<std::collections::BTreeSet<String>> =
+        const { std::cell::RefCell::new(std::collections::BTreeSet::new()) };
+}
+
+impl<'a> Check<'a> {
+    pub(crate) fn new(layers: &'a [(String, toml::Table)]) -> Self {
+        Check {
+            layers,
+            warnings: std::cell::RefCell::new(Vec::new()),
+        }
+    }
+    /// The warnings collected.
+    pub(crate) fn into_warnings(self) -> Vec<Warning> {
+        self.warnings.into_inner()
+    }
 }
 
 impl Check<'_> {
     pub(crate) fn err(&self, field: &str, message: impl Into<String>) -> ScenarioError {
         ScenarioError::field(owner_of(self.layers, field), field, message)
     }
+    pub(crate) fn warn(&self, field: &str, message: impl Into<String>) {
+        self.warnings.borrow_mut().push(Warning {
+            file: owner_of(self.layers, field).to_string(),
+            field: field.to_string(),
+            message: message.into(),
+        });
+    }
     pub(crate) fn finite(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() {
             Ok(v)
         } else {
-            Err(self.err(field, format!("expected a finite number, got {v}")))
+            Err(self.err(field, format!("expected a finite number, got {}", short(v))))
         }
     }
     pub(crate) fn positive(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
-            Err(self.err(field, format!("expected a positive number, got {v}")))
+            Err(self.err(
+                field,
+                format!("expected a positive number, got {}", short(v)),
+            ))
         }
     }
     pub(crate) fn non_negative(&self, field: &str, v: f64) -> Result<f64, ScenarioError> {
         if v.is_finite() && v >= 0.0 {
             Ok(v)
         } else {
-            Err(self.err(field, format!("expected a number ≥ 0, got {v}")))
+            Err(self.err(field, format!("expected a number ≥ 0, got {}", short(v))))
         }
+    }
+    /// `v` (file units) in SI, `v·scale`, checked against the field's plausible range
+    /// ([`ranges::RANGES`]): outside it an error, outside its usual range a warning.
+    pub(crate) fn si(&self, field: &str, v: f64, scale: f64) -> Result<f64, ScenarioError> {
+        let x = v * scale;
+        let Some(r) = ranges::lookup(field) else {
+            return Ok(x);
+        };
+        #[cfg(test)]
+        RANGE_CHECKED.with(|c| c.borrow_mut().insert(ranges::normalize(field)));
+        let shown = x / r.si;
+        let unit = if r.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", r.unit)
+        };
+        let value = if (shown - v).abs() <= 1e-9 * v.abs() {
+            format!("{}{unit}", short(v))
+        } else {
+            format!("{} in the file's units ({}{unit})", short(v), short(shown))
+        };
+        if !r.contains(x) {
+            return Err(self.err(
+                field,
+                format!(
+                    "{value} is outside the plausible range {}: {}",
+                    r.interval(),
+                    r.reason
+                ),
+            ));
+        }
+        if !r.is_usual(x) {
+            self.warn(
+                field,
+                format!(
+                    "{value} is outside the usual range {} but within the plausible range {}, so it is accepted: {}",
+                    r.usual_interval().unwrap_or_default(),
+                    r.interval(),
+                    r.reason
+                ),
+            );
+        }
+        Ok(x)
+    }
+    /// [`Check::positive`], then [`Check::si`].
+    pub(crate) fn positive_si(
+        &self,
+        field: &str,
+        v: f64,
+        scale: f64,
+    ) -> Result<f64, ScenarioError> {
+        self.si(field, self.positive(field, v)?, scale)
+    }
+    /// [`Check::non_negative`], then [`Check::si`].
+    pub(crate) fn non_negative_si(
+        &self,
+        field: &str,
+        v: f64,
+        scale: f64,
+    ) -> Result<f64, ScenarioError> {
+        self.si(field, self.non_negative(field, v)?, scale)
+    }
+    /// [`Check::finite`], then [`Check::si`].
+    pub(crate) fn finite_si(&self, field: &str, v: f64, scale: f64) -> Result<f64, ScenarioError> {
+        self.si(field, self.finite(field, v)?, scale)
     }
     pub(crate) fn vec3(
         &self,
@@ -507,10 +807,11 @@ impl Check<'_> {
         v: [f64; 3],
         scale: f64,
     ) -> Result<Vector3<f64>, ScenarioError> {
+        let mut out = Vector3::zeros();
         for (i, x) in v.iter().enumerate() {
-            self.finite(&format!("{field}[{i}]"), *x)?;
+            out[i] = self.finite_si(&format!("{field}[{i}]"), *x, scale)?;
         }
-        Ok(Vector3::from(v) * scale)
+        Ok(out)
     }
     pub(crate) fn per_pad(
         &self,
@@ -536,6 +837,19 @@ impl Check<'_> {
         }
         Ok(values)
     }
+    /// Each of `values` (file units), as `field[i]`, through [`Check::si`]; SI.
+    pub(crate) fn each_si(
+        &self,
+        field: &str,
+        values: &[f64],
+        scale: f64,
+    ) -> Result<Vec<f64>, ScenarioError> {
+        values
+            .iter()
+            .enumerate()
+            .map(|(i, x)| self.si(&format!("{field}[{i}]"), *x, scale))
+            .collect()
+    }
     pub(crate) fn load_stroke(
         &self,
         field: &str,
@@ -544,10 +858,11 @@ impl Check<'_> {
         u: &Units,
     ) -> Result<model::LoadStroke, ScenarioError> {
         let k = u.stiffness();
-        let onset_rate = self.positive(&format!("{field}.onset_rate"), ls.onset_rate)? * k;
-        let backoff_rate = self.positive(&format!("{field}.backoff_rate"), ls.backoff_rate)? * k;
+        let onset_rate = self.positive_si(&format!("{field}.onset_rate"), ls.onset_rate, k)?;
+        let backoff_rate =
+            self.positive_si(&format!("{field}.backoff_rate"), ls.backoff_rate, k)?;
         let stroke_out_rate =
-            self.positive(&format!("{field}.stroke_out_rate"), ls.stroke_out_rate)? * k;
+            self.positive_si(&format!("{field}.stroke_out_rate"), ls.stroke_out_rate, k)?;
         if ls.stages.is_empty() || ls.stages.len() > max_stages {
             return Err(self.err(
                 &format!("{field}.stages"),
@@ -557,15 +872,19 @@ impl Check<'_> {
         let mut stages = Vec::with_capacity(ls.stages.len());
         for (i, s) in ls.stages.iter().enumerate() {
             let f = format!("{field}.stages[{i}]");
-            let load = self.positive(&format!("{f}.crush_load"), s.crush_load)? * u.force();
-            let end = self.positive(&format!("{f}.stroke_end"), s.stroke_end)? * u.length();
+            let load = self.positive_si(&format!("{f}.crush_load"), s.crush_load, u.force())?;
+            let end = self.positive_si(&format!("{f}.stroke_end"), s.stroke_end, u.length())?;
             stages.push((load, end));
         }
         let field = format!("{field}.stop_restitution");
         let e = self.non_negative(&field, ls.stop_restitution)?;
         if e > 1.0 {
-            return Err(self.err(&field, format!("expected a number in [0, 1], got {e}")));
+            return Err(self.err(
+                &field,
+                format!("expected a number in [0, 1], got {}", short(e)),
+            ));
         }
+        let e = self.si(&field, e, 1.0)?;
         Ok(model::LoadStroke {
             onset_rate,
             backoff_rate,
@@ -577,7 +896,7 @@ impl Check<'_> {
     fn trunnion(&self, field: &str, t: Trunnion, u: &Units) -> Result<Option<f64>, ScenarioError> {
         match t {
             Trunnion::Rigid(_) => Ok(None),
-            Trunnion::Rate(k) => Ok(Some(self.positive(field, k)? * u.stiffness())),
+            Trunnion::Rate(k) => Ok(Some(self.positive_si(field, k, u.stiffness())?)),
         }
     }
     fn viscous(
@@ -586,10 +905,14 @@ impl Check<'_> {
         v: schema::Viscous,
         u: &Units,
     ) -> Result<model::Viscous, ScenarioError> {
-        let exponent = self.positive(&format!("{field}.exponent"), v.exponent)?;
-        let c = self.non_negative(&format!("{field}.coefficient"), v.coefficient)?;
+        let exponent = self.positive_si(&format!("{field}.exponent"), v.exponent, 1.0)?;
+        let coefficient = self.non_negative_si(
+            &format!("{field}.coefficient"),
+            v.coefficient,
+            u.viscous_coefficient(exponent),
+        )?;
         Ok(model::Viscous {
-            coefficient: c * u.viscous_coefficient(exponent),
+            coefficient,
             exponent,
         })
     }
@@ -602,10 +925,7 @@ fn parametric_legs(
     u: &Units,
 ) -> Result<Vec<model::Leg>, ScenarioError> {
     let l = u.length();
-    let f = |name: &str, v: f64| {
-        c.positive(&format!("gear.parametric.{name}"), v)
-            .map(|v| v * l)
-    };
+    let f = |name: &str, v: f64| c.positive_si(&format!("gear.parametric.{name}"), v, l);
     let (r1, r2, r3) = (f("r1", p.r1)?, f("r2", p.r2)?, f("r3", p.r3)?);
     let (z1, z2, z3, zc) = (
         f("z1", p.z1)?,
@@ -613,13 +933,14 @@ fn parametric_legs(
         f("z3", p.z3)?,
         f("zc", p.zc)?,
     );
-    let beta = c.finite("gear.parametric.beta", p.beta)? * u.angle();
+    let beta = c.finite_si("gear.parametric.beta", p.beta, u.angle())?;
     if z1 >= z3 {
         return Err(c.err(
             "gear.parametric.z1",
             format!(
                 "expected Z1 below the primary trunnion height Z3 = {}, got {}",
-                p.z3, p.z1
+                short(p.z3),
+                short(p.z1)
             ),
         ));
     }
@@ -640,15 +961,14 @@ fn parametric_legs(
     let bp = Vector3::new(r3, 0.0, 0.0);
     let l21 = t1 * (bp - b2).norm();
     let shift = Vector3::new(0.0, 0.0, zc);
-    if p.leg_azimuths.len() < 3 {
-        return Err(c.err(
-            "gear.parametric.leg_azimuths",
-            format!("expected at least 3 legs, got {}", p.leg_azimuths.len()),
-        ));
-    }
+    check_leg_count(c, "gear.parametric.leg_azimuths", p.leg_azimuths.len())?;
     let mut legs = Vec::with_capacity(p.leg_azimuths.len());
     for (i, az) in p.leg_azimuths.iter().enumerate() {
-        let a = c.finite(&format!("gear.parametric.leg_azimuths[{i}]"), *az)? * u.angle();
+        let a = c.finite_si(
+            &format!("gear.parametric.leg_azimuths[{i}]"),
+            *az,
+            u.angle(),
+        )?;
         let r = frames::rot_z(a);
         legs.push(model::Leg::from_points(
             r * b2 - shift,
@@ -667,12 +987,7 @@ fn explicit_legs(
     arrangement: schema::Arrangement,
     u: &Units,
 ) -> Result<Vec<model::Leg>, ScenarioError> {
-    if legs.len() < 3 {
-        return Err(c.err(
-            "gear.legs",
-            format!("expected at least 3 legs, got {}", legs.len()),
-        ));
-    }
+    check_leg_count(c, "gear.legs", legs.len())?;
     let l = u.length();
     legs.iter()
         .enumerate()
@@ -681,7 +996,7 @@ fn explicit_legs(
             let (b2, bp) = (c.vec3(&f("b2"), leg.b2, l)?, c.vec3(&f("bp"), leg.bp, l)?);
             // eqs. (29)-(30): point 1 at L21 along the primary; the tripod's is the footpad.
             let l21 = match (arrangement, leg.l21) {
-                (schema::Arrangement::Cantilever, Some(x)) => c.positive(&f("l21"), x)? * l,
+                (schema::Arrangement::Cantilever, Some(x)) => c.positive_si(&f("l21"), x, l)?,
                 (schema::Arrangement::Cantilever, None) => {
                     return Err(c.err(&f("l21"), "expected L21 (length) for the cantilever gear"))
                 }
@@ -704,6 +1019,20 @@ fn explicit_legs(
         .collect()
 }
 
+/// From 3 to [`ranges::MAX_LEGS`] legs.
+fn check_leg_count(c: &Check, field: &str, n: usize) -> Result<(), ScenarioError> {
+    if n < 3 {
+        return Err(c.err(field, format!("expected at least 3 legs, got {n}")));
+    }
+    if n > ranges::MAX_LEGS {
+        return Err(c.err(
+            field,
+            format!("expected at most {} legs, got {n}", ranges::MAX_LEGS),
+        ));
+    }
+    Ok(())
+}
+
 /// Geometric checks common to both ways of giving the legs.
 fn check_legs(
     c: &Check,
@@ -722,9 +1051,9 @@ fn check_legs(
             return Err(c.err(
                 &f,
                 format!(
-                    "the strut cannot reach its footpad: L21 = {:.6} must be shorter than the primary strut |BP − B2| = {:.6} (file length units)",
-                    leg.l21 / lengths,
-                    leg.l2p / lengths
+                    "the strut cannot reach its footpad: L21 = {} must be shorter than the primary strut |BP − B2| = {} (file length units)",
+                    short(leg.l21 / lengths),
+                    short(leg.l2p / lengths)
                 ),
             ));
         }
@@ -751,12 +1080,36 @@ fn check_legs(
             "legs must be listed counter-clockwise seen from above (+Z_B), once around",
         ));
     }
+    // Consecutive footpads apart by a least angle: two legs at (nearly) one azimuth are one leg
+    // listed twice, and their stability wall has no direction.
+    let least = ranges::MIN_LEG_SEPARATION_DEG.to_radians();
+    for i in 0..az.len() {
+        let j = (i + 1) % az.len();
+        let d = (az[j] - az[i]).rem_euclid(std::f64::consts::TAU);
+        if d < least {
+            let element = if field == "gear.parametric" {
+                format!("gear.parametric.leg_azimuths[{j}]")
+            } else {
+                format!("{field}[{j}]")
+            };
+            return Err(c.err(
+                &element,
+                format!(
+                    "leg {}'s footpad is {} deg counter-clockwise from leg {}'s seen from above; expected consecutive legs at least {} deg apart",
+                    j + 1,
+                    short(d.to_degrees()),
+                    i + 1,
+                    short(ranges::MIN_LEG_SEPARATION_DEG)
+                ),
+            ));
+        }
+    }
     Ok(())
 }
 
 fn inertia(c: &Check, i: &schema::Inertia, u: &Units) -> Result<Matrix3<f64>, ScenarioError> {
     let s = u.inertia();
-    let g = |n: &str, v: f64| c.finite(&format!("vehicle.inertia.{n}"), v).map(|v| v * s);
+    let g = |n: &str, v: f64| c.finite_si(&format!("vehicle.inertia.{n}"), v, s);
     let (xx, yy, zz) = (g("xx", i.xx)?, g("yy", i.yy)?, g("zz", i.zz)?);
     let (xy, xz, yz) = (g("xy", i.xy)?, g("xz", i.xz)?, g("yz", i.yz)?);
     let j = Matrix3::new(xx, -xy, -xz, -xy, yy, -yz, -xz, -yz, zz);
@@ -771,7 +1124,7 @@ fn resolve(
     layers: Vec<(String, toml::Table)>,
     file: ScenarioFile,
 ) -> Result<Scenario, ScenarioError> {
-    let c = Check { layers: &layers };
+    let c = Check::new(&layers);
     if file.schema_version != SCHEMA_VERSION {
         return Err(c.err(
             "schema_version",
@@ -780,9 +1133,9 @@ fn resolve(
     }
     let u = file.units;
     let vehicle = model::Vehicle {
-        mass: c.positive("vehicle.mass", file.vehicle.mass)? * u.mass(),
+        mass: c.positive_si("vehicle.mass", file.vehicle.mass, u.mass())?,
         inertia: inertia(&c, &file.vehicle.inertia, &u)?,
-        gravity: c.non_negative("vehicle.gravity", file.vehicle.gravity)? * u.acceleration(),
+        gravity: c.non_negative_si("vehicle.gravity", file.vehicle.gravity, u.acceleration())?,
     };
     let arrangement = file.gear.arrangement;
     let (legs, legs_field) = match (&file.gear.legs, &file.gear.parametric) {
@@ -803,15 +1156,21 @@ fn resolve(
         compression: c.load_stroke("primary_strut.compression", &ps.compression, 3, &u)?,
         trunnion_rate: c.trunnion("primary_strut.trunnion", ps.trunnion, &u)?,
         viscous: c.viscous("primary_strut.viscous", ps.viscous, &u)?,
-        bearing_friction: c.non_negative("primary_strut.bearing.friction", ps.bearing.friction)?,
-        inner_cylinder_length: c.positive(
+        bearing_friction: c.non_negative_si(
+            "primary_strut.bearing.friction",
+            ps.bearing.friction,
+            1.0,
+        )?,
+        inner_cylinder_length: c.positive_si(
             "primary_strut.bearing.inner_cylinder_length",
             ps.bearing.inner_cylinder_length,
-        )? * u.length(),
-        initial_overlap: c.positive(
+            u.length(),
+        )?,
+        initial_overlap: c.positive_si(
             "primary_strut.bearing.initial_overlap",
             ps.bearing.initial_overlap,
-        )? * u.length(),
+            u.length(),
+        )?,
         bending_stiffness: mechanisms::bending(&c, ps.bending, arrangement, &u)?,
     };
     if primary.initial_overlap >= primary.inner_cylinder_length {
@@ -835,10 +1194,10 @@ fn resolve(
         viscous: c.viscous("secondary_strut.viscous", ss.viscous, &u)?,
     };
     let footpad = model::Footpad {
-        mass: c.positive("footpad.mass", file.footpad.mass)? * u.mass(),
-        radius: c.positive("footpad.radius", file.footpad.radius)? * u.length(),
+        mass: c.positive_si("footpad.mass", file.footpad.mass, u.mass())?,
+        radius: c.positive_si("footpad.radius", file.footpad.radius, u.length())?,
         height: match file.footpad.height {
-            Some(h) => Some(c.positive("footpad.height", h)? * u.length()),
+            Some(h) => Some(c.positive_si("footpad.height", h, u.length())?),
             None => None,
         },
         crush: match &file.footpad.crush {
@@ -854,19 +1213,26 @@ fn resolve(
             "expected a slope strictly between −90° and 90°",
         ));
     }
+    let slope = c.si("surface.slope", sf.slope, u.angle())?;
     let hole = c.per_pad("surface.hole", &sf.hole, n)?;
     let obstacle = c.per_pad("surface.obstacle", &sf.obstacle, n)?;
     let friction = c.per_pad("surface.friction", &sf.friction, n)?;
     if let Some(i) = friction.iter().position(|f| *f < 0.0) {
         return Err(c.err(
             &format!("surface.friction[{i}]"),
-            format!("expected a friction coefficient ≥ 0, got {}", friction[i]),
+            format!(
+                "expected a friction coefficient ≥ 0, got {}",
+                short(friction[i])
+            ),
         ));
     }
+    let hole_si = c.each_si("surface.hole", &hole, u.length())?;
+    let obstacle_si = c.each_si("surface.obstacle", &obstacle, u.length())?;
+    let friction = c.each_si("surface.friction", &friction, 1.0)?;
     let pads = (0..n)
         .map(|i| model::PadSurface {
-            hole: hole[i] * u.length(),
-            obstacle: obstacle[i] * u.length(),
+            hole: hole_si[i],
+            obstacle: obstacle_si[i],
             friction: friction[i],
         })
         .collect();
@@ -879,16 +1245,25 @@ fn resolve(
     };
     let td = &file.touchdown;
     let vh = td.horizontal_velocity;
+    let mut velocity_g = Vector3::zeros();
     for (i, v) in vh.iter().enumerate() {
-        c.finite(&format!("touchdown.horizontal_velocity[{i}]"), *v)?;
+        velocity_g[i] = c.finite_si(
+            &format!("touchdown.horizontal_velocity[{i}]"),
+            *v,
+            u.velocity(),
+        )?;
     }
-    let vv = c.finite("touchdown.vertical_velocity", td.vertical_velocity)?;
+    velocity_g.z = c.finite_si(
+        "touchdown.vertical_velocity",
+        td.vertical_velocity,
+        u.velocity(),
+    )?;
     let touchdown = model::Touchdown {
         attitude: c.vec3("touchdown.attitude", td.attitude, u.angle())?,
         attitude_reference: td.attitude_reference,
-        velocity_g: Vector3::new(vh[0], vh[1], vv) * u.velocity(),
+        velocity_g,
         body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
-        clearance: c.non_negative("touchdown.clearance", td.clearance)? * u.length(),
+        clearance: c.non_negative_si("touchdown.clearance", td.clearance, u.length())?,
     };
     let integrator = resolve_integrator(&c, &file.integrator, &u)?;
     let st = &file.stability;
@@ -899,16 +1274,17 @@ fn resolve(
     if frac > 1.0 {
         return Err(c.err(
             "stability.kinetic_energy_fraction",
-            format!("expected a fraction in (0, 1], got {frac}"),
+            format!("expected a fraction in (0, 1], got {}", short(frac)),
         ));
     }
     let stability = model::Stability {
-        kinetic_energy_fraction: frac,
+        kinetic_energy_fraction: c.si("stability.kinetic_energy_fraction", frac, 1.0)?,
         counted_energy: st.counted_energy,
-        min_separation_velocity: c.non_negative(
+        min_separation_velocity: c.non_negative_si(
             "stability.min_separation_velocity",
             st.min_separation_velocity,
-        )? * u.velocity(),
+            u.velocity(),
+        )?,
         walls: st.walls,
         terminate_on_decision: st.terminate_on_decision,
     };
@@ -919,6 +1295,7 @@ fn resolve(
     let thrust = mechanisms::thrust(&c, file.thrust.as_ref(), &u)?;
     let rcs = mechanisms::rcs(&c, file.rcs.as_ref(), &u)?;
     let slosh = mechanisms::slosh(&c, file.slosh.as_ref(), vehicle.mass, &u)?;
+    let warnings = c.into_warnings();
     Ok(Scenario {
         source: source.to_string(),
         layers,
@@ -940,5 +1317,6 @@ fn resolve(
         thrust,
         rcs,
         slosh,
+        warnings,
     })
 }

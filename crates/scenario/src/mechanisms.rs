@@ -6,7 +6,7 @@ use crate::error::ScenarioError;
 use crate::load::Check;
 use crate::model;
 use crate::schema::{self, Arrangement, RcsMode};
-use crate::units::Units;
+use crate::units::{short, Units};
 use nalgebra::Vector3;
 
 /// Primary-strut bending stiffness EI, N·m² (force·length² in the file).
@@ -23,8 +23,12 @@ pub(crate) fn bending(
             "the tripod's primary is a two-force member with no side load, so it does not bend (review A23); remove [primary_strut.bending]",
         ));
     }
-    let ei = c.positive("primary_strut.bending.stiffness", b.stiffness)?;
-    Ok(Some(ei * u.force() * u.length() * u.length()))
+    let scale = u.force() * u.length() * u.length();
+    Ok(Some(c.positive_si(
+        "primary_strut.bending.stiffness",
+        b.stiffness,
+        scale,
+    )?))
 }
 
 /// The soil of a `kind = "soil"` surface, SI.
@@ -72,8 +76,7 @@ pub(crate) fn soil(
     let (f, l, t) = (u.force(), u.length(), u.time());
     let p = f / (l * l);
     let k = |name: &str, v: f64, scale: f64| {
-        c.non_negative(&format!("surface.soil.{name}"), v)
-            .map(|v| v * scale)
+        c.non_negative_si(&format!("surface.soil.{name}"), v, scale)
     };
     Ok(Some(model::Soil {
         k1: k("k1", soil.k1, p)?,
@@ -103,7 +106,10 @@ pub(crate) fn curbs(
         if curb.leg == 0 || curb.leg > n {
             return Err(c.err(
                 &f("leg"),
-                format!("expected a leg number from 1 to {n}, got {}", curb.leg),
+                format!(
+                    "expected a leg number from 1 to {n}, got {}",
+                    short(curb.leg as f64)
+                ),
             ));
         }
         let leg = curb.leg - 1;
@@ -128,9 +134,9 @@ pub(crate) fn curbs(
         }
         out.push(model::Curb {
             leg,
-            distance: c.positive(&f("distance"), curb.distance)? * u.length(),
-            angle: c.finite(&f("angle"), curb.angle)? * u.angle(),
-            friction: c.non_negative(&f("friction"), curb.friction)?,
+            distance: c.positive_si(&f("distance"), curb.distance, u.length())?,
+            angle: c.finite_si(&f("angle"), curb.angle, u.angle())?,
+            friction: c.non_negative_si(&f("friction"), curb.friction, 1.0)?,
         });
     }
     if !out.is_empty() && footpad.crush.is_none() {
@@ -151,12 +157,16 @@ pub(crate) fn thrust(
     let Some(t) = t else { return Ok(None) };
     let (f, s) = (u.force(), u.time());
     let decay_rate = match t.decay_rate {
-        Some(k) => Some(c.non_negative("thrust.decay_rate", k)? / s),
+        Some(k) => Some(c.non_negative_si("thrust.decay_rate", k, 1.0 / s)?),
         None => None,
     };
     let mut polynomial = Vec::with_capacity(t.polynomial.len());
     for (i, m) in t.polynomial.iter().enumerate() {
-        polynomial.push(c.finite(&format!("thrust.polynomial[{i}]"), *m)? * f / s.powi(i as i32));
+        polynomial.push(c.finite_si(
+            &format!("thrust.polynomial[{i}]"),
+            *m,
+            f / s.powi(i as i32),
+        )?);
     }
     let amplification = match &t.amplification {
         None => None,
@@ -173,9 +183,13 @@ pub(crate) fn thrust(
             }
             let mut table = Vec::with_capacity(a.clearance.len());
             for (i, (z, k)) in a.clearance.iter().zip(&a.factor).enumerate() {
-                let z = c.finite(&format!("thrust.amplification.clearance[{i}]"), *z)?;
-                let k = c.positive(&format!("thrust.amplification.factor[{i}]"), *k)?;
-                table.push((z * u.length(), k));
+                let z = c.finite_si(
+                    &format!("thrust.amplification.clearance[{i}]"),
+                    *z,
+                    u.length(),
+                )?;
+                let k = c.positive_si(&format!("thrust.amplification.factor[{i}]"), *k, 1.0)?;
+                table.push((z, k));
             }
             Some(table)
         }
@@ -183,14 +197,18 @@ pub(crate) fn thrust(
     let nozzle_crushing = match t.nozzle_crushing {
         None => None,
         Some(n) => Some((
-            c.positive("thrust.nozzle_crushing.exit_radius", n.exit_radius)? * u.length(),
-            c.non_negative("thrust.nozzle_crushing.crush_load", n.crush_load)? * f,
+            c.positive_si(
+                "thrust.nozzle_crushing.exit_radius",
+                n.exit_radius,
+                u.length(),
+            )?,
+            c.non_negative_si("thrust.nozzle_crushing.crush_load", n.crush_load, f)?,
         )),
     };
     Ok(Some(model::Thrust {
-        thrust: c.non_negative("thrust.thrust", t.thrust)? * f,
-        tailoff_start: c.finite("thrust.tailoff_start", t.tailoff_start)? * s,
-        clock_at_touchdown: c.finite("thrust.clock_at_touchdown", t.clock_at_touchdown)? * s,
+        thrust: c.non_negative_si("thrust.thrust", t.thrust, f)?,
+        tailoff_start: c.finite_si("thrust.tailoff_start", t.tailoff_start, s)?,
+        clock_at_touchdown: c.finite_si("thrust.clock_at_touchdown", t.clock_at_touchdown, s)?,
         decay_rate,
         polynomial,
         nozzle_exit: c.vec3("thrust.nozzle_exit", t.nozzle_exit, u.length())?,
@@ -211,10 +229,10 @@ pub(crate) fn rcs(
         for i in 0..3 {
             let field = format!("rcs.{name}[{i}]");
             out[i] = if positive {
-                c.positive(&field, v[i])?
+                c.positive_si(&field, v[i], scale)?
             } else {
-                c.non_negative(&field, v[i])?
-            } * scale;
+                c.non_negative_si(&field, v[i], scale)?
+            };
         }
         Ok::<_, ScenarioError>(out)
     };
@@ -237,8 +255,8 @@ pub(crate) fn rcs(
     let downward_translation = match r.downward_translation {
         None => None,
         Some(d) => Some(model::DownwardTranslation {
-            delay: c.non_negative("rcs.downward_translation.delay", d.delay)? * u.time(),
-            force: c.non_negative("rcs.downward_translation.force", d.force)? * u.force(),
+            delay: c.non_negative_si("rcs.downward_translation.delay", d.delay, u.time())?,
+            force: c.non_negative_si("rcs.downward_translation.force", d.force, u.force())?,
         }),
     };
     Ok(Some(model::Rcs {
@@ -263,25 +281,26 @@ pub(crate) fn slosh(
 ) -> Result<Option<model::Slosh>, ScenarioError> {
     let Some(s) = s else { return Ok(None) };
     let l = u.length();
-    let fs = c.positive("slosh.force_coefficient", s.force_coefficient)? * u.mass() / l;
-    let w2 = c.positive("slosh.frequency_parameter", s.frequency_parameter)? / l;
+    let fs = c.positive_si("slosh.force_coefficient", s.force_coefficient, u.mass() / l)?;
+    let w2 = c.positive_si("slosh.frequency_parameter", s.frequency_parameter, 1.0 / l)?;
     if fs / w2 >= mass {
         return Err(c.err(
             "slosh.force_coefficient",
             format!(
-                "the slosh mass F_s/ω² = {:.6} kg (eq. 112) must be less than the vehicle mass {mass:.6} kg",
-                fs / w2
+                "the slosh mass F_s/ω² = {} kg (eq. 112) must be less than the vehicle mass {} kg",
+                short(fs / w2),
+                short(mass)
             ),
         ));
     }
     Ok(Some(model::Slosh {
         force_coefficient: fs,
         frequency_parameter: w2,
-        free_surface_depth: c.finite("slosh.free_surface_depth", s.free_surface_depth)? * l,
-        mass_depth: c.non_negative("slosh.mass_depth", s.mass_depth)? * l,
+        free_surface_depth: c.finite_si("slosh.free_surface_depth", s.free_surface_depth, l)?,
+        mass_depth: c.non_negative_si("slosh.mass_depth", s.mass_depth, l)?,
         initial_amplitude: [
-            c.finite("slosh.initial_amplitude[0]", s.initial_amplitude[0])? * l,
-            c.finite("slosh.initial_amplitude[1]", s.initial_amplitude[1])? * l,
+            c.finite_si("slosh.initial_amplitude[0]", s.initial_amplitude[0], l)?,
+            c.finite_si("slosh.initial_amplitude[1]", s.initial_amplitude[1], l)?,
         ],
     }))
 }

@@ -1,5 +1,6 @@
 //! The resolved scenario: every value in SI, geometry derived, ready for an engine.
 
+use crate::error::Warning;
 use crate::schema::{
     self, Arrangement, AttitudeReference, CountedEnergy, RcsMode, ReleaseRule, ScenarioFile,
     WallRule,
@@ -50,6 +51,19 @@ pub struct Scenario {
     /// The files of the `extends` chain with their own tables (this file first), to name the
     /// file that sets a field in messages.
     pub(crate) layers: Vec<(String, toml::Table)>,
+    /// Values accepted but outside their usual range ([`Scenario::warnings`]).
+    pub(crate) warnings: Vec<Warning>,
+}
+
+impl Scenario {
+    /// The values this scenario holds that are legal (inside their plausible range) but outside
+    /// their field's usual range (docs/scenario-format.md, "Ranges"), in the order they were
+    /// checked, each naming the file, the field, the value and the usual range. Loading does
+    /// not print them: a caller shows them to the user (e.g. on standard error, one a line, as
+    /// `warning.to_string()`). Empty for every bundled scenario.
+    pub fn warnings(&self) -> &[Warning] {
+        &self.warnings
+    }
 }
 
 /// Rigid vehicle (excluding the effective footpad masses).

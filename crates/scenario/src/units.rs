@@ -151,6 +151,66 @@ impl Units {
     }
 }
 
+/// A number in short notation, for messages: at most six significant digits, trailing zeros
+/// dropped, plain between 1e-4 and 1e5 (`0.5`, `-2`, `32.174`, `8700`) and scientific outside
+/// (`1.23e+05`, `-1e-300`, `4.94066e-324`), like C's `%g`; `NaN`, `inf` and `-inf` as such.
+/// Every number a scenario error or warning prints goes through it, so that a hostile value
+/// never prints as a 300-digit expansion; other crates may use it for the same reason.
+///
+/// ```
+/// use touchdown_scenario::units::short;
+/// assert_eq!(short(0.5), "0.5");
+/// assert_eq!(short(-1e-300), "-1e-300");
+/// assert_eq!(short(123_000.0), "1.23e+05");
+/// assert_eq!(short(8700.0), "8700");
+/// ```
+pub fn short(x: f64) -> String {
+    Short(x).to_string()
+}
+
+/// [`short`] as a [`Display`](std::fmt::Display) wrapper: `format!("got {}", Short(x))`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Short(pub f64);
+
+impl std::fmt::Display for Short {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        const DIGITS: usize = 6;
+        let x = self.0;
+        if !x.is_finite() {
+            return write!(f, "{x}");
+        }
+        if x == 0.0 {
+            return f.write_str("0");
+        }
+        // Rounded to DIGITS significant digits first, so that the exponent is the rounded one.
+        let sci = format!("{:.*e}", DIGITS - 1, x);
+        let (mantissa, exponent) = sci.split_once('e').unwrap_or((&sci, "0"));
+        let exponent: i32 = exponent.parse().unwrap_or(0);
+        if (-4..5).contains(&exponent) {
+            let decimals = (DIGITS as i32 - 1 - exponent).max(0) as usize;
+            let plain = format!("{x:.decimals$}");
+            f.write_str(trim_zeros(&plain))
+        } else {
+            let sign = if exponent < 0 { '-' } else { '+' };
+            write!(
+                f,
+                "{}e{sign}{:02}",
+                trim_zeros(mantissa),
+                exponent.unsigned_abs()
+            )
+        }
+    }
+}
+
+/// `1.2300` → `1.23`, `2.000` → `2`; a number without a decimal point is left alone.
+fn trim_zeros(s: &str) -> &str {
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        s
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -160,5 +220,41 @@ mod tests {
         // 1 lbf accelerates 1 slug at 1 ft/s².
         assert!((SLUG * FOOT - POUND_FORCE).abs() < 1e-12);
         assert!((SLUG - 14.593_902_937).abs() < 1e-8);
+    }
+
+    #[test]
+    fn short_numbers_are_short() {
+        let cases = [
+            (0.5, "0.5"),
+            (-2.0, "-2"),
+            (1.5, "1.5"),
+            (-0.2, "-0.2"),
+            (32.174, "32.174"),
+            (8700.0, "8700"),
+            (99_999.0, "99999"),
+            (100_000.0, "1e+05"),
+            (123_000.0, "1.23e+05"),
+            (0.0001, "0.0001"),
+            (0.000_099, "9.9e-05"),
+            (1e-7, "1e-07"),
+            (-1e-300, "-1e-300"),
+            (1e300, "1e+300"),
+            (f64::MIN_POSITIVE / 4.0, "5.56268e-309"),
+            (5e-324, "4.94066e-324"),
+            (f64::MAX, "1.79769e+308"),
+            (9.2e18, "9.2e+18"),
+            (1.0 / 3.0, "0.333333"),
+            (2.0 / 3.0 * 1e5, "66666.7"),
+            (999_999.5, "1e+06"),
+            (0.0, "0"),
+            (-0.0, "0"),
+            (f64::NAN, "NaN"),
+            (f64::INFINITY, "inf"),
+            (f64::NEG_INFINITY, "-inf"),
+        ];
+        for (x, want) in cases {
+            assert_eq!(short(x), want, "{x:e}");
+            assert!(short(x).len() <= 13, "{x:e}");
+        }
     }
 }

@@ -1,0 +1,624 @@
+//! The loader against hostile but fair input: tables only as tables, the units of the file that
+//! wrote a number, special files, clear messages, plausibility ranges and warnings. Each test
+//! names what it guards; the catalogue in tests/data/malformed/ holds one file per case too.
+
+use crate::error::ScenarioError;
+use crate::load::RANGE_CHECKED;
+use crate::ranges::{self, RANGES};
+use crate::Scenario;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use toml::Value;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn scenario(name: &str) -> PathBuf {
+    root().join("scenarios").join(name)
+}
+
+/// The bundled landings (`scenarios/*.toml`, `scenarios/robustness/*.toml`).
+fn bundled() -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for dir in ["scenarios", "scenarios/robustness"] {
+        for entry in std::fs::read_dir(root().join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_file() && path.extension().is_some_and(|x| x == "toml") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    assert!(files.len() > 10, "{files:?}");
+    files
+}
+
+/// A scratch folder for this test process.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "touchdown-scenario-tests-{}-{name}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes `dir/file` extending `base` with the TOML `extra`; returns its path.
+fn extending(dir: &Path, file: &str, base: &Path, extra: &str) -> PathBuf {
+    let path = dir.join(file);
+    std::fs::write(
+        &path,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = \"test\"\n{extra}",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
+    path
+}
+
+/// The field and message of a field error (panics on any other result).
+fn field_error(result: Result<Scenario, ScenarioError>) -> (String, String, String) {
+    match result {
+        Err(ScenarioError::Field {
+            file,
+            field,
+            message,
+        }) => (file, field, message),
+        Err(e) => panic!("expected a field error, got {e}"),
+        Ok(_) => panic!("expected a field error, the scenario loaded"),
+    }
+}
+
+/// One step of a path into a TOML value.
+#[derive(Debug, Clone)]
+enum Seg {
+    Key(String),
+    Index(usize),
+}
+
+/// The path as the loader writes it: `gear.legs[0].b2[1]`.
+fn display(path: &[Seg]) -> String {
+    let mut out = String::new();
+    for seg in path {
+        match seg {
+            Seg::Key(k) if out.is_empty() => out.push_str(k),
+            Seg::Key(k) => {
+                out.push('.');
+                out.push_str(k);
+            }
+            Seg::Index(i) => out.push_str(&format!("[{i}]")),
+        }
+    }
+    out
+}
+
+/// Every node below the root (tables, arrays and leaves) with its path.
+fn nodes(value: &Value) -> Vec<(Vec<Seg>, Value)> {
+    fn walk(v: &Value, path: &mut Vec<Seg>, out: &mut Vec<(Vec<Seg>, Value)>) {
+        if !path.is_empty() {
+            out.push((path.clone(), v.clone()));
+        }
+        match v {
+            Value::Table(t) => {
+                for (k, child) in t {
+                    path.push(Seg::Key(k.clone()));
+                    walk(child, path, out);
+                    path.pop();
+                }
+            }
+            Value::Array(a) => {
+                for (i, child) in a.iter().enumerate() {
+                    path.push(Seg::Index(i));
+                    walk(child, path, out);
+                    path.pop();
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    walk(value, &mut Vec::new(), &mut out);
+    out
+}
+
+/// `value` with the node at `path` replaced by `new`.
+fn replaced(value: &Value, path: &[Seg], new: Value) -> Value {
+    let mut out = value.clone();
+    let mut node = &mut out;
+    for seg in path {
+        node = match seg {
+            Seg::Key(k) => node.get_mut(k.as_str()).unwrap(),
+            Seg::Index(i) => node.get_mut(*i).unwrap(),
+        };
+    }
+    *node = new;
+    out
+}
+
+/// The resolved scenario (every default written out) as a TOML value.
+fn resolved(path: &Path) -> Value {
+    let sc = Scenario::load(path).unwrap_or_else(|e| panic!("{e}"));
+    toml::from_str(&sc.to_toml()).unwrap()
+}
+
+fn load_value(value: &Value) -> Result<Scenario, ScenarioError> {
+    Scenario::from_toml("mutant", &toml::to_string(value).unwrap())
+}
+
+/// Longest run of digits in `text`: a number printed in short notation has at most 6.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+// 1. A table is only ever a table.
+
+#[test]
+fn every_table_of_every_bundled_scenario_refuses_an_array_in_its_place() {
+    let mut tried = 0;
+    for path in bundled() {
+        let value = resolved(&path);
+        for (at, node) in nodes(&value) {
+            if !node.is_table() {
+                continue;
+            }
+            let field = display(&at);
+            for stand_in in [
+                Value::Array(vec![Value::Float(1.0)]),
+                Value::Array(vec![]),
+                Value::Float(1.0),
+                Value::String("x".into()),
+            ] {
+                let (_, got, message) = field_error(load_value(&replaced(&value, &at, stand_in)));
+                assert_eq!(got, field, "{}: {message}", path.display());
+                assert!(
+                    message.starts_with("expected a table, found "),
+                    "{field}: {message}"
+                );
+                tried += 1;
+            }
+        }
+    }
+    assert!(tried > 500, "{tried}");
+}
+
+#[test]
+fn the_array_readings_serde_would_accept_are_refused() {
+    let dir = scratch("arrays");
+    let flat = scenario("flat-drop.toml");
+    for (extra, field) in [
+        ("stability = [1.0]\n", "stability"),
+        ("[engines]\nrapier = [1.0]\n", "engines.rapier"),
+        ("[vehicle]\ninertia = [1.0, 1.0, 1.0]\n", "vehicle.inertia"),
+        ("footpad = [0.013, 0.257]\n", "footpad"),
+        (
+            "units = [\"ft\", \"slug\", \"lbf\", \"deg\", \"s\"]\n",
+            "units",
+        ),
+        ("[gear]\nparametric = [1.0]\n", "gear.parametric"),
+    ] {
+        let file = extending(&dir, "a.toml", &flat, extra);
+        let (owner, got, message) = field_error(Scenario::load(&file));
+        assert_eq!(got, field, "{message}");
+        assert!(owner.ends_with("a.toml"), "{owner}");
+        assert_eq!(message, "expected a table, found an array");
+    }
+}
+
+// 2. Numbers are read in the units of the file that wrote them.
+
+#[test]
+fn an_extending_file_may_not_change_the_units_it_inherits() {
+    let dir = scratch("units");
+    let vehicle = scenario("vehicles/lm-1-6.toml");
+    let flat = scenario("flat-drop.toml");
+    let file = extending(&dir, "metres.toml", &flat, "[units]\nlength = \"m\"\n");
+    let (owner, field, message) = field_error(Scenario::load(&file));
+    assert!(owner.ends_with("metres.toml"), "{owner}");
+    assert_eq!(field, "units.length");
+    assert!(
+        message.contains("\"m\" here but \"ft\" in") && message.contains("lm-1-6.toml"),
+        "{message}"
+    );
+    // Two levels down: the file that set the inherited unit is named.
+    let middle = extending(&dir, "middle.toml", &flat, "");
+    let file = extending(&dir, "kilograms.toml", &middle, "[units]\nmass = \"kg\"\n");
+    let (_, field, message) = field_error(Scenario::load(&file));
+    assert_eq!(field, "units.mass");
+    assert!(
+        message.contains(&vehicle.display().to_string()),
+        "{message}"
+    );
+    // Restating the same units is not a change.
+    let same = "[units]\nlength = \"ft\"\nmass = \"slug\"\nforce = \"lbf\"\nangle = \"deg\"\ntime = \"s\"\n";
+    let file = extending(&dir, "same.toml", &flat, same);
+    Scenario::load(&file).unwrap();
+}
+
+// 3. Special files are refused before they are read.
+
+fn not_a_file(result: Result<Scenario, ScenarioError>, path: &Path, kind: &str) {
+    match result {
+        Err(ScenarioError::NotAFile { file, kind: k }) => {
+            assert_eq!(file, path.display().to_string());
+            assert!(k.contains(kind), "{k}");
+        }
+        Err(e) => panic!("expected NotAFile, got {e}"),
+        Ok(_) => panic!("{} loaded", path.display()),
+    }
+}
+
+#[test]
+fn a_directory_or_a_device_is_refused_naming_it() {
+    let dir = scratch("special");
+    not_a_file(Scenario::load(&dir), &dir, "directory");
+    #[cfg(unix)]
+    not_a_file(
+        Scenario::load("/dev/null"),
+        Path::new("/dev/null"),
+        "character device",
+    );
+    let file = extending(&dir, "dir.toml", &dir, "");
+    let (_, field, message) = field_error(Scenario::load(&file));
+    assert_eq!(field, "extends");
+    assert!(
+        message.contains(&dir.display().to_string()) && message.contains("a directory"),
+        "{message}"
+    );
+}
+
+/// Runs `f` on a thread and fails if it has not returned within a minute (a FIFO read blocks).
+fn within_a_minute<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(f());
+    });
+    rx.recv_timeout(std::time::Duration::from_secs(60))
+        .expect("the loader blocked on a FIFO")
+}
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_is_refused_without_blocking() {
+    let dir = scratch("fifo");
+    let fifo = dir.join("pipe.toml");
+    match std::process::Command::new("mkfifo").arg(&fifo).status() {
+        Ok(s) if s.success() => {}
+        other => {
+            eprintln!("skipped: mkfifo is not available ({other:?})");
+            return;
+        }
+    }
+    let f = fifo.clone();
+    not_a_file(within_a_minute(move || Scenario::load(f)), &fifo, "FIFO");
+    let file = extending(&dir, "pipe-base.toml", &fifo, "");
+    let (owner, field, message) = field_error(within_a_minute(move || Scenario::load(file)));
+    assert!(owner.ends_with("pipe-base.toml"), "{owner}");
+    assert_eq!(field, "extends");
+    assert!(
+        message.contains(&fifo.display().to_string()) && message.contains("FIFO"),
+        "{message}"
+    );
+    let f = fifo.clone();
+    assert!(within_a_minute(move || Scenario::value_at(f, "vehicle.mass")).is_err());
+}
+
+// 4. Clear messages.
+
+#[test]
+fn empty_input_says_it_is_empty() {
+    for text in ["", "\n\n", "# nothing but a comment\n"] {
+        match Scenario::from_toml("empty.toml", text) {
+            Err(e @ ScenarioError::Empty { .. }) => {
+                let m = e.to_string();
+                assert!(
+                    m.starts_with("empty.toml: empty file: expected a scenario (schema_version"),
+                    "{m}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    let dir = scratch("empty");
+    let empty = dir.join("empty.toml");
+    std::fs::write(&empty, "").unwrap();
+    match Scenario::load(&empty) {
+        Err(ScenarioError::Empty { file }) => assert_eq!(file, empty.display().to_string()),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_syntax_error_on_a_huge_line_quotes_it_short() {
+    let text = format!("schema_version = 1\nname = [{}\n", "[".repeat(100_000));
+    match Scenario::from_toml("huge.toml", &text) {
+        Err(e @ ScenarioError::Syntax { .. }) => {
+            let m = e.to_string();
+            assert!(m.lines().all(|l| l.chars().count() <= 220), "{}", m.len());
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_vehicle_loaded_as_a_landing_says_so() {
+    let vehicle = scenario("vehicles/lm-1-6.toml");
+    match Scenario::load(&vehicle) {
+        Err(e @ ScenarioError::NotALanding { .. }) => {
+            let m = e.to_string();
+            assert!(m.starts_with(&vehicle.display().to_string()), "{m}");
+            assert!(
+                m.contains("a vehicle description") && m.contains("extended by a landing"),
+                "{m}"
+            );
+            assert!(!m.contains("missing field"), "{m}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn a_missing_field_is_named_by_its_own_path() {
+    let value = resolved(&scenario("flat-drop.toml"));
+    let mut t = value.as_table().unwrap().clone();
+    t.remove("name");
+    let (_, field, message) = field_error(load_value(&Value::Table(t)));
+    assert_eq!(field, "name");
+    assert_eq!(message, "missing field `name`");
+    let mut t = value.as_table().unwrap().clone();
+    t["touchdown"].as_table_mut().unwrap().remove("attitude");
+    let (_, field, _) = field_error(load_value(&Value::Table(t)));
+    assert_eq!(field, "touchdown.attitude");
+}
+
+#[test]
+fn integers_and_floats_out_of_place_print_short() {
+    let value = resolved(&scenario("curb-slide.toml"));
+    for (at, new) in [
+        ("schema_version", Value::Float(1e300)),
+        ("schema_version", Value::Integer(i64::MAX)),
+        ("name", Value::Float(-1e-300)),
+        ("surface.curbs[0].leg", Value::Float(5e-324)),
+        ("surface.curbs[0].leg", Value::Integer(i64::MIN)),
+        ("stability.terminate_on_decision", Value::Float(1e300)),
+        ("surface.kind", Value::Float(1e300)),
+    ] {
+        let path: Vec<Seg> = at
+            .split('.')
+            .flat_map(|k| match k.split_once('[') {
+                Some((key, i)) => vec![
+                    Seg::Key(key.into()),
+                    Seg::Index(i.trim_end_matches(']').parse().unwrap()),
+                ],
+                None => vec![Seg::Key(k.into())],
+            })
+            .collect();
+        let (_, field, message) = field_error(load_value(&replaced(&value, &path, new)));
+        assert_eq!(field, at, "{message}");
+        assert!(longest_digit_run(&message) <= 6, "{at}: {message}");
+    }
+}
+
+// 5. Plausibility ranges.
+
+/// The hostile numbers of the mutation runs: each must be refused, unless the field's range
+/// holds 0 (then a tiny value is a legal 0) or the value is accepted with a warning.
+const HOSTILE: [f64; 6] = [1e300, -1e300, 1e-300, -1e-300, 5e-324, f64::MAX];
+
+#[test]
+fn hostile_numbers_in_every_field_are_refused_with_short_messages() {
+    let mut refused = 0;
+    for path in bundled() {
+        let value = resolved(&path);
+        for (at, node) in nodes(&value) {
+            let field = display(&at);
+            if !(node.is_float() || node.is_integer()) {
+                continue;
+            }
+            for x in HOSTILE {
+                let result = load_value(&replaced(&value, &at, Value::Float(x)));
+                match result {
+                    Err(e) => {
+                        let m = e.to_string();
+                        assert!(longest_digit_run(&m) <= 6, "{field} = {x:e}: {m}");
+                        refused += 1;
+                    }
+                    Ok(sc) => {
+                        let range = ranges::lookup(&field)
+                            .unwrap_or_else(|| panic!("{field} = {x:e} accepted, no range"));
+                        let holds_zero = range.lower.value() <= 0.0 && range.upper.value() >= 0.0;
+                        let warned = sc.warnings().iter().any(|w| w.field == field);
+                        assert!(
+                            x.abs() < 1e-200 && (holds_zero || warned),
+                            "{}: {field} = {x:e} was accepted",
+                            path.display()
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(refused > 3000, "{refused}");
+}
+
+#[test]
+fn ranges_are_checked_in_si_whatever_the_file_units() {
+    let dir = scratch("si");
+    let flat = scenario("flat-drop.toml");
+    // 1e7 kg is 685 218 slug.
+    let heavy = extending(&dir, "heavy.toml", &flat, "[vehicle]\nmass = 6.9e5\n");
+    let (_, field, message) = field_error(Scenario::load(&heavy));
+    assert_eq!(field, "vehicle.mass");
+    assert!(
+        message.contains("6.9e+05 in the file's units (1.00698e+07 kg)")
+            && message.contains("[0.001, 1e+07] kg"),
+        "{message}"
+    );
+    let ok = extending(&dir, "ok.toml", &flat, "[vehicle]\nmass = 6.8e5\n");
+    let sc = Scenario::load(&ok).unwrap();
+    // Legal but heavier than the usual range: a warning, naming the file and the field.
+    let w = &sc.warnings()[0];
+    assert_eq!(w.field, "vehicle.mass");
+    assert!(w.file.ends_with("ok.toml"));
+    assert!(
+        w.to_string()
+            .contains("outside the usual range [1, 1e+06] kg"),
+        "{w}"
+    );
+}
+
+#[test]
+fn unusual_values_are_accepted_with_a_warning() {
+    let dir = scratch("warnings");
+    let flat = scenario("flat-drop.toml");
+    let file = extending(
+        &dir,
+        "fast.toml",
+        &flat,
+        "[touchdown]\nvertical_velocity = -150.0\n",
+    );
+    let sc = Scenario::load(&file).unwrap();
+    assert_eq!(sc.warnings().len(), 1, "{:?}", sc.warnings());
+    let w = &sc.warnings()[0];
+    assert_eq!(w.field, "touchdown.vertical_velocity");
+    assert!(
+        w.to_string()
+            .contains("-150 in the file's units (-45.72 m/s)"),
+        "{w}"
+    );
+    // A changed setting re-checks its table's warnings.
+    let sc = Scenario::load(&flat).unwrap();
+    let sc = sc.with_rapier(|r| r.timestep = 1e-300).unwrap();
+    assert_eq!(sc.warnings().len(), 1);
+    assert_eq!(sc.warnings()[0].field, "engines.rapier.timestep");
+    let sc = sc.with_rapier(|r| r.timestep = 2e-5).unwrap();
+    assert!(sc.warnings().is_empty());
+    assert!(sc.with_integrator(|i| i.t_end = 1e300).is_err());
+}
+
+#[test]
+fn bundled_scenarios_load_without_warnings() {
+    for path in bundled() {
+        let sc = Scenario::load(&path).unwrap();
+        assert!(
+            sc.warnings().is_empty(),
+            "{}: {:?}",
+            path.display(),
+            sc.warnings()
+        );
+    }
+}
+
+#[test]
+fn legs_closer_than_the_least_separation_are_refused() {
+    let value = resolved(&scenario("flat-drop.toml"));
+    let at = vec![
+        Seg::Key("gear".into()),
+        Seg::Key("parametric".into()),
+        Seg::Key("leg_azimuths".into()),
+    ];
+    let azimuths = |a: [f64; 4]| Value::Array(a.iter().map(|x| Value::Float(*x)).collect());
+    for (a, field) in [
+        (
+            [0.0, 1e-300, 180.0, 270.0],
+            "gear.parametric.leg_azimuths[1]",
+        ),
+        (
+            [0.0, 90.0, 180.0, -1e-300],
+            "gear.parametric.leg_azimuths[0]",
+        ),
+        ([0.0, 90.0, 90.5, 270.0], "gear.parametric.leg_azimuths[2]"),
+        ([0.0, 90.0, 180.0, 359.5], "gear.parametric.leg_azimuths[0]"),
+    ] {
+        let (_, got, message) = field_error(load_value(&replaced(&value, &at, azimuths(a))));
+        assert_eq!(got, field, "{a:?}: {message}");
+        assert!(message.contains("at least 1 deg apart"), "{message}");
+    }
+    // Not increasing but counter-clockwise once around (wrapping through 0) is a gear.
+    load_value(&replaced(&value, &at, azimuths([270.0, 0.0, 90.0, 180.0]))).unwrap();
+    let many = Value::Array((0..40).map(|i| Value::Float(i as f64 * 9.0)).collect());
+    let (_, field, message) = field_error(load_value(&replaced(&value, &at, many)));
+    assert_eq!(field, "gear.parametric.leg_azimuths");
+    assert!(message.contains("at most 32 legs"), "{message}");
+}
+
+/// Every number of every bundled scenario (and of explicit cantilever legs) has a range and is
+/// checked against it on load; every range is of a field some scenario has.
+#[test]
+fn every_numeric_field_has_a_range_checked_on_load() {
+    let mut files = bundled();
+    // Explicit cantilever legs (with l21): the catalogue's standalone file, its third leg fixed.
+    let dir = scratch("coverage");
+    let text = std::fs::read_to_string(
+        root().join("tests/data/malformed/strut-cannot-reach-footpad.toml"),
+    )
+    .unwrap()
+    .replace("l21 = 1.6", "l21 = 0.9375");
+    let explicit = dir.join("explicit.toml");
+    std::fs::write(&explicit, text).unwrap();
+    files.push(explicit);
+    let mut leaves = BTreeSet::new();
+    RANGE_CHECKED.with(|c| c.borrow_mut().clear());
+    for path in &files {
+        let value = resolved(path);
+        for (at, node) in nodes(&value) {
+            if node.is_float() {
+                leaves.insert(ranges::normalize(&display(&at)));
+            }
+        }
+    }
+    let checked = RANGE_CHECKED.with(|c| c.borrow().clone());
+    let unranged: Vec<_> = leaves
+        .iter()
+        .filter(|f| ranges::lookup(f).is_none())
+        .collect();
+    assert!(
+        unranged.is_empty(),
+        "numeric fields without a range: {unranged:?}"
+    );
+    let unchecked: Vec<_> = leaves.difference(&checked).collect();
+    assert!(
+        unchecked.is_empty(),
+        "fields not range-checked on load: {unchecked:?}"
+    );
+    let unused: Vec<_> = RANGES
+        .iter()
+        .filter(|r| !leaves.iter().any(|f| ranges::lookup(f) == Some(*r)))
+        .map(|r| r.field)
+        .collect();
+    assert!(unused.is_empty(), "ranges of no field: {unused:?}");
+}
+
+/// docs/scenario-format.md lists every range as the code has it.
+#[test]
+fn the_format_page_documents_every_range() {
+    let doc = std::fs::read_to_string(root().join("docs/scenario-format.md")).unwrap();
+    let mut missing = Vec::new();
+    for r in RANGES {
+        let usual = r.usual_interval().unwrap_or_else(|| "—".into());
+        let row = format!(
+            "| `{}` | {} | {} | {} |",
+            r.field,
+            r.interval(),
+            usual,
+            r.reason
+        );
+        if !doc.lines().any(|l| l == row) {
+            missing.push(row);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "rows missing from docs/scenario-format.md (\"Ranges\"):\n{}",
+        missing.join("\n")
+    );
+    assert!(doc.contains(&format!(
+        "at least {} deg apart",
+        crate::units::short(ranges::MIN_LEG_SEPARATION_DEG)
+    )));
+}
