@@ -125,7 +125,7 @@ def boundaries(args: argparse.Namespace) -> None:
     for engine, engine_points in by_engine.items():
         colour = COLOURS.get(engine, "black")
         # The reported boundary: the lowest stable -> unstable transition at each Vv.
-        found = [p for p in engine_points if p["vh"] is not None]
+        found = [p for p in engine_points if p.get("vh") is not None]
         ax.plot(
             [p["vh"] for p in found],
             [p["vv"] for p in found],
@@ -137,7 +137,7 @@ def boundaries(args: argparse.Namespace) -> None:
         for p in engine_points:
             y = p["vv"] + offsets.get(engine, 0.0)
             transitions = p.get("transitions", [])
-            if not transitions and p["unstable_at"] is None and p["stable_at"] is not None:
+            if not transitions and p.get("unstable_at") is None and p.get("stable_at") is not None:
                 # Stable up to the largest speed found stable: an arrow past it.
                 lo = p["stable_at"]
                 xmax = max(xmax, lo + 1.0)
@@ -147,7 +147,7 @@ def boundaries(args: argparse.Namespace) -> None:
                     xytext=(lo, y),
                     arrowprops={"arrowstyle": "->", "color": colour},
                 )
-            if not transitions and p["unstable_at"] is not None:
+            if not transitions and p.get("unstable_at") is not None:
                 # Unstable from the smallest speed found unstable, nothing stable below it.
                 ax.plot(
                     p["unstable_at"],
@@ -164,7 +164,7 @@ def boundaries(args: argparse.Namespace) -> None:
                     # Every transition's bracket as a bar; the ones beyond the reported
                     # boundary also get a marker: > stable to unstable, < unstable to stable.
                     ax.plot([lo, hi], [y, y], color=colour, lw=4, alpha=0.35)
-                    if t["vh"] != p["vh"]:
+                    if t.get("vh") != p.get("vh"):
                         up = t["direction"] == "stable_to_unstable"
                         ax.plot(
                             t["vh"],
@@ -237,7 +237,7 @@ def precision(args: argparse.Namespace) -> None:
     fig, axes = plt.subplots(1, 3, figsize=(15, 5))
     for ax, (key, label) in zip(axes, panels):
         for method, (name, colour, marker) in METHODS.items():
-            rungs = [r for r in study["rungs"] if r["method"] == method and r["measured"]]
+            rungs = [r for r in study["rungs"] if r["method"] == method and r.get("measured")]
             # A log axis cannot show an exact zero: such a rung sits at the axis floor.
             points = [
                 (r["measured"]["wall_time_s"], max(r["measured"]["errors"][key], 1e-12))

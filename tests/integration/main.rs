@@ -14,7 +14,8 @@
 //!   the two mechanisms that part them;
 //! * `mujoco`: every scenario exports to MJCF that the pinned MuJoCo loads, in the touchdown
 //!   state;
-//! * `symmetry`: every landing against its mirror image and its legs renumbered.
+//! * `symmetry`: every landing against its mirror image and its legs renumbered;
+//! * `fuzz`: mutated scenarios are refused naming a field or run to a clean end (proptest).
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
 //! `crates/cli/tests/`; the robustness catalogue and the work-precision study, which live in the
@@ -22,6 +23,7 @@
 
 mod allocation;
 mod docs;
+mod fuzz;
 mod integrators;
 mod layering;
 mod mechanisms;

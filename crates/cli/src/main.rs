@@ -271,6 +271,13 @@ fn main() -> std::process::ExitCode {
     }
 }
 
+/// Prints the scenario's warnings (values legal but outside their usual range) on stderr.
+pub fn warn(sc: &Scenario) {
+    for w in sc.warnings() {
+        eprintln!("warning: {}: field `{}`: {}", w.file, w.field, w.message);
+    }
+}
+
 /// The verdict of a command with one: `Fail` only if it failed and the user did not ask for
 /// the report only.
 fn verdict(passed: bool, report_only: bool) -> Verdict {
@@ -317,6 +324,7 @@ fn run(cli: Cli) -> Result<Verdict> {
         } => robustness(&root, &engines, cases, search, format),
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
+            warn(&sc);
             sc.require_engine(Engine::Mujoco)?;
             let xml = touchdown_mujoco::export(&sc);
             std::fs::write(&output, xml)
@@ -392,6 +400,7 @@ fn run_landing(
         };
         sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
     }
+    warn(&sc);
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
@@ -437,6 +446,7 @@ fn compare(
     let mut json = Vec::new();
     let mut passed = true;
     for path in scenarios {
+        warn(&Scenario::load(path)?);
         let c = touchdown_compare::compare_scenario(path, &engines)?;
         passed &= c.pairs.iter().all(|p| p.pass);
         if let Some(dir) = plot {

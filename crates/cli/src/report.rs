@@ -115,7 +115,7 @@ fn strokes(o: &mut String, s: &Summary, scale: f64, unit: &str) {
         "  leg  first contact   primary   3-1 compr  3-1 tension   4-1 compr  4-1 tension"
     );
     for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
-        let contact = match s.first_contact_s[i] {
+        let contact = match s.first_contact_s.get(i).copied().flatten() {
             Some(t) => format!("{t:9.4} s"),
             None => "      never".to_string(),
         };

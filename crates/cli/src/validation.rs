@@ -6,6 +6,7 @@ use std::fmt::Write;
 use std::io::IsTerminal;
 use std::path::Path;
 use touchdown_scenario::schema::Engine;
+use touchdown_scenario::units::Short;
 use touchdown_scenario::Scenario;
 use touchdown_validation::boundary::{self, BoundaryPoint, Direction, Settings, Transition};
 use touchdown_validation::reference::{self, Paths, Protocol};
@@ -248,9 +249,10 @@ fn range(spec: &str) -> Result<Vec<f64>> {
     let n = ((to - from) / step + 1e-9).floor();
     if n.is_nan() || n >= boundary::MAX_GRID_POINTS as f64 {
         bail!(
-            "--vv {spec:?}: expected at most {} descent speeds from FROM to TO (a STEP ≥ {}), got {n} + 1",
+            "--vv {spec:?}: expected at most {} descent speeds from FROM to TO (a STEP ≥ {}), got {}",
             boundary::MAX_GRID_POINTS,
-            (to - from) / (boundary::MAX_GRID_POINTS - 1) as f64
+            Short((to - from) / (boundary::MAX_GRID_POINTS - 1) as f64),
+            Short(n + 1.0)
         );
     }
     Ok((0..=n as usize).map(|i| from + step * i as f64).collect())
@@ -282,6 +284,7 @@ pub fn boundary(
     engines.sort();
     engines.dedup();
     let sc = Scenario::load(scenario)?;
+    crate::warn(&sc);
     for &e in &engines {
         sc.require_engine(e)?;
     }

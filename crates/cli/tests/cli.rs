@@ -144,7 +144,7 @@ fn json_summary_has_the_documented_fields() {
         "max_secondary_tension_m",
         "peak_pitch_rate_rad_s",
         "min_stability_distance_m",
-        "overturn_velocity_m_s",
+        "first_contact_s",
         "energy_residual_j",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
@@ -159,7 +159,18 @@ fn json_summary_has_the_documented_fields() {
             .len(),
         2
     );
-    assert!(v["overturn_velocity_m_s"].is_null() || v["outcome"] == "unstable");
+    // Present only when it has a value: never a null.
+    assert_eq!(
+        v.get("overturn_velocity_m_s").is_some(),
+        v["outcome"] == "unstable"
+    );
+    assert_eq!(
+        v.get("decision_time_s").is_some(),
+        v["outcome"] != "undecided"
+    );
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("null"));
+    let touched = v["first_contact_s"].as_object().unwrap();
+    assert!(touched.keys().all(|k| k.starts_with("leg")) && !touched.is_empty());
 }
 
 #[test]

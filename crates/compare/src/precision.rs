@@ -136,7 +136,8 @@ pub struct Errors {
     pub final_attitude_rad: f64,
     /// [`Errors::max_stroke`] against the finest rung of the run's own ladder instead of the
     /// reference (the ladder's own convergence; `None` outside a ladder, and for the finest
-    /// rung itself).
+    /// rung itself; left out of the JSON then).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub self_max_stroke: Option<f64>,
 }
 
@@ -334,8 +335,10 @@ pub struct Rung {
     /// Its setting ([`Method::setting`]).
     pub value: f64,
     /// What it measured; `None` if the run failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub measured: Option<Measured>,
     /// Why the run failed (the engine's diagnostic).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub failure: Option<String>,
     /// The run's summary.
     #[serde(skip)]
@@ -348,17 +351,23 @@ pub struct AtError {
     /// The method.
     pub method: Method,
     /// The cheapest rung's setting, if any rung is within the error.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub value: Option<f64>,
     /// Its wall time, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub wall_time_s: Option<f64>,
     /// Its wall time over the fastest method's.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub ratio_to_fastest: Option<f64>,
     /// The same measured against the method's own finest rung instead of the reference (what
     /// the numerics alone cost): setting, wall time, ratio to the fastest on this measure.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub self_value: Option<f64>,
     /// Wall time of [`AtError::self_value`], s.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub self_wall_time_s: Option<f64>,
     /// Its ratio to the fastest on this measure.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub self_ratio_to_fastest: Option<f64>,
 }
 

@@ -188,7 +188,8 @@ pub struct Summary {
     pub engine_settings: serde_json::Map<String, serde_json::Value>,
     /// Stability outcome.
     pub outcome: Outcome,
-    /// Time of the stability decision, s (null if undecided).
+    /// Time of the stability decision, s (left out of the JSON if undecided).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub decision_time_s: Option<f64>,
     /// Time the run ended, s.
     pub t_end_s: f64,
@@ -208,9 +209,13 @@ pub struct Summary {
     pub peak_pitch_rate_time_s: f64,
     /// Minimum over time of the smallest stability distance, m.
     pub min_stability_distance_m: f64,
-    /// Overturning velocity at the wall crossing, m/s (null unless unstable).
+    /// Overturning velocity at the wall crossing, m/s (left out of the JSON unless unstable).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub overturn_velocity_m_s: Option<f64>,
-    /// Time of each footpad's first contact, s (null if it never touched).
+    /// Time of each footpad's first contact, s (`None` if it never touched); in the JSON an
+    /// object with a key per footpad that touched, `{"leg1": 0.0, "leg3": 0.05}`, so that no
+    /// number is ever null.
+    #[serde(with = "per_leg_times")]
     pub first_contact_s: Vec<Option<f64>>,
     /// Energy balance residual at the end, J.
     pub energy_residual_j: f64,
@@ -220,6 +225,44 @@ pub struct Summary {
     /// left out of the JSON, when it declares none.
     #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub mechanisms: std::collections::BTreeMap<String, u64>,
+}
+
+/// Per-leg optional times as a JSON object keyed `legN` (N from 1), the legs without a time
+/// left out.
+mod per_leg_times {
+    use serde::{Deserialize, Deserializer, Serializer};
+    use std::collections::BTreeMap;
+
+    pub fn serialize<S: Serializer>(times: &[Option<f64>], s: S) -> Result<S::Ok, S::Error> {
+        // Written in leg order (a BTreeMap would put leg10 before leg2).
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(None)?;
+        for (i, t) in times.iter().enumerate() {
+            if let Some(t) = t {
+                map.serialize_entry(&format!("leg{}", i + 1), t)?;
+            }
+        }
+        map.end()
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Option<f64>>, D::Error> {
+        let map = BTreeMap::<String, f64>::deserialize(d)?;
+        let mut out = Vec::new();
+        for (key, t) in map {
+            let leg: usize = key
+                .strip_prefix("leg")
+                .and_then(|n| n.parse().ok())
+                .filter(|n| *n >= 1)
+                .ok_or_else(|| {
+                    serde::de::Error::custom(format!("expected a key legN, got {key}"))
+                })?;
+            if out.len() < leg {
+                out.resize(leg, None);
+            }
+            out[leg - 1] = Some(t);
+        }
+        Ok(out)
+    }
 }
 
 /// How far a run went: time, steps, force evaluations and first contacts.

@@ -20,6 +20,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
 use touchdown_core::Outcome;
+use touchdown_scenario::units::Short;
 use touchdown_scenario::Scenario;
 
 /// Largest number of grid points at one vertical velocity.
@@ -44,11 +45,11 @@ pub struct Settings {
     pub tolerance: f64,
 }
 
-fn refuse(argument: &'static str, expected: String, got: impl ToString) -> ValidationError {
+fn refuse(argument: &'static str, expected: String, got: f64) -> ValidationError {
     ValidationError::Setting {
         argument,
         expected,
-        got: got.to_string(),
+        got: Short(got).to_string(),
     }
 }
 
@@ -84,7 +85,7 @@ impl Settings {
         if vh_max < vh_start {
             return Err(refuse(
                 "--vh-max",
-                format!("a speed ≥ --vh-start ({vh_start})"),
+                format!("a speed ≥ --vh-start ({})", Short(vh_start)),
                 vh_max,
             ));
         }
@@ -94,8 +95,9 @@ impl Settings {
             return Err(refuse(
                 "--tol",
                 format!(
-                    "a tolerance ≥ {finest:e} (1e-9 of the largest |Vh| searched, or of 1), \
-                     which bisection can reach in floating point"
+                    "a tolerance ≥ {} (1e-9 of the largest |Vh| searched, or of 1), \
+                     which bisection can reach in floating point",
+                    Short(finest)
                 ),
                 tolerance,
             ));
@@ -103,7 +105,10 @@ impl Settings {
         if vh_step < finest {
             return Err(refuse(
                 "--vh-step",
-                format!("a step ≥ {finest:e} (1e-9 of the largest |Vh| searched, or of 1)"),
+                format!(
+                    "a step ≥ {} (1e-9 of the largest |Vh| searched, or of 1)",
+                    Short(finest)
+                ),
                 vh_step,
             ));
         }
@@ -112,8 +117,10 @@ impl Settings {
                 "--vh-step",
                 format!(
                     "a step giving at most {MAX_GRID_POINTS} grid points from --vh-start \
-                     {vh_start} to --vh-max {vh_max} (a step ≥ {})",
-                    (vh_max - vh_start) / (MAX_GRID_POINTS - 1) as f64
+                     {} to --vh-max {} (a step ≥ {})",
+                    Short(vh_start),
+                    Short(vh_max),
+                    Short((vh_max - vh_start) / (MAX_GRID_POINTS - 1) as f64)
                 ),
                 vh_step,
             )
@@ -158,7 +165,8 @@ pub struct Transition {
     /// The bracket's end found unstable, scenario velocity unit.
     pub unstable_at: f64,
     /// The transition's Vh, middle of the final bracket (no wider than the tolerance),
-    /// scenario velocity unit; null if unresolved.
+    /// scenario velocity unit; left out of the JSON if unresolved.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub vh: Option<f64>,
     /// Whether the bracket was narrowed to the tolerance. False when undecided grid points lie
     /// between its ends (it was never bisected) or a bisection midpoint ended undecided (the
@@ -182,14 +190,17 @@ pub struct BoundaryPoint {
     /// Descent speed (positive down), scenario velocity unit.
     pub vv: f64,
     /// The boundary: the Vh of the lowest stable → unstable transition, scenario velocity
-    /// unit; null if there is none or it is unresolved.
+    /// unit; left out of the JSON if there is none or it is unresolved.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub vh: Option<f64>,
     /// The stable end of the lowest stable → unstable transition's bracket; without one, the
-    /// largest grid Vh found stable if none was found unstable, else null. Scenario velocity
+    /// largest grid Vh found stable if none was found unstable, else left out. Scenario velocity
     /// unit.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub stable_at: Option<f64>,
     /// The unstable end of the lowest stable → unstable transition's bracket; without one, the
-    /// smallest grid Vh found unstable (null if none). Scenario velocity unit.
+    /// smallest grid Vh found unstable (left out if none). Scenario velocity unit.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub unstable_at: Option<f64>,
     /// Every transition, in either direction, ascending in Vh.
     pub transitions: Vec<Transition>,
@@ -645,7 +656,7 @@ mod tests {
             .to_string();
         assert!(e.contains("10000"), "{e}");
         let e = settings(1.0, 1e3, 1e-7).validate().unwrap_err().to_string();
-        assert!(e.contains("1e-6"), "{e}");
+        assert!(e.contains("1e-06"), "{e}");
         // At the limits: accepted.
         assert_eq!(settings(1e-2, 99.99, 0.1).grid().unwrap().len(), 10_000);
         assert!(settings(1.0, 1e3, 1e-6).validate().is_ok());
