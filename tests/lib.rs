@@ -138,3 +138,24 @@ pub fn analytic_drop_stroke(sc: &Scenario) -> f64 {
     }
     strokes(lo)[0].0
 }
+
+/// The seeded proptest runner of the fuzz harnesses (`tests/integration/fuzz.rs`,
+/// `crates/cli/tests/fuzz.rs`): `TOUCHDOWN_FUZZ_CASES` cases (else `default_cases`) drawn from
+/// `TOUCHDOWN_FUZZ_SEED` (else 7), so the suite tries the same cases every run; no failure
+/// files (a case found is kept as a regression case in the harness). Returns the runner, the
+/// cases and the seed.
+pub fn fuzz_runner(default_cases: u32) -> (proptest::test_runner::TestRunner, u32, u64) {
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let env = |name: &str| std::env::var(name).ok().and_then(|s| s.parse::<u64>().ok());
+    let cases = env("TOUCHDOWN_FUZZ_CASES").map_or(default_cases, |n| n as u32);
+    let seed = env("TOUCHDOWN_FUZZ_SEED").unwrap_or(7);
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let config = Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes);
+    (TestRunner::new_with_rng(config, rng), cases, seed)
+}

@@ -21,7 +21,7 @@
 //! a property is kept as a regression case in [`REGRESSIONS`].
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
+use proptest::test_runner::{TestCaseError, TestRunner};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use touchdown_core::{Landing, Simulation};
@@ -198,9 +198,9 @@ fn check(file: &Path, path: &str) -> Result<Fate, String> {
     Ok(Fate::Completed)
 }
 
-/// Tries `cases` mutants drawn with `seed`; the tally of fates, or the first broken property
-/// with its mutant.
-fn fuzz(cases: u32, seed: u64) -> Result<[usize; 4], String> {
+/// Tries the mutants `runner` draws; the tally of fates, or the first broken property with its
+/// mutant.
+fn fuzz(mut runner: TestRunner) -> Result<[usize; 4], String> {
     let dir = std::env::temp_dir().join(format!("touchdown-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let bases: Vec<(PathBuf, Vec<Field>)> = landings()
@@ -223,17 +223,6 @@ fn fuzz(cases: u32, seed: u64) -> Result<[usize; 4], String> {
         .collect();
     let tally = RefCell::new([0usize; 4]);
     let counter = RefCell::new(0usize);
-    let mut seed_bytes = [0u8; 32];
-    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
-    let config = Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    };
-    let mut runner = TestRunner::new_with_rng(
-        config,
-        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
-    );
     let strategy = (
         0..bases.len(),
         any::<prop::sample::Index>(),
@@ -265,15 +254,8 @@ fn fuzz(cases: u32, seed: u64) -> Result<[usize; 4], String> {
 
 #[test]
 fn mutated_scenarios_are_refused_naming_a_field_or_run_to_a_clean_end() {
-    let cases = std::env::var("TOUCHDOWN_FUZZ_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(SUITE_CASES);
-    let seed = std::env::var("TOUCHDOWN_FUZZ_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(7);
-    let tally = fuzz(cases, seed).unwrap_or_else(|e| panic!("{e}"));
+    let (runner, cases, seed) = touchdown_tests::fuzz_runner(SUITE_CASES);
+    let tally = fuzz(runner).unwrap_or_else(|e| panic!("{e}"));
     eprintln!(
         "fuzz: {cases} mutants (seed {seed}): {} refused, {} completed, {} stopped, {} long (past {STEP_ALLOWANCE} steps)",
         tally[Fate::Refused as usize],

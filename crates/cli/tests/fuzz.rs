@@ -7,7 +7,7 @@
 //! `TOUCHDOWN_FUZZ_SEED` run more (docs/robustness.md, "Fuzzing").
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestRng, TestRunner};
+use proptest::test_runner::TestCaseError;
 use std::io::Read;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
@@ -168,25 +168,7 @@ fn check(args: &[String]) -> Result<i32, String> {
 
 #[test]
 fn hostile_command_lines_are_refused_naming_the_argument_and_never_panic_or_hang() {
-    let cases = std::env::var("TOUCHDOWN_FUZZ_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(SUITE_CASES);
-    let seed: u64 = std::env::var("TOUCHDOWN_FUZZ_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(7);
-    let mut seed_bytes = [0u8; 32];
-    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
-    let config = Config {
-        cases,
-        failure_persistence: None,
-        ..Config::default()
-    };
-    let mut runner = TestRunner::new_with_rng(
-        config,
-        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
-    );
+    let (mut runner, cases, seed) = touchdown_tests::fuzz_runner(SUITE_CASES);
     let tally = std::cell::RefCell::new([0usize; 4]);
     let result = runner.run(&prop::array::uniform8(0usize..1000), |picks| {
         let args = command_line(&picks);

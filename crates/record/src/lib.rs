@@ -76,3 +76,23 @@ impl std::fmt::Display for Divergence {
 }
 
 impl std::error::Error for Divergence {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_stops_at_its_step_or_evaluation_budget() {
+        assert!(check_budget(STEP_BUDGET - 1, EVALUATION_BUDGET - 1).is_ok());
+        let steps = check_budget(STEP_BUDGET, 0).unwrap_err();
+        assert!(
+            steps.contains("step budget") && steps.contains("10000000"),
+            "{steps}"
+        );
+        let evaluations = check_budget(10, EVALUATION_BUDGET).unwrap_err();
+        assert!(
+            evaluations.contains("force-evaluation budget"),
+            "{evaluations}"
+        );
+    }
+}

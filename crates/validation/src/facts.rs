@@ -300,16 +300,11 @@ pub fn check(paths: &Paths) -> Result<FactsRun, ValidationError> {
     let path = paths.scenario(&facts.scenario);
     let sc = Scenario::load(&path)?;
     let (series, summary) = record(&sc)?;
-    let Measured {
-        free_flight_s: free_flight,
-        downhill_strike_s: strike_t,
-        pitch_rate_at_strike_rad_s: before,
-        pitch_rate_after_rad_s: after,
-        maximum_stroking_s: stroking_done,
-        second_stage_depth_ft: depth_ft,
-        outcome,
-    } = measure(&sc, &series, &summary);
-    let outcome = match outcome {
+    let m = measure(&sc, &series, &summary);
+    let (free_flight, strike_t) = (m.free_flight_s, m.downhill_strike_s);
+    let (before, after) = (m.pitch_rate_at_strike_rad_s, m.pitch_rate_after_rad_s);
+    let (stroking_done, depth_ft) = (m.maximum_stroking_s, m.second_stage_depth_ft);
+    let outcome = match m.outcome {
         Outcome::Stable => "stable",
         Outcome::Unstable => "unstable",
         Outcome::Undecided => "undecided",
