@@ -67,6 +67,9 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "touchdown-mujoco",
             "touchdown-compare",
             "touchdown-validation",
+            // As a dev-dependency only: the test helpers (the fuzz harnesses' seeded runner)
+            // that the command-line tests share with the workspace tests.
+            "touchdown-tests",
         ],
     ),
     (
@@ -129,6 +132,26 @@ fn crates_respect_the_layers() {
         problems.join("\n")
     );
     assert!(deps.len() >= 5, "the workspace lost crates: {deps:?}");
+}
+
+/// The test helpers are only ever a dev-dependency: no crate's own code depends on them.
+#[test]
+fn only_tests_depend_on_the_test_helpers() {
+    let root = touchdown_tests::root();
+    let workspace: toml::Table =
+        toml::from_str(&std::fs::read_to_string(root.join("Cargo.toml")).unwrap()).unwrap();
+    for m in workspace["workspace"]["members"].as_array().unwrap() {
+        let dir = root.join(m.as_str().unwrap());
+        let manifest: toml::Table =
+            toml::from_str(&std::fs::read_to_string(dir.join("Cargo.toml")).unwrap()).unwrap();
+        for section in ["dependencies", "build-dependencies"] {
+            let uses = manifest
+                .get(section)
+                .and_then(|t| t.as_table())
+                .is_some_and(|t| t.contains_key("touchdown-tests"));
+            assert!(!uses, "{}: touchdown-tests in [{section}]", dir.display());
+        }
+    }
 }
 
 #[test]
