@@ -411,7 +411,12 @@ fn run_landing(
         }
         _ => None,
     };
-    let summary = touchdown_compare::land(engine, scenario, &sc, &mut recorder, out)?;
+    let landed = touchdown_compare::land(engine, scenario, &sc, &mut recorder, out);
+    // An engine that refuses the step it was given blames the argument first.
+    let summary = match timestep {
+        Some(t) => landed.with_context(|| format!("--timestep {t:e} s"))?,
+        None => landed?,
+    };
     if let Some(r) = recorder {
         r.finish()?;
     }
@@ -429,8 +434,8 @@ fn run_landing(
     Ok(())
 }
 
-/// `touchdown compare`: every scenario through every engine asked for, every pair compared.
-/// `touchdown compare`: whether every pair of engines passed on every scenario.
+/// `touchdown compare`: every scenario through every engine asked for, every pair compared;
+/// whether every pair passed on every scenario.
 fn compare(
     scenarios: &[PathBuf],
     engines: &[Engine],

@@ -631,3 +631,22 @@ fn output_to_a_closed_pipe_ends_quietly() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// A time step the engine refuses is blamed on the argument that set it.
+#[test]
+fn a_refused_timestep_names_the_argument() {
+    for t in ["1e-300", "nan"] {
+        let out = touchdown(&[
+            "run",
+            "scenarios/flat-drop.toml",
+            "--engine",
+            "rapier",
+            "--timestep",
+            t,
+        ]);
+        assert_eq!(out.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&out.stderr);
+        let line = err.lines().find(|l| l.starts_with("error:")).unwrap_or("");
+        assert!(line.starts_with("error: --timestep"), "{err}");
+    }
+}
