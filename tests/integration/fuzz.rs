@@ -32,7 +32,7 @@ use touchdown_tests::root;
 const SUITE_CASES: u32 = 48;
 
 /// Steps the harness lets one landing take before it counts it as long (the engines' own budget,
-/// `touchdown_record::STEP_BUDGET`, is far larger and has its own tests).
+/// `integrator.max_steps`, is far larger by default and has its own tests).
 const STEP_ALLOWANCE: u64 = 200_000;
 
 /// Mutants that once broke a property: (scenario, field path, TOML value).

@@ -365,3 +365,26 @@ fn a_footpad_never_pulls_on_its_surface() {
         "only {checked} landings had a footpad in contact"
     );
 }
+
+/// A run stops at its budget with a diagnostic naming it, and a multibody step that could not
+/// reach the end time within it is refused before the run (docs/robustness.md, "Budgets"):
+/// here a budget of 100 steps, a fifth of what the drop needs on the core.
+#[test]
+fn a_run_stops_at_its_budget_with_a_diagnostic() {
+    let sc = variant(
+        "flat-drop.toml",
+        "budget",
+        "[integrator]\nmax_steps = 100\n",
+    );
+    assert_eq!(sc.integrator.max_steps, 100);
+    let core = touchdown_core::run(&sc).unwrap_err().to_string();
+    assert!(
+        core.contains("run budget") && core.contains("max_steps = 100") && core.contains("state:"),
+        "{core}"
+    );
+    let rapier = touchdown_rapier::run(&sc).unwrap_err().to_string();
+    assert!(
+        rapier.contains("run budget") && rapier.contains("max_steps = 100 steps"),
+        "{rapier}"
+    );
+}

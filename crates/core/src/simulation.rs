@@ -980,7 +980,10 @@ impl Simulation {
     /// has drifted beyond the tolerance, naming the law most involved.
     fn check_divergence(&self, e: &EnergyReport) -> Result<(), CoreError> {
         let v = &self.vehicle;
-        if let Err(message) = touchdown_record::check_budget(self.steps, self.evaluations) {
+        let max_steps = self.integrator.max_steps;
+        if let Err(message) =
+            touchdown_record::check_budget(self.steps, self.evaluations, max_steps)
+        {
             return Err(self.diverged(v, message, "run budget", usize::MAX));
         }
         for (i, g) in self.gear.iter().enumerate() {

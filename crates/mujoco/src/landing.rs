@@ -136,6 +136,8 @@ pub struct MujocoLanding {
     dt: f64,
     t_end: f64,
     energy_tolerance: f64,
+    /// The run budget, accepted steps (`integrator.max_steps`).
+    max_steps: u64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     started: bool,
@@ -230,6 +232,7 @@ impl MujocoLanding {
             dt: sc.mujoco.timestep,
             t_end: sc.integrator.t_end,
             energy_tolerance: sc.integrator.energy_tolerance,
+            max_steps: sc.integrator.max_steps,
             settings: settings(sc, mujoco_version),
             started: false,
             t: 0.0,
@@ -493,7 +496,13 @@ impl MujocoLanding {
     fn check_divergence(&self, energy: &EnergyReport) -> Result<(), MujocoError> {
         let finite = self.vehicle.is_finite() && self.gear_energy.is_finite();
         self.book
-            .check(energy, self.energy_tolerance, finite, self.steps)
+            .check(
+                energy,
+                self.energy_tolerance,
+                finite,
+                self.steps,
+                self.max_steps,
+            )
             .map_err(|f| self.diverged(f))
     }
 }

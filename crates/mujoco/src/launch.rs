@@ -23,7 +23,7 @@ pub const SETUP_COMMAND: &str = "scripts/setup-python";
 pub const RUNNER_SETUP_STATUS: i32 = 3;
 
 /// Wall-clock guard on one run of the runner, s: a runner still going after it is stopped and
-/// the run fails saying so. The run budget (`touchdown_record::STEP_BUDGET` steps, a few
+/// the run fails saying so. The run budget (`integrator.max_steps` steps, by default a few
 /// minutes of MuJoCo) ends every run well before it; the guard is for a runner that hangs.
 pub const RUNNER_WALL_CLOCK_S: u64 = 1800;
 

@@ -308,7 +308,8 @@ impl GearBook {
         }
     }
 
-    /// The divergence checks after a step: the run budget spent after `steps` accepted steps,
+    /// The divergence checks after a step: the run budget (`max_steps`) spent after `steps`
+    /// accepted steps,
     /// the first non-finite force or gear geometry, a non-finite body state (`state_finite`
     /// false, as the engine reads its bodies), or an energy balance `e` (this landing's report)
     /// beyond `tolerance` of the energy scale.
@@ -318,9 +319,10 @@ impl GearBook {
         tolerance: f64,
         state_finite: bool,
         steps: u64,
+        max_steps: u64,
     ) -> Result<(), Fault> {
         // One force evaluation a step.
-        touchdown_record::check_budget(steps, steps).map_err(|message| Fault {
+        touchdown_record::check_budget(steps, steps, max_steps).map_err(|message| Fault {
             law: "run budget",
             leg: None,
             message,

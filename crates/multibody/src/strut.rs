@@ -163,7 +163,7 @@ pub fn strut_forces(
 pub const MAX_OMEGA_DT: f64 = 1.0;
 
 /// Checks a multibody engine's fixed time step `dt` (s) against the run budget
-/// ([`touchdown_record::STEP_BUDGET`] steps to `integrator.t_end`) and the stiffest explicit strut
+/// (`integrator.max_steps` steps to `integrator.t_end`) and the stiffest explicit strut
 /// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
 /// link's rotation about its trunnion (links as in `sc.links`). The error, on the scenario field
 /// `field` that set the step, says which mode is too stiff and the largest step allowed.
@@ -199,15 +199,15 @@ pub fn check_explicit_timestep(
         ),
     ];
     let steps = sc.integrator.t_end / dt;
-    if steps.is_nan() || steps > touchdown_record::STEP_BUDGET as f64 {
+    if steps.is_nan() || steps > sc.integrator.max_steps as f64 {
         return Err(ScenarioError::field(
             sc.file_of(field),
             field,
             format!(
-                "time step {dt:.3e} s needs {steps:.3e} steps to reach integrator.t_end = {:.3e} s; expected at most {} steps (the run budget), i.e. a time step ≥ {:.3e} s",
+                "time step {dt:.3e} s needs {steps:.3e} steps to reach integrator.t_end = {:.3e} s; expected at most integrator.max_steps = {} steps (the run budget), i.e. a time step ≥ {:.3e} s",
                 sc.integrator.t_end,
-                touchdown_record::STEP_BUDGET,
-                sc.integrator.t_end / touchdown_record::STEP_BUDGET as f64
+                sc.integrator.max_steps,
+                sc.integrator.t_end / sc.integrator.max_steps as f64
             ),
         ));
     }

@@ -33,6 +33,8 @@ pub struct RapierSimulation {
     bodies: Vec<(RigidBodyHandle, Inertia)>,
     t_end: f64,
     energy_tolerance: f64,
+    /// The run budget, accepted steps (`integrator.max_steps`).
+    max_steps: u64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     t: f64,
@@ -78,6 +80,7 @@ impl RapierSimulation {
             .collect(),
             t_end: scenario.integrator.t_end,
             energy_tolerance: scenario.integrator.energy_tolerance,
+            max_steps: scenario.integrator.max_steps,
             settings,
             t: 0.0,
             steps: 0,
@@ -271,7 +274,13 @@ impl RapierSimulation {
                     .all(|x| x.is_finite())
         });
         self.book
-            .check(energy, self.energy_tolerance, finite, self.steps)
+            .check(
+                energy,
+                self.energy_tolerance,
+                finite,
+                self.steps,
+                self.max_steps,
+            )
             .map_err(|f| self.diverged(f))
     }
 }

@@ -25,27 +25,23 @@ pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};
 
-/// Most accepted steps any engine takes in one landing; a run that reaches it stops with a
-/// diagnostic. A Table I landing takes about a thousand steps on the core and a hundred
-/// thousand on a multibody engine at 20 µs; ten million is about 10 s of the core and a few
-/// minutes of a multibody engine (docs/robustness.md, "Budgets").
-pub const STEP_BUDGET: u64 = 10_000_000;
+/// Force evaluations a run may make per step of its budget (a multibody engine evaluates once
+/// a step; the core's adaptive scheme up to about seven times, more when it rejects steps).
+pub const EVALUATIONS_PER_STEP: u64 = 10;
 
-/// Most gear-force evaluations in one landing (a multibody engine evaluates once a step; the
-/// core's adaptive scheme up to about seven times, more when it rejects steps).
-pub const EVALUATION_BUDGET: u64 = 100_000_000;
-
-/// Checks a run's accepted `steps` and force `evaluations` against [`STEP_BUDGET`] and
-/// [`EVALUATION_BUDGET`]: the message of the budget exhausted, if one is.
-pub fn check_budget(steps: u64, evaluations: u64) -> Result<(), String> {
-    if steps >= STEP_BUDGET {
+/// Checks a run's accepted `steps` and force `evaluations` against its budget,
+/// `integrator.max_steps` = `max_steps` steps and [`EVALUATIONS_PER_STEP`] times as many
+/// evaluations (docs/robustness.md, "Budgets"): the message of the budget exhausted, if one is.
+pub fn check_budget(steps: u64, evaluations: u64, max_steps: u64) -> Result<(), String> {
+    if steps >= max_steps {
         return Err(format!(
-            "step budget exhausted: {steps} accepted steps (at most {STEP_BUDGET}); the time step is too small for integrator.t_end"
+            "step budget exhausted: {steps} accepted steps (integrator.max_steps = {max_steps}); the time step is too small for integrator.t_end"
         ));
     }
-    if evaluations >= EVALUATION_BUDGET {
+    let most = max_steps.saturating_mul(EVALUATIONS_PER_STEP);
+    if evaluations >= most {
         return Err(format!(
-            "force-evaluation budget exhausted: {evaluations} evaluations (at most {EVALUATION_BUDGET}) after {steps} accepted steps; the error control rejects too many steps"
+            "force-evaluation budget exhausted: {evaluations} evaluations (at most {most}, {EVALUATIONS_PER_STEP} × integrator.max_steps) after {steps} accepted steps; the error control rejects too many steps"
         ));
     }
     Ok(())
@@ -83,13 +79,10 @@ mod tests {
 
     #[test]
     fn a_run_stops_at_its_step_or_evaluation_budget() {
-        assert!(check_budget(STEP_BUDGET - 1, EVALUATION_BUDGET - 1).is_ok());
-        let steps = check_budget(STEP_BUDGET, 0).unwrap_err();
-        assert!(
-            steps.contains("step budget") && steps.contains("10000000"),
-            "{steps}"
-        );
-        let evaluations = check_budget(10, EVALUATION_BUDGET).unwrap_err();
+        assert!(check_budget(999, 9_999, 1000).is_ok());
+        let steps = check_budget(1000, 0, 1000).unwrap_err();
+        assert!(steps.contains("max_steps = 1000"), "{steps}");
+        let evaluations = check_budget(10, 10_000, 1000).unwrap_err();
         assert!(
             evaluations.contains("force-evaluation budget"),
             "{evaluations}"

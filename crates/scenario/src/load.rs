@@ -588,6 +588,9 @@ fn resolve_integrator(
         t_end: c.positive_si("integrator.t_end", it.t_end, u.time())?,
         contact_step_limit: it.contact_step_limit,
         energy_tolerance: c.positive_si("integrator.energy_tolerance", it.energy_tolerance, 1.0)?,
+        max_steps: c
+            .positive_si("integrator.max_steps", it.max_steps, 1.0)?
+            .round() as u64,
         attitude: it.attitude,
         rtol: c.positive_si("integrator.rtol", it.rtol, 1.0)?,
         atol: c.positive_si("integrator.atol", it.atol, 1.0)?,

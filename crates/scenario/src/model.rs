@@ -503,6 +503,8 @@ pub struct Integrator {
     pub contact_step_limit: bool,
     /// Divergence guard on the energy residual (fraction of the energy scale).
     pub energy_tolerance: f64,
+    /// Run budget, accepted steps (force evaluations: ten times as many).
+    pub max_steps: u64,
     /// Attitude representation.
     pub attitude: schema::AttitudeForm,
     /// `dopri5` relative tolerance.

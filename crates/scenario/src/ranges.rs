@@ -183,6 +183,7 @@ pub const RANGES: &[Range] = &[
     row("integrator.dt_max", "s", C(1e-9), C(1.0), "a nanosecond step to a second"),
     row("integrator.t_end", "s", C(1e-6), C(1e4), "a touchdown lasts seconds; 1e4 s bounds a run with free flight"),
     usual(row("integrator.energy_tolerance", "", C(1e-9), C(10.0), "a fraction of the energy put in; healthy runs close to 1e-4, and above 1 the guard no longer guards"), 1e-9, 1.0),
+    row("integrator.max_steps", "", C(1e2), C(1e9), "a landing takes thousands of steps; a billion is hours of a multibody engine"),
     row("integrator.rtol", "", C(1e-14), C(0.1), "a relative tolerance above the rounding of f64 (2.2e-16)"),
     usual(row("integrator.atol", "", C(1e-18), C(1.0), "an absolute tolerance on m, m/s, rad, rad/s; `touchdown compare` goes to 1e-16"), 1e-14, 1.0),
     // Stability criteria.

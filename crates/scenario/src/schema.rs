@@ -650,6 +650,13 @@ fn yes() -> bool {
 fn default_energy_tolerance() -> f64 {
     0.02
 }
+/// Default run budget, accepted steps (`integrator.max_steps`): about 10 s of the core, a few
+/// minutes of a multibody engine; a Table I landing takes about a thousand steps on the core
+/// and a hundred thousand on a multibody engine at 20 µs.
+pub const DEFAULT_MAX_STEPS: f64 = 1e7;
+fn default_max_steps() -> f64 {
+    DEFAULT_MAX_STEPS
+}
 fn default_rtol() -> f64 {
     1e-6
 }
@@ -678,9 +685,15 @@ pub struct Integrator {
     #[serde(default = "yes")]
     pub contact_step_limit: bool,
     /// Divergence guard: stop when the energy residual exceeds this fraction of the energy
-    /// scale (initial kinetic energy plus all energy exchanged); dimensionless.
+    /// put in (touchdown kinetic energy, potential energy released, thrust and RCS input);
+    /// dimensionless.
     #[serde(default = "default_energy_tolerance")]
     pub energy_tolerance: f64,
+    /// Run budget: the most accepted steps a landing takes on any engine (ten times as many
+    /// force evaluations on the core); a run that reaches it stops with a diagnostic, and a
+    /// multibody step that could not reach `t_end` within it is refused (default 1e7).
+    #[serde(default = "default_max_steps")]
+    pub max_steps: f64,
     /// "euler" (default) or "quaternion" (`rk4` and `dopri5` only).
     #[serde(default)]
     pub attitude: AttitudeForm,
