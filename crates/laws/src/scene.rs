@@ -92,7 +92,8 @@ impl DescentEngine {
     }
 
     /// How far the nozzle rim penetrates the surface beyond the committed crush `crush` (m),
-    /// at an accepted state: the caller adds it to the crush memory (review A18); 0 without
+    /// at an accepted state: the caller adds it to the crush memory (docs/errata.md, "Eqs. (72)-(73):
+    /// nozzle crushing"); 0 without
     /// nozzle crushing.
     pub fn crush_increment(&self, position: &Vector3<f64>, t_bi: &Matrix3<f64>, crush: f64) -> f64 {
         self.nozzle.map_or(0.0, |n| {
@@ -138,7 +139,8 @@ pub struct Attitude<'a> {
 
 /// The scene's propulsion: the descent engine with its nozzle (eqs. 69-74) and the RCS
 /// (eqs. 75-82), the vehicle-level mechanisms every engine applies the same way, as a force
-/// and a torque on the vehicle; with the committed nozzle crush (review A18).
+/// and a torque on the vehicle; with the committed nozzle crush (docs/errata.md, "Eqs. (72)-(73):
+/// nozzle crushing").
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Propulsion {
     /// Descent engine (`thrust`), if declared.

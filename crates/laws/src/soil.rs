@@ -34,7 +34,7 @@ pub struct Soil {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VerticalStep {
     /// ZPEN at the end of the step, m (may become negative while withdrawing: the pad has left
-    /// its hole and the caller detaches it, review A15).
+    /// its hole and the caller detaches it; docs/errata.md, "Contact and release").
     pub depth: f64,
     /// ṗ at the end of the step, m/s (positive deeper; exactly 0 when the pad came to rest).
     pub rate: f64,

@@ -135,9 +135,6 @@ pub struct MujocoLanding {
     contact_radius: Vec<f64>,
     dt: f64,
     t_end: f64,
-    energy_tolerance: f64,
-    /// The run budget, accepted steps (`integrator.max_steps`).
-    max_steps: u64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     started: bool,
@@ -231,8 +228,6 @@ impl MujocoLanding {
             contact_radius: sc.legs.iter().map(|l| sc.links.contact_radius(l)).collect(),
             dt: sc.mujoco.timestep,
             t_end: sc.integrator.t_end,
-            energy_tolerance: sc.integrator.energy_tolerance,
-            max_steps: sc.integrator.max_steps,
             settings: settings(sc, mujoco_version),
             started: false,
             t: 0.0,
@@ -496,13 +491,7 @@ impl MujocoLanding {
     fn check_divergence(&self, energy: &EnergyReport) -> Result<(), MujocoError> {
         let finite = self.vehicle.is_finite() && self.gear_energy.is_finite();
         self.book
-            .check(
-                energy,
-                self.energy_tolerance,
-                finite,
-                self.steps,
-                self.max_steps,
-            )
+            .check(energy, finite, self.steps)
             .map_err(|f| self.diverged(f))
     }
 }

@@ -133,6 +133,11 @@ pub struct GearBook {
     /// Undeformed footpad radius PR, m (eq. 93).
     pad_radius: f64,
     curb_evaluations: u64,
+    /// The divergence guard's tolerance, a fraction of the energy put in
+    /// (`integrator.energy_tolerance`).
+    energy_tolerance: f64,
+    /// The run budget, accepted steps (`integrator.max_steps`).
+    max_steps: u64,
 }
 
 impl GearBook {
@@ -162,6 +167,8 @@ impl GearBook {
             touchdown_xy: vec![Vector2::zeros(); n],
             pad_radius: sc.footpad.radius,
             curb_evaluations: 0,
+            energy_tolerance: sc.integrator.energy_tolerance,
+            max_steps: sc.integrator.max_steps,
         })
     }
 
@@ -308,21 +315,14 @@ impl GearBook {
         }
     }
 
-    /// The divergence checks after a step: the run budget (`max_steps`) spent after `steps`
-    /// accepted steps,
+    /// The divergence checks after a step: the run budget (`integrator.max_steps`) spent after
+    /// `steps` accepted steps,
     /// the first non-finite force or gear geometry, a non-finite body state (`state_finite`
     /// false, as the engine reads its bodies), or an energy balance `e` (this landing's report)
-    /// beyond `tolerance` of the energy scale.
-    pub fn check(
-        &self,
-        e: &EnergyReport,
-        tolerance: f64,
-        state_finite: bool,
-        steps: u64,
-        max_steps: u64,
-    ) -> Result<(), Fault> {
+    /// beyond `integrator.energy_tolerance` of the energy scale.
+    pub fn check(&self, e: &EnergyReport, state_finite: bool, steps: u64) -> Result<(), Fault> {
         // One force evaluation a step.
-        touchdown_record::check_budget(steps, steps, max_steps).map_err(|message| Fault {
+        touchdown_record::check_budget(steps, steps, self.max_steps).map_err(|message| Fault {
             law: "run budget",
             leg: None,
             message,
@@ -350,7 +350,7 @@ impl GearBook {
         self.ledger
             .check_balance(
                 e,
-                tolerance,
+                self.energy_tolerance,
                 "time step too large for the stiffest strut law, or contact too soft?",
             )
             .map_err(|message| Fault {

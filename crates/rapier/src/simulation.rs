@@ -32,9 +32,6 @@ pub struct RapierSimulation {
     /// Vehicle, then per gear outer link and footpad: handle, mass and inertia.
     bodies: Vec<(RigidBodyHandle, Inertia)>,
     t_end: f64,
-    energy_tolerance: f64,
-    /// The run budget, accepted steps (`integrator.max_steps`).
-    max_steps: u64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     t: f64,
@@ -79,8 +76,6 @@ impl RapierSimulation {
             )
             .collect(),
             t_end: scenario.integrator.t_end,
-            energy_tolerance: scenario.integrator.energy_tolerance,
-            max_steps: scenario.integrator.max_steps,
             settings,
             t: 0.0,
             steps: 0,
@@ -274,13 +269,7 @@ impl RapierSimulation {
                     .all(|x| x.is_finite())
         });
         self.book
-            .check(
-                energy,
-                self.energy_tolerance,
-                finite,
-                self.steps,
-                self.max_steps,
-            )
+            .check(energy, finite, self.steps)
             .map_err(|f| self.diverged(f))
     }
 }
