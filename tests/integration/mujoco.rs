@@ -308,7 +308,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
     };
     match landing.advance(&mut arrays) {
         Err(MujocoError::Diverged(d)) => {
-            assert_eq!(d.law, "MuJoCo solver");
+            assert_eq!(d.law, touchdown_record::Law::Solver);
             assert!(d.message.contains("bad qacc"), "{}", d.message);
         }
         Err(e) => panic!("unexpected error {e}"),

@@ -4,7 +4,7 @@
 //! (docs/engines.md, "Where the rebuild parts from the core") are pinned here.
 
 use touchdown_core::Simulation;
-use touchdown_rapier::{RapierError, RapierSimulation};
+use touchdown_rapier::{RapierSimulation, RunError};
 use touchdown_record::{Landing, Observer, Sample};
 use touchdown_scenario::{frames, Scenario, ScenarioError};
 use touchdown_tests::{scenario, validation_landings};
@@ -123,7 +123,7 @@ fn a_footpad_pressed_into_its_contact_books_the_work_of_its_sinking() {
 fn a_time_step_too_large_for_the_stiffest_law_is_refused() {
     let sc = flat_drop().with_rapier(|r| r.timestep = 1e-3).unwrap();
     match RapierSimulation::new(&sc) {
-        Err(RapierError::Scenario(ScenarioError::Field { field, message, .. })) => {
+        Err(RunError::Refused(ScenarioError::Field { field, message, .. })) => {
             assert_eq!(field, "engines.rapier.timestep");
             assert!(message.contains("ω·Δt"), "{message}");
         }
@@ -136,7 +136,7 @@ fn a_time_step_too_large_for_the_stiffest_law_is_refused() {
 fn a_time_step_beyond_the_run_budget_is_refused_before_the_run() {
     let sc = flat_drop().with_rapier(|r| r.timestep = 1e-300).unwrap();
     match RapierSimulation::new(&sc) {
-        Err(RapierError::Scenario(ScenarioError::Field { field, message, .. })) => {
+        Err(RunError::Refused(ScenarioError::Field { field, message, .. })) => {
             assert_eq!(field, "engines.rapier.timestep");
             assert!(message.contains("run budget"), "{message}");
         }

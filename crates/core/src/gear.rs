@@ -9,7 +9,8 @@
 
 use nalgebra::Vector3;
 use touchdown_laws::{Bending, GearLaws, GearMemory, LawError};
-use touchdown_scenario::model::{Leg, Mechanism};
+use touchdown_record::Law;
+use touchdown_scenario::model::Leg;
 use touchdown_scenario::schema::Arrangement;
 
 /// Everything computed for one gear at one state.
@@ -50,8 +51,8 @@ pub struct GearState {
 /// A law that left its domain while evaluating a gear.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GearFault {
-    /// The law ("bearing friction", "strut bending").
-    pub law: &'static str,
+    /// The law ([`Law::BearingFriction`], [`Law::Bending`]).
+    pub law: Law,
     /// What happened.
     pub error: LawError,
 }
@@ -93,7 +94,7 @@ pub fn evaluate(
         return Ok(());
     }
     let bearing = |error| GearFault {
-        law: "bearing friction",
+        law: Law::BearingFriction,
         error,
     };
     // eqs. (27)-(28): primary strut vector, length and direction (from point 2 to the pad)
@@ -153,7 +154,7 @@ pub fn evaluate(
             let d = law
                 .deflection(fn_mag, f2p, leg.l21, len)
                 .map_err(|error| GearFault {
-                    law: Mechanism::Bending.name(),
+                    law: Law::Bending,
                     error,
                 })?;
             point1_deflection = normal * (d.magnitude / fn_mag);

@@ -28,20 +28,9 @@ pub mod simulation;
 pub mod surface;
 
 pub use simulation::{Simulation, VehicleState};
-pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, Summary};
-
-/// Errors of the core engine.
-#[derive(Debug, thiserror::Error)]
-pub enum CoreError {
-    /// The scenario cannot be simulated (names the file and field).
-    #[error(transparent)]
-    Scenario(#[from] touchdown_scenario::ScenarioError),
-    /// The simulation diverged or left the domain of a law; the run was stopped.
-    #[error(transparent)]
-    Diverged(#[from] touchdown_record::Divergence),
-}
+pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, RunError, Summary};
 
 /// Runs a scenario to its end with no observer and returns its summary.
-pub fn run(scenario: &touchdown_scenario::Scenario) -> Result<Summary, CoreError> {
+pub fn run(scenario: &touchdown_scenario::Scenario) -> Result<Summary, RunError> {
     Simulation::new(scenario)?.run(&mut ())
 }

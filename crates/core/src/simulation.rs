@@ -29,12 +29,11 @@ use crate::kinematics::{euler_acceleration, t_be, t_eb, GIMBAL_LOCK_COS};
 use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
-use crate::CoreError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector2, Vector3};
 use touchdown_laws::{sliding_friction, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, Sample,
-    StabilityTracker, Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, Landing, Law, PadView, Progress, RunError,
+    Sample, StabilityTracker, StateAtStop, Summary,
 };
 use touchdown_scenario::frames::{self, gravity_inertial};
 use touchdown_scenario::model::{Integrator, Leg, Mechanism, PadSurface};
@@ -307,7 +306,7 @@ struct Power {
 impl Simulation {
     /// Sets up a landing from a resolved scenario: laws, initial state (eq. 19) and the
     /// contact of the first footpad.
-    pub fn new(scenario: &Scenario) -> Result<Simulation, CoreError> {
+    pub fn new(scenario: &Scenario) -> Result<Simulation, RunError> {
         scenario.require_engine(Engine::Core)?;
         // With sloshing the rigid vehicle excludes the slosh mass (eqs. 113-114); the slosh law
         // itself refers to the total vehicle.
@@ -567,7 +566,7 @@ impl Simulation {
 
     /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
     /// written into `out` (eqs. 26-68, 83-84). Footpads not in contact carry no load.
-    fn loads(&self, t: f64, v: &VehicleState, out: &mut [GearState]) -> Result<Loads, CoreError> {
+    fn loads(&self, t: f64, v: &VehicleState, out: &mut [GearState]) -> Result<Loads, RunError> {
         self.loads_at(t, v, 1.0, out)
     }
 
@@ -579,7 +578,7 @@ impl Simulation {
         v: &VehicleState,
         blend: f64,
         out: &mut [GearState],
-    ) -> Result<Loads, CoreError> {
+    ) -> Result<Loads, RunError> {
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
         for (i, slot) in out.iter_mut().enumerate() {
@@ -631,7 +630,7 @@ impl Simulation {
         position: &Vector3<f64>,
         velocity: &Vector3<f64>,
         slot: &mut GearState,
-    ) -> Result<Vector3<f64>, CoreError> {
+    ) -> Result<Vector3<f64>, RunError> {
         let t_ib = v.t_bi.transpose();
         let bp = t_ib * (position - v.position);
         let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
@@ -654,7 +653,7 @@ impl Simulation {
             &options,
             slot,
         )
-        .map_err(|f| self.diverged(v, f.error.to_string(), f.law, i))?;
+        .map_err(|f| self.diverged(v, f.error.to_string(), f.law, Some(i)))?;
         Ok(bp)
     }
 
@@ -667,15 +666,15 @@ impl Simulation {
     }
 
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c).
-    fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), CoreError> {
+    fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), RunError> {
         let euler = self.integrator.attitude == AttitudeForm::Euler;
         // θy stays within ±90° unless it crossed the singularity (cos θy < 0 beyond).
         if euler && v.theta.y.cos() < GIMBAL_LOCK_COS {
             return Err(self.diverged(
                 v,
                 "Euler-angle singularity: θy reached or crossed ±90° (eqs. 5 and 9a divide by cos θy); integrator.attitude = \"quaternion\" (schemes rk4, dopri5) goes through it".into(),
-                "kinematics",
-                usize::MAX,
+                Law::Kinematics,
+                None,
             ));
         }
         v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
@@ -688,7 +687,7 @@ impl Simulation {
     }
 
     /// Evaluates the accepted state `v` into `self.gear` and sets its accelerations.
-    fn accept(&mut self, v: &mut VehicleState) -> Result<(), CoreError> {
+    fn accept(&mut self, v: &mut VehicleState) -> Result<(), RunError> {
         let mut out = std::mem::take(&mut self.scratch);
         let loads = self.loads(self.t, v, &mut out);
         self.evaluations += 1;
@@ -711,7 +710,7 @@ impl Simulation {
     /// touches down unless its gear would pull it there; a footpad in contact leaves as soon as
     /// its gear no longer presses it onto the surface, and its gear relaxes. Returns whether any
     /// footpad changed state.
-    fn contact_logic(&mut self) -> Result<bool, CoreError> {
+    fn contact_logic(&mut self) -> Result<bool, RunError> {
         let v = self.vehicle;
         let soil = self.mechanisms.soil.is_some();
         let mut changed = false;
@@ -811,7 +810,7 @@ impl Simulation {
     /// force (the stored energy it releases counts as dissipated by the honeycombs, whose work
     /// the ledger already holds) and the footpad is attached rigidly where the relaxed struts
     /// put it. A relaxed gear that cannot be assembled is an error.
-    fn release(&mut self, i: usize, v: &VehicleState) -> Result<(), CoreError> {
+    fn release(&mut self, i: usize, v: &VehicleState) -> Result<(), RunError> {
         let g = self.gear[i];
         let (c, s) = (g.primary_stroke, g.secondary_stroke);
         self.laws.commit(c, s, &mut self.memory[i]);
@@ -829,8 +828,8 @@ impl Simulation {
             self.diverged(
                 v,
                 "the struts of a leaving gear, relaxed to zero force, no longer meet".into(),
-                "gear relaxation",
-                i,
+                Law::GearRelaxation,
+                Some(i),
             )
         })?;
         let relaxed = self.above_plane(i, v, relaxed, c);
@@ -963,43 +962,55 @@ impl Simulation {
         }
     }
 
-    /// A divergence diagnostic at state `v`; `leg` is usize::MAX when no leg is involved.
-    fn diverged(&self, v: &VehicleState, message: String, law: &str, leg: usize) -> CoreError {
-        CoreError::Diverged(Divergence {
-            time: self.t,
-            law: if leg == usize::MAX { law.to_string() } else { format!("{law} (leg {})", leg + 1) },
+    /// A divergence diagnostic at state `v`: `law` failed, on the leg of index `leg` if one is
+    /// involved.
+    fn diverged(
+        &self,
+        v: &VehicleState,
+        message: String,
+        law: Law,
+        leg: Option<usize>,
+    ) -> RunError {
+        RunError::Stopped(Divergence {
+            time_s: self.t,
+            law,
+            leg: leg.map(|i| i + 1),
             message,
-            state: format!(
-                "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, θ = [{:.6e}, {:.6e}, {:.6e}] rad, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s",
-                v.position.x, v.position.y, v.position.z, v.velocity.x, v.velocity.y, v.velocity.z, v.theta.x, v.theta.y, v.theta.z, v.omega.x, v.omega.y, v.omega.z
-            ),
+            state: StateAtStop {
+                position_m: v.position.into(),
+                velocity_m_s: v.velocity.into(),
+                euler_angles_rad: Some(v.theta.into()),
+                angular_velocity_rad_s: v.omega_inertial().into(),
+            },
         })
     }
 
     /// Stops a run whose state is not finite or whose energy balance (`e`, this state's report)
     /// has drifted beyond the tolerance, naming the law most involved.
-    fn check_divergence(&self, e: &EnergyReport) -> Result<(), CoreError> {
+    fn check_divergence(&self, e: &EnergyReport) -> Result<(), RunError> {
         let v = &self.vehicle;
         let max_steps = self.integrator.max_steps;
-        if let Err(message) =
-            touchdown_record::check_budget(self.steps, self.evaluations, max_steps)
+        if let Err(budget) = touchdown_record::check_budget(self.steps, self.evaluations, max_steps)
         {
-            return Err(self.diverged(v, message, "run budget", usize::MAX));
+            return Err(self.diverged(v, budget.to_string(), Law::RunBudget, None));
         }
         for (i, g) in self.gear.iter().enumerate() {
             let checks = [
-                ("primary honeycomb", g.fcp),
-                ("primary viscous", g.fvp),
-                ("bearing friction", g.fbr),
-                ("secondary honeycomb", g.fc_secondary[0] + g.fc_secondary[1]),
-                ("secondary viscous", g.fv_secondary[0] + g.fv_secondary[1]),
+                (Law::PrimaryHoneycomb, g.fcp),
+                (Law::PrimaryViscous, g.fvp),
+                (Law::BearingFriction, g.fbr),
                 (
-                    "gear geometry",
+                    Law::SecondaryHoneycomb,
+                    g.fc_secondary[0] + g.fc_secondary[1],
+                ),
+                (Law::SecondaryViscous, g.fv_secondary[0] + g.fv_secondary[1]),
+                (
+                    Law::GearGeometry,
                     g.primary_stroke + g.secondary_stroke[0] + g.secondary_stroke[1],
                 ),
             ];
             if let Some((law, value)) = checks.iter().find(|(_, x)| !x.is_finite()) {
-                return Err(self.diverged(v, format!("non-finite value {value}"), law, i));
+                return Err(self.diverged(v, format!("non-finite value {value}"), *law, Some(i)));
             }
         }
         let finite = [
@@ -1022,8 +1033,8 @@ impl Simulation {
             return Err(self.diverged(
                 v,
                 "non-finite vehicle or footpad state".into(),
-                "equations of motion",
-                usize::MAX,
+                Law::EquationsOfMotion,
+                None,
             ));
         }
         self.ledger
@@ -1032,7 +1043,7 @@ impl Simulation {
                 self.integrator.energy_tolerance,
                 "step too large for the stiffest mode?",
             )
-            .map_err(|message| {
+            .map_err(|imbalance| {
                 let loads =
                     (self.gear.iter().zip(&self.memory))
                         .enumerate()
@@ -1042,8 +1053,8 @@ impl Simulation {
                             self.laws
                                 .strut_loads(i, m, primary, (g.secondary_stroke, secondary))
                         });
-                let message = format!("{message}; {}", StrutLoad::stiffest(loads));
-                self.diverged(v, message, "energy balance", usize::MAX)
+                let message = format!("{imbalance}; {}", StrutLoad::stiffest(loads));
+                self.diverged(v, message, Law::EnergyBalance, None)
             })
     }
 
@@ -1132,7 +1143,7 @@ impl Simulation {
         &mut self,
         dt: f64,
         old: &VehicleState,
-    ) -> Result<(VehicleState, f64), CoreError> {
+    ) -> Result<(VehicleState, f64), RunError> {
         // 3. predictor, c = 0 (eqs. 22-23)
         let mut pred = *old;
         pred.position = old.position + old.velocity * dt + old.acceleration * (0.5 * dt * dt);
@@ -1182,7 +1193,7 @@ impl Simulation {
         dt: f64,
         old: &VehicleState,
         tab: &Tableau,
-    ) -> Result<(VehicleState, Quadrature, f64), CoreError> {
+    ) -> Result<(VehicleState, Quadrature, f64), RunError> {
         let form = self.integrator.attitude;
         let y0 = old.ode();
         let mut k = [Ode::zeros(); MAX_STAGES];
@@ -1192,7 +1203,7 @@ impl Simulation {
         let mut v = *old;
         let mut last_power = Power::default();
         let mut trial = std::mem::take(&mut self.trial);
-        let mut stages = || -> Result<(), CoreError> {
+        let mut stages = || -> Result<(), RunError> {
             for i in 1..tab.stages {
                 let mut y = y0;
                 for (a, kj) in tab.a[i].iter().zip(&k).take(i) {
@@ -1245,7 +1256,7 @@ impl Simulation {
     fn adaptive_step(
         &mut self,
         old: &VehicleState,
-    ) -> Result<(f64, VehicleState, Quadrature, PadWork), CoreError> {
+    ) -> Result<(f64, VehicleState, Quadrature, PadWork), RunError> {
         let (dt_min, dt_max) = (self.integrator.dt_min, self.integrator.dt_max);
         self.pads_saved.copy_from_slice(&self.pads);
         loop {
@@ -1323,7 +1334,7 @@ impl Simulation {
         quadrature: &Quadrature,
         pads: &PadWork,
         power_old: Power,
-    ) -> Result<(), CoreError> {
+    ) -> Result<(), RunError> {
         // 6. evaluate (unless the last stage did), contact logic, re-evaluate on a change
         self.t += dt;
         match quadrature {
@@ -1391,10 +1402,10 @@ impl Simulation {
 }
 
 impl Landing for Simulation {
-    type Error = CoreError;
+    type Error = RunError;
 
     /// One integration step (see the module documentation).
-    fn step(&mut self) -> Result<(), CoreError> {
+    fn step(&mut self) -> Result<(), RunError> {
         let old = self.vehicle;
         self.previous.copy_from_slice(&self.gear);
         let power_old = self.applied_power;

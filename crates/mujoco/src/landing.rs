@@ -23,7 +23,7 @@ use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
     check_explicit_timestep, Fault, GearBook, StrutKinematics, VehicleState,
 };
-use touchdown_record::{EnergyReport, History, Sample, Summary};
+use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
@@ -317,7 +317,7 @@ impl MujocoLanding {
             .find(|(n, _)| **n > 0)
         {
             Some((n, what)) => Err(self.diverged(Fault {
-                law: "MuJoCo solver",
+                law: Law::Solver,
                 leg: None,
                 message: format!("MuJoCo warned: {what} ({n} times); the step is not trustworthy"),
             })),

@@ -47,3 +47,21 @@ pub enum MujocoError {
     #[error("{0}")]
     Io(#[from] std::io::Error),
 }
+
+impl From<MujocoError> for touchdown_record::RunError {
+    fn from(e: MujocoError) -> Self {
+        use touchdown_record::{RunError, SetupFailure};
+        match e {
+            MujocoError::Scenario(e) => RunError::Refused(e),
+            MujocoError::Diverged(d) => RunError::Stopped(d),
+            MujocoError::Setup(cause) => RunError::Setup(SetupFailure {
+                engine: touchdown_scenario::schema::Engine::Mujoco,
+                cause,
+            }),
+            other => RunError::Setup(SetupFailure {
+                engine: touchdown_scenario::schema::Engine::Mujoco,
+                cause: other.to_string(),
+            }),
+        }
+    }
+}

@@ -9,6 +9,7 @@
 use crate::book::{Fault, VehicleState};
 use nalgebra::Vector3;
 use touchdown_laws::scene::{Attitude, Propulsion};
+use touchdown_record::Law;
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{frames, Scenario, ScenarioError};
 
@@ -75,9 +76,9 @@ impl VehicleLoads {
         } else {
             Err(Fault {
                 law: if self.propulsion.engine.is_some() {
-                    "thrust"
+                    Law::Thrust
                 } else {
-                    "RCS"
+                    Law::Rcs
                 },
                 leg: None,
                 message: format!(

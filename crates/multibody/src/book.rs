@@ -18,8 +18,8 @@ use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{Curbs, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
-    Divergence, EnergyLedger, EnergyReport, Extremes, PadView, Progress, Sample, StabilityTracker,
-    Summary,
+    Divergence, EnergyLedger, EnergyReport, Extremes, Law, PadView, Progress, Sample,
+    StabilityTracker, StateAtStop, Summary,
 };
 use touchdown_scenario::model::{Leg, Mechanism, PadSurface, Stability};
 use touchdown_scenario::{frames, Scenario, ScenarioError};
@@ -52,13 +52,14 @@ impl VehicleState {
         self.angular_velocity.x
     }
 
-    /// The state as a diagnostic's text.
-    pub fn describe(&self) -> String {
-        let (x, u, w) = (self.position, self.velocity, self.angular_velocity);
-        format!(
-            "R = [{:.6e}, {:.6e}, {:.6e}] m, V = [{:.6e}, {:.6e}, {:.6e}] m/s, ω = [{:.6e}, {:.6e}, {:.6e}] rad/s (inertial)",
-            x.x, x.y, x.z, u.x, u.y, u.z, w.x, w.y, w.z
-        )
+    /// The state as a diagnostic's numbers.
+    pub fn at_stop(&self) -> StateAtStop {
+        StateAtStop {
+            position_m: self.position.into(),
+            velocity_m_s: self.velocity.into(),
+            euler_angles_rad: None,
+            angular_velocity_rad_s: self.angular_velocity.into(),
+        }
     }
 
     /// Whether every component is finite.
@@ -71,8 +72,8 @@ impl VehicleState {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fault {
     /// The law or mechanism involved.
-    pub law: &'static str,
-    /// The leg, where one is involved.
+    pub law: Law,
+    /// The leg's index, where one is involved.
     pub leg: Option<usize>,
     /// What happened.
     pub message: String,
@@ -82,13 +83,11 @@ impl Fault {
     /// The divergence at time `time` (s) with the vehicle in state `vehicle`.
     pub fn at(self, time: f64, vehicle: &VehicleState) -> Divergence {
         Divergence {
-            time,
-            law: match self.leg {
-                Some(i) => format!("{} (leg {})", self.law, i + 1),
-                None => self.law.to_string(),
-            },
+            time_s: time,
+            law: self.law,
+            leg: self.leg.map(|i| i + 1),
             message: self.message,
-            state: vehicle.describe(),
+            state: vehicle.at_stop(),
         }
     }
 }
@@ -243,7 +242,7 @@ impl GearBook {
         for i in 0..self.legs.len() {
             self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
                 .map_err(|e| Fault {
-                    law: "bearing friction",
+                    law: Law::BearingFriction,
                     leg: Some(i),
                     message: e.to_string(),
                 })?;
@@ -288,7 +287,7 @@ impl GearBook {
             curbs.commit(i, td, xy, self.pad_radius);
             if !on_pad.norm().is_finite() {
                 return Err(Fault {
-                    law: "curbs",
+                    law: Law::Curbs,
                     leg: Some(i),
                     message: format!("non-finite curb force {on_pad:?} N"),
                 });
@@ -322,16 +321,16 @@ impl GearBook {
     /// beyond `integrator.energy_tolerance` of the energy scale.
     pub fn check(&self, e: &EnergyReport, state_finite: bool, steps: u64) -> Result<(), Fault> {
         // One force evaluation a step.
-        touchdown_record::check_budget(steps, steps, self.max_steps).map_err(|message| Fault {
-            law: "run budget",
+        touchdown_record::check_budget(steps, steps, self.max_steps).map_err(|budget| Fault {
+            law: Law::RunBudget,
             leg: None,
-            message,
+            message: budget.to_string(),
         })?;
         for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
             let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm() + k.axis.norm();
             let bad = f
                 .non_finite()
-                .or_else(|| (!geometry.is_finite()).then_some(("gear geometry", geometry)));
+                .or_else(|| (!geometry.is_finite()).then_some((Law::GearGeometry, geometry)));
             if let Some((law, value)) = bad {
                 return Err(Fault {
                     law,
@@ -342,7 +341,7 @@ impl GearBook {
         }
         if !state_finite {
             return Err(Fault {
-                law: "equations of motion",
+                law: Law::EquationsOfMotion,
                 leg: None,
                 message: "non-finite body state".into(),
             });
@@ -353,10 +352,10 @@ impl GearBook {
                 self.energy_tolerance,
                 "time step too large for the stiffest strut law, or contact too soft?",
             )
-            .map_err(|message| Fault {
-                law: "energy balance",
+            .map_err(|imbalance| Fault {
+                law: Law::EnergyBalance,
                 leg: None,
-                message: format!("{message}; {}", self.stiffest_strut_law()),
+                message: format!("{imbalance}; {}", self.stiffest_strut_law()),
             })
     }
 

@@ -13,6 +13,7 @@
 
 use nalgebra::Vector3;
 use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
+use touchdown_record::Law;
 use touchdown_scenario::model::Leg;
 use touchdown_scenario::{Scenario, ScenarioError};
 
@@ -107,17 +108,17 @@ impl StrutForces {
     }
 
     /// The first non-finite force, named by its law, if any.
-    pub fn non_finite(&self) -> Option<(&'static str, f64)> {
+    pub fn non_finite(&self) -> Option<(Law, f64)> {
         [
-            ("primary honeycomb", self.honeycomb + self.crush_load),
-            ("primary viscous", self.viscous),
-            ("bearing friction", self.bearing_bound),
+            (Law::PrimaryHoneycomb, self.honeycomb + self.crush_load),
+            (Law::PrimaryViscous, self.viscous),
+            (Law::BearingFriction, self.bearing_bound),
             (
-                "secondary honeycomb",
+                Law::SecondaryHoneycomb,
                 self.secondary_honeycomb[0] + self.secondary_honeycomb[1],
             ),
             (
-                "secondary viscous",
+                Law::SecondaryViscous,
                 self.secondary_viscous[0] + self.secondary_viscous[1],
             ),
         ]
@@ -261,7 +262,7 @@ mod tests {
         };
         assert_eq!(
             bad.non_finite().map(|(law, _)| law),
-            Some("primary viscous")
+            Some(Law::PrimaryViscous)
         );
     }
 }

@@ -12,10 +12,11 @@
 //!   collision groups pair each footpad with its own plane only.
 //! - The multibody's default joint damping is removed.
 
-use crate::RapierError;
 use nalgebra::{Matrix3, Vector3};
 use rapier3d_f64::prelude::*;
+use touchdown_record::{RunError, SetupFailure};
 use touchdown_scenario::frames::{self, gravity_inertial};
+use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
 /// Friction coefficient that stands for an obstacle lock (OBST > 0): the footpad sticks
@@ -172,7 +173,7 @@ pub struct Assembly {
 
 /// Builds the multibody, ground planes and solver settings of a scenario at its touchdown
 /// state (eq. 19 as corrected, shared with the core through `touchdown_scenario::frames`).
-pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
+pub fn build(sc: &Scenario) -> Result<Assembly, RunError> {
     let rs = &sc.rapier;
     let init = frames::initial_state(sc);
     let r_bi = init.t_bi;
@@ -298,7 +299,7 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
         world
             .multibody_joints
             .insert(vehicle, outer, trunnion, true)
-            .ok_or_else(|| unsupported(sc, "the trunnion joint could not be inserted"))?;
+            .ok_or_else(|| not_built("the trunnion joint could not be inserted"))?;
         let stroke = PrismaticJointBuilder::new(to_rapier(&axis))
             .local_anchor1(to_rapier(&(leg.bp - outer_com)))
             .local_anchor2(Vector::ZERO)
@@ -308,7 +309,7 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
         let stroke_joint = world
             .multibody_joints
             .insert(outer, footpad, stroke, true)
-            .ok_or_else(|| unsupported(sc, "the stroke joint could not be inserted"))?;
+            .ok_or_else(|| not_built("the stroke joint could not be inserted"))?;
         gears.push(GearBodies {
             outer,
             footpad,
@@ -357,10 +358,9 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RapierError> {
     })
 }
 
-fn unsupported(sc: &Scenario, message: &str) -> RapierError {
-    RapierError::Unsupported {
-        file: sc.source.clone(),
-        field: "gear".into(),
-        message: message.into(),
-    }
+fn not_built(message: &str) -> RunError {
+    RunError::Setup(SetupFailure {
+        engine: Engine::Rapier,
+        cause: message.into(),
+    })
 }

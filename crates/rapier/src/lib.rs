@@ -17,32 +17,9 @@ pub mod simulation;
 pub mod struts;
 
 pub use simulation::RapierSimulation;
-pub use touchdown_record::{Landing, Observer};
-
-/// Errors of the rapier engine.
-#[derive(Debug, thiserror::Error)]
-pub enum RapierError {
-    /// The scenario is invalid (names the file and field).
-    #[error(transparent)]
-    Scenario(#[from] touchdown_scenario::ScenarioError),
-    /// The scenario asks for something this engine does not model.
-    #[error("{file}: {field}: not supported by the rapier engine: {message}")]
-    Unsupported {
-        /// Scenario file.
-        file: String,
-        /// Field.
-        field: String,
-        /// What is missing.
-        message: String,
-    },
-    /// The simulation diverged or left the domain of a law; the run was stopped.
-    #[error(transparent)]
-    Diverged(#[from] touchdown_record::Divergence),
-}
+pub use touchdown_record::{Landing, Observer, RunError};
 
 /// Runs a scenario to its end on the rapier engine and returns its summary.
-pub fn run(
-    scenario: &touchdown_scenario::Scenario,
-) -> Result<touchdown_record::Summary, RapierError> {
+pub fn run(scenario: &touchdown_scenario::Scenario) -> Result<touchdown_record::Summary, RunError> {
     RapierSimulation::new(scenario)?.run(&mut ())
 }

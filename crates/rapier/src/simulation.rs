@@ -15,11 +15,10 @@ use crate::assembly::{
     self, body_state, to_na, to_rapier, Assembly, BodyState, Inertia, LinkMasses, LOCK_FRICTION,
 };
 use crate::struts;
-use crate::RapierError;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
 use touchdown_multibody::{check_explicit_timestep, Fault, GearBook, VehicleState};
-use touchdown_record::{EnergyReport, Landing, Sample, Summary};
+use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
@@ -47,7 +46,7 @@ pub struct RapierSimulation {
 
 impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
-    pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RapierError> {
+    pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RunError> {
         scenario.require_engine(Engine::Rapier)?;
         let book = GearBook::new(scenario)?;
         let assembly = assembly::build(scenario)?;
@@ -245,7 +244,7 @@ impl RapierSimulation {
 
     /// Evaluates the engine, RCS and curb loads for the coming step at the current state, the
     /// vehicle in state `v`.
-    fn evaluate_applied(&mut self, v: &VehicleState) -> Result<(), RapierError> {
+    fn evaluate_applied(&mut self, v: &VehicleState) -> Result<(), RunError> {
         let (world, gears) = (&self.assembly.world, &self.assembly.gears);
         let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
         self.book
@@ -253,13 +252,13 @@ impl RapierSimulation {
             .map_err(|f| self.diverged(f))
     }
 
-    fn diverged(&self, fault: Fault) -> RapierError {
-        RapierError::Diverged(fault.at(self.t, &self.vehicle_state()))
+    fn diverged(&self, fault: Fault) -> RunError {
+        RunError::Stopped(fault.at(self.t, &self.vehicle_state()))
     }
 
     /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's
     /// report) has drifted beyond the scenario's tolerance.
-    fn check_divergence(&self, energy: &EnergyReport) -> Result<(), RapierError> {
+    fn check_divergence(&self, energy: &EnergyReport) -> Result<(), RunError> {
         let finite = self.bodies.iter().all(|(h, _)| {
             let s = self.state(*h);
             s.pose.translation.is_finite()
@@ -275,10 +274,10 @@ impl RapierSimulation {
 }
 
 impl Landing for RapierSimulation {
-    type Error = RapierError;
+    type Error = RunError;
 
     /// One fixed step (see the module documentation).
-    fn step(&mut self) -> Result<(), RapierError> {
+    fn step(&mut self) -> Result<(), RunError> {
         let dt = self.assembly.world.integration_parameters.dt;
         // User forces and torques persist in rapier until cleared, and are cleared separately.
         for (h, _) in &self.bodies {

@@ -15,63 +15,62 @@
 
 pub mod history;
 pub mod landing;
+pub mod outcome;
 pub mod sample;
 pub mod stability;
 pub mod summary;
 
 pub use history::History;
 pub use landing::{Landing, Observer};
+pub use outcome::{Divergence, Law, RunError, RunOutcome, SetupFailure, StateAtStop};
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
-pub use summary::{EnergyLedger, EnergyReport, Extremes, Progress, Summary};
+pub use summary::{EnergyLedger, EnergyReport, Extremes, Imbalance, Progress, Summary};
 
 /// Force evaluations a run may make per step of its budget (a multibody engine evaluates once
 /// a step; the core's adaptive scheme up to about seven times, more when it rejects steps).
 pub const EVALUATIONS_PER_STEP: u64 = 10;
 
+/// A run budget exhausted (docs/robustness.md, "Budgets").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum BudgetExhausted {
+    /// As many accepted steps as `integrator.max_steps`.
+    #[error("step budget exhausted: {steps} accepted steps (integrator.max_steps = {max_steps}); the time step is too small for integrator.t_end")]
+    Steps {
+        /// Accepted steps.
+        steps: u64,
+        /// `integrator.max_steps`.
+        max_steps: u64,
+    },
+    /// As many force evaluations as [`EVALUATIONS_PER_STEP`] × `integrator.max_steps`.
+    #[error("force-evaluation budget exhausted: {evaluations} evaluations (at most {most}, {EVALUATIONS_PER_STEP} × integrator.max_steps) after {steps} accepted steps; the error control rejects too many steps")]
+    Evaluations {
+        /// Force evaluations.
+        evaluations: u64,
+        /// The evaluation budget.
+        most: u64,
+        /// Accepted steps.
+        steps: u64,
+    },
+}
+
 /// Checks a run's accepted `steps` and force `evaluations` against its budget,
 /// `integrator.max_steps` = `max_steps` steps and [`EVALUATIONS_PER_STEP`] times as many
-/// evaluations (docs/robustness.md, "Budgets"): the message of the budget exhausted, if one is.
-pub fn check_budget(steps: u64, evaluations: u64, max_steps: u64) -> Result<(), String> {
+/// evaluations (docs/robustness.md, "Budgets").
+pub fn check_budget(steps: u64, evaluations: u64, max_steps: u64) -> Result<(), BudgetExhausted> {
     if steps >= max_steps {
-        return Err(format!(
-            "step budget exhausted: {steps} accepted steps (integrator.max_steps = {max_steps}); the time step is too small for integrator.t_end"
-        ));
+        return Err(BudgetExhausted::Steps { steps, max_steps });
     }
     let most = max_steps.saturating_mul(EVALUATIONS_PER_STEP);
     if evaluations >= most {
-        return Err(format!(
-            "force-evaluation budget exhausted: {evaluations} evaluations (at most {most}, {EVALUATIONS_PER_STEP} × integrator.max_steps) after {steps} accepted steps; the error control rejects too many steps"
-        ));
+        return Err(BudgetExhausted::Evaluations {
+            evaluations,
+            most,
+            steps,
+        });
     }
     Ok(())
 }
-
-/// A run stopped because it diverged or left the domain of a law: where and why, so that the
-/// user can tell which law or mechanism failed (every engine reports it the same way).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Divergence {
-    /// Time of the failure, s.
-    pub time: f64,
-    /// The law or mechanism involved (with the leg, where one is).
-    pub law: String,
-    /// What happened.
-    pub message: String,
-    /// Vehicle state at the failure.
-    pub state: String,
-}
-
-impl std::fmt::Display for Divergence {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "simulation stopped at t = {:.6} s in {}: {}; state: {}",
-            self.time, self.law, self.message, self.state
-        )
-    }
-}
-
-impl std::error::Error for Divergence {}
 
 #[cfg(test)]
 mod tests {
@@ -80,11 +79,16 @@ mod tests {
     #[test]
     fn a_run_stops_at_its_step_or_evaluation_budget() {
         assert!(check_budget(999, 9_999, 1000).is_ok());
-        let steps = check_budget(1000, 0, 1000).unwrap_err();
-        assert!(steps.contains("max_steps = 1000"), "{steps}");
+        assert_eq!(
+            check_budget(1000, 0, 1000),
+            Err(BudgetExhausted::Steps {
+                steps: 1000,
+                max_steps: 1000
+            })
+        );
         let evaluations = check_budget(10, 10_000, 1000).unwrap_err();
         assert!(
-            evaluations.contains("force-evaluation budget"),
+            evaluations.to_string().contains("force-evaluation budget"),
             "{evaluations}"
         );
     }

@@ -113,25 +113,47 @@ impl EnergyLedger {
         }
     }
 
-    /// The divergence guard on the balance: an error message if the residual of `e` (this
-    /// ledger's report) exceeds `tolerance` of the energy scale ([`EnergyReport::scale`]: the
-    /// energy put in). `hint` names the likely cause for this engine.
+    /// The divergence guard on the balance: the imbalance if the residual of `e` (this ledger's
+    /// report) exceeds `tolerance` of the energy scale ([`EnergyReport::scale`]: the energy put
+    /// in). `hint` names the likely cause for this engine.
     pub fn check_balance(
         &self,
         e: &EnergyReport,
         tolerance: f64,
-        hint: &str,
-    ) -> Result<(), String> {
+        hint: &'static str,
+    ) -> Result<(), Imbalance> {
         let scale = e.scale();
         if e.residual_j.abs() <= tolerance * scale.max(f64::MIN_POSITIVE) {
             return Ok(());
         }
-        Err(format!(
-            "energy balance residual {:.4e} J exceeds {tolerance} of the energy scale {scale:.4e} J ({hint}); \
-             exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J, mechanisms {:.4e} J",
-            e.residual_j, self.honeycomb, self.viscous, self.bearing, self.sliding, self.events, self.mechanisms
-        ))
+        Err(Imbalance {
+            residual_j: e.residual_j,
+            tolerance,
+            scale_j: scale,
+            hint,
+            ledger: *self,
+        })
     }
+}
+
+/// An energy balance off by more than its guard allows (docs/errata.md, "Energy guard").
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error(
+    "energy balance residual {residual_j:.4e} J exceeds {tolerance} of the energy scale {scale_j:.4e} J ({hint}); \
+     exchanged so far: honeycomb {:.4e} J, viscous {:.4e} J, bearing friction {:.4e} J, sliding friction {:.4e} J, contact events {:.4e} J, mechanisms {:.4e} J",
+    ledger.honeycomb, ledger.viscous, ledger.bearing, ledger.sliding, ledger.events, ledger.mechanisms
+)]
+pub struct Imbalance {
+    /// The residual, J.
+    pub residual_j: f64,
+    /// The guard, a fraction of the energy scale.
+    pub tolerance: f64,
+    /// The energy scale, J.
+    pub scale_j: f64,
+    /// The likely cause for this engine.
+    pub hint: &'static str,
+    /// Work exchanged with each mechanism so far.
+    pub ledger: EnergyLedger,
 }
 
 /// Running extremes of the strokes and the pitch rate.
@@ -359,9 +381,11 @@ mod tests {
         assert!(l.check_balance(&e, 0.01, "hint").is_ok());
         let drifting = l.report(100.0, 13.0, -5.0, 0.0, 3.0);
         assert_eq!(drifting.residual_j, 3.0);
-        let message = l
+        let imbalance = l
             .check_balance(&drifting, 0.01, "step too large")
             .unwrap_err();
+        assert_eq!(imbalance.residual_j, 3.0);
+        let message = imbalance.to_string();
         assert!(message.contains("step too large") && message.contains("honeycomb 8.0000e1 J"));
     }
 
