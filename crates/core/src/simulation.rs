@@ -971,7 +971,7 @@ impl Simulation {
         law: Law,
         leg: Option<usize>,
     ) -> RunError {
-        RunError::Stopped(Divergence {
+        RunError::Stopped(Box::new(Divergence {
             time_s: self.t,
             law,
             leg: leg.map(|i| i + 1),
@@ -982,7 +982,7 @@ impl Simulation {
                 euler_angles_rad: Some(v.theta.into()),
                 angular_velocity_rad_s: v.omega_inertial().into(),
             },
-        })
+        }))
     }
 
     /// Stops a run whose state is not finite or whose energy balance (`e`, this state's report)

@@ -483,7 +483,7 @@ impl MujocoLanding {
     }
 
     fn diverged(&self, fault: Fault) -> MujocoError {
-        MujocoError::Diverged(fault.at(self.t, &self.vehicle))
+        MujocoError::Diverged(Box::new(fault.at(self.t, &self.vehicle)))
     }
 
     /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's

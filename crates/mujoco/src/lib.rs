@@ -33,7 +33,7 @@ pub enum MujocoError {
     Scenario(#[from] touchdown_scenario::ScenarioError),
     /// The simulation diverged, left the domain of a law, or MuJoCo warned; the run was stopped.
     #[error(transparent)]
-    Diverged(#[from] touchdown_record::Divergence),
+    Diverged(Box<touchdown_record::Divergence>),
     /// The runner passed arrays or indices that do not fit the model.
     #[error("MuJoCo runner: {0}")]
     Binding(String),

@@ -253,7 +253,7 @@ impl RapierSimulation {
     }
 
     fn diverged(&self, fault: Fault) -> RunError {
-        RunError::Stopped(fault.at(self.t, &self.vehicle_state()))
+        fault.at(self.t, &self.vehicle_state()).into()
     }
 
     /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's

@@ -165,12 +165,19 @@ pub enum RunError {
     /// not model (names the file and the field).
     #[error(transparent)]
     Refused(#[from] ScenarioError),
-    /// The run stopped with a diagnostic.
+    /// The run stopped with a diagnostic (boxed: it is the rare path, and keeps the results of
+    /// the step loop small).
     #[error(transparent)]
-    Stopped(#[from] Divergence),
+    Stopped(Box<Divergence>),
     /// The engine could not be set up.
     #[error(transparent)]
     Setup(#[from] SetupFailure),
+}
+
+impl From<Divergence> for RunError {
+    fn from(d: Divergence) -> RunError {
+        RunError::Stopped(Box::new(d))
+    }
 }
 
 /// The outcome of a landing on an engine, as a campaign counts it.
