@@ -1,89 +1,23 @@
-//! Crate layers: scenario format → force laws, record → multibody bookkeeping → engines (never
-//! depending on each other) →
-//! comparison → CLI. Every workspace crate must be listed here; a new crate or a new internal
-//! dependency that breaks the layers fails this test.
+//! Crate layers, as docs/architecture.md tabulates them: every workspace crate has a layer there,
+//! and depends only on crates of lower layers (so the engines, all of one layer, never on each
+//! other). A new crate, or a new internal dependency that breaks the layers, fails this test
+//! until the table says where it stands.
 
 use std::collections::BTreeMap;
 
-/// Internal crates each crate may depend on (normal, dev or build dependencies).
-const ALLOWED: &[(&str, &[&str])] = &[
-    ("touchdown-scenario", &[]),
-    ("touchdown-laws", &["touchdown-scenario"]),
-    // What every engine reports (summary, history sample, stability criteria).
-    ("touchdown-record", &["touchdown-scenario"]),
-    // What the multibody engines share around their own stepping (strut laws at a multibody
-    // gear state, bookkeeping).
-    (
-        "touchdown-multibody",
-        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
-    ),
-    // Engines: scenario, laws, record (and multibody for the multibody engines) only; never
-    // another engine.
-    (
-        "touchdown-core",
-        &["touchdown-scenario", "touchdown-laws", "touchdown-record"],
-    ),
-    (
-        "touchdown-rapier",
-        &[
-            "touchdown-scenario",
-            "touchdown-laws",
-            "touchdown-record",
-            "touchdown-multibody",
-        ],
-    ),
-    (
-        "touchdown-mujoco",
-        &[
-            "touchdown-scenario",
-            "touchdown-laws",
-            "touchdown-record",
-            "touchdown-multibody",
-        ],
-    ),
-    // Comparison level: runs engines, never reached by them.
-    (
-        "touchdown-compare",
-        &[
-            "touchdown-scenario",
-            "touchdown-record",
-            "touchdown-core",
-            "touchdown-rapier",
-            "touchdown-mujoco",
-        ],
-    ),
-    (
-        "touchdown-validation",
-        &["touchdown-scenario", "touchdown-core"],
-    ),
-    (
-        "touchdown-cli",
-        &[
-            "touchdown-scenario",
-            "touchdown-laws",
-            "touchdown-record",
-            "touchdown-core",
-            "touchdown-rapier",
-            "touchdown-mujoco",
-            "touchdown-compare",
-            "touchdown-validation",
-            // As a dev-dependency only: the test helpers (the fuzz harnesses' seeded runner)
-            // that the command-line tests share with the workspace tests.
-            "touchdown-tests",
-        ],
-    ),
-    (
-        "touchdown-tests",
-        &[
-            "touchdown-scenario",
-            "touchdown-laws",
-            "touchdown-record",
-            "touchdown-core",
-            "touchdown-rapier",
-            "touchdown-mujoco",
-        ],
-    ),
-];
+/// The layer of each crate, from the table of docs/architecture.md (rows `| N | `crate` | … |`).
+fn layers() -> BTreeMap<String, u32> {
+    let text =
+        std::fs::read_to_string(touchdown_tests::root().join("docs/architecture.md")).unwrap();
+    text.lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let layer = cells.get(1)?.parse().ok()?;
+            let name = cells.get(2)?.strip_prefix('`')?.strip_suffix('`')?;
+            Some((name.to_string(), layer))
+        })
+        .collect()
+}
 
 fn internal_dependencies() -> BTreeMap<String, Vec<String>> {
     let root = touchdown_tests::root();
@@ -108,21 +42,31 @@ fn internal_dependencies() -> BTreeMap<String, Vec<String>> {
 }
 
 #[test]
-fn crates_respect_the_layers() {
+fn crates_respect_the_layers_of_the_architecture_page() {
     let deps = internal_dependencies();
-    let allowed: BTreeMap<&str, &[&str]> = ALLOWED.iter().copied().collect();
+    let layers = layers();
+    assert!(
+        layers.len() >= 10,
+        "docs/architecture.md lost its table: {layers:?}"
+    );
     let mut problems = Vec::new();
+    for name in layers.keys().filter(|n| !deps.contains_key(*n)) {
+        problems.push(format!(
+            "docs/architecture.md lists {name}, not a workspace crate"
+        ));
+    }
     for (name, ds) in &deps {
-        match allowed.get(name.as_str()) {
-            None => problems.push(format!(
-                "{name} is not in the layering table of tests/integration/layering.rs"
-            )),
-            Some(ok) => {
-                for d in ds {
-                    if !ok.contains(&d.as_str()) {
-                        problems.push(format!("{name} must not depend on {d}"));
-                    }
-                }
+        let Some(own) = layers.get(name) else {
+            problems.push(format!("{name} has no layer in docs/architecture.md"));
+            continue;
+        };
+        for d in ds {
+            match layers.get(d) {
+                Some(l) if l < own => {}
+                Some(l) => problems.push(format!(
+                    "{name} (layer {own}) must not depend on {d} (layer {l})"
+                )),
+                None => problems.push(format!("{d} has no layer in docs/architecture.md")),
             }
         }
     }
@@ -131,7 +75,6 @@ fn crates_respect_the_layers() {
         "layering violations:\n{}",
         problems.join("\n")
     );
-    assert!(deps.len() >= 5, "the workspace lost crates: {deps:?}");
 }
 
 /// The test helpers are only ever a dev-dependency: no crate's own code depends on them.

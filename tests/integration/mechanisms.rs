@@ -421,13 +421,15 @@ fn multibody_engines_refuse_mechanisms_they_do_not_model() {
     ] {
         let sc = load(name, &[]);
         for engine in [Engine::Rapier, Engine::Mujoco] {
-            let e = sc.require_engine(engine).unwrap_err().to_string();
+            let e = touchdown_registry::require(engine, &sc)
+                .unwrap_err()
+                .to_string();
             assert!(
                 e.contains(field) && e.contains("does not model"),
                 "{name} on {engine}: {e}"
             );
         }
-        sc.require_engine(Engine::Core).unwrap();
+        touchdown_registry::require(Engine::Core, &sc).unwrap();
     }
     for name in [
         "trunnion-springs.toml",
@@ -437,7 +439,7 @@ fn multibody_engines_refuse_mechanisms_they_do_not_model() {
     ] {
         let sc = load(name, &[]);
         for engine in Engine::ALL {
-            sc.require_engine(engine).unwrap();
+            touchdown_registry::require(engine, &sc).unwrap();
         }
     }
 }

@@ -325,7 +325,7 @@ fn run(cli: Cli) -> Result<Verdict> {
         Command::ExportMjcf { scenario, output } => {
             let sc = Scenario::load(&scenario)?;
             warn(&sc);
-            sc.require_engine(Engine::Mujoco)?;
+            touchdown_registry::require(Engine::Mujoco, &sc)?;
             let xml = touchdown_mujoco::export(&sc);
             std::fs::write(&output, xml)
                 .with_context(|| format!("cannot write {}", output.display()))?;
@@ -386,7 +386,7 @@ fn run_landing(
     timestep: Option<f64>,
 ) -> Result<()> {
     let mut sc = Scenario::load(scenario)?;
-    sc.require_engine(engine)?;
+    touchdown_registry::require(engine, &sc)?;
     if let Some(t) = timestep {
         if !(t.is_finite() && t > 0.0) {
             anyhow::bail!("--timestep: expected a positive number of seconds, got {t:e}");
@@ -411,7 +411,7 @@ fn run_landing(
         }
         _ => None,
     };
-    let landed = touchdown_compare::land(engine, scenario, &sc, &mut recorder, out);
+    let landed = touchdown_registry::land(engine, scenario, &sc, &mut recorder, out);
     // An engine that refuses the step it was given blames the argument first.
     let summary = match timestep {
         Some(t) => landed.with_context(|| format!("--timestep {t:e} s"))?,

@@ -286,7 +286,7 @@ pub fn boundary(
     let sc = Scenario::load(scenario)?;
     crate::warn(&sc);
     for &e in &engines {
-        sc.require_engine(e)?;
+        touchdown_registry::require(e, &sc)?;
     }
     let bar = if std::io::stderr().is_terminal() {
         let b = indicatif::ProgressBar::new(0);
@@ -299,9 +299,12 @@ pub fn boundary(
     let mut points = Vec::new();
     for &engine in &engines {
         let landing = boundary::scenario_landing(scenario, move |sc: &Scenario| {
-            touchdown_compare::run(engine, scenario, sc).map(|r| r.summary.outcome)
+            touchdown_registry::land(engine, scenario, sc, &mut (), None)
+                .map(|s| s.outcome)
+                .map_err(|f| f.error)
         })?;
-        let found = boundary::search(&vvs, settings, landing, &tick)?;
+        let found = boundary::search(&vvs, settings, landing, &tick)
+            .with_context(|| format!("{engine} engine"))?;
         points.extend(found.into_iter().map(|point| EnginePoint { engine, point }));
     }
     bar.finish_and_clear();

@@ -20,39 +20,39 @@ pub mod robustness;
 pub mod trace;
 
 use serde::Serialize;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::path::Path;
 use touchdown_record::{Landing, Observer, Sample, Summary};
-pub use touchdown_scenario::schema::Engine;
+pub use touchdown_registry::{land, Engine, EngineFailure};
 use touchdown_scenario::Scenario;
 pub use trace::Trace;
 
-/// Errors of a comparison: an engine that failed on a scenario.
+/// Errors of a comparison: a scenario that does not load, an engine that did not complete it.
 #[derive(Debug, thiserror::Error)]
 pub enum CompareError {
     /// The scenario does not load.
     #[error(transparent)]
     Scenario(#[from] touchdown_scenario::ScenarioError),
-    /// An engine failed or diverged on the scenario.
-    #[error("{engine} engine on {scenario}: {message}")]
-    Engine {
-        /// The engine.
-        engine: &'static str,
+    /// An engine did not complete the scenario (refused, stopped, not set up).
+    #[error(transparent)]
+    Engine(#[from] EngineFailure),
+    /// The precision study found no converged reference on the core.
+    #[error("core engine on {scenario}: {message}")]
+    Unconverged {
         /// The scenario file.
         scenario: String,
-        /// Its error.
+        /// How far apart the last refinements landed.
         message: String,
     },
-}
-
-impl CompareError {
-    fn engine(engine: Engine, path: &Path, message: String) -> CompareError {
-        CompareError::Engine {
-            engine: engine.name(),
-            scenario: path.display().to_string(),
-            message,
-        }
-    }
+    /// An engine's trace could not be read back.
+    #[error("{engine} engine on {scenario}: {message}")]
+    Trace {
+        /// The engine.
+        engine: Engine,
+        /// The scenario file.
+        scenario: String,
+        /// What is wrong with the trace.
+        message: String,
+    },
 }
 
 /// One engine's run of a landing.
@@ -76,91 +76,34 @@ impl<L: Landing> Observer<L> for Tracer {
     }
 }
 
-/// A scratch folder for a run's files, removed when dropped; unique within the process.
-#[derive(Debug)]
-pub struct ScratchDir(PathBuf);
-
-impl ScratchDir {
-    /// Creates a fresh folder under the system's temporary folder.
-    pub fn new() -> std::io::Result<ScratchDir> {
-        static DIRS: AtomicUsize = AtomicUsize::new(0);
-        let dir = std::env::temp_dir().join(format!(
-            "touchdown-{}-{}",
-            std::process::id(),
-            DIRS.fetch_add(1, Ordering::Relaxed)
-        ));
-        std::fs::create_dir_all(&dir)?;
-        Ok(ScratchDir(dir))
-    }
-
-    /// The folder.
-    pub fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for ScratchDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// Lands the scenario `sc` (read from `path`, named in errors; changes made to it after loading
-/// apply on every engine) on `engine`. The stepping engines report every accepted state to
-/// `observer`; MuJoCo's runner is given the resolved scenario in `out` and writes its
-/// `summary.json` and `history.csv` there (with no `out`, it works in a scratch folder and
-/// writes no history).
-pub fn land<O>(
-    engine: Engine,
-    path: &Path,
-    sc: &Scenario,
-    observer: &mut O,
-    out: Option<&Path>,
-) -> Result<Summary, CompareError>
-where
-    O: Observer<touchdown_core::Simulation> + Observer<touchdown_rapier::RapierSimulation>,
-{
-    let fail = |message| CompareError::engine(engine, path, message);
-    match engine {
-        Engine::Core => touchdown_core::Simulation::new(sc)
-            .and_then(|mut s| s.run(observer))
-            .map_err(|e| fail(e.to_string())),
-        Engine::Rapier => touchdown_rapier::RapierSimulation::new(sc)
-            .and_then(|mut s| s.run(observer))
-            .map_err(|e| fail(e.to_string())),
-        Engine::Mujoco => {
-            let launch = touchdown_mujoco::Launch::locate().map_err(|e| fail(e.to_string()))?;
-            let scratch;
-            let dir = match out {
-                Some(dir) => dir,
-                None => {
-                    scratch = ScratchDir::new()
-                        .map_err(|e| fail(format!("cannot create a scratch folder: {e}")))?;
-                    scratch.path()
-                }
-            };
-            let resolved = dir.join("scenario.resolved.toml");
-            std::fs::write(&resolved, sc.to_toml())
-                .map_err(|e| fail(format!("cannot write {}: {e}", resolved.display())))?;
-            launch.run(&resolved, dir, out.is_some()).map_err(|e| {
-                // A scratch folder's name changes from run to run: the error names what the
-                // file holds instead, so that the same failure reads the same.
-                let message = e.to_string();
-                fail(message.replace(&resolved.display().to_string(), "the scenario as resolved"))
-            })
-        }
-    }
-}
-
 /// Runs the scenario `sc` (read from `path`, named in errors) on `engine`, with its trace.
 pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, CompareError> {
-    let fail = |message| CompareError::engine(engine, path, message);
-    let scratch =
-        ScratchDir::new().map_err(|e| fail(format!("cannot create a scratch folder: {e}")))?;
+    let failure = |error| EngineFailure {
+        engine,
+        scenario: path.display().to_string(),
+        error,
+    };
+    let scratch = tempfile::Builder::new()
+        .prefix("touchdown-")
+        .tempdir()
+        .map_err(|e| {
+            failure(touchdown_registry::RunError::Setup(
+                touchdown_record::SetupFailure {
+                    engine,
+                    cause: format!("cannot create a scratch folder: {e}"),
+                },
+            ))
+        })?;
     let mut tracer = Tracer(Sample::new(sc.legs.len()), Trace::default());
     let summary = land(engine, path, sc, &mut tracer, Some(scratch.path()))?;
     if engine == Engine::Mujoco {
-        tracer.1 = Trace::from_history(&scratch.path().join("history.csv")).map_err(fail)?;
+        tracer.1 = Trace::from_history(&scratch.path().join("history.csv")).map_err(|message| {
+            CompareError::Trace {
+                engine,
+                scenario: path.display().to_string(),
+                message,
+            }
+        })?;
     }
     Ok(EngineRun {
         engine,
@@ -171,19 +114,7 @@ pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, Comp
 
 /// The version of what computed a run (for the snapshot metadata).
 pub fn engine_version(run: &EngineRun) -> String {
-    let setting = |key: &str| {
-        run.summary
-            .engine_settings
-            .get(key)
-            .and_then(|v| v.as_str())
-            .unwrap_or("?")
-            .to_string()
-    };
-    match run.engine {
-        Engine::Core => format!("touchdown-core {}", env!("CARGO_PKG_VERSION")),
-        Engine::Rapier => format!("rapier3d-f64 {}", setting("rapier3d_f64")),
-        Engine::Mujoco => format!("mujoco {}", setting("mujoco")),
-    }
+    touchdown_registry::version(run.engine, &run.summary)
 }
 
 /// A scenario through several engines, every pair compared.

@@ -299,8 +299,7 @@ pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> 
         }
         previous = Some(current);
     }
-    Err(CompareError::Engine {
-        engine: Engine::Core.name(),
+    Err(CompareError::Unconverged {
         scenario: path.display().to_string(),
         message: format!(
             "no converged reference within {REFERENCE_LEVELS} refinements of the Dormand-Prince pair: {worst} (asked: {:.0e}, {:.0e}, {:.0e} rad)",

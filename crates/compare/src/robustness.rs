@@ -11,6 +11,7 @@ use crate::{land, CompareError, Engine};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use touchdown_record::{Outcome, Summary};
+use touchdown_registry::RunError;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// A change to one field of a base scenario (file units).
@@ -213,6 +214,9 @@ pub enum Verdict {
     Refused,
     /// Ran to its end with outputs that fail the checks: never acceptable.
     Failed,
+    /// The engine could not be set up (its runtime missing, or failing outside the landing):
+    /// no verdict on the case.
+    Unavailable,
 }
 
 /// Largest stroke of a completed run, as a multiple of the strut's capacity (bottoming is an
@@ -325,13 +329,12 @@ pub fn classify(case: &'static str, path: &Path, sc: &Scenario, engine: Engine) 
             }
         }
         Err(e) => {
-            let message = e.to_string();
-            run.verdict = if message.contains("simulation stopped at t =") {
-                Verdict::Stopped
-            } else {
-                Verdict::Refused
+            run.verdict = match e.error {
+                RunError::Stopped(_) => Verdict::Stopped,
+                RunError::Refused(_) => Verdict::Refused,
+                RunError::Setup(_) => Verdict::Unavailable,
             };
-            run.message = Some(message);
+            run.message = Some(e.to_string());
         }
     }
     run

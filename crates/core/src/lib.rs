@@ -30,6 +30,12 @@ pub mod surface;
 pub use simulation::{Simulation, VehicleState};
 pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, RunError, Summary};
 
+/// Why the core does not model `mechanism`: never; it models every mechanism of the report
+/// (docs/engines.md, "Mechanisms each engine models").
+pub fn unsupported(_mechanism: touchdown_scenario::model::Mechanism) -> Option<&'static str> {
+    None
+}
+
 /// Runs a scenario to its end with no observer and returns its summary.
 pub fn run(scenario: &touchdown_scenario::Scenario) -> Result<Summary, RunError> {
     Simulation::new(scenario)?.run(&mut ())

@@ -307,7 +307,7 @@ impl Simulation {
     /// Sets up a landing from a resolved scenario: laws, initial state (eq. 19) and the
     /// contact of the first footpad.
     pub fn new(scenario: &Scenario) -> Result<Simulation, RunError> {
-        scenario.require_engine(Engine::Core)?;
+        scenario.require_engine(Engine::Core, crate::unsupported)?;
         // With sloshing the rigid vehicle excludes the slosh mass (eqs. 113-114); the slosh law
         // itself refers to the total vehicle.
         let slosh = touchdown_laws::scene::slosh_from_scenario(scenario)?;

@@ -148,7 +148,7 @@ pub unsafe extern "C" fn touchdown_mujoco_open(
     runner.guard(|r| {
         let path = text(scenario, "scenario path")?;
         let mut sc = Scenario::load(Path::new(path))?;
-        sc.require_engine(Engine::Mujoco)?;
+        sc.require_engine(Engine::Mujoco, crate::unsupported)?;
         if timestep > 0.0 {
             sc = sc.with_mujoco(|m| m.timestep = timestep)?;
         }

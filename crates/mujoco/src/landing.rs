@@ -180,7 +180,7 @@ impl MujocoLanding {
         mujoco_version: &str,
         history: Option<History>,
     ) -> Result<MujocoLanding, MujocoError> {
-        sc.require_engine(Engine::Mujoco)?;
+        sc.require_engine(Engine::Mujoco, crate::unsupported)?;
         let book = GearBook::new(sc)?;
         check_explicit_timestep(
             sc,

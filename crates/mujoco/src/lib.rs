@@ -24,6 +24,7 @@ pub mod mjcf;
 pub use landing::MujocoLanding;
 pub use launch::Launch;
 pub use mjcf::export;
+pub use touchdown_multibody::capabilities::unsupported;
 
 /// Errors of the MuJoCo engine.
 #[derive(Debug, thiserror::Error)]

@@ -47,7 +47,7 @@ pub struct RapierSimulation {
 impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RunError> {
-        scenario.require_engine(Engine::Rapier)?;
+        scenario.require_engine(Engine::Rapier, crate::unsupported)?;
         let book = GearBook::new(scenario)?;
         let assembly = assembly::build(scenario)?;
         check_explicit_timestep(

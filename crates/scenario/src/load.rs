@@ -362,13 +362,18 @@ impl Scenario {
     }
 
     /// Refuses `engine` unless the scenario lists it in `engines.applicable` and the engine
-    /// models every mechanism the scene declares ([`model::Mechanism::unsupported_by`]): every
-    /// engine calls this before it builds anything.
-    pub fn require_engine(&self, engine: schema::Engine) -> Result<(), ScenarioError> {
+    /// models every mechanism the scene declares: `unsupported` is the engine's own declaration
+    /// (why it does not model a mechanism, or `None` if it does). Every engine calls this with
+    /// its declaration before it builds anything.
+    pub fn require_engine(
+        &self,
+        engine: schema::Engine,
+        unsupported: impl Fn(model::Mechanism) -> Option<&'static str>,
+    ) -> Result<(), ScenarioError> {
         if let Some((m, why)) = self
             .mechanisms()
             .into_iter()
-            .find_map(|m| m.unsupported_by(engine).map(|why| (m, why)))
+            .find_map(|m| unsupported(m).map(|why| (m, why)))
         {
             return Err(ScenarioError::field(
                 self.file_of(m.field()),

@@ -396,34 +396,6 @@ impl Mechanism {
         }
     }
 
-    /// Why `engine` does not model this mechanism, or `None` if it does. The core models them
-    /// all; the multibody engines take the trunnion springs through the shared strut laws and
-    /// the engine and RCS as loads on the vehicle body (docs/engines.md).
-    pub fn unsupported_by(self, engine: schema::Engine) -> Option<&'static str> {
-        if engine == schema::Engine::Core {
-            return None;
-        }
-        match self {
-            Mechanism::TrunnionSprings
-            | Mechanism::Thrust
-            | Mechanism::NozzleCrushing
-            | Mechanism::Rcs
-            | Mechanism::Curbs => None,
-            Mechanism::Bending => Some(
-                "its primary strut is a rigid stroke joint; a beam-column would need a flexible link",
-            ),
-            Mechanism::Tripod => Some(
-                "its gear is built as the cantilever arrangement, the secondaries meeting the primary at point 1 above the footpad",
-            ),
-            Mechanism::Soil => Some(
-                "soil holds a resting footpad rigid-plastically (eq. 103), a load-limited constraint its contact solver cannot take from an applied force",
-            ),
-            Mechanism::Slosh => Some(
-                "the slosh mass is a degree of freedom its exported body tree does not have",
-            ),
-        }
-    }
-
     /// The scenario field that declares it.
     pub fn field(self) -> &'static str {
         match self {

@@ -19,7 +19,7 @@ use crate::ValidationError;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
-use touchdown_core::Outcome;
+use touchdown_core::{Outcome, RunError};
 use touchdown_scenario::units::Short;
 use touchdown_scenario::Scenario;
 
@@ -358,13 +358,12 @@ fn bisect(
 /// A landing closure for [`search`] on a scenario file: its vertical velocity set to −vv and
 /// its horizontal velocity to vh along the scenario's own horizontal direction (file units),
 /// landed by `land` (one engine's run of the changed scenario, to its outcome).
-pub fn scenario_landing<'a, L, E>(
+pub fn scenario_landing<'a, L>(
     path: &'a Path,
     land: L,
 ) -> Result<impl Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync + 'a, ValidationError>
 where
-    L: Fn(&Scenario) -> Result<Outcome, E> + Sync + 'a,
-    E: Into<Box<dyn std::error::Error + Send + Sync>>,
+    L: Fn(&Scenario) -> Result<Outcome, RunError> + Sync + 'a,
 {
     let sc = Scenario::load(path)?;
     let [hx, hy] = sc.file.touchdown.horizontal_velocity;
@@ -385,7 +384,7 @@ where
         let sc = Scenario::load_with(path, &overrides)?;
         land(&sc).map_err(|source| ValidationError::Run {
             scenario: format!("{} at Vv = {vv}, Vh = {vh}", path.display()),
-            source: source.into(),
+            source,
         })
     })
 }

@@ -172,7 +172,7 @@ impl Observer<Simulation> for Recorder {
 pub fn record(scenario: &Scenario) -> Result<(Series, touchdown_core::Summary), ValidationError> {
     let mut sim = Simulation::new(scenario).map_err(|source| ValidationError::Run {
         scenario: scenario.source.clone(),
-        source: source.into(),
+        source,
     })?;
     let alpha = scenario.surface.slope;
     let up_g = touchdown_scenario::frames::t_gi(alpha) * nalgebra::Vector3::z();
@@ -183,7 +183,7 @@ pub fn record(scenario: &Scenario) -> Result<(Series, touchdown_core::Summary), 
     };
     let summary = sim.run(&mut rec).map_err(|source| ValidationError::Run {
         scenario: scenario.source.clone(),
-        source: source.into(),
+        source,
     })?;
     Ok((rec.series, summary))
 }

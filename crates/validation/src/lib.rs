@@ -23,13 +23,13 @@ pub enum ValidationError {
     /// A scenario failed to load.
     #[error(transparent)]
     Scenario(#[from] touchdown_scenario::ScenarioError),
-    /// A landing failed to run (the cause follows in the error chain).
+    /// A landing did not complete (the cause follows in the error chain).
     #[error("{scenario}")]
     Run {
         /// The scenario.
         scenario: String,
-        /// Why (the engine's error).
-        source: Box<dyn std::error::Error + Send + Sync>,
+        /// What became of it.
+        source: touchdown_record::RunError,
     },
     /// The optimiser failed.
     #[error("calibration: {0}")]

@@ -132,7 +132,7 @@ pub fn run_row(
     let sc = Scenario::load_with(&path, overrides)?;
     touchdown_core::run(&sc).map_err(|source| ValidationError::Run {
         scenario: path.display().to_string(),
-        source: source.into(),
+        source,
     })
 }
 

@@ -1,0 +1,123 @@
+//! The engines in one place, below everything that runs landings (the comparison, the
+//! validation tools, the command line): what each engine declares it models (its own crate's
+//! `unsupported`), and a scenario landed on the engine asked for, with a typed outcome
+//! ([`RunError`]: refused, stopped, set-up failure).
+
+use std::path::Path;
+use touchdown_record::{Landing, Observer, Summary};
+pub use touchdown_record::{RunError, RunOutcome};
+use touchdown_scenario::model::Mechanism;
+pub use touchdown_scenario::schema::Engine;
+use touchdown_scenario::{Scenario, ScenarioError};
+
+/// Why `engine` does not model `mechanism`, or `None` if it does: the engine's own declaration.
+pub fn unsupported(engine: Engine, mechanism: Mechanism) -> Option<&'static str> {
+    match engine {
+        Engine::Core => touchdown_core::unsupported(mechanism),
+        Engine::Rapier => touchdown_rapier::unsupported(mechanism),
+        Engine::Mujoco => touchdown_mujoco::unsupported(mechanism),
+    }
+}
+
+/// Refuses `engine` for `sc` unless the scenario lists it in `engines.applicable` and the
+/// engine models every mechanism the scene declares.
+pub fn require(engine: Engine, sc: &Scenario) -> Result<(), ScenarioError> {
+    sc.require_engine(engine, |m| unsupported(engine, m))
+}
+
+/// A landing that did not complete on an engine, with the scenario file it was read from.
+#[derive(Debug, thiserror::Error)]
+#[error("{engine} engine on {scenario}: {error}")]
+pub struct EngineFailure {
+    /// The engine.
+    pub engine: Engine,
+    /// The scenario file, as given.
+    pub scenario: String,
+    /// What became of the landing.
+    pub error: RunError,
+}
+
+/// Lands the scenario `sc` (read from `path`, named in errors; changes made to it after loading
+/// apply on every engine) on `engine`. The stepping engines report every accepted state to
+/// `observer`; MuJoCo's runner is given the resolved scenario in `out` and writes its
+/// `summary.json` and `history.csv` there (with no `out`, it works in a scratch folder removed
+/// afterwards and writes no history).
+pub fn land<O>(
+    engine: Engine,
+    path: &Path,
+    sc: &Scenario,
+    observer: &mut O,
+    out: Option<&Path>,
+) -> Result<Summary, EngineFailure>
+where
+    O: Observer<touchdown_core::Simulation> + Observer<touchdown_rapier::RapierSimulation>,
+{
+    let failure = |error| EngineFailure {
+        engine,
+        scenario: path.display().to_string(),
+        error,
+    };
+    match engine {
+        Engine::Core => touchdown_core::Simulation::new(sc).and_then(|mut s| s.run(observer)),
+        Engine::Rapier => {
+            touchdown_rapier::RapierSimulation::new(sc).and_then(|mut s| s.run(observer))
+        }
+        Engine::Mujoco => land_on_mujoco(sc, out),
+    }
+    .map_err(failure)
+}
+
+fn land_on_mujoco(sc: &Scenario, out: Option<&Path>) -> Result<Summary, RunError> {
+    let setup = |cause: String| {
+        RunError::Setup(touchdown_record::SetupFailure {
+            engine: Engine::Mujoco,
+            cause,
+        })
+    };
+    let launch = touchdown_mujoco::Launch::locate()?;
+    let scratch;
+    let dir = match out {
+        Some(dir) => dir,
+        None => {
+            scratch = tempfile::Builder::new()
+                .prefix("touchdown-")
+                .tempdir()
+                .map_err(|e| setup(format!("cannot create a scratch folder: {e}")))?;
+            scratch.path()
+        }
+    };
+    let resolved = dir.join("scenario.resolved.toml");
+    std::fs::write(&resolved, sc.to_toml())
+        .map_err(|e| setup(format!("cannot write {}: {e}", resolved.display())))?;
+    launch
+        .run(&resolved, dir, out.is_some())
+        .map_err(RunError::from)
+        .map_err(|e| match e {
+            // A scratch folder's name changes from run to run: a set-up failure names what the
+            // file holds instead, so that the same failure reads the same.
+            RunError::Setup(mut s) => {
+                s.cause = s
+                    .cause
+                    .replace(&resolved.display().to_string(), "the scenario as resolved");
+                RunError::Setup(s)
+            }
+            e => e,
+        })
+}
+
+/// The version of what computed a run, from its summary (for the snapshot metadata).
+pub fn version(engine: Engine, summary: &Summary) -> String {
+    let setting = |key: &str| {
+        summary
+            .engine_settings
+            .get(key)
+            .and_then(|v| v.as_str())
+            .unwrap_or("?")
+            .to_string()
+    };
+    match engine {
+        Engine::Core => format!("touchdown-core {}", env!("CARGO_PKG_VERSION")),
+        Engine::Rapier => format!("rapier3d-f64 {}", setting("rapier3d_f64")),
+        Engine::Mujoco => format!("mujoco {}", setting("mujoco")),
+    }
+}
