@@ -5,8 +5,14 @@
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
     /// The file could not be read.
-    #[error("{file}: cannot read the scenario file: {message}")]
-    Io { file: String, message: String },
+    #[error("{file}: cannot read the scenario file: {source}")]
+    Io {
+        file: String,
+        source: std::io::Error,
+    },
+    /// The file is larger than any scenario file: `bytes` over the limit `most`.
+    #[error("{file}: cannot read the scenario file: the file is {} bytes; a scenario file is at most {} bytes", crate::units::short(*bytes as f64), crate::units::short(*most as f64))]
+    TooLarge { file: String, bytes: u64, most: u64 },
     /// The path is not a regular file (a directory, a FIFO, a device, a socket): refused before
     /// it is opened, so that a FIFO cannot block the reader.
     #[error("{file}: not a regular file ({kind}): expected a scenario file (TOML)")]

@@ -60,21 +60,18 @@ fn special_kind(t: &std::fs::FileType) -> Option<&'static str> {
 fn read_table(path: &Path) -> Result<toml::Table, ScenarioError> {
     use std::io::Read;
     let file = path.display().to_string();
-    let io = |e: std::io::Error| ScenarioError::Io {
+    let io = |source: std::io::Error| ScenarioError::Io {
         file: file.clone(),
-        message: e.to_string(),
+        source,
     };
     let not_a_file = |kind: &str| ScenarioError::NotAFile {
         file: file.clone(),
         kind: kind.to_string(),
     };
-    let too_large = |bytes: u64| ScenarioError::Io {
+    let too_large = |bytes: u64| ScenarioError::TooLarge {
         file: file.clone(),
-        message: format!(
-            "the file is {} bytes; a scenario file is at most {} bytes",
-            short(bytes as f64),
-            short(MAX_FILE_BYTES as f64)
-        ),
+        bytes,
+        most: MAX_FILE_BYTES,
     };
     let meta = std::fs::metadata(path).map_err(io)?;
     if let Some(kind) = special_kind(&meta.file_type()) {
@@ -169,12 +166,8 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
     let mut base = load_merged(&parent_path, depth + 1).map_err(|e| match e {
         ScenarioError::Io {
             file: missing,
-            message,
-        } => ScenarioError::field(
-            &file,
-            "extends",
-            format!("cannot read {missing}: {message}"),
-        ),
+            source,
+        } => ScenarioError::field(&file, "extends", format!("cannot read {missing}: {source}")),
         ScenarioError::NotAFile { file: target, kind } => ScenarioError::field(
             &file,
             "extends",
