@@ -42,7 +42,7 @@ pub use honeycomb::{
     Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
     Stop,
 };
-pub use rcs::{Rcs, RcsLoads, RcsMode};
+pub use rcs::{DownwardTranslation, Rcs, RcsLoads, RcsMode, RcsParams};
 pub use sliding::sliding_friction;
 pub use slosh::Slosh;
 pub use soil::{Soil, VerticalStep};
