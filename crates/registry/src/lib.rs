@@ -121,3 +121,51 @@ pub fn version(engine: Engine, summary: &Summary) -> String {
         Engine::Mujoco => format!("mujoco {}", setting("mujoco")),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use touchdown_record::Law;
+
+    fn scenario(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios")
+            .join(name)
+    }
+
+    #[test]
+    fn each_engine_declares_what_it_models() {
+        for m in Mechanism::ALL {
+            assert_eq!(unsupported(Engine::Core, m), None, "{m:?}");
+        }
+        for engine in [Engine::Rapier, Engine::Mujoco] {
+            for m in [Mechanism::Soil, Mechanism::Slosh, Mechanism::Bending] {
+                assert!(unsupported(engine, m).is_some(), "{engine} {m:?}");
+            }
+            assert_eq!(unsupported(engine, Mechanism::Thrust), None);
+        }
+    }
+
+    #[test]
+    fn outcomes_come_back_as_data() {
+        let path = scenario("soil-drop.toml");
+        let sc = Scenario::load(&path).unwrap();
+        let refused = land(Engine::Rapier, &path, &sc, &mut (), None).unwrap_err();
+        match refused.error {
+            RunError::Refused(ScenarioError::Field { field, .. }) => {
+                assert_eq!(field, "surface.soil")
+            }
+            other => panic!("expected a refusal, got {other}"),
+        }
+        let path = scenario("flat-drop.toml");
+        let mut sc = Scenario::load(&path).unwrap();
+        sc.integrator.max_steps = 100;
+        match land(Engine::Core, &path, &sc, &mut (), None).map_err(|f| f.error) {
+            Err(RunError::Stopped(d)) => {
+                assert_eq!((d.law, d.leg), (Law::RunBudget, None), "{d}");
+                assert!(d.time_s > 0.0 && d.state.position_m[2] > 0.0, "{d}");
+            }
+            other => panic!("expected a stop at the run budget, got {other:?}"),
+        }
+    }
+}
