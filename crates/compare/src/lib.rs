@@ -22,7 +22,8 @@ pub mod trace;
 use serde::Serialize;
 use std::path::Path;
 use touchdown_record::{Landing, Observer, Sample, Summary};
-pub use touchdown_registry::{land, Engine, EngineFailure};
+use touchdown_registry::land;
+pub use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::Scenario;
 pub use trace::Trace;
 

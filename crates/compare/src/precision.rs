@@ -10,12 +10,13 @@
 //! two by measuring each rung against the finest rung of its own ladder.
 
 use crate::metrics::pitch_rate_differences;
-use crate::{land, run, CompareError, Engine, EngineRun, Trace};
+use crate::{run, CompareError, Engine, EngineRun, Trace};
 use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
 use touchdown_record::{Outcome, Summary};
+use touchdown_registry::land;
 use touchdown_scenario::frames::t_bi;
 use touchdown_scenario::schema::Scheme;
 use touchdown_scenario::Scenario;

@@ -7,11 +7,11 @@
 //! that must stay empty). For the stiff cases, the largest stable step of each fixed-step method.
 
 use crate::precision::Method;
-use crate::{land, CompareError, Engine};
+use crate::{CompareError, Engine};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use touchdown_record::{Outcome, Summary};
-use touchdown_registry::RunError;
+use touchdown_registry::{land, RunError};
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// A change to one field of a base scenario (file units).
