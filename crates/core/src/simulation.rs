@@ -1,4 +1,4 @@
-//! One landing: the vehicle, its gear and footpads, the laws and the ledger ([`Physics`]),
+//! One landing: the vehicle, its gear and footpads, the laws and the ledger (`Physics`),
 //! advanced by the scheme the scenario chose ([`crate::stepper`]); the accepted state's
 //! evaluation, commit and bookkeeping common to every scheme (steps 6-8 of a step, see
 //! [`crate::stepper`]), and the stability criteria (eqs. 105-107).
@@ -12,7 +12,7 @@ use crate::ledger::{Power, Quadrature};
 use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
 use crate::state::VehicleState;
-use crate::stepper::{Advance, GearBuffers, Schemes};
+use crate::stepper::{Advance, Schemes, Scratch};
 use crate::surface::{ContactState, Footpad};
 use nalgebra::{UnitQuaternion, Vector2, Vector3};
 use touchdown_laws::{GearLaws, GearMemory};
@@ -186,13 +186,13 @@ impl Simulation {
         physics.stability =
             StabilityTracker::new(&scenario.stability, gravity, n, physics.kinetic_energy());
         let it = &scenario.integrator;
-        let mut stepper = Schemes::new(it.scheme, n, it.dt_max);
+        let mut stepper = Schemes::new(it.scheme, n, &physics.vehicle, it.dt_max);
         // First contact at t = 0, then the accepted state's forces and accelerations.
         let before = physics.footpad_energy();
         physics.contact_logic()?;
         physics.ledger.events += physics.footpad_energy() - before;
         let mut v = physics.vehicle;
-        physics.accept(&mut v, &mut stepper.get().buffers().spare)?;
+        physics.accept(&mut v, &mut stepper.get().scratch().spare)?;
         physics.vehicle = v;
         let energy = physics.energy();
         physics.update_stability(None, &energy);
@@ -299,25 +299,29 @@ impl Physics {
         Ok(())
     }
 
-    /// Steps 6-8 for every scheme: the new state of `step` (its length, state, quadrature and
-    /// footpad work) from `old` is evaluated, the contact logic runs, the hysteresis is
-    /// committed, the work of the step booked (`power_old` the mechanisms' power at `old`, W;
-    /// the stepper's gear states in `buffers`), the divergence checks and the stability
-    /// criteria run.
+    /// Steps 6-8 for every scheme: the new state (in the stepper's `scratch`) after `step` (its
+    /// length, quadrature and footpad work) from `old` is evaluated, the contact logic runs, the
+    /// hysteresis is committed, the work of the step booked (`power_old` the mechanisms' power
+    /// at `old`, W), the divergence checks and the stability criteria run.
     pub(crate) fn finish_step(
         &mut self,
         old: &VehicleState,
         step: &Advance,
         power_old: Power,
-        buffers: &mut GearBuffers,
+        scratch: &mut Scratch,
     ) -> Result<(), RunError> {
         let Advance {
             dt,
-            new,
             quadrature,
             pads,
         } = step;
-        let (dt, mut new) = (*dt, *new);
+        let dt = *dt;
+        let Scratch {
+            new,
+            previous,
+            trial,
+            spare,
+        } = scratch;
         // 6. evaluate (unless the last stage did), contact logic, re-evaluate on a change
         self.t += dt;
         match quadrature {
@@ -325,18 +329,18 @@ impl Physics {
                 evaluated: Some(power),
                 ..
             } => {
-                std::mem::swap(&mut self.gear, &mut buffers.trial);
+                std::mem::swap(&mut self.gear, trial);
                 self.applied_power = *power;
             }
-            _ => self.accept(&mut new, &mut buffers.spare)?,
+            _ => self.accept(new, spare)?,
         }
-        self.vehicle = new;
+        self.vehicle = *new;
         let pads_before = self.footpad_energy();
         if self.contact_logic()? {
             let events = self.footpad_energy() - pads_before;
             self.ledger.events += events;
-            self.accept(&mut new, &mut buffers.spare)?;
-            self.vehicle = new;
+            self.accept(new, spare)?;
+            self.vehicle = *new;
         }
         // 7. commit hysteresis at the accepted state
         for (n, p) in self.contact_steps.iter_mut().zip(&self.pads) {
@@ -361,7 +365,7 @@ impl Physics {
                 }
             }
         }
-        self.mechanisms.commit(&new, &self.gravity);
+        self.mechanisms.commit(new, &self.gravity);
         // Work of the vehicle-level mechanisms on the vehicle with the forces the step used
         // (the report: trapezoid of their power), and of the soil and curbs on the footpads.
         let applied_work = match quadrature {
@@ -374,7 +378,7 @@ impl Physics {
         let driving = 0.5 * (power_old.driving.max(0.0) + self.applied_power.driving.max(0.0));
         self.ledger.driving_input += driving * dt;
         self.ledger.sliding += pads.gear + pads.curbs + pads.soil - pads.energy_change;
-        self.book_strut_work(dt, quadrature, &buffers.previous, &buffers.trial);
+        self.book_strut_work(dt, quadrature, previous, trial);
         self.steps += 1;
         let energy = self.energy();
         self.check_divergence(&energy)?;

@@ -1,4 +1,4 @@
-//! The integration schemes behind one trait, [`Stepper`]: the report's predictor-corrector with
+//! The integration schemes behind one trait, `Stepper`: the report's predictor-corrector with
 //! its step rule (eqs. 20-25, [`report`]), the classical fourth-order Runge–Kutta method at a
 //! fixed step and the adaptive Dormand–Prince 5(4) pair ([`runge_kutta`], tableaux in
 //! [`crate::integrator`]). Each owns its scratch space.
@@ -21,8 +21,8 @@
 //! interpolated along their step, nothing committed); the strut and mechanism work is the
 //! method's quadrature of the stage powers. An adaptive step whose error estimate exceeds the
 //! tolerance is rejected: the footpads go back to the start and the step is retried shorter.
-//! Steps 6-8 are the same for every scheme ([`Physics::finish_step`]), so the hysteresis is
-//! committed only at accepted states.
+//! Steps 6-8 are the same for every scheme (`Physics::finish_step`, in [`crate::simulation`]),
+//! so the hysteresis is committed only at accepted states.
 //!
 //! Nothing in the step allocates.
 
@@ -37,20 +37,24 @@ use crate::surface::ContactState;
 use touchdown_record::RunError;
 use touchdown_scenario::schema::Scheme;
 
-/// Gear states a stepper works in, one per leg: the accepted states at the start of the step,
-/// the trial (or Runge–Kutta stage) evaluations, and the spare the accepted state's evaluation
-/// is written into before it replaces the current one.
+/// The space a stepper works in: the new state of the step, and gear states, one per leg (the
+/// accepted ones at the start of the step, the trial or Runge–Kutta stage evaluations, and the
+/// spare the accepted state's evaluation is written into before it replaces the current one).
 #[derive(Debug, Clone)]
-pub(crate) struct GearBuffers {
+pub(crate) struct Scratch {
+    /// The new state of the step, its accelerations set only once it is evaluated (or when a
+    /// first-same-as-last stage was).
+    pub(crate) new: VehicleState,
     pub(crate) previous: Vec<GearState>,
     pub(crate) trial: Vec<GearState>,
     pub(crate) spare: Vec<GearState>,
 }
 
-impl GearBuffers {
-    /// Buffers for `legs` legs.
-    pub(crate) fn new(legs: usize) -> GearBuffers {
-        GearBuffers {
+impl Scratch {
+    /// Scratch space for `legs` legs, the new state starting as `vehicle`.
+    pub(crate) fn new(legs: usize, vehicle: &VehicleState) -> Scratch {
+        Scratch {
+            new: *vehicle,
             previous: vec![GearState::default(); legs],
             trial: vec![GearState::default(); legs],
             spare: vec![GearState::default(); legs],
@@ -58,13 +62,11 @@ impl GearBuffers {
     }
 }
 
-/// Steps 2-5 of one step: its length, the new (not yet evaluated) state, how its strut work is
-/// booked and the work of the sliding footpads.
+/// Steps 2-5 of one step (the new state is in the stepper's [`Scratch`]): its length, how its
+/// strut work is booked and the work of the sliding footpads.
 pub(crate) struct Advance {
     /// Step length, s.
     pub(crate) dt: f64,
-    /// The new state, its accelerations not yet set (unless a first-same-as-last stage did).
-    pub(crate) new: VehicleState,
     /// How the strut and mechanism work of the step is booked.
     pub(crate) quadrature: Quadrature,
     /// Work of the sliding footpads over the step, J.
@@ -74,11 +76,11 @@ pub(crate) struct Advance {
 /// An integration scheme.
 pub(crate) trait Stepper {
     /// Steps 2-5 from the accepted state `old` of `physics`: the footpads advanced, the new
-    /// state computed. Nothing is committed.
+    /// state computed into the scratch space. Nothing is committed.
     fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError>;
 
-    /// The stepper's gear buffers.
-    fn buffers(&mut self) -> &mut GearBuffers;
+    /// The stepper's scratch space.
+    fn scratch(&mut self) -> &mut Scratch;
 
     /// Adds the scheme's own counts to the summary's integrator settings (none by default).
     fn describe(&self, _settings: &mut serde_json::Map<String, serde_json::Value>) {}
@@ -86,10 +88,10 @@ pub(crate) trait Stepper {
     /// One accepted step of `physics` (see the module documentation).
     fn step(&mut self, physics: &mut Physics) -> Result<(), RunError> {
         let old = physics.vehicle;
-        self.buffers().previous.copy_from_slice(&physics.gear);
+        self.scratch().previous.copy_from_slice(&physics.gear);
         let power_old = physics.applied_power;
         let step = self.advance(physics, &old)?;
-        physics.finish_step(&old, &step, power_old, self.buffers())
+        physics.finish_step(&old, &step, power_old, self.scratch())
     }
 }
 
@@ -105,12 +107,16 @@ pub(crate) enum Schemes {
 }
 
 impl Schemes {
-    /// The stepper for `scheme` on `legs` legs, its first adaptive step `dt_max` (s).
-    pub(crate) fn new(scheme: Scheme, legs: usize, dt_max: f64) -> Schemes {
+    /// The stepper for `scheme` on `legs` legs from the state `vehicle`, its first adaptive
+    /// step `dt_max` (s).
+    pub(crate) fn new(scheme: Scheme, legs: usize, vehicle: &VehicleState, dt_max: f64) -> Schemes {
+        let scratch = Scratch::new(legs, vehicle);
         match scheme {
-            Scheme::Report => Schemes::Report(report::PredictorCorrector::new(legs)),
-            Scheme::Rk4 => Schemes::Fixed(runge_kutta::Fixed::rk4(legs)),
-            Scheme::Dopri5 => Schemes::Adaptive(runge_kutta::Adaptive::dopri5(legs, dt_max)),
+            Scheme::Report => Schemes::Report(report::PredictorCorrector::new(scratch)),
+            Scheme::Rk4 => Schemes::Fixed(runge_kutta::Fixed::rk4(scratch)),
+            Scheme::Dopri5 => {
+                Schemes::Adaptive(runge_kutta::Adaptive::dopri5(scratch, legs, dt_max))
+            }
         }
     }
 

@@ -2,8 +2,7 @@
 //! eqs. (20)-(24), one update per degree of freedom (position, Euler angles, slosh amplitude),
 //! and its step-size rule, eq. (25).
 
-use super::{limit_step, Advance, GearBuffers, Stepper};
-use crate::gear::GearState;
+use super::{limit_step, Advance, Scratch, Stepper};
 use crate::ledger::Quadrature;
 use crate::simulation::Physics;
 use crate::state::VehicleState;
@@ -11,18 +10,16 @@ use crate::surface::ContactState;
 use std::ops::{Add, Div, Mul};
 use touchdown_record::RunError;
 
-/// The report's predictor-corrector with its own gear buffers.
+/// The report's predictor-corrector with its own scratch space.
 #[derive(Debug, Clone)]
 pub(crate) struct PredictorCorrector {
-    buffers: GearBuffers,
+    scratch: Scratch,
 }
 
 impl PredictorCorrector {
-    /// The scheme for `legs` legs.
-    pub(crate) fn new(legs: usize) -> PredictorCorrector {
-        PredictorCorrector {
-            buffers: GearBuffers::new(legs),
-        }
+    /// The scheme working in `scratch`.
+    pub(crate) fn new(scratch: Scratch) -> PredictorCorrector {
+        PredictorCorrector { scratch }
     }
 }
 
@@ -30,17 +27,16 @@ impl Stepper for PredictorCorrector {
     fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
         let dt = limit_step(physics, step_size(physics));
         let pads = physics.advance_pads(dt, old);
-        let (new, trial_power) = predict_correct(physics, &mut self.buffers.trial, dt, old)?;
+        let trial_power = predict_correct(physics, &mut self.scratch, dt, old)?;
         Ok(Advance {
             dt,
-            new,
             quadrature: Quadrature::Trapezoid { trial_power },
             pads,
         })
     }
 
-    fn buffers(&mut self) -> &mut GearBuffers {
-        &mut self.buffers
+    fn scratch(&mut self) -> &mut Scratch {
+        &mut self.scratch
     }
 }
 
@@ -87,14 +83,14 @@ fn correct<T: Quantity>(x: T, x_dot: T, x_ddot: T, trial: T, dt: f64) -> (T, T) 
 }
 
 /// Steps 3-5 of the report's scheme from the accepted state `old` over `dt` (s), the trial
-/// evaluated into `trial`: the corrected state, and the vehicle-level mechanisms' power at the
-/// trial (W).
+/// evaluated into `scratch.trial`, the corrected state written into `scratch.new`: returns the
+/// vehicle-level mechanisms' power at the trial, W.
 fn predict_correct(
     physics: &mut Physics,
-    trial: &mut [GearState],
+    scratch: &mut Scratch,
     dt: f64,
     old: &VehicleState,
-) -> Result<(VehicleState, f64), RunError> {
+) -> Result<f64, RunError> {
     let slosh = physics.mechanisms.slosh.is_some();
     // 3. predictor, c = 0 (eqs. 22-23)
     let mut pred = *old;
@@ -106,11 +102,12 @@ fn predict_correct(
             predict(old.slosh_q, old.slosh_q_dot, old.slosh_q_ddot, dt);
     }
     // 4. trial evaluation
-    let loads = physics.loads(physics.t + dt, &pred, trial)?;
+    let loads = physics.loads(physics.t + dt, &pred, &mut scratch.trial)?;
     physics.evaluations += 1;
     physics.accelerate(&mut pred, &loads)?;
     // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
-    let mut new = *old;
+    let new = &mut scratch.new;
+    *new = *old;
     (new.position, new.velocity) = correct(
         old.position,
         old.velocity,
@@ -135,5 +132,5 @@ fn predict_correct(
             dt,
         );
     }
-    Ok((new, loads.applied_power.applied))
+    Ok(loads.applied_power.applied)
 }

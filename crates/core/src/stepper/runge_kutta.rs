@@ -2,7 +2,7 @@
 //! (`integrator.scheme = "rk4"`), and the Dormand–Prince 5(4) pair with error control and the
 //! location of contact events (`"dopri5"`).
 
-use super::{limit_step, Advance, GearBuffers, Stepper};
+use super::{limit_step, Advance, Scratch, Stepper};
 use crate::integrator::{self, Ode, Tableau, DOPRI5, MAX_STAGES, RK4};
 use crate::ledger::{Power, Quadrature, StageWork};
 use crate::simulation::Physics;
@@ -11,19 +11,19 @@ use crate::surface::Footpad;
 use touchdown_record::RunError;
 
 /// A Runge–Kutta method at a fixed step `integrator.dt_max` (shortened only to land a footpad
-/// or to end), with its own gear buffers.
+/// or to end), with its own scratch space.
 #[derive(Debug, Clone)]
 pub(crate) struct Fixed {
     tableau: &'static Tableau,
-    buffers: GearBuffers,
+    scratch: Scratch,
 }
 
 impl Fixed {
-    /// The classical fourth-order method for `legs` legs.
-    pub(crate) fn rk4(legs: usize) -> Fixed {
+    /// The classical fourth-order method working in `scratch`.
+    pub(crate) fn rk4(scratch: Scratch) -> Fixed {
         Fixed {
             tableau: &RK4,
-            buffers: GearBuffers::new(legs),
+            scratch,
         }
     }
 }
@@ -32,25 +32,24 @@ impl Stepper for Fixed {
     fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
         let dt = limit_step(physics, physics.integrator.dt_max);
         let pads = physics.advance_pads(dt, old);
-        let step = runge_kutta(physics, &mut self.buffers, dt, old, self.tableau)?;
+        let step = runge_kutta(physics, &mut self.scratch, dt, old, self.tableau)?;
         Ok(Advance {
             dt,
-            new: step.new,
             quadrature: step.quadrature,
             pads,
         })
     }
 
-    fn buffers(&mut self) -> &mut GearBuffers {
-        &mut self.buffers
+    fn scratch(&mut self) -> &mut Scratch {
+        &mut self.scratch
     }
 }
 
-/// The adaptive Dormand–Prince pair: its gear buffers, the footpads at the start of the step
+/// The adaptive Dormand–Prince pair: its scratch space, the footpads at the start of the step
 /// (restored when a step is rejected), its next step and its counts.
 #[derive(Debug, Clone)]
 pub(crate) struct Adaptive {
-    buffers: GearBuffers,
+    scratch: Scratch,
     pads_saved: Vec<Footpad>,
     /// The next step, s.
     next_dt: f64,
@@ -61,10 +60,10 @@ pub(crate) struct Adaptive {
 }
 
 impl Adaptive {
-    /// The Dormand–Prince pair for `legs` legs, its first step `dt` (s).
-    pub(crate) fn dopri5(legs: usize, dt: f64) -> Adaptive {
+    /// The Dormand–Prince pair working in `scratch` for `legs` legs, its first step `dt` (s).
+    pub(crate) fn dopri5(scratch: Scratch, legs: usize, dt: f64) -> Adaptive {
         Adaptive {
-            buffers: GearBuffers::new(legs),
+            scratch,
             pads_saved: vec![Footpad::default(); legs],
             next_dt: dt,
             rejected: 0,
@@ -87,7 +86,7 @@ impl Stepper for Adaptive {
             let floor = dt <= dt_min * (1.0 + 1e-9);
             // A stage that takes a law out of its domain (a strut stretched past its bearings
             // by a step too long to see its footpad leave) rejects the step, above dt_min.
-            let step = match runge_kutta(physics, &mut self.buffers, dt, old, &DOPRI5) {
+            let step = match runge_kutta(physics, &mut self.scratch, dt, old, &DOPRI5) {
                 Ok(step) => step,
                 Err(_) if !floor => {
                     self.rejected += 1;
@@ -104,7 +103,8 @@ impl Stepper for Adaptive {
             };
             // A footpad that lands or leaves within the step is located to dt_min: the step is
             // retried at half its length until it ends within dt_min of the event.
-            let event = !floor && physics.contact_event(&step.new, &self.buffers.trial);
+            let s = &self.scratch;
+            let event = !floor && physics.contact_event(&s.new, &s.trial);
             if (ratio <= 1.0 && !event) || floor {
                 self.forced += u64::from(ratio > 1.0);
                 let proposal = integrator::next_step(dt, ratio, DOPRI5.error_order);
@@ -117,7 +117,6 @@ impl Stepper for Adaptive {
                 };
                 return Ok(Advance {
                     dt,
-                    new: step.new,
                     quadrature: step.quadrature,
                     pads,
                 });
@@ -132,8 +131,8 @@ impl Stepper for Adaptive {
         }
     }
 
-    fn buffers(&mut self) -> &mut GearBuffers {
-        &mut self.buffers
+    fn scratch(&mut self) -> &mut Scratch {
+        &mut self.scratch
     }
 
     fn describe(&self, settings: &mut serde_json::Map<String, serde_json::Value>) {
@@ -142,21 +141,21 @@ impl Stepper for Adaptive {
     }
 }
 
-/// A Runge–Kutta step: the new state, the step's quadrature and the error ratio (0 without an
-/// embedded estimate).
+/// A Runge–Kutta step: the step's quadrature and the error ratio (0 without an embedded
+/// estimate).
 struct Step {
-    new: VehicleState,
     quadrature: Quadrature,
     ratio: f64,
 }
 
 /// One step of the Runge–Kutta method `tab` from the accepted state `old` of `physics` over
-/// `dt` (s), the sliding footpads already advanced. Each stage evaluates the forces at its own
-/// state into `buffers.trial`, committing nothing. With a first-same-as-last method the last
-/// stage is the new state: it comes back evaluated, its forces in `buffers.trial`.
+/// `dt` (s), the sliding footpads already advanced; the new state is written into
+/// `scratch.new`. Each stage evaluates the forces at its own state into `scratch.trial`,
+/// committing nothing. With a first-same-as-last method the last stage is the new state: it
+/// comes back evaluated, its forces in `scratch.trial`.
 fn runge_kutta(
     physics: &mut Physics,
-    buffers: &mut GearBuffers,
+    scratch: &mut Scratch,
     dt: f64,
     old: &VehicleState,
     tab: &Tableau,
@@ -168,7 +167,7 @@ fn runge_kutta(
     let mut work = StageWork::default();
     work.add(
         tab.b[0] * dt,
-        &buffers.previous,
+        &scratch.previous,
         physics.applied_power.applied,
     );
     let mut v = *old;
@@ -182,11 +181,11 @@ fn runge_kutta(
         }
         v.set_ode(&y, form);
         let t = physics.t + tab.c[i] * dt;
-        let loads = physics.loads_at(t, &v, tab.c[i], &mut buffers.trial)?;
+        let loads = physics.loads_at(t, &v, tab.c[i], &mut scratch.trial)?;
         physics.evaluations += 1;
         physics.accelerate(&mut v, &loads)?;
         k[i] = v.rate(form);
-        work.add(tab.b[i] * dt, &buffers.trial, loads.applied_power.applied);
+        work.add(tab.b[i] * dt, &scratch.trial, loads.applied_power.applied);
         last_power = loads.applied_power;
     }
     let mut y1 = y0;
@@ -208,17 +207,13 @@ fn runge_kutta(
         // The last stage's state is y1 (its coupling row is b).
         let evaluated = Some(last_power);
         let quadrature = Quadrature::Stages { work, evaluated };
-        return Ok(Step {
-            new: v,
-            quadrature,
-            ratio,
-        });
+        scratch.new = v;
+        return Ok(Step { quadrature, ratio });
     }
-    let mut new = *old;
-    new.set_ode(&y1, form);
+    scratch.new = *old;
+    scratch.new.set_ode(&y1, form);
     let evaluated = None;
     Ok(Step {
-        new,
         quadrature: Quadrature::Stages { work, evaluated },
         ratio,
     })
