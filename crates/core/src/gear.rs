@@ -1,7 +1,8 @@
 //! Landing-gear geometry, strokes and force resolution at the footpad for one cantilever gear
 //! assembly, eqs. (26)-(34), (49)-(66). Body axes throughout; the gear is massless.
 //!
-//! Sign conventions (review §0, verified by independent statics in docs/errata.md):
+//! Sign conventions (docs/errata.md, "Conventions fixed first"; verified by independent
+//! statics, `tests::footpad_force_balances_the_trunnion_loads`):
 //! the primary stroke S2P = V2P − L2P is negative in compression; the code works with the
 //! compression stroke c = −S2P and FCP, FVP, FBR, F2P compression-positive. Secondary strokes
 //! and forces are tension positive. FS = F31·V̂31 + F41·V̂41 is the force the primary exerts on
@@ -41,7 +42,8 @@ pub struct GearState {
     /// FP, force of the gear on the footpad, body axes, N (eq. 65).
     pub fp: Vector3<f64>,
     /// Displacement of point 1 by primary-strut bending at this state, body axes, m (|η|
-    /// along FN̂, eqs. 43-47): the next step's secondaries see it (lagged, review A8).
+    /// along FN̂, eqs. 43-47): the next step's secondaries see it (lagged: docs/errata.md,
+    /// "Eqs. (47)-(48): bending coupling").
     pub point1_deflection: Vector3<f64>,
     /// λ31, λ41: the apparent lengthening of the secondaries by the lagged bending
     /// displacement (eq. 47), m, included in `secondary_stroke`.
@@ -113,7 +115,8 @@ pub fn evaluate(
     let c = leg.l2p - len;
     let mut s = [l31 - leg.l31, l41 - leg.l41];
     let mut bending_lengthening = [0.0; 2];
-    // eq. (47), as a stroke correction (review A8): the lagged bending displacement of point 1
+    // eq. (47), as a stroke correction (docs/errata.md, "Eqs. (47)-(48): bending coupling"):
+    // the lagged bending displacement of point 1
     // lengthens secondary i by λ_i = d·V̂i1 (a strut in tension is eased: a softer series spring).
     if let Some((_, d)) = &options.bending {
         let lambda = touchdown_laws::secondary_lengthening(*d, u[0], u[1]);
@@ -179,7 +182,7 @@ pub fn evaluate(
     Ok(())
 }
 
-/// The tripod gear (review A23): the secondaries meet the primary at the footpad (B1 = BP,
+/// The tripod gear (docs/errata.md, "Tripod gear"; docs/model.md, "Tripod gear"): the secondaries meet the primary at the footpad (B1 = BP,
 /// eqs. 29-30 with L21 = V2P), so the primary is a two-force member with no side load and no
 /// bearing friction, and FP = F2P·V̂2P − FS (eqs. 64-65 rows).
 fn evaluate_tripod(
@@ -415,7 +418,7 @@ mod tests {
         assert!((moment - bp.cross(&(-fp))).norm() < 1e-9 * fp.norm());
     }
 
-    /// Independent statics of the massless gear (review check_forces.py): the primary pinned
+    /// Independent statics of the massless gear: the primary pinned
     /// at 2, secondaries two-force members, pad force FP; the forces at the trunnions on the
     /// body must balance −FP and their moments about the origin must equal BP × (−FP) (eq. 66).
     #[test]

@@ -1,5 +1,5 @@
 //! Runge–Kutta integration of the vehicle's equations of motion, beside the report's own
-//! predictor-corrector (eqs. 20-25, in [`crate::simulation`]): the classical fourth-order method
+//! predictor-corrector (eqs. 20-25, in [`crate::stepper::report`]): the classical fourth-order method
 //! at a fixed step and the Dormand–Prince 5(4) embedded pair with error control.
 //!
 //! What a Runge–Kutta stage advances is [`Ode`]: the centre of mass (eqs. 10-12), the attitude

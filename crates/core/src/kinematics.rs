@@ -3,7 +3,8 @@
 use nalgebra::{Matrix3, Vector3};
 
 /// |cos θy| below which the Euler-angle kinematics are declared singular (θy → ±90°, eqs. 5
-/// and 9a divide by cos θy; review A22).
+/// and 9a divide by cos θy; docs/errata.md, "Modelling choices the report leaves open", gimbal
+/// lock).
 pub const GIMBAL_LOCK_COS: f64 = 1e-6;
 
 /// T_BE, body rates → Euler rates, eq. (5). Angles in rad.

@@ -19,15 +19,22 @@
 //! Departures from the printed equations are listed with their derivations and tests in
 //! `docs/errata.md`.
 
+pub mod contact;
+pub mod diagnostics;
 pub mod gear;
 pub mod integrator;
 pub mod kinematics;
+pub mod ledger;
+pub mod loads;
 pub mod mechanisms;
 pub mod rigid_body;
 pub mod simulation;
+pub mod state;
+pub mod stepper;
 pub mod surface;
 
-pub use simulation::{Simulation, VehicleState};
+pub use simulation::Simulation;
+pub use state::VehicleState;
 pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, RunError, Summary};
 
 /// Why the core does not model `mechanism`: never; it models every mechanism of the report

@@ -5,29 +5,27 @@
 //! never built and never evaluated, and every evaluation of one that is present is counted
 //! ([`Mechanisms::evaluations`]), which is how the tests show it.
 
-use crate::simulation::VehicleState;
+use crate::state::VehicleState;
 use nalgebra::{Vector2, Vector3};
-use std::cell::Cell;
 use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion};
 use touchdown_laws::{Bending, Curbs, Slosh, Soil};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{Scenario, ScenarioError};
 
-/// Evaluation counts per mechanism.
-#[derive(Debug, Clone, Default)]
-pub struct Evaluations([Cell<u64>; Mechanism::ALL.len()]);
+/// Evaluation counts per mechanism (plain data, counted where the evaluations happen).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Evaluations([u64; Mechanism::ALL.len()]);
 
 impl Evaluations {
     /// Counts one evaluation of `m`.
     #[inline]
-    pub fn tick(&self, m: Mechanism) {
-        let c = &self.0[m as usize];
-        c.set(c.get() + 1);
+    pub fn tick(&mut self, m: Mechanism) {
+        self.0[m as usize] += 1;
     }
 
     /// Evaluations of `m` so far.
     pub fn get(&self, m: Mechanism) -> u64 {
-        self.0[m as usize].get()
+        self.0[m as usize]
     }
 }
 
@@ -47,7 +45,8 @@ pub struct Mechanisms {
     pub bending: Option<Bending>,
     /// Specific force at the slosh mass, body axes, m/s², at the last accepted state: the
     /// slosh equations use it one step lagged, which breaks the algebraic loop between the
-    /// vehicle's and the slosh mass's accelerations (review rows 108-109).
+    /// vehicle's and the slosh mass's accelerations (docs/errata.md, "Eq. (108): effective axial
+    /// acceleration, lagged one step").
     pub slosh_specific_force: Vector3<f64>,
     declared: Vec<Mechanism>,
     evaluations: Evaluations,
@@ -73,7 +72,7 @@ impl Mechanisms {
     /// Counts one evaluation of `m` (for the mechanisms evaluated elsewhere: soil, curbs,
     /// bending).
     #[inline]
-    pub fn tick(&self, m: Mechanism) {
+    pub fn tick(&mut self, m: Mechanism) {
         self.evaluations.tick(m);
     }
 
@@ -98,7 +97,7 @@ impl Mechanisms {
     /// first footpad contact (s), for the RCS delay.
     #[inline]
     pub fn vehicle_loads(
-        &self,
+        &mut self,
         t: f64,
         first_contact: impl Fn() -> Option<f64>,
         v: &VehicleState,
@@ -121,8 +120,9 @@ impl Mechanisms {
             self.evaluations.tick(Mechanism::Slosh);
             let axial = slosh.axial(&self.slosh_specific_force);
             let lateral = slosh.wall_force(&v.slosh_q, axial); // eqs. (108), (115)
-                                                               // The slosh mass presses on the tank floor with M_s·Z̈_B,eff along −Z_B (review
-                                                               // A21: the appendix drops this axial load); it acts on the axis, so no moment.
+                                                               // The slosh mass presses on the tank floor with M_s·Z̈_B,eff along −Z_B (the
+                                                               // appendix drops this axial load: docs/errata.md, "Review A21: the slosh mass's
+                                                               // axial load — added"); it acts on the axis, so no moment.
             out.force += Vector3::new(lateral.x, lateral.y, -slosh.slosh_mass() * axial);
             out.torque += slosh.torque(&lateral); // eq. (117), corrected
         }
@@ -147,7 +147,8 @@ impl Mechanisms {
     pub fn commit(&mut self, v: &VehicleState, gravity: &Vector3<f64>) {
         self.propulsion.commit(&v.position, &v.t_bi);
         if let Some(slosh) = &self.slosh {
-            // (A_tank − G) in body axes at r_s = (0, 0, −d) (review row 109).
+            // (A_tank − G) in body axes at r_s = (0, 0, −d) (docs/errata.md, "Eq. (109): 2-D
+            // amplitude, lateral specific force").
             let r = Self::slosh_arm(slosh);
             self.slosh_specific_force = v.t_bi.transpose() * (v.acceleration - gravity)
                 + v.omega_dot.cross(&r)

@@ -1,10 +1,12 @@
 //! Footpads on the rigid surface, eqs. (16)-(19), (85), (96)-(100) and the contact logic of
-//! the text (review A1, A2, A4, A5, A13).
+//! the text (docs/errata.md, "Contact and release (text before eq. 85, after eq. 100) —
+//! reinterpreted" and "Modelling choices the report leaves open").
 //!
 //! Each footpad n sees its own plane Z = −HOLE_n. States: `Free` (never touched: rigidly
 //! attached to the undeformed gear), `Contact` (on its plane: Z held, X-Y locked if OBST_n > 0
 //! or sliding with Coulomb friction), `Detached` (left the surface: rigidly attached with the
-//! deformed geometry frozen). A footpad not in contact carries no gear force (review A3).
+//! deformed geometry frozen). A footpad not in contact carries no gear force (docs/errata.md,
+//! "Eq. (66): only pads in contact — interpreted").
 
 use nalgebra::{Vector2, Vector3};
 use serde::Serialize;
@@ -48,10 +50,11 @@ pub struct Footpad {
     pub bp_attached: Vector3<f64>,
     /// Body-frame position at the last accepted state, m (used for the tentative position).
     pub bp: Vector3<f64>,
-    /// (XPI, YPI), inertial X-Y at the first touchdown, m (review A1: recorded the first time
-    /// only; curbs (eq. 86) and the soil's lateral displacement SP (eq. 102) refer to it).
+    /// (XPI, YPI), inertial X-Y at the first touchdown, m (recorded the first time only:
+    /// docs/errata.md, "Modelling choices the report leaves open"; curbs (eq. 86) and the soil's lateral displacement SP (eq. 102) refer to it).
     pub touchdown_xy: Vector2<f64>,
-    /// Sliding footpad at rest, held by static friction (A13).
+    /// Sliding footpad at rest, held by static friction (docs/errata.md, "Sliding stop within a
+    /// step — implementation of the text before eq. (100)").
     pub stuck: bool,
     /// Time of first contact, s.
     pub first_contact: Option<f64>,
@@ -92,7 +95,8 @@ impl SlidingForces {
     }
 
     /// Applied in-plane force FXYP including the footpad's weight component, N (eq. 100; the
-    /// weight term is an addition, review A13 / eq. 100 row).
+    /// weight term is an addition: docs/errata.md, "Eq. (100): breakaway test — the pad's
+    /// weight added").
     pub fn applied(&self) -> Vector2<f64> {
         self.gear_xy + self.curb_xy + self.gravity_xy * self.mass
     }
@@ -178,7 +182,8 @@ fn set_xy(pad: &mut Footpad, p: Vector2<f64>, v: Vector2<f64>) {
     pad.velocity.y = v.y;
 }
 
-/// Puts a footpad into contact at inertial X-Y `xy` on its plane (text before eq. 86, A1):
+/// Puts a footpad into contact at inertial X-Y `xy` on its plane (text before eq. 86;
+/// docs/errata.md, "Modelling choices the report leaves open"):
 /// records (XPI, YPI), keeps the in-plane velocity `v_xy` of the rigid attachment unless the
 /// footpad is locked (OBST > 0), and sets the normal velocity to `v_normal` (m/s): 0 on the
 /// rigid surface, the attachment's on soil, where the footpad penetrates (eq. 103).

@@ -1,0 +1,155 @@
+//! Net loads on the vehicle and its accelerations: each gear in contact evaluated at its
+//! footpad (eqs. 26-65), the gear's force and moment on the vehicle (eqs. 66-68), the
+//! vehicle-level mechanisms' loads added (eqs. 83-84), and the rigid-vehicle accelerations
+//! (eqs. 9-15, slosh eq. 109).
+
+use crate::gear::{self, GearOptions, GearState};
+use crate::kinematics::{euler_acceleration, GIMBAL_LOCK_COS};
+use crate::ledger::Power;
+use crate::simulation::Physics;
+use crate::state::VehicleState;
+use crate::surface::{ContactState, Footpad};
+use nalgebra::Vector3;
+use touchdown_record::{Law, RunError};
+use touchdown_scenario::model::Mechanism;
+use touchdown_scenario::schema::{Arrangement, AttitudeForm};
+
+/// Net loads on the vehicle (eqs. 66-68, 83-84): force in inertial axes excluding gravity,
+/// torque in body axes, and the power of the vehicle-level mechanisms (thrust, nozzle, RCS,
+/// slosh) on the vehicle.
+pub(crate) struct Loads {
+    /// Net force, inertial axes, N.
+    pub(crate) force: Vector3<f64>,
+    /// Net torque about the centre of mass, body axes, N·m.
+    pub(crate) torque: Vector3<f64>,
+    /// Power of the vehicle-level mechanisms on the vehicle, W.
+    pub(crate) applied_power: Power,
+}
+
+/// Time of the first contact of any of `pads`, s.
+fn first_contact(pads: &[Footpad]) -> Option<f64> {
+    pads.iter().filter_map(|p| p.first_contact).reduce(f64::min)
+}
+
+impl Physics {
+    /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
+    /// written into `out` (eqs. 26-68, 83-84). Footpads not in contact carry no load.
+    pub(crate) fn loads(
+        &mut self,
+        t: f64,
+        v: &VehicleState,
+        out: &mut [GearState],
+    ) -> Result<Loads, RunError> {
+        self.loads_at(t, v, 1.0, out)
+    }
+
+    /// [`Physics::loads`] with each sliding footpad a fraction `blend` of the way from its
+    /// start of step to where it is now (a Runge–Kutta stage; 1 is now).
+    pub(crate) fn loads_at(
+        &mut self,
+        t: f64,
+        v: &VehicleState,
+        blend: f64,
+        out: &mut [GearState],
+    ) -> Result<Loads, RunError> {
+        let mut force = Vector3::zeros();
+        let mut torque = Vector3::zeros();
+        for (i, slot) in out.iter_mut().enumerate() {
+            let pad = &self.pads[i];
+            if pad.state != ContactState::Contact {
+                let prev = &self.gear[i];
+                *slot = GearState {
+                    primary_stroke: prev.primary_stroke,
+                    secondary_stroke: prev.secondary_stroke,
+                    ..GearState::default()
+                };
+                continue;
+            }
+            let (position, velocity) = if blend >= 1.0 {
+                (pad.position, pad.velocity)
+            } else {
+                let (p0, v0) = self.pad_start[i];
+                (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
+            };
+            let bp = self.evaluate_leg(i, v, &position, &velocity, slot)?;
+            torque += bp.cross(&(-slot.fp)); // eq. (66)
+            force -= v.t_bi * slot.fp; // eqs. (67)-(68)
+        }
+        // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms, if any.
+        let mut applied_power = Power::default();
+        let pads = &self.pads;
+        if let Some(a) = self.mechanisms.vehicle_loads(t, || first_contact(pads), v) {
+            let applied_force = v.t_bi * a.force;
+            force += applied_force; // eq. (83)
+            torque += a.torque; // eq. (84)
+            applied_power = Power {
+                applied: applied_force.dot(&v.velocity) + a.torque.dot(&v.omega),
+                driving: a.driving_power(&(v.t_bi.transpose() * v.velocity), &v.omega),
+            };
+        }
+        Ok(Loads {
+            force,
+            torque,
+            applied_power,
+        })
+    }
+
+    /// Evaluates gear `i` (eqs. 26-65) into `slot` with the vehicle at `v` and its footpad at
+    /// `position` moving at `velocity` (inertial, m and m/s); returns the footpad's body-frame
+    /// position BP, m.
+    pub(crate) fn evaluate_leg(
+        &mut self,
+        i: usize,
+        v: &VehicleState,
+        position: &Vector3<f64>,
+        velocity: &Vector3<f64>,
+        slot: &mut GearState,
+    ) -> Result<Vector3<f64>, RunError> {
+        let t_ib = v.t_bi.transpose();
+        let bp = t_ib * (position - v.position);
+        let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
+        if self.arrangement == Arrangement::Tripod {
+            self.mechanisms.tick(Mechanism::Tripod);
+        }
+        if self.mechanisms.bending.is_some() {
+            self.mechanisms.tick(Mechanism::Bending);
+        }
+        let options = GearOptions {
+            arrangement: self.arrangement,
+            bending: (self.mechanisms.bending.as_ref()).map(|b| (b, self.bending_lag[i])),
+        };
+        gear::evaluate(
+            &self.legs[i],
+            &self.laws,
+            &self.memory[i],
+            &bp,
+            &bp_dot,
+            &options,
+            slot,
+        )
+        .map_err(|f| self.diverged(v, f.error.to_string(), f.law, Some(i)))?;
+        Ok(bp)
+    }
+
+    /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c); the slosh
+    /// amplitude's by eq. (109), corrected.
+    pub(crate) fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), RunError> {
+        let euler = self.integrator.attitude == AttitudeForm::Euler;
+        // θy stays within ±90° unless it crossed the singularity (cos θy < 0 beyond).
+        if euler && v.theta.y.cos() < GIMBAL_LOCK_COS {
+            return Err(self.diverged(
+                v,
+                "Euler-angle singularity: θy reached or crossed ±90° (eqs. 5 and 9a divide by cos θy); integrator.attitude = \"quaternion\" (schemes rk4, dopri5) goes through it".into(),
+                Law::Kinematics,
+                None,
+            ));
+        }
+        v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
+        v.omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
+        if euler {
+            v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
+        }
+        v.slosh_q_ddot = self.mechanisms.slosh_acceleration(v); // eq. (109), corrected
+        Ok(())
+    }
+}

@@ -1,0 +1,160 @@
+//! The integration schemes behind one trait, `Stepper`: the report's predictor-corrector with
+//! its step rule (eqs. 20-25, [`report`]), the classical fourth-order Runge–Kutta method at a
+//! fixed step and the adaptive Dormand–Prince 5(4) pair ([`runge_kutta`], tableaux in
+//! [`crate::integrator`]). Each owns its scratch space.
+//!
+//! A step (the order is not stated by the report; docs/errata.md, "Eqs. (20)-(24): the
+//! integration scheme — as printed, one per degree of freedom"):
+//! 1. at t_k the state, the committed hysteresis and the accelerations a_k are known;
+//! 2. footpads in sliding contact advance over Δt with their forces frozen at t_k (eq. 97);
+//! 3. the vehicle is predicted with c = 0 (eqs. 22-23);
+//! 4. forces and accelerations are evaluated at the prediction (trial, nothing committed);
+//! 5. the vehicle is corrected with c from eq. (24);
+//! 6. forces are evaluated at the corrected state, the contact logic runs, and if a footpad
+//!    changed state the forces are evaluated again;
+//! 7. the honeycomb memories are committed at that accepted state, whose accelerations are
+//!    a_{k+1}; energy and stability are updated;
+//! 8. the next Δt follows eq. (25).
+//!
+//! With a Runge–Kutta scheme (`integrator.scheme = "rk4"` or `"dopri5"`) steps 3-5 are the
+//! method's stages instead: each evaluates the forces at its stage state (the sliding footpads
+//! interpolated along their step, nothing committed); the strut and mechanism work is the
+//! method's quadrature of the stage powers. An adaptive step whose error estimate exceeds the
+//! tolerance is rejected: the footpads go back to the start and the step is retried shorter.
+//! Steps 6-8 are the same for every scheme (`Physics::finish_step`, in [`crate::simulation`]),
+//! so the hysteresis is committed only at accepted states.
+//!
+//! Nothing in the step allocates.
+
+pub mod report;
+pub mod runge_kutta;
+
+use crate::gear::GearState;
+use crate::ledger::{PadWork, Quadrature};
+use crate::simulation::Physics;
+use crate::state::VehicleState;
+use crate::surface::ContactState;
+use touchdown_record::RunError;
+use touchdown_scenario::schema::Scheme;
+
+/// The space a stepper works in: the new state of the step, and gear states, one per leg (the
+/// accepted ones at the start of the step, the trial or Runge–Kutta stage evaluations, and the
+/// spare the accepted state's evaluation is written into before it replaces the current one).
+#[derive(Debug, Clone)]
+pub(crate) struct Scratch {
+    /// The new state of the step, its accelerations set only once it is evaluated (or when a
+    /// first-same-as-last stage was).
+    pub(crate) new: VehicleState,
+    pub(crate) previous: Vec<GearState>,
+    pub(crate) trial: Vec<GearState>,
+    pub(crate) spare: Vec<GearState>,
+}
+
+impl Scratch {
+    /// Scratch space for `legs` legs, the new state starting as `vehicle`.
+    pub(crate) fn new(legs: usize, vehicle: &VehicleState) -> Scratch {
+        Scratch {
+            new: *vehicle,
+            previous: vec![GearState::default(); legs],
+            trial: vec![GearState::default(); legs],
+            spare: vec![GearState::default(); legs],
+        }
+    }
+}
+
+/// Steps 2-5 of one step (the new state is in the stepper's [`Scratch`]): its length, how its
+/// strut work is booked and the work of the sliding footpads.
+pub(crate) struct Advance {
+    /// Step length, s.
+    pub(crate) dt: f64,
+    /// How the strut and mechanism work of the step is booked.
+    pub(crate) quadrature: Quadrature,
+    /// Work of the sliding footpads over the step, J.
+    pub(crate) pads: PadWork,
+}
+
+/// An integration scheme.
+pub(crate) trait Stepper {
+    /// Steps 2-5 from the accepted state `old` of `physics`: the footpads advanced, the new
+    /// state computed into the scratch space. Nothing is committed.
+    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError>;
+
+    /// The stepper's scratch space.
+    fn scratch(&mut self) -> &mut Scratch;
+
+    /// Adds the scheme's own counts to the summary's integrator settings (none by default).
+    fn describe(&self, _settings: &mut serde_json::Map<String, serde_json::Value>) {}
+
+    /// One accepted step of `physics` (see the module documentation).
+    fn step(&mut self, physics: &mut Physics) -> Result<(), RunError> {
+        let old = physics.vehicle;
+        self.scratch().previous.copy_from_slice(&physics.gear);
+        let power_old = physics.applied_power;
+        let step = self.advance(physics, &old)?;
+        physics.finish_step(&old, &step, power_old, self.scratch())
+    }
+}
+
+/// The scheme a scenario chose.
+#[derive(Debug, Clone)]
+pub(crate) enum Schemes {
+    /// The report's predictor-corrector, eqs. (20)-(25).
+    Report(report::PredictorCorrector),
+    /// A Runge–Kutta method at a fixed step.
+    Fixed(runge_kutta::Fixed),
+    /// The adaptive Dormand–Prince pair.
+    Adaptive(runge_kutta::Adaptive),
+}
+
+impl Schemes {
+    /// The stepper for `scheme` on `legs` legs from the state `vehicle`, its first adaptive
+    /// step `dt_max` (s).
+    pub(crate) fn new(scheme: Scheme, legs: usize, vehicle: &VehicleState, dt_max: f64) -> Schemes {
+        let scratch = Scratch::new(legs, vehicle);
+        match scheme {
+            Scheme::Report => Schemes::Report(report::PredictorCorrector::new(scratch)),
+            Scheme::Rk4 => Schemes::Fixed(runge_kutta::Fixed::rk4(scratch)),
+            Scheme::Dopri5 => {
+                Schemes::Adaptive(runge_kutta::Adaptive::dopri5(scratch, legs, dt_max))
+            }
+        }
+    }
+
+    /// The chosen stepper.
+    pub(crate) fn get(&mut self) -> &mut dyn Stepper {
+        match self {
+            Schemes::Report(s) => s,
+            Schemes::Fixed(s) => s,
+            Schemes::Adaptive(s) => s,
+        }
+    }
+
+    /// The chosen stepper, to read.
+    pub(crate) fn get_ref(&self) -> &dyn Stepper {
+        match self {
+            Schemes::Report(s) => s,
+            Schemes::Fixed(s) => s,
+            Schemes::Adaptive(s) => s,
+        }
+    }
+}
+
+/// `dt` (s) shortened so that an airborne footpad lands on its plane (docs/errata.md,
+/// "Eq. (25): VEL and first contacts — interpreted, plus one addition") and so that the end
+/// time is met.
+pub(crate) fn limit_step(physics: &Physics, mut dt: f64) -> f64 {
+    let it = &physics.integrator;
+    let v = &physics.vehicle;
+    if it.contact_step_limit {
+        for (p, s) in physics.pads.iter().zip(&physics.surfaces) {
+            if p.state != ContactState::Contact {
+                let gap = v.point(&p.bp_attached).z - s.plane();
+                let approach = -v.point_velocity(&p.bp_attached).z;
+                if gap > 0.0 && approach > 0.0 && gap < approach * dt {
+                    dt = (gap / approach).max(it.dt_min);
+                }
+            }
+        }
+    }
+    dt.min(it.t_end - physics.t).max(f64::MIN_POSITIVE)
+}

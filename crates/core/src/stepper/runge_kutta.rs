@@ -1,0 +1,220 @@
+//! Runge–Kutta steppers, beyond the report: a method of [`crate::integrator`] at a fixed step
+//! (`integrator.scheme = "rk4"`), and the Dormand–Prince 5(4) pair with error control and the
+//! location of contact events (`"dopri5"`).
+
+use super::{limit_step, Advance, Scratch, Stepper};
+use crate::integrator::{self, Ode, Tableau, DOPRI5, MAX_STAGES, RK4};
+use crate::ledger::{Power, Quadrature, StageWork};
+use crate::simulation::Physics;
+use crate::state::VehicleState;
+use crate::surface::Footpad;
+use touchdown_record::RunError;
+
+/// A Runge–Kutta method at a fixed step `integrator.dt_max` (shortened only to land a footpad
+/// or to end), with its own scratch space.
+#[derive(Debug, Clone)]
+pub(crate) struct Fixed {
+    tableau: &'static Tableau,
+    scratch: Scratch,
+}
+
+impl Fixed {
+    /// The classical fourth-order method working in `scratch`.
+    pub(crate) fn rk4(scratch: Scratch) -> Fixed {
+        Fixed {
+            tableau: &RK4,
+            scratch,
+        }
+    }
+}
+
+impl Stepper for Fixed {
+    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
+        let dt = limit_step(physics, physics.integrator.dt_max);
+        let pads = physics.advance_pads(dt, old);
+        let step = runge_kutta(physics, &mut self.scratch, dt, old, self.tableau)?;
+        Ok(Advance {
+            dt,
+            quadrature: step.quadrature,
+            pads,
+        })
+    }
+
+    fn scratch(&mut self) -> &mut Scratch {
+        &mut self.scratch
+    }
+}
+
+/// The adaptive Dormand–Prince pair: its scratch space, the footpads at the start of the step
+/// (restored when a step is rejected), its next step and its counts.
+#[derive(Debug, Clone)]
+pub(crate) struct Adaptive {
+    scratch: Scratch,
+    pads_saved: Vec<Footpad>,
+    /// The next step, s.
+    next_dt: f64,
+    /// Steps rejected.
+    rejected: u64,
+    /// Steps taken at `dt_min` without meeting the tolerance.
+    forced: u64,
+}
+
+impl Adaptive {
+    /// The Dormand–Prince pair working in `scratch` for `legs` legs, its first step `dt` (s).
+    pub(crate) fn dopri5(scratch: Scratch, legs: usize, dt: f64) -> Adaptive {
+        Adaptive {
+            scratch,
+            pads_saved: vec![Footpad::default(); legs],
+            next_dt: dt,
+            rejected: 0,
+            forced: 0,
+        }
+    }
+}
+
+impl Stepper for Adaptive {
+    /// One accepted step from `old`: steps whose error ratio exceeds 1 are rejected (the
+    /// footpads restored) and retried shorter; a step at `dt_min` is accepted whatever its
+    /// error, and counted.
+    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
+        let (dt_min, dt_max) = (physics.integrator.dt_min, physics.integrator.dt_max);
+        self.pads_saved.copy_from_slice(&physics.pads);
+        loop {
+            let planned = self.next_dt.clamp(dt_min, dt_max);
+            let dt = limit_step(physics, planned);
+            let pads = physics.advance_pads(dt, old);
+            let floor = dt <= dt_min * (1.0 + 1e-9);
+            // A stage that takes a law out of its domain (a strut stretched past its bearings
+            // by a step too long to see its footpad leave) rejects the step, above dt_min.
+            let step = match runge_kutta(physics, &mut self.scratch, dt, old, &DOPRI5) {
+                Ok(step) => step,
+                Err(_) if !floor => {
+                    self.rejected += 1;
+                    self.next_dt = 0.5 * dt;
+                    physics.pads.copy_from_slice(&self.pads_saved);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+            let ratio = if step.ratio.is_finite() {
+                step.ratio
+            } else {
+                f64::INFINITY
+            };
+            // A footpad that lands or leaves within the step is located to dt_min: the step is
+            // retried at half its length until it ends within dt_min of the event.
+            let s = &self.scratch;
+            let event = !floor && physics.contact_event(&s.new, &s.trial);
+            if (ratio <= 1.0 && !event) || floor {
+                self.forced += u64::from(ratio > 1.0);
+                let proposal = integrator::next_step(dt, ratio, DOPRI5.error_order);
+                // A step shortened to land a footpad or to end keeps the plan it cut short.
+                let shortened = dt < planned * (1.0 - 1e-9);
+                self.next_dt = if shortened {
+                    proposal.max(planned)
+                } else {
+                    proposal
+                };
+                return Ok(Advance {
+                    dt,
+                    quadrature: step.quadrature,
+                    pads,
+                });
+            }
+            self.rejected += 1;
+            self.next_dt = if ratio <= 1.0 {
+                0.5 * dt
+            } else {
+                integrator::next_step(dt, ratio, DOPRI5.error_order)
+            };
+            physics.pads.copy_from_slice(&self.pads_saved);
+        }
+    }
+
+    fn scratch(&mut self) -> &mut Scratch {
+        &mut self.scratch
+    }
+
+    fn describe(&self, settings: &mut serde_json::Map<String, serde_json::Value>) {
+        settings.insert("rejected_steps".into(), self.rejected.into());
+        settings.insert("steps_forced_at_dt_min".into(), self.forced.into());
+    }
+}
+
+/// A Runge–Kutta step: the step's quadrature and the error ratio (0 without an embedded
+/// estimate).
+struct Step {
+    quadrature: Quadrature,
+    ratio: f64,
+}
+
+/// One step of the Runge–Kutta method `tab` from the accepted state `old` of `physics` over
+/// `dt` (s), the sliding footpads already advanced; the new state is written into
+/// `scratch.new`. Each stage evaluates the forces at its own state into `scratch.trial`,
+/// committing nothing. With a first-same-as-last method the last stage is the new state: it
+/// comes back evaluated, its forces in `scratch.trial`.
+fn runge_kutta(
+    physics: &mut Physics,
+    scratch: &mut Scratch,
+    dt: f64,
+    old: &VehicleState,
+    tab: &Tableau,
+) -> Result<Step, RunError> {
+    let form = physics.integrator.attitude;
+    let y0 = old.ode();
+    let mut k = [Ode::zeros(); MAX_STAGES];
+    k[0] = old.rate(form);
+    let mut work = StageWork::default();
+    work.add(
+        tab.b[0] * dt,
+        &scratch.previous,
+        physics.applied_power.applied,
+    );
+    let mut v = *old;
+    let mut last_power = Power::default();
+    for i in 1..tab.stages {
+        let mut y = y0;
+        for (a, kj) in tab.a[i].iter().zip(&k).take(i) {
+            if *a != 0.0 {
+                y.add_scaled(dt * a, kj);
+            }
+        }
+        v.set_ode(&y, form);
+        let t = physics.t + tab.c[i] * dt;
+        let loads = physics.loads_at(t, &v, tab.c[i], &mut scratch.trial)?;
+        physics.evaluations += 1;
+        physics.accelerate(&mut v, &loads)?;
+        k[i] = v.rate(form);
+        work.add(tab.b[i] * dt, &scratch.trial, loads.applied_power.applied);
+        last_power = loads.applied_power;
+    }
+    let mut y1 = y0;
+    for (b, ki) in tab.b.iter().zip(&k).take(tab.stages) {
+        y1.add_scaled(dt * b, ki);
+    }
+    let ratio = match &tab.e {
+        Some(e) => {
+            let mut error = Ode::zeros();
+            for (w, ki) in e.iter().zip(&k).take(tab.stages) {
+                error.add_scaled(dt * w, ki);
+            }
+            let it = &physics.integrator;
+            integrator::error_ratio(&y0, &y1, &error, it.rtol, it.atol)
+        }
+        None => 0.0,
+    };
+    if tab.fsal {
+        // The last stage's state is y1 (its coupling row is b).
+        let evaluated = Some(last_power);
+        let quadrature = Quadrature::Stages { work, evaluated };
+        scratch.new = v;
+        return Ok(Step { quadrature, ratio });
+    }
+    scratch.new = *old;
+    scratch.new.set_ode(&y1, form);
+    let evaluated = None;
+    Ok(Step {
+        quadrature: Quadrature::Stages { work, evaluated },
+        ratio,
+    })
+}
