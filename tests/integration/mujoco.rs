@@ -10,7 +10,8 @@ use std::process::Command;
 use touchdown_mujoco::landing::{GearIndex, MjArrays, ModelSizes};
 use touchdown_mujoco::{Launch, MujocoError, MujocoLanding};
 use touchdown_record::{Outcome, Summary};
-use touchdown_scenario::{frames, Scenario, ScenarioError};
+use touchdown_scenario::initial::initial_state;
+use touchdown_scenario::{Scenario, ScenarioError};
 use touchdown_tests::{analytic_drop_stroke, python, root, scenario, validation_landings};
 
 /// A landing on the MuJoCo engine, end to end through the Python runner.
@@ -90,7 +91,7 @@ fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
         }
         // The first footpad is on its plane (its sphere's centre one radius above the plane,
         // BP on it), touching; the others are above theirs.
-        let init = frames::initial_state(sc);
+        let init = initial_state(sc);
         let heights = r["footpad_heights_m"].as_array().unwrap();
         let k = init.first_leg;
         let z = heights[k].as_f64().unwrap();

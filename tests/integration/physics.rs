@@ -341,7 +341,7 @@ fn a_footpad_never_pulls_on_its_surface() {
             continue; // on soil the footpad has its own vertical dynamics (eq. 103)
         }
         let mut sim = Simulation::new(&sc).unwrap();
-        let g = touchdown_scenario::frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+        let g = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         let mut watch = NormalForce {
             weight: -sc.footpad.mass * g.z,
             least: None,

@@ -6,7 +6,8 @@
 use touchdown_core::Simulation;
 use touchdown_rapier::{RapierSimulation, RunError};
 use touchdown_record::{Landing, Observer, Sample};
-use touchdown_scenario::{frames, Scenario, ScenarioError};
+use touchdown_scenario::initial::initial_state;
+use touchdown_scenario::{Scenario, ScenarioError};
 use touchdown_tests::{scenario, validation_landings};
 
 /// The history of a landing on one engine, one sample per step (a template sample sized for
@@ -39,7 +40,7 @@ fn flat_drop() -> Scenario {
 #[test]
 fn starts_from_the_shared_touchdown_state() {
     let sc = Scenario::load(scenario("table-i-2-2-vv8.toml")).unwrap();
-    let init = frames::initial_state(&sc);
+    let init = initial_state(&sc);
     let sim = RapierSimulation::new(&sc).unwrap();
     let mut s = Sample::new(sc.legs.len());
     sim.sample(&mut s);

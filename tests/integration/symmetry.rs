@@ -131,7 +131,7 @@ fn renumbered(sc: &Scenario) -> (Scenario, Map) {
 /// or `None` if it is not mirror-symmetric: the touchdown geometry, velocity, rates, inertia,
 /// per-footpad surface and mechanisms are compared in inertial axes, to rounding.
 fn self_mirror(sc: &Scenario) -> Option<Map> {
-    let init = touchdown_scenario::frames::initial_state(sc);
+    let init = touchdown_scenario::initial::initial_state(sc);
     let t = init.t_bi;
     let m = m();
     let close = |a: &Vector3<f64>, b: &Vector3<f64>| (a - b).norm() < 1e-12;

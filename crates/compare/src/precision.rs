@@ -15,9 +15,9 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
+use touchdown_frames::t_bi;
 use touchdown_record::{Outcome, Summary};
 use touchdown_registry::land;
-use touchdown_scenario::frames::t_bi;
 use touchdown_scenario::schema::Scheme;
 use touchdown_scenario::Scenario;
 

@@ -5,7 +5,6 @@
 //!
 //! | module | report |
 //! |---|---|
-//! | [`kinematics`] | Euler-angle kinematics, eqs. (5)-(9) (frames, eqs. 1-4 and 19, are in `touchdown_scenario::frames`) |
 //! | [`rigid_body`] | rigid-vehicle equations, eqs. (10)-(15) |
 //! | [`gear`] | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
 //! | [`surface`] | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
@@ -23,7 +22,6 @@ pub mod contact;
 pub mod diagnostics;
 pub mod gear;
 pub mod integrator;
-pub mod kinematics;
 pub mod ledger;
 pub mod loads;
 pub mod mechanisms;

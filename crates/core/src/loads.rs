@@ -4,12 +4,12 @@
 //! (eqs. 9-15, slosh eq. 109).
 
 use crate::gear::{self, GearOptions, GearState};
-use crate::kinematics::{euler_acceleration, GIMBAL_LOCK_COS};
 use crate::ledger::Power;
 use crate::simulation::Physics;
 use crate::state::VehicleState;
 use crate::surface::{ContactState, Footpad};
 use nalgebra::Vector3;
+use touchdown_frames::{euler_acceleration, GIMBAL_LOCK_COS};
 use touchdown_record::{Law, RunError};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::schema::{Arrangement, AttitudeForm};

@@ -15,12 +15,13 @@ use crate::state::VehicleState;
 use crate::stepper::{Advance, Schemes, Scratch};
 use crate::surface::{ContactState, Footpad};
 use nalgebra::{UnitQuaternion, Vector2, Vector3};
+use touchdown_frames::gravity_inertial;
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
     EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, RunError, Sample,
     StabilityTracker, Summary,
 };
-use touchdown_scenario::frames::{self, gravity_inertial};
+use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::model::{Integrator, Leg, Mechanism, PadSurface};
 use touchdown_scenario::schema::{Arrangement, AttitudeForm, Engine, ReleaseRule, Scheme};
 use touchdown_scenario::Scenario;
@@ -113,7 +114,7 @@ impl Simulation {
         };
         let mechanisms = Mechanisms::new(scenario, slosh)?;
         let laws = GearLaws::from_scenario(scenario)?;
-        let init = frames::initial_state(scenario);
+        let init = initial_state(scenario);
         let n = scenario.legs.len();
         let mut vehicle = VehicleState {
             position: init.position,
@@ -132,7 +133,7 @@ impl Simulation {
             slosh_q_dot: Vector2::zeros(),
             slosh_q_ddot: Vector2::zeros(),
         };
-        let theta_dot = crate::kinematics::t_be(&init.theta) * init.omega; // eq. (7)
+        let theta_dot = touchdown_frames::t_be(&init.theta) * init.omega; // eq. (7)
         vehicle.set_attitude(init.theta, theta_dot);
         let pads = scenario
             .legs

@@ -4,9 +4,8 @@
 //! packing into the integrated part [`Ode`] a Runge–Kutta stage advances.
 
 use crate::integrator::{self, Ode};
-use crate::kinematics::{t_be, t_eb, GIMBAL_LOCK_COS};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector2, Vector3};
-use touchdown_scenario::frames;
+use touchdown_frames::{t_be, t_eb, GIMBAL_LOCK_COS};
 use touchdown_scenario::schema::AttitudeForm;
 
 /// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
@@ -46,7 +45,7 @@ impl VehicleState {
     pub(crate) fn set_attitude(&mut self, theta: Vector3<f64>, theta_dot: Vector3<f64>) {
         self.theta = theta;
         self.theta_dot = theta_dot;
-        self.t_bi = frames::t_bi(&theta);
+        self.t_bi = touchdown_frames::t_bi(&theta);
         self.omega = t_eb(&theta) * theta_dot; // eq. (6)
     }
 
@@ -54,7 +53,7 @@ impl VehicleState {
     fn set_euler(&mut self, theta: Vector3<f64>, omega: Vector3<f64>) {
         self.theta = theta;
         self.omega = omega;
-        self.t_bi = frames::t_bi(&theta);
+        self.t_bi = touchdown_frames::t_bi(&theta);
         self.theta_dot = t_be(&theta) * omega; // eq. (7)
     }
 
@@ -65,7 +64,7 @@ impl VehicleState {
         self.quaternion = q.into_inner();
         self.omega = omega;
         self.t_bi = q.to_rotation_matrix().into_inner();
-        self.theta = frames::euler_from_t_bi(&self.t_bi);
+        self.theta = touchdown_frames::euler_from_t_bi(&self.t_bi);
         self.theta_dot = if self.theta.y.cos().abs() < GIMBAL_LOCK_COS {
             Vector3::zeros()
         } else {

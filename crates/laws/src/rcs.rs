@@ -12,7 +12,7 @@
 //! the commanded angles and rates) convert from deg to rad.
 
 use nalgebra::Vector3;
-use touchdown_scenario::frames::t_eb;
+use touchdown_frames::t_eb;
 
 use crate::{finite, non_negative, positive, LawError};
 

@@ -346,7 +346,7 @@ pub fn engine_loads(taf: f64, r_t: &Vector3<f64>, ffl: f64, r_f: &Vector3<f64>) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use touchdown_scenario::frames::{rot_x, t_bi};
+    use touchdown_frames::{rot_x, t_bi};
 
     const F1: f64 = 1.0e4;
 

@@ -2,7 +2,7 @@
 //!
 //! - Vehicle: a free body with its inertial frame at the centre of mass (mass M, full inertia
 //!   tensor J), posed and moving as at touchdown through the keyframe `touchdown` (eq. 19 as
-//!   corrected, shared with the other engines through `touchdown_scenario::frames`).
+//!   corrected, shared with the other engines through `touchdown_scenario::initial`).
 //! - Per gear n: body `legN_outer` at the primary trunnion B2 with a universal joint (two hinges
 //!   `legN_trunnion_1`, `legN_trunnion_2`, both normal to the strut axis V̂2P, so the strut
 //!   cannot spin about itself), the outer-cylinder link's mass; body `legN_footpad` at the
@@ -31,7 +31,8 @@
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::fmt::Write;
-use touchdown_scenario::frames::{gravity_inertial, initial_state};
+use touchdown_frames::gravity_inertial;
+use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::Scenario;
 
 /// Contact friction that stands for an obstacle lock (OBST > 0): the footpad sticks laterally

@@ -11,7 +11,7 @@ use nalgebra::Vector3;
 use touchdown_laws::scene::{Attitude, Propulsion};
 use touchdown_record::Law;
 use touchdown_scenario::model::Mechanism;
-use touchdown_scenario::{frames, Scenario, ScenarioError};
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// The propulsion of a multibody landing and the loads it applies over the current step.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -59,7 +59,7 @@ impl VehicleLoads {
         self.evaluations += 1;
         let r = &v.rotation;
         let omega = r.transpose() * v.angular_velocity;
-        let theta = frames::euler_from_t_bi(r);
+        let theta = touchdown_frames::euler_from_t_bi(r);
         let attitude = Attitude {
             position: &v.position,
             t_bi: r,

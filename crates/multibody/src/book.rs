@@ -22,7 +22,7 @@ use touchdown_record::{
     StabilityTracker, StateAtStop, Summary,
 };
 use touchdown_scenario::model::{Leg, Mechanism, PadSurface, Stability};
-use touchdown_scenario::{frames, Scenario, ScenarioError};
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Contact state of one footpad.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -143,7 +143,7 @@ impl GearBook {
     /// The bookkeeping of `sc`'s gear at touchdown, nothing booked yet.
     pub fn new(sc: &Scenario) -> Result<GearBook, ScenarioError> {
         let n = sc.legs.len();
-        let gravity = frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+        let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         Ok(GearBook {
             legs: sc.legs.clone(),
             surfaces: sc.surface.pads.clone(),
@@ -479,7 +479,7 @@ impl GearBook {
         out.t = t;
         out.position = v.position;
         out.velocity = v.velocity;
-        out.theta = frames::euler_from_t_bi(&r);
+        out.theta = touchdown_frames::euler_from_t_bi(&r);
         out.omega = r.transpose() * v.angular_velocity;
         out.pitch_rate = v.pitch_rate();
         for (i, slot) in out.legs.iter_mut().enumerate() {

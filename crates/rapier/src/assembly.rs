@@ -14,8 +14,9 @@
 
 use nalgebra::{Matrix3, Vector3};
 use rapier3d_f64::prelude::*;
+use touchdown_frames::gravity_inertial;
 use touchdown_record::{RunError, SetupFailure};
-use touchdown_scenario::frames::{self, gravity_inertial};
+use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
@@ -172,10 +173,10 @@ pub struct Assembly {
 }
 
 /// Builds the multibody, ground planes and solver settings of a scenario at its touchdown
-/// state (eq. 19 as corrected, shared with the core through `touchdown_scenario::frames`).
+/// state (eq. 19 as corrected, shared with the core through `touchdown_scenario::initial`).
 pub fn build(sc: &Scenario) -> Result<Assembly, RunError> {
     let rs = &sc.rapier;
-    let init = frames::initial_state(sc);
+    let init = initial_state(sc);
     let r_bi = init.t_bi;
     let rotation = Rotation::from_mat3(&matrix(&r_bi));
     let pose_of = |body_point: &Vector3<f64>| {

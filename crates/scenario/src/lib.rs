@@ -7,7 +7,7 @@
 //! * [`ranges`]: the range of physical plausibility of every number, checked on load in SI;
 //! * [`model`]: the resolved, validated scenario in SI ([`Scenario`]), with the
 //!   [`Scenario::warnings`] of values legal but outside their usual range;
-//! * [`frames`]: the report's frames and initial state (eqs. 1-4, 19), shared by every engine.
+//! * [`initial`]: the state a landing starts from (eq. 19), shared by every engine.
 //!
 //! A file may `extends = "other.toml"`: tables are merged key by key, the extending file
 //! winning; it may not change the `[units]` of the file it extends. Errors name the file that
@@ -16,7 +16,7 @@
 //! array, which serde's derived structs would otherwise accept field by field).
 
 pub mod error;
-pub mod frames;
+pub mod initial;
 mod load;
 mod mechanisms;
 pub mod model;

@@ -2,7 +2,6 @@
 //! into SI with validation. Every error names the file and the field.
 
 use crate::error::ScenarioError;
-use crate::frames;
 use crate::mechanisms;
 use crate::model::{self, Scenario};
 use crate::ranges;
@@ -970,7 +969,7 @@ fn parametric_legs(
             *az,
             u.angle(),
         )?;
-        let r = frames::rot_z(a);
+        let r = touchdown_frames::rot_z(a);
         legs.push(model::Leg::from_points(
             r * b2 - shift,
             r * b3 - shift,

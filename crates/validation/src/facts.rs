@@ -175,7 +175,7 @@ pub fn record(scenario: &Scenario) -> Result<(Series, touchdown_core::Summary), 
         source,
     })?;
     let alpha = scenario.surface.slope;
-    let up_g = touchdown_scenario::frames::t_gi(alpha) * nalgebra::Vector3::z();
+    let up_g = touchdown_frames::t_gi(alpha) * nalgebra::Vector3::z();
     let mut rec = Recorder {
         series: Series::default(),
         up_g,

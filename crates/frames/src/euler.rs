@@ -1,4 +1,5 @@
-//! Euler-angle kinematics, eqs. (5)-(9).
+//! Euler-angle kinematics, eqs. (5)-(9): body rates and Euler-angle rates, and the Euler-angle
+//! accelerations from the body angular acceleration.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -24,9 +25,13 @@ pub fn t_be(theta: &Vector3<f64>) -> Matrix3<f64> {
     ) // eq. (5)
 }
 
-/// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6) (in `touchdown_scenario::frames`, where
-/// the RCS attitude errors of eq. 77 use it too).
-pub use touchdown_scenario::frames::t_eb;
+/// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6); also maps the Euler-angle deviations
+/// to body attitude errors in eq. (77). Angles in rad.
+pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
+    let (sy, cy) = theta.y.sin_cos();
+    let (sz, cz) = theta.z.sin_cos();
+    Matrix3::new(cy * cz, sz, 0.0, -cy * sz, cz, 0.0, sy, 0.0, 1.0) // eq. (6)
+}
 
 /// Euler-angle accelerations θ̈ from the body angular acceleration ω̇, eqs. (9a)-(9c), which
 /// expand the corrected eq. (8), θ̈ = T_BE·ω̇ + (dT_BE/dt)·ω (the printed eq. 8 lacks T_BE on
@@ -52,7 +57,7 @@ pub fn euler_acceleration(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use touchdown_scenario::frames::t_bi;
+    use crate::frames::t_bi;
 
     #[test]
     fn t_be_inverts_t_eb() {

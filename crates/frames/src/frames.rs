@@ -1,5 +1,5 @@
-//! Coordinate frames of TN D-7045 (eqs. 1-4) and the initial state (eq. 19, corrected), shared
-//! by every engine so that all of them start a landing from the same state.
+//! Coordinate frames of TN D-7045, eqs. (1)-(4): the rotations between the inertial, gravity
+//! and body frames, and gravity in the inertial frame.
 //!
 //! Frames: I (inertial) has its X-Y plane on the sloped surface and Z up its normal; G (gravity)
 //! shares X with I and has Z_G up along −g; B (body) has its origin at the rigid-vehicle centre
@@ -41,14 +41,6 @@ pub fn t_gi(alpha: f64) -> Matrix3<f64> {
 /// as the product to avoid transcription sign errors). Angles in rad.
 pub fn t_bi(theta: &Vector3<f64>) -> Matrix3<f64> {
     rot_x(theta.x) * rot_y(theta.y) * rot_z(theta.z) // eq. (3)
-}
-
-/// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6); also maps the Euler-angle deviations
-/// to body attitude errors in eq. (77). Angles in rad.
-pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
-    let (sy, cy) = theta.y.sin_cos();
-    let (sz, cz) = theta.z.sin_cos();
-    Matrix3::new(cy * cz, sz, 0.0, -cy * sz, cz, 0.0, sy, 0.0, 1.0) // eq. (6)
 }
 
 /// Euler angles (θx, θy, θz), rad, of a body → inertial rotation matrix: the inverse of
@@ -93,33 +85,6 @@ mod tests {
     }
 
     #[test]
-    fn initial_state_puts_the_lowest_pad_on_its_plane() {
-        // Table I 2-2 (footnote reading): depressions under legs 1 and 2.
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../scenarios/table-i-2-2-vv8.toml");
-        let s = crate::Scenario::load(path).unwrap();
-        let init = initial_state(&s);
-        let gap =
-            |i: usize| (init.position + init.t_bi * s.legs[i].bp).z - s.surface.pads[i].plane();
-        assert!(
-            gap(init.first_leg).abs() < 1e-12,
-            "the first pad sits on its own plane"
-        );
-        assert_eq!(
-            (init.position + init.t_bi * s.legs[init.first_leg].bp).xy(),
-            nalgebra::Vector2::zeros()
-        );
-        for i in 0..s.legs.len() {
-            assert!(gap(i) >= -1e-12, "pad {} starts below its plane", i + 1);
-        }
-        // Attitude relative to the horizontal: the body Z axis is tilted 5° from Z_G, and the
-        // velocity is given in the gravity frame.
-        let z_b_in_g = t_ig(s.surface.slope) * init.t_bi * Vector3::z();
-        assert!((z_b_in_g.z - (5.0f64).to_radians().cos()).abs() < 1e-12);
-        assert!((t_ig(s.surface.slope) * init.velocity - s.touchdown.velocity_g).norm() < 1e-12);
-    }
-
-    #[test]
     fn transformations_are_orthogonal_and_mutually_inverse() {
         let i = Matrix3::identity();
         for th in [Vector3::new(0.3, -0.4, 1.1), Vector3::new(-2.0, 1.2, 0.4)] {
@@ -154,50 +119,5 @@ mod tests {
         // An upright vehicle on slope α has θx = α relative to the surface.
         let up_g = Vector3::z();
         assert!((t_gi(0.1) * up_g - t_bi(&Vector3::new(0.1, 0.0, 0.0)) * up_g).norm() < 1e-15);
-    }
-}
-
-/// The state a landing starts from, in the inertial frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InitialState {
-    /// T_BI at touchdown.
-    pub t_bi: Matrix3<f64>,
-    /// Euler angles relative to the surface (inertial) frame, rad.
-    pub theta: Vector3<f64>,
-    /// Centre-of-mass position, m.
-    pub position: Vector3<f64>,
-    /// Centre-of-mass velocity, m/s (eq. 2: V_I = T_GI·V_G).
-    pub velocity: Vector3<f64>,
-    /// Body rates, rad/s.
-    pub omega: Vector3<f64>,
-    /// Index of the leg whose footpad touches first.
-    pub first_leg: usize,
-}
-
-/// Initial state of a scenario, eq. (19) corrected for holes (review eq. 19 row): the footpad
-/// k that is lowest relative to its own plane, k = argmin_n [(T_BI·BP_n)_z + HOLE_n], touches
-/// its plane at inertial X = Y = 0, so R_cm = (0, 0, −HOLE_k) − T_BI·BP_k. An attitude given
-/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (review A17). A
-/// `touchdown.clearance` lifts the whole vehicle by that height along the surface normal.
-pub fn initial_state(s: &crate::Scenario) -> InitialState {
-    let td = &s.touchdown;
-    let alpha = s.surface.slope;
-    let t_bi0 = match td.attitude_reference {
-        crate::schema::AttitudeReference::Surface => t_bi(&td.attitude),
-        crate::schema::AttitudeReference::Horizontal => t_gi(alpha) * t_bi(&td.attitude),
-    };
-    let theta = euler_from_t_bi(&t_bi0);
-    let t = t_bi(&theta);
-    let height = |i: usize| (t * s.legs[i].bp).z + s.surface.pads[i].hole;
-    let first_leg = (0..s.legs.len()).fold(0, |k, i| if height(i) < height(k) { i } else { k });
-    let position = Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane() + td.clearance)
-        - t * s.legs[first_leg].bp; // eq. (19)
-    InitialState {
-        t_bi: t,
-        theta,
-        position,
-        velocity: t_gi(alpha) * td.velocity_g,
-        omega: td.body_rates,
-        first_leg,
     }
 }
