@@ -48,3 +48,44 @@ fn scenario_format_page_documents_every_field() {
         "fields missing from docs/scenario-format.md: {missing:?}"
     );
 }
+
+/// The table "Mechanisms each engine models" of docs/engines.md says what each engine's own
+/// declaration says (`touchdown_registry::unsupported`): a row per mechanism, in the order of
+/// `Mechanism::ALL`, "yes" where the engine models it and "no: …" where it does not.
+#[test]
+fn engines_page_lists_what_each_engine_declares() {
+    use touchdown_registry::{unsupported, Engine};
+    use touchdown_scenario::model::Mechanism;
+    let text = std::fs::read_to_string(touchdown_tests::root().join("docs/engines.md")).unwrap();
+    let section = text
+        .split("## Mechanisms each engine models")
+        .nth(1)
+        .expect("docs/engines.md has the section");
+    let rows: Vec<Vec<&str>> = section
+        .lines()
+        .skip_while(|l| !l.starts_with("| mechanism |"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), Mechanism::ALL.len(), "{rows:?}");
+    for (m, row) in Mechanism::ALL.into_iter().zip(&rows) {
+        assert!(
+            row[1].to_lowercase().starts_with(m.name()),
+            "{m:?}: row {row:?}"
+        );
+        for (engine, cell) in Engine::ALL.into_iter().zip(&row[3..6]) {
+            let models = unsupported(engine, m).is_none();
+            assert_eq!(
+                *cell == "yes",
+                models,
+                "{} on {engine}: docs say {cell:?}",
+                m.name()
+            );
+            assert!(
+                models || cell.starts_with("no"),
+                "{m:?} on {engine}: {cell:?}"
+            );
+        }
+    }
+}
