@@ -23,8 +23,10 @@ Options:
   --viewer    watch the law-driven run in MuJoCo's passive viewer (needs a display and the
               `glfw` package, which the full `mujoco` package brings; see docs/engines.md)
 
-Exit status: 0 done; 1 the run failed or diverged (the message on stderr says when, where and
-which law); 2 bad arguments or library; 3 `mujoco` is not installed in this interpreter.
+Exit status: 0 done; 1 the run failed (the message on stderr); 2 bad arguments or library; 3
+`mujoco` is not installed in this interpreter; 4 the landing stopped with a diagnostic (when,
+where and which law: the message on stderr, and the diagnostic as data in DIR/divergence.json,
+read back by the `touchdown` command).
 """
 
 import argparse
@@ -35,6 +37,8 @@ import sys
 import time
 
 SETUP_STATUS = 3
+STOPPED_STATUS = 4
+DIVERGENCE_FILE = "divergence.json"
 
 
 def fail(message, status=1):
@@ -107,6 +111,8 @@ def load_library(path):
     lib.touchdown_mujoco_open.restype = p
     lib.touchdown_mujoco_error.argtypes = [p]
     lib.touchdown_mujoco_error.restype = ctypes.c_char_p
+    lib.touchdown_mujoco_divergence.argtypes = [p]
+    lib.touchdown_mujoco_divergence.restype = ctypes.c_char_p
     lib.touchdown_mujoco_model_xml.argtypes = [p]
     lib.touchdown_mujoco_model_xml.restype = ctypes.c_char_p
     lib.touchdown_mujoco_bind.argtypes = [
@@ -197,7 +203,13 @@ def main(argv):
     def check(status):
         if status < 0:
             message = lib.touchdown_mujoco_error(h)
-            fail(message.decode() if message else "unknown error")
+            message = message.decode() if message else "unknown error"
+            divergence = lib.touchdown_mujoco_divergence(h)
+            if divergence:
+                with open(os.path.join(args.out, DIVERGENCE_FILE), "wb") as f:
+                    f.write(divergence)
+                fail(message, STOPPED_STATUS)
+            fail(message)
         return status
 
     try:

@@ -60,6 +60,9 @@ pub struct Runner {
     landing: Option<MujocoLanding>,
     pointers: Option<MjPointers>,
     error: Option<CString>,
+    /// The last call's divergence as JSON (`touchdown_record::Divergence`), if it stopped the
+    /// landing.
+    divergence: Option<CString>,
 }
 
 impl Runner {
@@ -71,8 +74,15 @@ impl Runner {
     /// Runs `f`, turning an error or a panic into this runner's error message and status −1.
     fn guard(&mut self, f: impl FnOnce(&mut Runner) -> Result<i32, MujocoError>) -> i32 {
         self.error = None;
+        self.divergence = None;
         match catch_unwind(AssertUnwindSafe(|| f(self))) {
             Ok(Ok(status)) => status,
+            Ok(Err(MujocoError::Diverged(d))) => {
+                self.divergence = serde_json::to_string(&d)
+                    .ok()
+                    .and_then(|json| CString::new(json).ok());
+                self.fail(d.to_string())
+            }
             Ok(Err(e)) => self.fail(e.to_string()),
             Err(_) => self.fail("internal error (panic) in the touchdown MuJoCo library".into()),
         }
@@ -144,6 +154,7 @@ pub unsafe extern "C" fn touchdown_mujoco_open(
         landing: None,
         pointers: None,
         error: None,
+        divergence: None,
     };
     runner.guard(|r| {
         let path = text(scenario, "scenario path")?;
@@ -160,6 +171,20 @@ pub unsafe extern "C" fn touchdown_mujoco_open(
         Ok(0)
     });
     Box::into_raw(Box::new(runner))
+}
+
+/// The divergence that stopped the landing in the runner's last call, as JSON
+/// (`touchdown_record::Divergence`), or null if it did not stop one. Valid until the next call
+/// on this runner.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was not closed.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_divergence(runner: *const Runner) -> *const c_char {
+    match runner.as_ref().and_then(|r| r.divergence.as_ref()) {
+        Some(d) => d.as_ptr(),
+        None => std::ptr::null(),
+    }
 }
 
 /// The runner's last error message, or null if the last call succeeded. Valid until the next

@@ -21,11 +21,11 @@
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
-    check_explicit_timestep, Fault, GearBook, StrutKinematics, VehicleState,
+    check_explicit_timestep, Fault, GearBook, PadStep, Reading, StrutKinematics, VehicleState,
 };
 use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;
-use touchdown_scenario::Scenario;
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Where one gear's quantities are in MuJoCo's arrays: ids and addresses the runner resolves
 /// from the export's element names (`legN_*`). `repr(C)`: 15 `i32` in this order.
@@ -134,7 +134,6 @@ pub struct MujocoLanding {
     inertia: Matrix3<f64>,
     contact_radius: Vec<f64>,
     dt: f64,
-    t_end: f64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     started: bool,
@@ -143,8 +142,6 @@ pub struct MujocoLanding {
     vehicle: VehicleState,
     /// Angular velocity in body axes, rad/s (MuJoCo's free-joint rates).
     omega_body: Vector3<f64>,
-    /// Vehicle velocity before the current step, m/s.
-    old_velocity: Vector3<f64>,
     /// Footpad contact-point velocities at this state and before the last step, m/s.
     pad_velocity: Vec<Vector3<f64>>,
     old_pad_velocity: Vec<Vector3<f64>>,
@@ -169,6 +166,28 @@ fn check(what: &str, leg: usize, id: i32, len: i32) -> Result<usize, MujocoError
     Ok(id as usize)
 }
 
+/// The gear book of a MuJoCo landing of `sc`, or why the engine refuses the scenario: not
+/// applicable, a mechanism it does not model, laws that do not build, or a time step too large
+/// for the stiffest strut law.
+fn book_for(sc: &Scenario) -> Result<GearBook, ScenarioError> {
+    sc.require_engine(Engine::Mujoco, crate::unsupported)?;
+    let book = GearBook::new(sc)?;
+    check_explicit_timestep(
+        sc,
+        &book.laws,
+        sc.mujoco.timestep,
+        "engines.mujoco.timestep",
+    )?;
+    Ok(book)
+}
+
+/// Refuses `sc` as a MuJoCo landing would, in this process: the command line asks before it
+/// starts the Python runner, so that a refusal comes back as the scenario's error (the file and
+/// the field), not as the runner's words.
+pub fn refusal(sc: &Scenario) -> Result<(), ScenarioError> {
+    book_for(sc).map(|_| ())
+}
+
 impl MujocoLanding {
     /// A landing of `sc` on the model exported from it (`mjcf::export`), whose arrays the
     /// runner located with `index` (one entry per gear) in a model of `sizes`; MuJoCo's version
@@ -180,14 +199,7 @@ impl MujocoLanding {
         mujoco_version: &str,
         history: Option<History>,
     ) -> Result<MujocoLanding, MujocoError> {
-        sc.require_engine(Engine::Mujoco, crate::unsupported)?;
-        let book = GearBook::new(sc)?;
-        check_explicit_timestep(
-            sc,
-            &book.laws,
-            sc.mujoco.timestep,
-            "engines.mujoco.timestep",
-        )?;
+        let book = book_for(sc)?;
         let n = sc.legs.len();
         if index.len() != n {
             return Err(MujocoError::Binding(format!(
@@ -227,7 +239,6 @@ impl MujocoLanding {
             inertia: sc.vehicle.inertia,
             contact_radius: sc.legs.iter().map(|l| sc.links.contact_radius(l)).collect(),
             dt: sc.mujoco.timestep,
-            t_end: sc.integrator.t_end,
             settings: settings(sc, mujoco_version),
             started: false,
             t: 0.0,
@@ -239,7 +250,6 @@ impl MujocoLanding {
                 angular_velocity: Vector3::zeros(),
             },
             omega_body: Vector3::zeros(),
-            old_velocity: Vector3::zeros(),
             pad_velocity: vec![Vector3::zeros(); n],
             old_pad_velocity: vec![Vector3::zeros(); n],
             footpad_velocity: vec![Vector3::zeros(); n],
@@ -263,7 +273,7 @@ impl MujocoLanding {
     /// Whether the run has ended (a decision, if the scenario terminates on one, or the end
     /// time).
     pub fn finished(&self) -> bool {
-        self.t >= self.t_end * (1.0 - 1e-12) || self.book.stability.terminates()
+        self.book.finished(self.t)
     }
 
     /// One call per step, between `mj_step1` and `mj_step2` (module documentation). Returns
@@ -273,38 +283,29 @@ impl MujocoLanding {
         self.book.begin_step();
         let before = self.vehicle;
         self.read_state(mj);
-        if self.started {
+        let booked = if self.started {
             self.t += self.dt;
             self.steps += 1;
-            self.book.book_struts();
             self.book_contacts(mj);
-            self.book.book_applied(&before, &self.vehicle, self.dt);
+            let vehicle = self.vehicle;
+            let now = self.reading(&vehicle);
+            let pads = &self.footpad_velocity;
+            self.book.finish_step(&before, self.dt, &now, |i| pads[i])
         } else {
             self.started = true;
             self.position0 = self.vehicle.position;
             self.gear_energy0 = self.gear_energy;
-            let ke = self.kinetic_energy();
-            self.book.start(ke);
-        }
-        self.book.evaluate().map_err(|f| self.diverged(f))?;
-        let energy = self.energy();
-        self.check_divergence(&energy)?;
-        let old = (self.steps > 0).then_some(&self.old_velocity);
-        self.book
-            .update_stability(self.t, &self.vehicle, old, &energy);
-        if self.steps > 0 {
-            self.book.update_extremes(self.t, &self.vehicle);
-        }
+            let vehicle = self.vehicle;
+            let now = self.reading(&vehicle);
+            let pads = &self.footpad_velocity;
+            self.book.start_landing(&now, |i| pads[i])
+        };
+        booked.map_err(|f| self.diverged(f))?;
         self.record();
         self.old_pad_velocity.copy_from_slice(&self.pad_velocity);
-        self.old_velocity = self.vehicle.velocity;
         if self.finished() {
             return Ok(true);
         }
-        let pads = &self.footpad_velocity;
-        self.book
-            .evaluate_applied(self.t, &self.vehicle, |i| pads[i])
-            .map_err(|f| self.diverged(f))?;
         self.apply(mj);
         Ok(false)
     }
@@ -390,14 +391,12 @@ impl MujocoLanding {
             let v_mean = 0.5 * (self.old_pad_velocity[i] + self.pad_velocity[i]);
             // The contact sphere is centred on BP; its plane is lowered by its radius.
             let depth = self.book.surfaces[i].plane() - self.book.kin[i].footpad.z;
-            self.book.book_contact(
-                i,
-                self.t,
-                &impulse,
-                &impulse.component_mul(&v_mean),
+            self.book.pad_steps[i] = PadStep {
+                impulse,
+                work: impulse.component_mul(&v_mean),
                 depth,
-                found > 0.0,
-            );
+                touching: found > 0.0,
+            };
         }
     }
 
@@ -437,16 +436,9 @@ impl MujocoLanding {
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        let potential = -self.mass
-            * self
-                .book
-                .gravity()
-                .dot(&(self.vehicle.position - self.position0));
-        self.book.energy(
-            self.kinetic_energy(),
-            potential,
-            self.gear_energy - self.gear_energy0,
-        )
+        let r = self.reading(&self.vehicle);
+        self.book
+            .energy(r.kinetic_j, r.potential_change_j, r.gear_j)
     }
 
     /// The summary at the current state.
@@ -486,13 +478,21 @@ impl MujocoLanding {
         MujocoError::Diverged(Box::new(fault.at(self.t, &self.vehicle)))
     }
 
-    /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's
-    /// report) has drifted beyond the scenario's tolerance.
-    fn check_divergence(&self, energy: &EnergyReport) -> Result<(), MujocoError> {
-        let finite = self.vehicle.is_finite() && self.gear_energy.is_finite();
-        self.book
-            .check(energy, finite, self.steps)
-            .map_err(|f| self.diverged(f))
+    /// What the book reads of the bodies now, the vehicle in state `vehicle` (as read).
+    fn reading<'a>(&self, vehicle: &'a VehicleState) -> Reading<'a> {
+        Reading {
+            t: self.t,
+            vehicle,
+            finite: self.vehicle.is_finite() && self.gear_energy.is_finite(),
+            kinetic_j: self.kinetic_energy(),
+            potential_change_j: -self.mass
+                * self
+                    .book
+                    .gravity()
+                    .dot(&(self.vehicle.position - self.position0)),
+            gear_j: self.gear_energy - self.gear_energy0,
+            steps: self.steps,
+        }
     }
 }
 

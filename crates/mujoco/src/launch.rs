@@ -22,6 +22,13 @@ pub const SETUP_COMMAND: &str = "scripts/setup-python";
 /// Exit status of the runner when `mujoco` cannot be imported.
 pub const RUNNER_SETUP_STATUS: i32 = 3;
 
+/// Exit status of the runner when the landing stopped with a diagnostic, which it wrote as
+/// JSON to [`DIVERGENCE_FILE`] in its output folder.
+pub const RUNNER_STOPPED_STATUS: i32 = 4;
+
+/// The file, in the runner's output folder, that holds the diagnostic of a stopped landing.
+pub const DIVERGENCE_FILE: &str = "divergence.json";
+
 /// Wall-clock guard on one run of the runner, s: a runner still going after it is stopped and
 /// the run fails saying so. The run budget (`integrator.max_steps` steps, by default a few
 /// minutes of MuJoCo) ends every run well before it; the guard is for a runner that hangs.
@@ -124,6 +131,20 @@ impl Launch {
         match status.code() {
             Some(0) => {}
             Some(RUNNER_SETUP_STATUS) => return Err(setup_error(stderr)),
+            Some(RUNNER_STOPPED_STATUS) => {
+                let path = out.join(DIVERGENCE_FILE);
+                let read = std::fs::read_to_string(&path)
+                    .map_err(|e| e.to_string())
+                    .and_then(|text| serde_json::from_str(&text).map_err(|e| e.to_string()));
+                let _ = std::fs::remove_file(&path);
+                return match read {
+                    Ok(d) => Err(MujocoError::Diverged(Box::new(d))),
+                    Err(e) => Err(MujocoError::Runner(format!(
+                        "{stderr} (and its diagnostic {} cannot be read: {e})",
+                        path.display()
+                    ))),
+                };
+            }
             _ => return Err(MujocoError::Runner(stderr)),
         }
         let path = out.join("summary.json");

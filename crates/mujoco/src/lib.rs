@@ -21,7 +21,7 @@ pub mod landing;
 pub mod launch;
 pub mod mjcf;
 
-pub use landing::MujocoLanding;
+pub use landing::{refusal, MujocoLanding};
 pub use launch::Launch;
 pub use mjcf::export;
 pub use touchdown_multibody::capabilities::unsupported;

@@ -5,13 +5,15 @@
 //! and the loads applied to its bodies: the engine and RCS on the vehicle, the curbs on the
 //! footpads (eqs. 86-95, the crush memory committed once per step).
 //!
-//! A step of an engine, with `book: GearBook`: apply `book.forces` to its joints,
-//! `book.applied` to its vehicle and `book.curb_forces` to its footpads (its own way);
-//! [`GearBook::begin_step`]; step; read the new kinematics into `book.kin`;
-//! [`GearBook::book_struts`]; [`GearBook::book_contact`] per footpad;
-//! [`GearBook::book_applied`]; [`GearBook::evaluate`]; [`GearBook::check`];
-//! [`GearBook::evaluate_applied`]; [`GearBook::update_stability`];
-//! [`GearBook::update_extremes`].
+//! An engine, with `book: GearBook`, at touchdown: reads its kinematics into `book.kin` and calls
+//! [`GearBook::start_landing`]. Then each step: applies `book.forces` to its joints,
+//! `book.applied` to its vehicle and `book.curb_forces` to its footpads (its own way); calls
+//! [`GearBook::begin_step`]; steps; reads the new kinematics into `book.kin` and each footpad's
+//! contact over the step into `book.pad_steps`; and calls [`GearBook::finish_step`], which books
+//! the step in one order for every engine: the contacts, the struts' work and the honeycomb
+//! memories committed, the applied loads' work, the laws at the new state, the divergence
+//! checks, the stability criteria, the extremes, and the applied loads for the next step (if
+//! the landing goes on).
 
 use crate::applied::VehicleLoads;
 use crate::strut::{strut_forces, StrutForces, StrutKinematics};
@@ -92,6 +94,40 @@ impl Fault {
     }
 }
 
+/// One footpad's contact over a step, as the engine read it (see [`GearBook::finish_step`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PadStep {
+    /// The impulse its surface gave it over the step, N·s, inertial.
+    pub impulse: Vector3<f64>,
+    /// That impulse's work along each inertial axis, J: the impulse on the mean of the contact
+    /// point's velocities before and after the step, plus whatever the engine's contact solver
+    /// moved the footpad by beyond its velocities.
+    pub work: Vector3<f64>,
+    /// Its penetration into its plane, m.
+    pub depth: f64,
+    /// Whether the engine found it touching its surface.
+    pub touching: bool,
+}
+
+/// What an engine read of its bodies at a state (see [`GearBook::finish_step`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Reading<'a> {
+    /// Time, s.
+    pub t: f64,
+    /// The vehicle.
+    pub vehicle: &'a VehicleState,
+    /// Whether every body state the engine reads is finite.
+    pub finite: bool,
+    /// The vehicle's kinetic energy, J.
+    pub kinetic_j: f64,
+    /// The vehicle's potential-energy change since touchdown, J.
+    pub potential_change_j: f64,
+    /// The gear links' energy change since touchdown, J.
+    pub gear_j: f64,
+    /// Accepted steps so far.
+    pub steps: u64,
+}
+
 /// Per-gear state and bookkeeping of a multibody landing (see the module documentation).
 pub struct GearBook {
     /// The gear geometry.
@@ -110,6 +146,8 @@ pub struct GearBook {
     pub forces: Vec<StrutForces>,
     /// Contact states.
     pub contacts: Vec<PadContact>,
+    /// Each footpad's contact over the step just taken, as the engine read it.
+    pub pad_steps: Vec<PadStep>,
     /// The engine and RCS loads on the vehicle (nothing without them).
     pub applied: VehicleLoads,
     /// The curbs with their footpad crushing and its committed memory (nothing without them).
@@ -137,6 +175,8 @@ pub struct GearBook {
     energy_tolerance: f64,
     /// The run budget, accepted steps (`integrator.max_steps`).
     max_steps: u64,
+    /// End of the run, s (`integrator.t_end`).
+    t_end: f64,
 }
 
 impl GearBook {
@@ -153,6 +193,7 @@ impl GearBook {
             previous: vec![StrutKinematics::default(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
+            pad_steps: vec![PadStep::default(); n],
             applied: VehicleLoads::new(sc)?,
             curbs: touchdown_laws::scene::curbs_from_scenario(sc)?,
             curb_forces: vec![Vector3::zeros(); n],
@@ -168,6 +209,7 @@ impl GearBook {
             curb_evaluations: 0,
             energy_tolerance: sc.integrator.energy_tolerance,
             max_steps: sc.integrator.max_steps,
+            t_end: sc.integrator.t_end,
         })
     }
 
@@ -176,24 +218,80 @@ impl GearBook {
         self.gravity
     }
 
-    /// Starts the stability criteria with the vehicle's kinetic energy at touchdown, J.
-    pub fn start(&mut self, kinetic_energy: f64) {
-        self.stability = StabilityTracker::new(
-            &self.criteria,
-            self.gravity,
-            self.legs.len(),
-            kinetic_energy,
-        );
+    /// Whether the landing has ended at time `t` (s): a decision, if the scenario terminates on
+    /// one, or the end time.
+    pub fn finished(&self, t: f64) -> bool {
+        t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
     }
 
-    /// Keeps the current kinematics as the state before the coming step.
+    /// Starts the landing at touchdown, the engine's kinematics read into `kin` and its bodies
+    /// in `now`: the stability criteria started with the vehicle's kinetic energy, the laws
+    /// evaluated, the checks, the stability distances, and the applied loads for the first step
+    /// (the footpads' velocities at BP `pad_velocity(i)`, m/s, inertial). Returns the energy
+    /// report of the state.
+    pub fn start_landing(
+        &mut self,
+        now: &Reading,
+        pad_velocity: impl Fn(usize) -> Vector3<f64>,
+    ) -> Result<EnergyReport, Fault> {
+        self.stability =
+            StabilityTracker::new(&self.criteria, self.gravity, self.legs.len(), now.kinetic_j);
+        self.evaluate()?;
+        self.settle(now, None, pad_velocity)
+    }
+
+    /// Keeps the current kinematics as the state before the coming step: call it before the
+    /// engine steps.
     pub fn begin_step(&mut self) {
         self.previous.copy_from_slice(&self.kin);
     }
 
+    /// Books the step just taken (`dt` s long, from the vehicle state `before` to `now`; the
+    /// new kinematics in `kin`, the footpads' contacts in `pad_steps`), in one order for every
+    /// engine: the contacts, the struts' work with the honeycomb memories committed at the new
+    /// strokes, the applied loads' work, the laws at the new state, the divergence checks
+    /// ([`GearBook::check`]), the stability criteria, the extremes, and, if the landing goes
+    /// on, the applied loads for the next step (the footpads' velocities at BP
+    /// `pad_velocity(i)`, m/s, inertial). Returns the energy report of the new state.
+    pub fn finish_step(
+        &mut self,
+        before: &VehicleState,
+        dt: f64,
+        now: &Reading,
+        pad_velocity: impl Fn(usize) -> Vector3<f64>,
+    ) -> Result<EnergyReport, Fault> {
+        for i in 0..self.legs.len() {
+            self.book_contact(i, now.t);
+        }
+        self.book_struts();
+        self.book_applied(before, now.vehicle, dt);
+        self.evaluate()?;
+        let energy = self.settle(now, Some(&before.velocity), pad_velocity)?;
+        self.update_extremes(now.t, now.vehicle);
+        Ok(energy)
+    }
+
+    /// The checks, the stability criteria and the applied loads for the next step at the state
+    /// `now` whose laws are evaluated; `old_velocity` is the vehicle's velocity before the step
+    /// (m/s; `None` at touchdown).
+    fn settle(
+        &mut self,
+        now: &Reading,
+        old_velocity: Option<&Vector3<f64>>,
+        pad_velocity: impl Fn(usize) -> Vector3<f64>,
+    ) -> Result<EnergyReport, Fault> {
+        let energy = self.energy(now.kinetic_j, now.potential_change_j, now.gear_j);
+        self.check(&energy, now.finite, now.steps)?;
+        self.update_stability(now.t, now.vehicle, old_velocity, &energy);
+        if !self.finished(now.t) {
+            self.evaluate_applied(now.t, now.vehicle, pad_velocity)?;
+        }
+        Ok(energy)
+    }
+
     /// Books the work of the laws' forces over the step just taken (`previous` → `kin`) and
     /// commits the honeycomb memories at the new strokes.
-    pub fn book_struts(&mut self) {
+    fn book_struts(&mut self) {
         let steps = self.previous.iter().zip(&self.kin).zip(&self.forces);
         for (((a, b), f), memory) in steps.zip(&mut self.memory) {
             let w = f.work(a, b);
@@ -204,22 +302,17 @@ impl GearBook {
         }
     }
 
-    /// Books footpad `i`'s contact over the step ending at time `t` (s): the `impulse` (N·s,
-    /// inertial) its surface gave it and that impulse's `work` (J) along each inertial axis
-    /// (the impulse on the mean of the contact point's velocities before and after the step,
-    /// plus whatever the engine's contact solver moved the footpad by beyond its velocities):
-    /// the normal part (and a locked footpad's lateral part) into the contact-event account,
-    /// sliding friction into the sliding account; its penetration `depth` (m); whether it bears
-    /// on its surface (`touching` and a pushing normal impulse).
-    pub fn book_contact(
-        &mut self,
-        i: usize,
-        t: f64,
-        impulse: &Vector3<f64>,
-        work: &Vector3<f64>,
-        depth: f64,
-        touching: bool,
-    ) {
+    /// Books footpad `i`'s contact over the step ending at time `t` (s), as `pad_steps[i]`
+    /// holds it: the normal part of its work (and a locked footpad's lateral part) into the
+    /// contact-event account, sliding friction into the sliding account; its penetration; whether
+    /// it bears on its surface (touching, with a pushing normal impulse).
+    fn book_contact(&mut self, i: usize, t: f64) {
+        let PadStep {
+            impulse,
+            work,
+            depth,
+            touching,
+        } = self.pad_steps[i];
         let normal_work = work.z;
         let lateral_work = work.x + work.y;
         self.ledger.events += normal_work;
@@ -238,7 +331,7 @@ impl GearBook {
     }
 
     /// Evaluates the laws at the current kinematics with the committed memories.
-    pub fn evaluate(&mut self) -> Result<(), Fault> {
+    fn evaluate(&mut self) -> Result<(), Fault> {
         for i in 0..self.legs.len() {
             self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
                 .map_err(|e| Fault {
@@ -256,7 +349,7 @@ impl GearBook {
     /// velocity at BP `pad_velocity(i)`, m/s, inertial), committing the footpad crush there.
     /// Each is evaluated with the memory of the state before and committed after, as the core
     /// does at an accepted state.
-    pub fn evaluate_applied(
+    fn evaluate_applied(
         &mut self,
         t: f64,
         v: &VehicleState,
@@ -301,7 +394,7 @@ impl GearBook {
     /// into the mechanisms account (done on the vehicle and the footpads, so it counts
     /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements;
     /// the thrust's and the RCS's positive work is also booked as energy put in.
-    pub fn book_applied(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
+    fn book_applied(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
         let applied = self.applied.step_work(before, after, dt);
         self.ledger.mechanisms -= applied.applied;
         self.ledger.driving_input += applied.driving.max(0.0);
@@ -319,7 +412,7 @@ impl GearBook {
     /// the first non-finite force or gear geometry, a non-finite body state (`state_finite`
     /// false, as the engine reads its bodies), or an energy balance `e` (this landing's report)
     /// beyond `integrator.energy_tolerance` of the energy scale.
-    pub fn check(&self, e: &EnergyReport, state_finite: bool, steps: u64) -> Result<(), Fault> {
+    fn check(&self, e: &EnergyReport, state_finite: bool, steps: u64) -> Result<(), Fault> {
         // One force evaluation a step.
         touchdown_record::check_budget(steps, steps, self.max_steps).map_err(|budget| Fault {
             law: Law::RunBudget,
@@ -375,7 +468,7 @@ impl GearBook {
     /// Updates the stability criteria at time `t` (s) with the vehicle in state `v`, its
     /// velocity before the step `old_velocity` (m/s; `None` at touchdown) and the energy report
     /// of this state `energy` (the one [`GearBook::check`] was given).
-    pub fn update_stability(
+    fn update_stability(
         &mut self,
         t: f64,
         v: &VehicleState,
@@ -400,7 +493,7 @@ impl GearBook {
     }
 
     /// Updates the extremes with the current strokes and the pitch rate at time `t`, s.
-    pub fn update_extremes(&mut self, t: f64, v: &VehicleState) {
+    fn update_extremes(&mut self, t: f64, v: &VehicleState) {
         for (i, k) in self.kin.iter().enumerate() {
             self.extremes.update_leg(i, k.c, k.s);
         }

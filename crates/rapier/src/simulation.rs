@@ -17,7 +17,7 @@ use crate::assembly::{
 use crate::struts;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_multibody::{check_explicit_timestep, Fault, GearBook, VehicleState};
+use touchdown_multibody::{check_explicit_timestep, GearBook, PadStep, Reading, VehicleState};
 use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -30,7 +30,6 @@ pub struct RapierSimulation {
     book: GearBook,
     /// Vehicle, then per gear outer link and footpad: handle, mass and inertia.
     bodies: Vec<(RigidBodyHandle, Inertia)>,
-    t_end: f64,
     settings: serde_json::Map<String, serde_json::Value>,
     // state
     t: f64,
@@ -74,7 +73,6 @@ impl RapierSimulation {
                     .flat_map(|g| [(g.outer, g.outer_inertia), (g.footpad, g.footpad_inertia)]),
             )
             .collect(),
-            t_end: scenario.integrator.t_end,
             settings,
             t: 0.0,
             steps: 0,
@@ -88,14 +86,14 @@ impl RapierSimulation {
             .collect();
         sim.position0 = sim.body_positions();
         sim.links_kinetic0 = sim.gear_energy();
-        let ke = sim.kinetic_energy();
-        sim.book.start(ke);
         sim.read_kinematics();
-        sim.book.evaluate().map_err(|f| sim.diverged(f))?;
         let v = sim.vehicle_state();
-        sim.evaluate_applied(&v)?;
-        let energy = sim.energy();
-        sim.book.update_stability(sim.t, &v, None, &energy);
+        let (world, gears) = (&sim.assembly.world, &sim.assembly.gears);
+        let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
+        let now = sim.reading(&v);
+        sim.book
+            .start_landing(&now, pad_velocity)
+            .map_err(|f| f.at(sim.t, &v))?;
         Ok(sim)
     }
 
@@ -236,29 +234,18 @@ impl RapierSimulation {
             let pushed = impulse.z - mass * (after.linvel.z - before.linvel.z);
             let v_mean = 0.5 * (self.contact_velocity(before) + self.contact_velocity(&after));
             let work = impulse.component_mul(&v_mean) + Vector3::z() * (pushed * drift_rate);
-            self.book
-                .book_contact(i, self.t, &impulse, &work, depth, active);
+            self.book.pad_steps[i] = PadStep {
+                impulse,
+                work,
+                depth,
+                touching: active,
+            };
             self.pad_state[i] = after;
         }
     }
 
-    /// Evaluates the engine, RCS and curb loads for the coming step at the current state, the
-    /// vehicle in state `v`.
-    fn evaluate_applied(&mut self, v: &VehicleState) -> Result<(), RunError> {
-        let (world, gears) = (&self.assembly.world, &self.assembly.gears);
-        let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
-        self.book
-            .evaluate_applied(self.t, v, pad_velocity)
-            .map_err(|f| self.diverged(f))
-    }
-
-    fn diverged(&self, fault: Fault) -> RunError {
-        fault.at(self.t, &self.vehicle_state()).into()
-    }
-
-    /// Stops a run whose state is not finite or whose energy balance (`energy`, this state's
-    /// report) has drifted beyond the scenario's tolerance.
-    fn check_divergence(&self, energy: &EnergyReport) -> Result<(), RunError> {
+    /// What the book reads of the bodies now, the vehicle in state `v`.
+    fn reading<'a>(&self, v: &'a VehicleState) -> Reading<'a> {
         let finite = self.bodies.iter().all(|(h, _)| {
             let s = self.state(*h);
             s.pose.translation.is_finite()
@@ -267,9 +254,16 @@ impl RapierSimulation {
                     .chain(s.angvel.iter())
                     .all(|x| x.is_finite())
         });
-        self.book
-            .check(energy, finite, self.steps)
-            .map_err(|f| self.diverged(f))
+        let kinetic = self.kinetic_energy();
+        Reading {
+            t: self.t,
+            vehicle: v,
+            finite,
+            kinetic_j: kinetic,
+            potential_change_j: self.body_energy(0) - kinetic,
+            gear_j: self.gear_energy(),
+            steps: self.steps,
+        }
     }
 }
 
@@ -315,24 +309,20 @@ impl Landing for RapierSimulation {
         self.t += dt;
         self.steps += 1;
         self.read_kinematics();
-        let v = self.vehicle_state();
-        self.book.book_struts();
         self.book_contacts(dt);
-        self.book.book_applied(&before, &v, dt);
-        self.book.evaluate().map_err(|f| self.diverged(f))?;
-        let energy = self.energy();
-        self.check_divergence(&energy)?;
-        self.evaluate_applied(&v)?;
-        let old_velocity = before.velocity;
+        let v = self.vehicle_state();
+        let now = self.reading(&v);
+        let (world, gears) = (&self.assembly.world, &self.assembly.gears);
+        let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
         self.book
-            .update_stability(self.t, &v, Some(&old_velocity), &energy);
-        self.book.update_extremes(self.t, &v);
+            .finish_step(&before, dt, &now, pad_velocity)
+            .map_err(|f| f.at(self.t, &v))?;
         Ok(())
     }
 
     /// Whether the run has ended.
     fn finished(&self) -> bool {
-        self.t >= self.t_end * (1.0 - 1e-12) || self.book.stability.terminates()
+        self.book.finished(self.t)
     }
 
     /// Writes the current state into `out` (a sample made for as many legs).

@@ -74,6 +74,7 @@ fn land_on_mujoco(sc: &Scenario, out: Option<&Path>) -> Result<Summary, RunError
             cause,
         })
     };
+    touchdown_mujoco::refusal(sc)?;
     let launch = touchdown_mujoco::Launch::locate()?;
     let scratch;
     let dir = match out {
