@@ -1,4 +1,4 @@
-//! The core's integration schemes beyond the report's (issue 8): the fourth-order Runge–Kutta
+//! The core's integration schemes beyond the report's (docs/model.md, "Integration schemes"): the fourth-order Runge–Kutta
 //! method and the adaptive Dormand–Prince pair converge to the report scheme's fine-step answer,
 //! the quaternion attitude agrees with the Euler angles away from their singularity and goes
 //! through it, and the report's scheme refuses the quaternion.

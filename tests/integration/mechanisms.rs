@@ -1,4 +1,4 @@
-//! The optional mechanisms of the core (issue 7): each scenario in `scenarios/` that declares one,
+//! The optional mechanisms of the core (docs/model.md): each scenario in `scenarios/` that declares one,
 //! checked against an analytic or limiting case, and the proof that a mechanism a scene leaves
 //! out is never built nor evaluated.
 
@@ -364,7 +364,7 @@ fn trunnion_springs_equal_the_hand_modified_diagrams() {
         ls.backoff_rate = series(ls.backoff_rate);
         ls.stroke_out_rate = series(ls.stroke_out_rate);
         for (f, x) in &mut ls.stages {
-            *x += *f / k; // eqs. (37)-(39), every stage (review rows 37-39)
+            *x += *f / k; // eqs. (37)-(39), every stage (docs/errata.md, "Eqs. (35)-(39): trunnion modification — generalised")
         }
     };
     let (kp, ks) = (
@@ -390,7 +390,7 @@ fn trunnion_springs_equal_the_hand_modified_diagrams() {
     assert!((a.max_primary_stroke_m[0] - rigid.max_primary_stroke_m[0]).abs() > 1e-3);
 }
 
-/// The tripod gear (review A23) dropped level: four identical legs, its secondaries compressed,
+/// The tripod gear (docs/errata.md, "Tripod gear") dropped level: four identical legs, its secondaries compressed,
 /// no bearing friction, and the energy balance closed.
 #[test]
 fn tripod_drop_is_symmetric_and_closes_its_energy_balance() {

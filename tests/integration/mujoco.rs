@@ -1,4 +1,4 @@
-//! The MuJoCo export and runner (issue 5): every scenario in `scenarios/` exports to MJCF that
+//! The MuJoCo export and runner (docs/engines.md, "The MuJoCo engine"): every scenario in `scenarios/` exports to MJCF that
 //! the pinned MuJoCo (`mujoco-core` in the project's venv) loads, the model's keyframe is the
 //! shared touchdown state, and the law-driven run (python/mujoco/run.py with the touchdown C
 //! library) reproduces the analytic drop, closes its energy balance, and agrees with the core's

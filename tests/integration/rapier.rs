@@ -1,4 +1,4 @@
-//! The rapier rebuild (issue 4): it starts where the core starts, closes its energy balance,
+//! The rapier rebuild (docs/engines.md, "The rapier rebuild"): it starts where the core starts, closes its energy balance,
 //! agrees with the core on every Table I
 //! outcome, and the two mechanisms that make it part from the core on some strokes
 //! (docs/engines.md, "Where the rebuild parts from the core") are pinned here.

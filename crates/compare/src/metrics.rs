@@ -25,7 +25,7 @@ pub const PRIMARY_STROKE: Tolerance = Tolerance {
     channel: "primary stroke",
     limit: 0.05,
     unit: "fraction of the larger maximum stroke (at least 10 mm)",
-    reason: "the agreement asked of the rebuilds on the Table I primary strokes (issue 5); below 10 mm a stroke is within the scatter of the drop tests' records",
+    reason: "the agreement asked of the rebuilds on the Table I primary strokes; below 10 mm a stroke is within the scatter of the drop tests' records",
 };
 
 /// Secondary strokes: relative difference of the maximum stroke (compression or tension), under
@@ -34,7 +34,7 @@ pub const SECONDARY_STROKE: Tolerance = Tolerance {
     channel: "secondary stroke",
     limit: 0.10,
     unit: "fraction of the larger maximum stroke (at least 5 mm)",
-    reason: "the agreement asked of the rebuilds on the Table I secondary strokes (issue 5); secondaries are short and follow the gear's swing, so twice the primaries' tolerance",
+    reason: "the agreement asked of the rebuilds on the Table I secondary strokes; secondaries are short and follow the gear's swing, so twice the primaries' tolerance",
 };
 
 /// Peak pitch rate.

@@ -123,7 +123,7 @@ impl Method {
     }
 }
 
-/// How far a run lands from another (the reference), on the channels of issue 8.
+/// How far a run lands from another (the reference), on the channels of the work-precision study (docs/performance.md, "Work-precision: error against run time").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Errors {
     /// Largest difference of any maximum stroke (primary; secondary compression and tension),

@@ -58,7 +58,7 @@ macro_rules! rates {
 
 const TABLE_I: &str = "table-i-2-2-vv8.toml";
 
-/// The catalogue of issue 8.
+/// The stiff and extreme catalogue (docs/robustness.md).
 pub const CATALOGUE: &[Case] = &[
     Case {
         name: "onset-x10",

@@ -55,7 +55,7 @@ pub fn euler_from_t_bi(t: &Matrix3<f64>) -> Vector3<f64> {
 }
 
 /// Gravity in the inertial frame, G_I = T_GI·(0, 0, −g) = (0, g·sin α, −g·cos α): +Y is
-/// downhill for α > 0 (review §0).
+/// downhill for α > 0 (docs/errata.md, "Conventions fixed first").
 pub fn gravity_inertial(g: f64, alpha: f64) -> Vector3<f64> {
     t_gi(alpha) * Vector3::new(0.0, 0.0, -g)
 }

@@ -16,8 +16,8 @@
 //!   For |kL| < 0.5 a Taylor series in q = P·L²/EI is used instead of the closed form, so there
 //!   is no cancellation near P = 0 (the series and the closed form agree to ~1e-12 at the switch).
 //! - The closed form diverges at the Euler load P_E = π²·EI/L²; P is capped at
-//!   [`EULER_CAP`]·P_E and the cap is reported (review A8).
-//! - eq. (47), with its sign worked out (review rows 47-48, A8): see [`secondary_lengthening`].
+//!   [`EULER_CAP`]·P_E and the cap is reported (docs/errata.md, "Eqs. (47)-(48): bending coupling").
+//! - eq. (47), with its sign worked out (docs/errata.md, "Eqs. (47)-(48): bending coupling"): see [`secondary_lengthening`].
 //!   The singular series spring of eq. (48), KB = FC/δ, is not provided; the review's
 //!   equivalent stroke correction `S_eff = S_i1 + λ_i = S_i1 − δ_i` (lagged η) is.
 
@@ -28,7 +28,7 @@ use nalgebra::Vector3;
 
 use crate::LawError;
 
-/// Fraction of the Euler load at which the axial load of the deflection law is capped (review A8).
+/// Fraction of the Euler load at which the axial load of the deflection law is capped (docs/errata.md, "Eqs. (47)-(48): bending coupling").
 pub const EULER_CAP: f64 = 0.9;
 
 /// |kL| below which the Taylor series replaces the closed form, i.e. |q| = |P|·L²/EI < 0.25.
@@ -171,7 +171,7 @@ pub fn normal_load(
 /// normal load it receives ([`normal_load`], [`Deflection::magnitude`]). Secondary i runs from
 /// its trunnion to point 1 along V̂i1 (`u31`, `u41`), so to first order its length grows by
 /// `λ_i = (|η|·FN̂)·V̂i1`. The kinematic strut length ignores this, so the honeycomb stroke is
-/// `S_eff = S_i1 + λ_i` (lagged η; review A8). Check: a lone strut in tension (FC > 0) pulls
+/// `S_eff = S_i1 + λ_i` (lagged η; docs/errata.md, "Eqs. (47)-(48): bending coupling"). Check: a lone strut in tension (FC > 0) pulls
 /// point 1 toward its trunnion, so FN̂·V̂i1 < 0 and λ_i < 0: bending acts as a softer spring in
 /// series, as eq. (48) intends. Eq. (47)'s δ_i = η·(FN̂·V̂i1) with the printed η ≤ 0 is −λ_i
 /// (docs/errata.md).

@@ -4,7 +4,7 @@
 //! cylinder, a distance D1 from the footpad; bearing 2 is the gland at the lower end of the outer
 //! cylinder, and D2 (the bearing separation) is the distance between the two bearings, so that
 //! F2 − F1 = FM and the moments about the pad balance. D2 grows with compression stroke:
-//! `D2 = D2_0 + c` (review A10).
+//! `D2 = D2_0 + c` (docs/errata.md, "Eqs. (59)-(63): bearing geometry — interpreted").
 
 use crate::LawError;
 use nalgebra::Vector3;
@@ -66,7 +66,7 @@ impl Bearing {
     /// Bearing friction FBR, N, in the primary strut's compression-positive sense, eq. (63):
     /// magnitude `μB·(F1 + F2)`, opposing the stroking direction: positive while compressing
     /// (`compression_rate` > 0), negative while extending, zero at exactly zero rate (the report
-    /// gives no rule at rest; review A9).
+    /// gives no rule at rest; docs/errata.md, "Eqs. (59)-(63): bearing geometry — interpreted").
     pub fn friction(
         &self,
         fm: f64,

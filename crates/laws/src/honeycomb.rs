@@ -5,7 +5,7 @@
 //! to the first crush load FP1 (station A), stays on that plateau to the end of the first stage
 //! (B), rises at the onset rate to FP2 (C), and so on. Beyond the end of the last stage the strut
 //! bottoms (strokes out): the load rises at the stroke-out rate, a steep final segment the report
-//! leaves unspecified (review A6).
+//! leaves unspecified (docs/errata.md, "Modelling choices the report leaves open").
 //!
 //! The memory is the largest stroke reached, `x_max` ([`CrushMemory`]). At stroke x:
 //! `F = F_v(x)` if `x ≥ x_max`, otherwise `F = max(0, F_v(x_max) − K_B·(x_max − x))` (elastic
@@ -165,7 +165,7 @@ impl LoadStroke {
     /// The curve seen through a trunnion spring `k_t` (N/m) in series, eqs. (35)-(39): every
     /// point moves by F/K_T (`x' = x + F_v(x)/K_T`), which gives the series onset rates of
     /// eq. (35) and the plateau shifts of eqs. (37)-(39) for every stage (the report prints
-    /// only the first-stage shift; review A7, docs/errata.md).
+    /// only the first-stage shift; docs/errata.md, "Eqs. (35)-(39): trunnion modification — generalised").
     pub fn with_trunnion(&self, k_t: f64) -> Result<Self, LawError> {
         positive("trunnion spring rate", k_t)?;
         let mut out = *self;

@@ -1,4 +1,4 @@
-//! Reaction-control-system torques and force, eqs. (75)-(82) (review rows 75-82, A19).
+//! Reaction-control-system torques and force, eqs. (75)-(82) (docs/errata.md, "Eqs. (76), (78)-(79): RCS switching — interpreted").
 //!
 //! Per body axis i, the switching error `E_i = k_i1·Eθ_i + k_i2·Eω_i` (eq. 78) drives an
 //! on-off torque of fixed magnitude TORQ_i against the error outside a deadband EM_i (eq. 79);
@@ -88,7 +88,7 @@ fn each(
     v.iter().try_for_each(|&x| check(name, x).map(|_| ()))
 }
 
-/// `x` wrapped into (−π, π], rad (review row 75-76).
+/// `x` wrapped into (−π, π], rad (docs/errata.md, "Eqs. (76), (78)-(79): RCS switching — interpreted").
 #[inline]
 fn wrap_pi(x: f64) -> f64 {
     use std::f64::consts::{PI, TAU};
@@ -133,7 +133,7 @@ impl Rcs {
     /// Switching errors (EX, EY, EZ), rad, for Euler angles `theta` (rad) and body rates
     /// `omega` (rad/s):
     /// - Eω = ω − Cω (eq. 75);
-    /// - Dθ = θ − Cθ, each wrapped into (−π, π] (eq. 76, review row 75-76);
+    /// - Dθ = θ − Cθ, each wrapped into (−π, π] (eq. 76, docs/errata.md, "Eqs. (76), (78)-(79): RCS switching — interpreted");
     /// - Eθ = T_EB(θ)·Dθ (eq. 77): the report's small-deviation treatment, mapping the Euler
     ///   deviations like Euler rates with T_EB (eq. 6) evaluated at the current attitude θ;
     /// - E = k1∘Eθ + k2∘Eω (eq. 78, per axis).
@@ -147,7 +147,7 @@ impl Rcs {
 
     /// On-off torque MRCS, N·m, body axes, from the switching errors (rad), eqs. (79)-(80):
     /// per axis −TORQ if E ≥ EM, +TORQ if E ≤ −EM, 0 strictly inside the deadband. The report
-    /// leaves |E| = EM unspecified; the jets fire there (review row 78-79).
+    /// leaves |E| = EM unspecified; the jets fire there (docs/errata.md, "Eqs. (76), (78)-(79): RCS switching — interpreted").
     #[inline]
     pub fn torque(&self, errors: &Vector3<f64>) -> Vector3<f64> {
         Vector3::from_fn(|i, _| {
@@ -241,7 +241,7 @@ mod tests {
             };
             assert_eq!(t, expect, "E = {i}% of EM");
         }
-        // The switching points themselves (review row 78-79: fire at |E| = EM).
+        // The switching points themselves (docs/errata.md, "Eqs. (76), (78)-(79): RCS switching — interpreted": fire at |E| = EM).
         assert_eq!(rcs.torque(&Vector3::new(0.0, em, 0.0)).y, -600.0);
         assert_eq!(rcs.torque(&Vector3::new(0.0, -em, 0.0)).y, 600.0);
         let inside = em * (1.0 - f64::EPSILON);

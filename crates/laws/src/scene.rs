@@ -262,7 +262,7 @@ pub fn slosh_from_scenario(s: &Scenario) -> Result<Option<Slosh>, ScenarioError>
 
 /// The rigid vehicle of a scene with sloshing (eqs. 113-114): mass M − M_s, the inertia of
 /// eq. (114), and every body-frame point (gear, nozzle) re-referenced to the rigid centre of
-/// mass, which lies ℓ2 above the total one along +Z_B (review row 113). The touchdown state is
+/// mass, which lies ℓ2 above the total one along +Z_B (docs/errata.md, "Eqs. (113)-(114): geometry re-referenced to the rigid centre of mass"). The touchdown state is
 /// placed with this geometry (eq. 19), so the footpads start where the scene puts them.
 pub fn rigid_vehicle(s: &Scenario, slosh: &Slosh) -> Result<Scenario, ScenarioError> {
     let mut out = s.clone();
@@ -324,7 +324,7 @@ pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<crate::Curbs>, Scenari
 }
 
 /// The scene's primary-strut bending law (eqs. 40-48), if it declares one. The coupling is
-/// lagged one step (review A8), which converges only while the beam is stiffer than the
+/// lagged one step (docs/errata.md, "Eqs. (47)-(48): bending coupling"), which converges only while the beam is stiffer than the
 /// secondaries it carries: the loop gain K_S·a²b²/(3·EI·L) (secondary onset rate times the
 /// beam's compliance at point 1, eq. 46 corrected) must stay below 1/2, else the scenario is
 /// refused.

@@ -1,13 +1,13 @@
 //! First-mode propellant sloshing as a spring-mass analogy, appendix eqs. (108)-(117), with the
-//! corrections of review rows 108-117 and A21.
+//! corrections in docs/errata.md (eqs. 108-117, and "The slosh mass's axial load — added").
 //!
 //! The residual propellant splits into a fixed part (rigid with the vehicle) and a slosh mass
 //! M_s = F_s/ω² (eq. 112) that moves laterally (2-D amplitude q in the X_B–Y_B plane) on a
 //! spring of stiffness k = M_s·ω_n², ω_n² = ω²·Z̈_B,eff (eqs. 110-111). Z̈_B,eff is the
-//! *effective* axial acceleration, the specific force (A_tank − G)·Ẑ_B (review row 108): at rest
+//! *effective* axial acceleration, the specific force (A_tank − G)·Ẑ_B (docs/errata.md, "Eq. (108): effective axial acceleration, lagged one step — corrected"): at rest
 //! on the surface it is +g, not the kinematic 0.
 //!
-//! Geometry (review row 113, fig. 29 missing): the slosh mass lies ℓ1 + ℓ below the total
+//! Geometry (docs/errata.md, "Eqs. (113)-(114): geometry re-referenced to the rigid centre of mass", fig. 29 missing): the slosh mass lies ℓ1 + ℓ below the total
 //! (rigid-propellant) centre of mass along −Z_B. Removing it moves the rigid vehicle's CM up by
 //! ℓ2 (eq. 113) along +Z_B, and the slosh mass then lies at r_s = (0, 0, −d) from the rigid CM,
 //! d = ℓ1 + ℓ2 + ℓ. Lengths are signed Z_B distances.
@@ -17,7 +17,7 @@
 //! [`Slosh::rigid_inertia`] in eqs. (10)-(15); apply the wall force (eq. 115) at the CM as
 //! T_BI·(F_x, F_y, 0) (eq. 116) and the torque of [`Slosh::torque`] (eq. 117). The appendix
 //! transmits only the lateral force, so the slosh mass's axial load (≈ M_s·Z̈_B,eff) is lost
-//! with M − M_s in eqs. (10)-(12) (review A21): the caller either applies it along −Z_B at r_s
+//! with M − M_s in eqs. (10)-(12) (docs/errata.md, "The slosh mass's axial load — added"): the caller either applies it along −Z_B at r_s
 //! or treats the slosh mass as axially rigid. There is no slosh damping (the report has none),
 //! and the linear model holds only for small amplitudes.
 //!
@@ -119,7 +119,7 @@ impl Slosh {
     }
 
     /// Effective axial acceleration Z̈_B,eff, m/s² (≥ 0), from the specific force at the tank in
-    /// body axes, (A_tank − G)_B (review row 108): its Z_B component, positive when the liquid is
+    /// body axes, (A_tank − G)_B (docs/errata.md, "Eq. (108): effective axial acceleration, lagged one step — corrected"): its Z_B component, positive when the liquid is
     /// pressed to the tank floor. A negative value (liquid thrown off the floor) breaks the
     /// linear model; it is clamped to 0 (no restoring spring) and the caller flags it.
     #[inline]
@@ -133,7 +133,7 @@ impl Slosh {
         self.omega2 * axial
     }
 
-    /// Slosh acceleration q̈, m/s², eq. (109) corrected (review row 109): for the 2-D amplitude
+    /// Slosh acceleration q̈, m/s², eq. (109) corrected (docs/errata.md, "Eq. (109): 2-D amplitude, lateral specific force — corrected"): for the 2-D amplitude
     /// `q` (m, X_B–Y_B) and the lateral specific force at the slosh-mass location
     /// `lateral_specific_force` (m/s², body X_B–Y_B: the rigid vehicle's acceleration there,
     /// including the rotational terms, minus gravity), `q̈ = −f_lat − ω²·Z̈_B,eff·q`. No damping.
@@ -159,7 +159,7 @@ impl Slosh {
     }
 
     /// Torque of the wall force about the rigid CM, N·m, body axes, eq. (117) corrected
-    /// (review row 117): r_s × F with r_s = (0, 0, −d), F = (F_x, F_y, 0):
+    /// (docs/errata.md, "Eq. (117): sign of T_y — corrected"): r_s × F with r_s = (0, 0, −d), F = (F_x, F_y, 0):
     /// T_x = +d·F_y, T_y = −d·F_x (the printed T_y has the wrong sign), T_z = 0.
     #[inline]
     pub fn torque(&self, force: &Vector2<f64>) -> Vector3<f64> {

@@ -112,7 +112,7 @@ impl Soil {
     /// net force on the pad from everything but the soil (FZI plus the pad's weight component,
     /// −PMASS·g_z), `mass` = PMASS (kg, positive), `dt` (s; ≤ 0 leaves the state unchanged).
     ///
-    /// Rules (review row 101, rigid-plastic):
+    /// Rules (docs/errata.md, "Eq. (101): soil bearing", rigid-plastic):
     /// - penetrating (ṗ > 0): FZP = [`Soil::bearing`] at the start, frozen; ṗ′ = (load − FZP)/m.
     ///   If ṗ would reach 0 within the step the pad stops there (position from the mean velocity
     ///   up to the stop) and the at-rest rule covers the rest of the step;

@@ -4,7 +4,7 @@
 //! - [`Amplification`]: the ground-effect factor AMP(ZNOZ) of fig. 16 (missing from the report:
 //!   a table), eq. (71): TAF = AMP·F_THRUST along +Z_B.
 //! - [`Nozzle`]: constant-load crushing of the nozzle exit rim against the surface plane
-//!   (review A18): the force FFL = F_c·(fraction of the rim in contact) along +Z_B, applied at
+//!   (docs/errata.md, "Eqs. (72)-(73): nozzle crushing"): the force FFL = F_c·(fraction of the rim in contact) along +Z_B, applied at
 //!   the centroid R_F of the contacting arc.
 //! - [`engine_loads`]: F_TF = TAF + FFL and MTF = R_T×TAF + R_F×FFL in body axes,
 //!   eqs. (72)-(73). Eq. (74), FTFI = T_BI·F_TF, is the caller's.
@@ -28,11 +28,11 @@ pub const RIM_SAMPLES: usize = 72;
 const AXIS_Z_MIN: f64 = 1e-6;
 
 /// Engine thrust tailoff, eqs. (69)-(70), on the thrust-curve clock `t_curve = tp + t_sim`
-/// (review row 69).
+/// (docs/errata.md, "Eq. (70): tailoff continuity at t2 and clamp — corrected").
 ///
 /// For `t_curve ≤ t2` the thrust is F1 (eq. 69). For `t_curve > t2`, with τ = t_curve − t2,
 /// `F = [F1·e^(−K·τ)] + M0 + M1·τ + M2·τ² + ...` (eq. 70; the exponential only if a decay
-/// constant K is given), clamped at ≥ 0 (review row 70). The printed form jumps at t2 unless
+/// constant K is given), clamped at ≥ 0 (docs/errata.md, "Eq. (70): tailoff continuity at t2 and clamp — corrected"). The printed form jumps at t2 unless
 /// M0 = 0 with the exponential, or M0 = F1 without it; [`Tailoff::new`] rejects a
 /// discontinuous curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,7 +95,7 @@ impl Tailoff {
             if (after - f1).abs() > 1e-9 * f1.max(1.0) {
                 return Err(LawError::Tailoff(format!(
                     "the curve jumps at t2 from F1 = {f1} N to {after} N; use M0 = 0 with the \
-                     exponential, or M0 = F1 without it (review row 70)"
+                     exponential, or M0 = F1 without it (docs/errata.md, eq. 70)"
                 )));
             }
         }
@@ -117,7 +117,7 @@ impl Tailoff {
     /// Engine thrust F_THRUST, N (≥ 0), at simulation time `t_sim`, s.
     #[inline]
     pub fn thrust(&self, t_sim: f64) -> f64 {
-        let t = self.tp + t_sim; // thrust-curve clock (review row 69)
+        let t = self.tp + t_sim; // thrust-curve clock (docs/errata.md, "Eq. (70): tailoff continuity at t2 and clamp — corrected")
         if t <= self.t2 {
             self.f1 // eq. (69)
         } else {
@@ -215,7 +215,7 @@ pub struct RimContact {
     pub penetration: f64,
 }
 
-/// Constant-load crushing of the descent-engine nozzle (eqs. 72-73, review A18).
+/// Constant-load crushing of the descent-engine nozzle (eqs. 72-73, docs/errata.md, "Eqs. (72)-(73): nozzle crushing").
 ///
 /// The exit rim is the circle of radius r_e about the exit-plane centroid R_T in the
 /// X_B–Y_B plane, shifted by the stored crush c (m, ≥ 0) along +Z_B (the nozzle shortens).
@@ -370,7 +370,7 @@ mod tests {
         for t in [exp, poly] {
             assert!((t.thrust(2.0 + 1e-12) - F1).abs() < 1e-6, "F(t2+) = F1");
         }
-        // The printed form with M0 ≠ 0 beside the exponential jumps by M0 (review row 70).
+        // The printed form with M0 ≠ 0 beside the exponential jumps by M0 (docs/errata.md, "Eq. (70): tailoff continuity at t2 and clamp — corrected").
         assert!(matches!(
             Tailoff::new(F1, 2.0, 0.0, Some(k), &[500.0]),
             Err(LawError::Tailoff(_))
@@ -396,7 +396,7 @@ mod tests {
         // M0 = F1, M1 = −2000 N/s, M2 = −500 N/s²: at τ = 1 s, 1e4 − 2000 − 500 = 7500 N.
         let t = Tailoff::new(F1, 2.0, 0.0, None, &[F1, -2000.0, -500.0]).unwrap();
         assert!((t.thrust(3.0) - 7500.0).abs() < 1e-9);
-        // At τ = 10 s the raw value is 1e4 − 2e4 − 5e4 < 0: clamped to 0 (review row 70).
+        // At τ = 10 s the raw value is 1e4 − 2e4 − 5e4 < 0: clamped to 0 (docs/errata.md, "Eq. (70): tailoff continuity at t2 and clamp — corrected").
         assert_eq!(t.thrust(12.0), 0.0);
         // Huge times stay finite and non-negative.
         assert_eq!(t.thrust(1e300), 0.0);

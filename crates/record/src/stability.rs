@@ -1,5 +1,5 @@
 //! Stability distance, overturning velocity and the stable-landing conditions, eqs. (105)-(107)
-//! and the text after them (review A16), shared by every engine so that they decide alike.
+//! and the text after them (docs/errata.md, "Eqs. (105)-(107): stability — interpreted"), shared by every engine so that they decide alike.
 //!
 //! Walls are vertical planes (parallel to G) through adjacent footpads, in leg order, which the
 //! scenario guarantees is counter-clockwise seen from above. With ACM = r_A − r_CM and

@@ -21,10 +21,10 @@ pub struct InitialState {
     pub first_leg: usize,
 }
 
-/// Initial state of a scenario, eq. (19) corrected for holes (review eq. 19 row): the footpad
+/// Initial state of a scenario, eq. (19) corrected for holes (docs/errata.md, "Eq. (19): initial position with holes — corrected"): the footpad
 /// k that is lowest relative to its own plane, k = argmin_n [(T_BI·BP_n)_z + HOLE_n], touches
 /// its plane at inertial X = Y = 0, so R_cm = (0, 0, −HOLE_k) − T_BI·BP_k. An attitude given
-/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (review A17). A
+/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (docs/errata.md, "Eq. (19): initial position with holes — corrected"). A
 /// `touchdown.clearance` lifts the whole vehicle by that height along the surface normal.
 pub fn initial_state(s: &crate::Scenario) -> InitialState {
     let td = &s.touchdown;

@@ -20,7 +20,7 @@ pub(crate) fn bending(
     if arrangement == Arrangement::Tripod {
         return Err(c.err(
             "primary_strut.bending",
-            "the tripod's primary is a two-force member with no side load, so it does not bend (review A23); remove [primary_strut.bending]",
+            "the tripod's primary is a two-force member with no side load, so it does not bend (docs/errata.md, tripod gear); remove [primary_strut.bending]",
         ));
     }
     let scale = u.force() * u.length() * u.length();

@@ -504,7 +504,7 @@ pub struct Amplification {
     pub factor: Vec<f64>,
 }
 
-/// The nozzle's crushing under constant load (eqs. 72-73, review A18).
+/// The nozzle's crushing under constant load (eqs. 72-73, docs/errata.md, "Eqs. (72)-(73): nozzle crushing").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NozzleCrushing {
@@ -681,7 +681,7 @@ pub struct Integrator {
     /// End time of the run (unless the stability criteria end it earlier); time.
     pub t_end: f64,
     /// Shorten a step so that an airborne footpad lands on its surface plane instead of
-    /// overshooting it (not in the report; review A12).
+    /// overshooting it (not in the report; docs/errata.md, "Eq. (25): VEL and first contacts").
     #[serde(default = "yes")]
     pub contact_step_limit: bool,
     /// Divergence guard: stop when the energy residual exceeds this fraction of the energy
@@ -713,7 +713,7 @@ pub enum WallRule {
     /// Every wall between adjacent footpads (the report).
     All,
     /// Only walls whose two footpads have both touched down (avoids false alarms while
-    /// footpads are still airborne; review A16).
+    /// footpads are still airborne; docs/errata.md, "Eqs. (105)-(107): stability — interpreted").
     TouchedDown,
 }
 

@@ -1,5 +1,5 @@
 //! Validation of the report-faithful core against the 1/6-scale LM drop tests of NASA TN D-7045
-//! (issue 3): Table I with calibration rows and held-out rows, the sensitivity of every stroke to
+//! (docs/validation.md): Table I with calibration rows and held-out rows, the sensitivity of every stroke to
 //! the estimated parameters, the facts the text states about the figure 25-26 landing, and the
 //! report's automatic stability-boundary search.
 //!
