@@ -467,7 +467,7 @@ fn compare(
             "tolerances\n{}",
             touchdown_compare::report::tolerances_text()
         ),
-        Format::Json => println!("[{}]", json.join(",\n")),
+        Format::Json => println!("{}", serde_json::to_string_pretty(&json)?),
     }
     Ok(passed)
 }

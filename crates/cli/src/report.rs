@@ -110,28 +110,30 @@ fn strokes(o: &mut String, s: &Summary, scale: f64, unit: &str) {
         o,
         "\nmaximum strokes, {unit} (compression and tension positive)"
     );
-    let _ = writeln!(
-        o,
-        "  leg  first contact   primary   3-1 compr  3-1 tension   4-1 compr  4-1 tension"
-    );
-    for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
+    let rows = s.max_primary_stroke_m.iter().enumerate().map(|(i, p)| {
         let contact = match s.first_contact_s.get(i).copied().flatten() {
-            Some(t) => format!("{t:9.4} s"),
-            None => "      never".to_string(),
+            Some(t) => format!("{t:.4} s"),
+            None => "never".to_string(),
         };
         let (c, t) = (
             s.max_secondary_compression_m[i],
             s.max_secondary_tension_m[i],
         );
-        let _ = writeln!(
-            o,
-            "  {:>3}  {contact}  {:9.4}   {:9.4}    {:9.4}   {:9.4}    {:9.4}",
-            i + 1,
-            p / scale,
-            c[0] / scale,
-            t[0] / scale,
-            c[1] / scale,
-            t[1] / scale
-        );
-    }
+        let mut row = vec![(i + 1).to_string(), contact];
+        row.extend([p, &c[0], &t[0], &c[1], &t[1]].map(|x| format!("{:.4}", x / scale)));
+        row
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &[
+            "leg",
+            "first contact",
+            "primary",
+            "3-1 compr",
+            "3-1 tension",
+            "4-1 compr",
+            "4-1 tension",
+        ],
+        &[0, 1, 2, 3, 4, 5, 6],
+        rows,
+    ));
 }

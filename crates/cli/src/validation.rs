@@ -52,28 +52,42 @@ pub fn validation_text(v: &Validation) -> String {
         o,
         "Table I (TN D-7045): maximum compression strokes, in; errors in %"
     );
-    let _ = writeln!(o, "row  landing  Vv ft/s  Vh ft/s  strut       experiment  report   ours    vs exp  vs report  role");
-    for r in &v.rows {
+    let rows = v.rows.iter().map(|r| {
         let strut = match r.strut {
             reference::Strut::Primary => "primary",
             reference::Strut::Secondary => "secondary",
         };
-        let _ = writeln!(
-            o,
-            "{:>3}  {:<7}  {:>7.1}  {:>7.1}  {:<10}  {:>10.3}  {:>6.3}  {:>6.3}  {:>+7.1}  {:>+9.1}  {}",
-            r.id,
-            r.landing,
-            r.vv_ft_s,
-            r.vh_ft_s,
-            strut,
-            r.experiment_in,
-            r.analysis_in,
-            r.ours_in,
-            r.error_vs_experiment_pct,
-            r.error_vs_analysis_pct,
-            role(r.role)
-        );
-    }
+        vec![
+            r.id.to_string(),
+            r.landing.to_string(),
+            format!("{:.1}", r.vv_ft_s),
+            format!("{:.1}", r.vh_ft_s),
+            strut.to_string(),
+            format!("{:.3}", r.experiment_in),
+            format!("{:.3}", r.analysis_in),
+            format!("{:.3}", r.ours_in),
+            format!("{:+.1}", r.error_vs_experiment_pct),
+            format!("{:+.1}", r.error_vs_analysis_pct),
+            role(r.role).to_string(),
+        ]
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &[
+            "row",
+            "landing",
+            "Vv ft/s",
+            "Vh ft/s",
+            "strut",
+            "experiment",
+            "report",
+            "ours",
+            "vs exp",
+            "vs report",
+            "role",
+        ],
+        &[0, 2, 3, 5, 6, 7, 8, 9],
+        rows,
+    ));
     let (a, b) = (&v.held_out_ours, &v.held_out_report);
     let _ = writeln!(o, "\nheld-out rows ({}): |error| vs experiment", a.rows);
     let _ = writeln!(

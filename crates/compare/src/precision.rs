@@ -621,52 +621,52 @@ pub fn text(w: &WorkPrecision) -> String {
             " (DEBUG BUILD: not representative; run with `cargo run --release`)"
         }
     );
-    let _ = writeln!(
-        s,
-        "\n{:<12} {:>14} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}  outcome",
-        "method",
-        "setting",
-        "steps",
-        "evaluations",
-        "wall time",
-        "strokes",
-        "own ladder",
-        "pitch rate",
-        "attitude"
-    );
-    for rung in &w.rungs {
-        let label = setting_label(rung.method, rung.value);
-        match (&rung.measured, &rung.failure) {
-            (Some(m), _) => {
-                let _ = writeln!(
-                    s,
-                    "{:<12} {:>14} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11.1e}  {:?}",
-                    rung.method.name(),
-                    label,
-                    m.steps,
-                    m.force_evaluations,
-                    duration(m.wall_time_s),
-                    percent(m.errors.max_stroke),
-                    m.errors
-                        .self_max_stroke
-                        .map(percent)
-                        .unwrap_or_else(|| "finest".into()),
-                    percent(m.errors.pitch_rate_rms),
-                    m.errors.final_attitude_rad,
-                    m.outcome,
-                );
-            }
-            (None, failure) => {
-                let _ = writeln!(
-                    s,
-                    "{:<12} {:>14}  failed: {}",
-                    rung.method.name(),
-                    label,
-                    failure.as_deref().unwrap_or("?")
-                );
+    let rows = w.rungs.iter().map(|rung| {
+        let mut row = vec![
+            rung.method.name().to_string(),
+            setting_label(rung.method, rung.value),
+        ];
+        match &rung.measured {
+            Some(m) => row.extend([
+                m.steps.to_string(),
+                m.force_evaluations.to_string(),
+                duration(m.wall_time_s),
+                percent(m.errors.max_stroke),
+                m.errors
+                    .self_max_stroke
+                    .map(percent)
+                    .unwrap_or_else(|| "finest".into()),
+                percent(m.errors.pitch_rate_rms),
+                format!("{:.1e}", m.errors.final_attitude_rad),
+                format!("{:?}", m.outcome),
+            ]),
+            None => {
+                row.extend(std::iter::repeat_n(String::new(), 7));
+                row.push(format!(
+                    "failed: {}",
+                    rung.failure.as_deref().unwrap_or("?")
+                ));
             }
         }
-    }
+        row
+    });
+    s.push('\n');
+    s.push_str(&crate::report::text_table(
+        &[
+            "method",
+            "setting",
+            "steps",
+            "evaluations",
+            "wall time",
+            "strokes",
+            "own ladder",
+            "pitch rate",
+            "attitude",
+            "outcome",
+        ],
+        &[1, 2, 3, 4, 5, 6, 7, 8],
+        rows,
+    ));
     let _ = writeln!(
         s,
         "\nat {} stroke error, the cheapest rung within it: against the reference | against the method's own finest rung",

@@ -66,29 +66,58 @@ pub fn text(c: &ScenarioComparison) -> String {
             p.outcome.1,
             p.worst
         );
-        let _ = writeln!(
-            o,
-            "  {:<40} {:>10} {:>10} {:>10} {:>9}",
-            "channel",
-            p.a.name(),
-            p.b.name(),
-            "difference",
-            "tolerance"
-        );
-        for ch in &p.channels {
-            let _ = writeln!(
-                o,
-                "  {:<40} {:>10} {:>10} {:>10} {:>9} {}",
-                ch.name,
+        let rows = p.channels.iter().map(|ch| {
+            vec![
+                ch.name.clone(),
                 sig3(ch.a),
                 sig3(ch.b),
                 sig3(ch.difference),
                 sig3(ch.tolerance),
-                if ch.pass { "pass" } else { "FAIL" }
-            );
-        }
+                (if ch.pass { "pass" } else { "FAIL" }).to_string(),
+            ]
+        });
+        o.push_str(&text_table(
+            &[
+                "channel",
+                p.a.name(),
+                p.b.name(),
+                "difference",
+                "tolerance",
+                "",
+            ],
+            &[1, 2, 3, 4],
+            rows,
+        ));
     }
     o
+}
+
+/// A plain-text table: a header, then rows, with no borders, each column padded to its widest
+/// cell and the columns `right` (indices) right-aligned (numbers). Its layout never depends on
+/// the terminal. Every table the commands print is one of these.
+pub fn text_table<R>(header: &[&str], right: &[usize], rows: R) -> String
+where
+    R: IntoIterator<Item = Vec<String>>,
+{
+    let mut table = comfy_table::Table::new();
+    table
+        .load_preset(comfy_table::presets::NOTHING)
+        .set_content_arrangement(comfy_table::ContentArrangement::Disabled)
+        .set_header(header.to_vec());
+    for row in rows {
+        table.add_row(row);
+    }
+    for &i in right {
+        if let Some(column) = table.column_mut(i) {
+            column.set_cell_alignment(comfy_table::CellAlignment::Right);
+        }
+    }
+    let mut out = String::new();
+    for line in table.to_string().lines() {
+        out.push_str(line.trim_end());
+        out.push('\n');
+    }
+    out
 }
 
 /// The tolerances with their reasons, as text.
@@ -107,13 +136,13 @@ pub fn tolerances_text() -> String {
     o
 }
 
-/// The comparison and the tolerances as pretty JSON.
-pub fn json(c: &ScenarioComparison) -> String {
-    let value = serde_json::json!({
+/// The comparison and the tolerances as a JSON value (`touchdown compare --format json` prints
+/// an array of them).
+pub fn json(c: &ScenarioComparison) -> serde_json::Value {
+    serde_json::json!({
         "comparison": c,
         "tolerances": TOLERANCES,
-    });
-    serde_json::to_string_pretty(&value).unwrap_or_default()
+    })
 }
 
 #[cfg(test)]

@@ -513,17 +513,10 @@ pub fn run_catalogue(
 pub fn text(r: &Robustness, cases: &[Case]) -> String {
     use std::fmt::Write;
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "{:<22} {:<7} {:<10} {:<9} {:>8} {:>10} {:>9}  diagnostic",
-        "case", "engine", "verdict", "outcome", "steps", "energy res", "stroke/cap"
-    );
-    for run in &r.runs {
-        let _ = writeln!(
-            s,
-            "{:<22} {:<7} {:<10} {:<9} {:>8} {:>10} {:>9}  {}",
-            run.case,
-            run.engine.name(),
+    let rows = r.runs.iter().map(|run| {
+        vec![
+            run.case.to_string(),
+            run.engine.name().to_string(),
             format!("{:?}", run.verdict).to_lowercase(),
             run.outcome
                 .map(|o| format!("{o:?}").to_lowercase())
@@ -535,9 +528,23 @@ pub fn text(r: &Robustness, cases: &[Case]) -> String {
             run.primary_stroke_over_capacity
                 .map(|x| format!("{x:.2}"))
                 .unwrap_or_default(),
-            run.message.as_deref().unwrap_or("")
-        );
-    }
+            run.message.clone().unwrap_or_default(),
+        ]
+    });
+    s.push_str(&crate::report::text_table(
+        &[
+            "case",
+            "engine",
+            "verdict",
+            "outcome",
+            "steps",
+            "energy res",
+            "stroke/cap",
+            "diagnostic",
+        ],
+        &[4, 5, 6],
+        rows,
+    ));
     if !r.steps.is_empty() {
         let _ = writeln!(
             s,
