@@ -22,7 +22,7 @@ pub mod summary;
 
 pub use history::History;
 pub use landing::{Landing, Observer};
-pub use outcome::{Divergence, Law, RunError, RunOutcome, SetupFailure, StateAtStop};
+pub use outcome::{Divergence, Law, RunError, SetupFailure, StateAtStop};
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
 pub use summary::{EnergyLedger, EnergyReport, Extremes, Imbalance, Progress, Summary};

@@ -1,8 +1,9 @@
-//! What became of a landing on an engine, as data: it completed (its [`crate::Summary`]), it
-//! stopped ([`Divergence`]: the time, the law and leg involved, the state as numbers), the engine
-//! refused the scenario (a [`ScenarioError`] naming the file and field), or the engine could not
-//! be set up ([`SetupFailure`]). Campaigns count these; nothing downstream reads their messages
-//! back (docs/robustness.md, "Exit statuses").
+//! What became of a landing on an engine, as data: it completed (`Ok` with its
+//! [`crate::Summary`]), or it did not ([`RunError`]): it stopped ([`Divergence`]: the time, the
+//! law and leg involved, the state as numbers), the engine refused the scenario (a
+//! [`ScenarioError`] naming the file and field), or the engine could not be set up
+//! ([`SetupFailure`]). Campaigns count these; nothing downstream reads their messages back
+//! (docs/robustness.md, the verdicts of the catalogue).
 
 use serde::{Deserialize, Serialize};
 use touchdown_scenario::schema::Engine;
@@ -177,24 +178,6 @@ pub enum RunError {
 impl From<Divergence> for RunError {
     fn from(d: Divergence) -> RunError {
         RunError::Stopped(Box::new(d))
-    }
-}
-
-/// The outcome of a landing on an engine, as a campaign counts it.
-#[derive(Debug)]
-pub enum RunOutcome {
-    /// The landing ran to its end.
-    Completed(Box<crate::Summary>),
-    /// It did not; why.
-    Failed(RunError),
-}
-
-impl From<Result<crate::Summary, RunError>> for RunOutcome {
-    fn from(r: Result<crate::Summary, RunError>) -> RunOutcome {
-        match r {
-            Ok(s) => RunOutcome::Completed(Box::new(s)),
-            Err(e) => RunOutcome::Failed(e),
-        }
     }
 }
 

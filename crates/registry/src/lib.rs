@@ -4,8 +4,8 @@
 //! ([`RunError`]: refused, stopped, set-up failure).
 
 use std::path::Path;
+pub use touchdown_record::RunError;
 use touchdown_record::{Landing, Observer, Summary};
-pub use touchdown_record::{RunError, RunOutcome};
 use touchdown_scenario::model::Mechanism;
 pub use touchdown_scenario::schema::Engine;
 use touchdown_scenario::{Scenario, ScenarioError};
