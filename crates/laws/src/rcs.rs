@@ -16,46 +16,10 @@ use touchdown_frames::t_eb;
 
 use crate::{finite, non_negative, positive, LawError};
 
-/// Control mode of the torque logic (eqs. 78-79).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RcsMode {
-    /// Attitude hold: the switching error weighs the attitude and the rate errors.
-    AttitudeHold,
-    /// Rate command: the attitude gains are zero.
-    RateCommand,
-}
-
-/// The downward-translation mode (eq. 81): after `delay` from first contact, no torques and a
-/// force FRCSZ along −Z_B.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DownwardTranslation {
-    /// Delay after the first footpad contact, s.
-    pub delay: f64,
-    /// FRCSZ, N.
-    pub force: f64,
-}
-
-/// Input data of the RCS law, SI; per-axis vectors are (X_B, Y_B, Z_B). Commanded angles are
-/// used in attitude hold, commanded rates in rate command.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RcsParams {
-    /// Mode.
-    pub mode: RcsMode,
-    /// k_i1, dimensionless (zero in rate command).
-    pub attitude_gain: Vector3<f64>,
-    /// k_i2, s.
-    pub rate_gain: Vector3<f64>,
-    /// EM_i, rad.
-    pub deadband: Vector3<f64>,
-    /// TORQ_i, N·m.
-    pub torque: Vector3<f64>,
-    /// Cθ, rad.
-    pub commanded_attitude: Vector3<f64>,
-    /// Cω, rad/s.
-    pub commanded_rates: Vector3<f64>,
-    /// Downward translation, if the scene has it.
-    pub downward_translation: Option<DownwardTranslation>,
-}
+/// Input data of the RCS law: the scenario's resolved table (SI; per-axis vectors are
+/// (X_B, Y_B, Z_B); commanded angles are used in attitude hold, commanded rates in rate
+/// command) and its control mode (eqs. 78-79).
+pub use touchdown_scenario::model::{DownwardTranslation, Rcs as RcsParams, RcsMode};
 
 /// RCS loads on the vehicle, body axes.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -3,12 +3,10 @@
 //! (eqs. 108-117). Every engine builds them here, so the mapping from scenario to law exists
 //! once; a parameter a law rejects is reported against its scenario field.
 
-use crate::rcs::{DownwardTranslation, RcsMode, RcsParams};
 use crate::thrust::{engine_loads, nozzle_clearance, Amplification, EngineLoads, Nozzle, Tailoff};
 use crate::{LawError, Rcs, Slosh};
 use nalgebra::{Matrix3, Vector3};
 use touchdown_scenario::model::Mechanism;
-use touchdown_scenario::schema;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Height of the surface plane the nozzle meets, m: the nominal plane Z = 0 (the holes of the
@@ -226,23 +224,7 @@ impl Propulsion {
 /// The scene's RCS, if it declares one.
 pub fn rcs_from_scenario(s: &Scenario) -> Result<Option<Rcs>, ScenarioError> {
     let Some(r) = &s.rcs else { return Ok(None) };
-    let params = RcsParams {
-        mode: match r.mode {
-            schema::RcsMode::AttitudeHold => RcsMode::AttitudeHold,
-            schema::RcsMode::RateCommand => RcsMode::RateCommand,
-        },
-        attitude_gain: r.attitude_gain,
-        rate_gain: r.rate_gain,
-        deadband: r.deadband,
-        torque: r.torque,
-        commanded_attitude: r.commanded_attitude,
-        commanded_rates: r.commanded_rates,
-        downward_translation: r.downward_translation.map(|d| DownwardTranslation {
-            delay: d.delay,
-            force: d.force,
-        }),
-    };
-    Rcs::new(params).map(Some).map_err(field(s, "rcs"))
+    Rcs::new(*r).map(Some).map_err(field(s, "rcs"))
 }
 
 /// The scene's propellant slosh, if it declares one (the vehicle mass includes the

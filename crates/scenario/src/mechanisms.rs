@@ -260,7 +260,10 @@ pub(crate) fn rcs(
         }),
     };
     Ok(Some(model::Rcs {
-        mode: r.mode,
+        mode: match r.mode {
+            RcsMode::AttitudeHold => model::RcsMode::AttitudeHold,
+            RcsMode::RateCommand => model::RcsMode::RateCommand,
+        },
         attitude_gain,
         rate_gain: each("rate_gain", r.rate_gain, u.time(), false)?,
         deadband: each("deadband", r.deadband, u.angle(), true)?,

@@ -2,8 +2,7 @@
 
 use crate::error::Warning;
 use crate::schema::{
-    self, Arrangement, AttitudeReference, CountedEnergy, RcsMode, ReleaseRule, ScenarioFile,
-    WallRule,
+    self, Arrangement, AttitudeReference, CountedEnergy, ReleaseRule, ScenarioFile, WallRule,
 };
 use nalgebra::{Matrix3, Vector3};
 
@@ -296,6 +295,15 @@ pub struct Thrust {
     pub amplification: Option<Vec<(f64, f64)>>,
     /// Nozzle crushing: (exit radius m, crush load N); `None`: no crushing.
     pub nozzle_crushing: Option<(f64, f64)>,
+}
+
+/// RCS control mode of eqs. (78)-(79), as the law takes it (the file's `rcs.mode`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RcsMode {
+    /// Attitude hold: the switching error weighs the attitude and the rate errors.
+    AttitudeHold,
+    /// Rate command: the attitude gains are zero.
+    RateCommand,
 }
 
 /// Reaction control system, SI (eqs. 75-82).
