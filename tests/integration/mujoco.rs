@@ -155,7 +155,7 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
 #[test]
 fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier() {
     // The landings on which the multibody gear and the report's massless gear agree
-    // (docs/engines.md, "Where the rebuilds part from the core"): the fast ones.
+    // (docs/engines.md, "Where the rebuild parts from the core"): the fast ones.
     let fast = [
         "fig-25-26.toml",
         "table-i-2-2-vv8.toml",

@@ -120,9 +120,9 @@ impl Mechanisms {
             self.evaluations.tick(Mechanism::Slosh);
             let axial = slosh.axial(&self.slosh_specific_force);
             let lateral = slosh.wall_force(&v.slosh_q, axial); // eqs. (108), (115)
-                                                               // The slosh mass presses on the tank floor with M_s·Z̈_B,eff along −Z_B (the
-                                                               // appendix drops this axial load: docs/errata.md, "Review A21: the slosh mass's
-                                                               // axial load — added"); it acts on the axis, so no moment.
+                                                               // The slosh mass presses on the tank floor with M_s·Z̈_B,eff along −Z_B (the appendix
+                                                               // drops this axial load: docs/errata.md, "The slosh mass's axial load — added"); it
+                                                               // acts on the axis, so no moment.
             out.force += Vector3::new(lateral.x, lateral.y, -slosh.slosh_mass() * axial);
             out.torque += slosh.torque(&lateral); // eq. (117), corrected
         }
