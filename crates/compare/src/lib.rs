@@ -84,17 +84,7 @@ pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, Comp
         scenario: path.display().to_string(),
         error,
     };
-    let scratch = tempfile::Builder::new()
-        .prefix("touchdown-")
-        .tempdir()
-        .map_err(|e| {
-            failure(touchdown_registry::RunError::Setup(
-                touchdown_record::SetupFailure {
-                    engine,
-                    cause: format!("cannot create a scratch folder: {e}"),
-                },
-            ))
-        })?;
+    let scratch = touchdown_registry::scratch_folder(engine).map_err(failure)?;
     let mut tracer = Tracer(Sample::new(sc.legs.len()), Trace::default());
     let summary = land(engine, path, sc, &mut tracer, Some(scratch.path()))?;
     if engine == Engine::Mujoco {

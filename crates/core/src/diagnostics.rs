@@ -19,18 +19,13 @@ impl Physics {
         law: Law,
         leg: Option<usize>,
     ) -> RunError {
-        RunError::Stopped(Box::new(Divergence {
-            time_s: self.t,
-            law,
-            leg: leg.map(|i| i + 1),
-            message,
-            state: StateAtStop {
-                position_m: v.position.into(),
-                velocity_m_s: v.velocity.into(),
-                euler_angles_rad: Some(v.theta.into()),
-                angular_velocity_rad_s: v.omega_inertial().into(),
-            },
-        }))
+        let state = StateAtStop {
+            position_m: v.position.into(),
+            velocity_m_s: v.velocity.into(),
+            euler_angles_rad: Some(v.theta.into()),
+            angular_velocity_rad_s: v.omega_inertial().into(),
+        };
+        Divergence::new(self.t, law, leg, message, state).into()
     }
 
     /// Stops a run whose state is not finite or whose energy balance (`e`, this state's report)

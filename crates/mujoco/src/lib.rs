@@ -51,18 +51,13 @@ pub enum MujocoError {
 
 impl From<MujocoError> for touchdown_record::RunError {
     fn from(e: MujocoError) -> Self {
-        use touchdown_record::{RunError, SetupFailure};
+        use touchdown_record::RunError;
+        let engine = touchdown_scenario::schema::Engine::Mujoco;
         match e {
             MujocoError::Scenario(e) => RunError::Refused(e),
             MujocoError::Diverged(d) => RunError::Stopped(d),
-            MujocoError::Setup(cause) => RunError::Setup(SetupFailure {
-                engine: touchdown_scenario::schema::Engine::Mujoco,
-                cause,
-            }),
-            other => RunError::Setup(SetupFailure {
-                engine: touchdown_scenario::schema::Engine::Mujoco,
-                cause: other.to_string(),
-            }),
+            MujocoError::Setup(cause) => RunError::setup(engine, cause),
+            other => RunError::setup(engine, other.to_string()),
         }
     }
 }

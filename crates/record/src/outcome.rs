@@ -132,6 +132,26 @@ pub struct Divergence {
     pub state: StateAtStop,
 }
 
+impl Divergence {
+    /// A stop at time `time_s` (s) in `law`, on the leg of 0-based index `leg_index` if one is
+    /// involved (reported numbered from 1), with what happened and the state.
+    pub fn new(
+        time_s: f64,
+        law: Law,
+        leg_index: Option<usize>,
+        message: String,
+        state: StateAtStop,
+    ) -> Divergence {
+        Divergence {
+            time_s,
+            law,
+            leg: leg_index.map(|i| i + 1),
+            message,
+            state,
+        }
+    }
+}
+
 impl std::fmt::Display for Divergence {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
@@ -173,6 +193,16 @@ pub enum RunError {
     /// The engine could not be set up.
     #[error(transparent)]
     Setup(#[from] SetupFailure),
+}
+
+impl RunError {
+    /// `engine` could not be set up, for `cause`.
+    pub fn setup(engine: Engine, cause: impl Into<String>) -> RunError {
+        RunError::Setup(SetupFailure {
+            engine,
+            cause: cause.into(),
+        })
+    }
 }
 
 impl From<Divergence> for RunError {

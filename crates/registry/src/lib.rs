@@ -67,29 +67,32 @@ where
     .map_err(failure)
 }
 
+/// A scratch folder for `engine`'s files, removed when dropped.
+pub fn scratch_folder(engine: Engine) -> Result<tempfile::TempDir, RunError> {
+    tempfile::Builder::new()
+        .prefix("touchdown-")
+        .tempdir()
+        .map_err(|e| RunError::setup(engine, format!("cannot create a scratch folder: {e}")))
+}
+
 fn land_on_mujoco(sc: &Scenario, out: Option<&Path>) -> Result<Summary, RunError> {
-    let setup = |cause: String| {
-        RunError::Setup(touchdown_record::SetupFailure {
-            engine: Engine::Mujoco,
-            cause,
-        })
-    };
     touchdown_mujoco::refusal(sc)?;
     let launch = touchdown_mujoco::Launch::locate()?;
     let scratch;
     let dir = match out {
         Some(dir) => dir,
         None => {
-            scratch = tempfile::Builder::new()
-                .prefix("touchdown-")
-                .tempdir()
-                .map_err(|e| setup(format!("cannot create a scratch folder: {e}")))?;
+            scratch = scratch_folder(Engine::Mujoco)?;
             scratch.path()
         }
     };
     let resolved = dir.join("scenario.resolved.toml");
-    std::fs::write(&resolved, sc.to_toml())
-        .map_err(|e| setup(format!("cannot write {}: {e}", resolved.display())))?;
+    std::fs::write(&resolved, sc.to_toml()).map_err(|e| {
+        RunError::setup(
+            Engine::Mujoco,
+            format!("cannot write {}: {e}", resolved.display()),
+        )
+    })?;
     launch
         .run(&resolved, dir, out.is_some())
         .map_err(RunError::from)
