@@ -21,7 +21,8 @@
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
-    check_explicit_timestep, Fault, GearBook, PadStep, Reading, StrutKinematics, VehicleState,
+    check_explicit_timestep, BodyEnergy, Fault, GearBook, PadStep, Reading, StrutKinematics,
+    VehicleState,
 };
 use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;
@@ -283,22 +284,23 @@ impl MujocoLanding {
         self.book.begin_step();
         let before = self.vehicle;
         self.read_state(mj);
-        let booked = if self.started {
-            self.t += self.dt;
-            self.steps += 1;
-            self.book_contacts(mj);
-            let vehicle = self.vehicle;
-            let now = self.reading(&vehicle);
-            let pads = &self.footpad_velocity;
-            self.book.finish_step(&before, self.dt, &now, |i| pads[i])
-        } else {
+        let first = !self.started;
+        if first {
             self.started = true;
             self.position0 = self.vehicle.position;
             self.gear_energy0 = self.gear_energy;
-            let vehicle = self.vehicle;
-            let now = self.reading(&vehicle);
-            let pads = &self.footpad_velocity;
+        } else {
+            self.t += self.dt;
+            self.steps += 1;
+            self.book_contacts(mj);
+        }
+        let vehicle = self.vehicle;
+        let now = self.reading(&vehicle);
+        let pads = &self.footpad_velocity;
+        let booked = if first {
             self.book.start_landing(&now, |i| pads[i])
+        } else {
+            self.book.finish_step(&before, self.dt, &now, |i| pads[i])
         };
         booked.map_err(|f| self.diverged(f))?;
         self.record();
@@ -436,9 +438,7 @@ impl MujocoLanding {
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        let r = self.reading(&self.vehicle);
-        self.book
-            .energy(r.kinetic_j, r.potential_change_j, r.gear_j)
+        self.book.energy(&self.energies())
     }
 
     /// The summary at the current state.
@@ -478,12 +478,9 @@ impl MujocoLanding {
         MujocoError::Diverged(Box::new(fault.at(self.t, &self.vehicle)))
     }
 
-    /// What the book reads of the bodies now, the vehicle in state `vehicle` (as read).
-    fn reading<'a>(&self, vehicle: &'a VehicleState) -> Reading<'a> {
-        Reading {
-            t: self.t,
-            vehicle,
-            finite: self.vehicle.is_finite() && self.gear_energy.is_finite(),
+    /// The bodies' energies now.
+    fn energies(&self) -> BodyEnergy {
+        BodyEnergy {
             kinetic_j: self.kinetic_energy(),
             potential_change_j: -self.mass
                 * self
@@ -491,6 +488,16 @@ impl MujocoLanding {
                     .gravity()
                     .dot(&(self.vehicle.position - self.position0)),
             gear_j: self.gear_energy - self.gear_energy0,
+        }
+    }
+
+    /// What the book reads of the bodies now, the vehicle in state `vehicle` (as read).
+    fn reading<'a>(&self, vehicle: &'a VehicleState) -> Reading<'a> {
+        Reading {
+            t: self.t,
+            vehicle,
+            finite: vehicle.is_finite() && self.gear_energy.is_finite(),
+            energy: self.energies(),
             steps: self.steps,
         }
     }

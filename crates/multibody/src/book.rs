@@ -84,13 +84,7 @@ pub struct Fault {
 impl Fault {
     /// The divergence at time `time` (s) with the vehicle in state `vehicle`.
     pub fn at(self, time: f64, vehicle: &VehicleState) -> Divergence {
-        Divergence {
-            time_s: time,
-            law: self.law,
-            leg: self.leg.map(|i| i + 1),
-            message: self.message,
-            state: vehicle.at_stop(),
-        }
+        Divergence::new(time, self.law, self.leg, self.message, vehicle.at_stop())
     }
 }
 
@@ -109,6 +103,18 @@ pub struct PadStep {
     pub touching: bool,
 }
 
+/// The energies of an engine's bodies at a state, for the energy report
+/// ([`GearBook::energy`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyEnergy {
+    /// The vehicle's kinetic energy, J.
+    pub kinetic_j: f64,
+    /// The vehicle's potential-energy change since touchdown, J.
+    pub potential_change_j: f64,
+    /// The gear links' energy change since touchdown, J.
+    pub gear_j: f64,
+}
+
 /// What an engine read of its bodies at a state (see [`GearBook::finish_step`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Reading<'a> {
@@ -118,12 +124,8 @@ pub struct Reading<'a> {
     pub vehicle: &'a VehicleState,
     /// Whether every body state the engine reads is finite.
     pub finite: bool,
-    /// The vehicle's kinetic energy, J.
-    pub kinetic_j: f64,
-    /// The vehicle's potential-energy change since touchdown, J.
-    pub potential_change_j: f64,
-    /// The gear links' energy change since touchdown, J.
-    pub gear_j: f64,
+    /// The bodies' energies.
+    pub energy: BodyEnergy,
     /// Accepted steps so far.
     pub steps: u64,
 }
@@ -234,8 +236,12 @@ impl GearBook {
         now: &Reading,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<EnergyReport, Fault> {
-        self.stability =
-            StabilityTracker::new(&self.criteria, self.gravity, self.legs.len(), now.kinetic_j);
+        self.stability = StabilityTracker::new(
+            &self.criteria,
+            self.gravity,
+            self.legs.len(),
+            now.energy.kinetic_j,
+        );
         self.evaluate()?;
         self.settle(now, None, pad_velocity)
     }
@@ -280,7 +286,7 @@ impl GearBook {
         old_velocity: Option<&Vector3<f64>>,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<EnergyReport, Fault> {
-        let energy = self.energy(now.kinetic_j, now.potential_change_j, now.gear_j);
+        let energy = self.energy(&now.energy);
         self.check(&energy, now.finite, now.steps)?;
         self.update_stability(now.t, now.vehicle, old_velocity, &energy);
         if !self.finished(now.t) {
@@ -500,14 +506,13 @@ impl GearBook {
         self.extremes.update_pitch_rate(t, v.pitch_rate());
     }
 
-    /// The energy report with the vehicle's kinetic energy `kinetic` (J), its potential-energy
-    /// change `potential_change` (J) and the gear links' energy change `gear` (J).
-    pub fn energy(&self, kinetic: f64, potential_change: f64, gear: f64) -> EnergyReport {
+    /// The energy report with the bodies' energies `bodies`.
+    pub fn energy(&self, bodies: &BodyEnergy) -> EnergyReport {
         self.ledger.report(
             self.stability.initial_kinetic_energy(),
-            kinetic,
-            potential_change,
-            gear,
+            bodies.kinetic_j,
+            bodies.potential_change_j,
+            bodies.gear_j,
             self.stored_energy(),
         )
     }

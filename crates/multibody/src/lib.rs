@@ -14,5 +14,5 @@ pub mod capabilities;
 pub mod strut;
 
 pub use applied::VehicleLoads;
-pub use book::{Fault, GearBook, PadContact, PadStep, Reading, VehicleState};
+pub use book::{BodyEnergy, Fault, GearBook, PadContact, PadStep, Reading, VehicleState};
 pub use strut::{check_explicit_timestep, strut_forces, StrutForces, StrutKinematics};

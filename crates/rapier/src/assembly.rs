@@ -15,7 +15,7 @@
 use nalgebra::{Matrix3, Vector3};
 use rapier3d_f64::prelude::*;
 use touchdown_frames::gravity_inertial;
-use touchdown_record::{RunError, SetupFailure};
+use touchdown_record::RunError;
 use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -360,8 +360,5 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RunError> {
 }
 
 fn not_built(message: &str) -> RunError {
-    RunError::Setup(SetupFailure {
-        engine: Engine::Rapier,
-        cause: message.into(),
-    })
+    RunError::setup(Engine::Rapier, message)
 }

@@ -17,7 +17,9 @@ use crate::assembly::{
 use crate::struts;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_multibody::{check_explicit_timestep, GearBook, PadStep, Reading, VehicleState};
+use touchdown_multibody::{
+    check_explicit_timestep, BodyEnergy, GearBook, PadStep, Reading, VehicleState,
+};
 use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -88,11 +90,9 @@ impl RapierSimulation {
         sim.links_kinetic0 = sim.gear_energy();
         sim.read_kinematics();
         let v = sim.vehicle_state();
-        let (world, gears) = (&sim.assembly.world, &sim.assembly.gears);
-        let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
         let now = sim.reading(&v);
         sim.book
-            .start_landing(&now, pad_velocity)
+            .start_landing(&now, footpad_velocity(&sim.assembly))
             .map_err(|f| f.at(sim.t, &v))?;
         Ok(sim)
     }
@@ -154,9 +154,17 @@ impl RapierSimulation {
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
+        self.book.energy(&self.energies())
+    }
+
+    /// The bodies' energies now.
+    fn energies(&self) -> BodyEnergy {
         let kinetic = self.kinetic_energy();
-        self.book
-            .energy(kinetic, self.body_energy(0) - kinetic, self.gear_energy())
+        BodyEnergy {
+            kinetic_j: kinetic,
+            potential_change_j: self.body_energy(0) - kinetic,
+            gear_j: self.gear_energy(),
+        }
     }
 
     /// The vehicle's state.
@@ -254,17 +262,19 @@ impl RapierSimulation {
                     .chain(s.angvel.iter())
                     .all(|x| x.is_finite())
         });
-        let kinetic = self.kinetic_energy();
         Reading {
             t: self.t,
             vehicle: v,
             finite,
-            kinetic_j: kinetic,
-            potential_change_j: self.body_energy(0) - kinetic,
-            gear_j: self.gear_energy(),
+            energy: self.energies(),
             steps: self.steps,
         }
     }
+}
+
+/// Each footpad's velocity at BP in `assembly`, m/s, inertial.
+fn footpad_velocity(assembly: &Assembly) -> impl Fn(usize) -> Vector3<f64> + '_ {
+    move |i| body_state(&assembly.world, assembly.gears[i].footpad).linvel
 }
 
 impl Landing for RapierSimulation {
@@ -312,10 +322,8 @@ impl Landing for RapierSimulation {
         self.book_contacts(dt);
         let v = self.vehicle_state();
         let now = self.reading(&v);
-        let (world, gears) = (&self.assembly.world, &self.assembly.gears);
-        let pad_velocity = |i: usize| body_state(world, gears[i].footpad).linvel;
         self.book
-            .finish_step(&before, dt, &now, pad_velocity)
+            .finish_step(&before, dt, &now, footpad_velocity(&self.assembly))
             .map_err(|f| f.at(self.t, &v))?;
         Ok(())
     }
