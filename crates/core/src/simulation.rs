@@ -385,6 +385,8 @@ impl Physics {
         self.check_divergence(&energy)?;
         self.update_stability(Some(old), &energy);
         self.update_extremes();
+        self.extremes
+            .update_acceleration(&old.velocity, &self.vehicle.velocity, dt, &self.gravity);
         Ok(())
     }
 
@@ -421,12 +423,13 @@ impl Physics {
         }
     }
 
-    /// Running maxima of strokes and the pitch rate (angular velocity about the inertial X
-    /// axis).
+    /// Running maxima of strokes, strut forces and the pitch rate (angular velocity about the
+    /// inertial X axis).
     pub(crate) fn update_extremes(&mut self) {
         for (i, g) in self.gear.iter().enumerate() {
             self.extremes
                 .update_leg(i, g.primary_stroke, g.secondary_stroke);
+            self.extremes.update_leg_forces(i, g.f2p, g.f_secondary());
         }
         self.extremes
             .update_pitch_rate(self.t, self.vehicle.omega_inertial().x);

@@ -274,6 +274,12 @@ impl GearBook {
         self.evaluate()?;
         let energy = self.settle(now, Some(&before.velocity), pad_velocity)?;
         self.update_extremes(now.t, now.vehicle);
+        self.extremes.update_acceleration(
+            &before.velocity,
+            &now.vehicle.velocity,
+            dt,
+            &self.gravity,
+        );
         Ok(energy)
     }
 
@@ -498,10 +504,13 @@ impl GearBook {
         );
     }
 
-    /// Updates the extremes with the current strokes and the pitch rate at time `t`, s.
+    /// Updates the extremes with the current strokes, strut forces and the pitch rate at time
+    /// `t`, s.
     fn update_extremes(&mut self, t: f64, v: &VehicleState) {
-        for (i, k) in self.kin.iter().enumerate() {
+        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
             self.extremes.update_leg(i, k.c, k.s);
+            self.extremes
+                .update_leg_forces(i, f.primary(k.c_dot), f.secondary());
         }
         self.extremes.update_pitch_rate(t, v.pitch_rate());
     }

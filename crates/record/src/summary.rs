@@ -1,6 +1,7 @@
 //! The landing summary every engine reports (same fields, same signs, SI units).
 
 use crate::stability::{Outcome, StabilityTracker};
+use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 /// Energy bookkeeping since touchdown, J. The balance
@@ -156,12 +157,17 @@ pub struct Imbalance {
     pub ledger: EnergyLedger,
 }
 
-/// Running extremes of the strokes and the pitch rate.
+/// Running extremes of the strokes, the strut forces, the vehicle's acceleration and the pitch
+/// rate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Extremes {
     primary: Vec<f64>,
     sec_compression: Vec<[f64; 2]>,
     sec_tension: Vec<[f64; 2]>,
+    primary_force: Vec<f64>,
+    sec_compression_force: Vec<[f64; 2]>,
+    sec_tension_force: Vec<[f64; 2]>,
+    specific_force: f64,
     pitch_rate: f64,
     pitch_rate_time: f64,
 }
@@ -173,6 +179,10 @@ impl Extremes {
             primary: vec![0.0; legs],
             sec_compression: vec![[0.0; 2]; legs],
             sec_tension: vec![[0.0; 2]; legs],
+            primary_force: vec![0.0; legs],
+            sec_compression_force: vec![[0.0; 2]; legs],
+            sec_tension_force: vec![[0.0; 2]; legs],
+            specific_force: 0.0,
             pitch_rate: 0.0,
             pitch_rate_time: 0.0,
         }
@@ -185,6 +195,33 @@ impl Extremes {
         for (j, s) in secondary.into_iter().enumerate() {
             self.sec_tension[i][j] = self.sec_tension[i][j].max(s);
             self.sec_compression[i][j] = self.sec_compression[i][j].max(-s);
+        }
+    }
+
+    /// Updates leg `i` with its primary axial force (N, compression positive) and secondary
+    /// axial forces (N, tension positive).
+    pub fn update_leg_forces(&mut self, i: usize, primary: f64, secondary: [f64; 2]) {
+        self.primary_force[i] = self.primary_force[i].max(primary);
+        for (j, f) in secondary.into_iter().enumerate() {
+            self.sec_tension_force[i][j] = self.sec_tension_force[i][j].max(f);
+            self.sec_compression_force[i][j] = self.sec_compression_force[i][j].max(-f);
+        }
+    }
+
+    /// Updates the largest specific force on the vehicle (what an accelerometer at its centre
+    /// of mass reads, m/s²) with an accepted step: the velocity went from `before` to `after`
+    /// (m/s, inertial) in `dt` s under `gravity` (m/s², inertial), so the mean specific force
+    /// over the step is |(after − before)/dt − gravity|. A step of no length changes nothing.
+    pub fn update_acceleration(
+        &mut self,
+        before: &Vector3<f64>,
+        after: &Vector3<f64>,
+        dt: f64,
+        gravity: &Vector3<f64>,
+    ) {
+        if dt > 0.0 {
+            let a = ((after - before) / dt - gravity).norm();
+            self.specific_force = self.specific_force.max(a);
         }
     }
 
@@ -225,6 +262,15 @@ pub struct Summary {
     pub max_secondary_compression_m: Vec<[f64; 2]>,
     /// Maximum tension stroke of the two secondaries per leg, m (positive).
     pub max_secondary_tension_m: Vec<[f64; 2]>,
+    /// Largest primary axial force F2P per leg, N (compression positive).
+    pub peak_primary_force_n: Vec<f64>,
+    /// Largest compression force of the two secondaries (3-1, 4-1) per leg, N (positive).
+    pub peak_secondary_compression_force_n: Vec<[f64; 2]>,
+    /// Largest tension force of the two secondaries per leg, N (positive).
+    pub peak_secondary_tension_force_n: Vec<[f64; 2]>,
+    /// Largest specific force on the vehicle's centre of mass (its acceleration less gravity,
+    /// what an accelerometer there reads), the mean over each accepted step, m/s².
+    pub peak_specific_force_m_s2: f64,
     /// Pitch rate (about the inertial X axis) of largest magnitude, signed, rad/s.
     pub peak_pitch_rate_rad_s: f64,
     /// Time of that peak, s.
@@ -332,6 +378,10 @@ impl Summary {
             max_primary_stroke_m: extremes.primary.clone(),
             max_secondary_compression_m: extremes.sec_compression.clone(),
             max_secondary_tension_m: extremes.sec_tension.clone(),
+            peak_primary_force_n: extremes.primary_force.clone(),
+            peak_secondary_compression_force_n: extremes.sec_compression_force.clone(),
+            peak_secondary_tension_force_n: extremes.sec_tension_force.clone(),
+            peak_specific_force_m_s2: extremes.specific_force,
             peak_pitch_rate_rad_s: extremes.pitch_rate,
             peak_pitch_rate_time_s: extremes.pitch_rate_time,
             min_stability_distance_m: stability.min_distance(),
@@ -360,6 +410,30 @@ mod tests {
         x.update_pitch_rate(0.2, -0.7);
         x.update_pitch_rate(0.3, 0.6);
         assert_eq!((x.pitch_rate, x.pitch_rate_time), (-0.7, 0.2));
+        x.update_leg_forces(0, 900.0, [-40.0, 25.0]);
+        x.update_leg_forces(0, 700.0, [10.0, -5.0]);
+        assert_eq!(x.primary_force, vec![900.0, 0.0]);
+        assert_eq!(x.sec_tension_force[0], [10.0, 25.0]);
+        assert_eq!(x.sec_compression_force[0], [40.0, 5.0]);
+    }
+
+    #[test]
+    fn the_specific_force_is_zero_in_free_fall_and_reads_the_gear_load() {
+        let g = Vector3::new(0.0, 0.0, -9.81);
+        let mut x = Extremes::new(1);
+        // Free fall: the velocity changes by g·dt, the accelerometer reads nothing.
+        x.update_acceleration(&Vector3::zeros(), &(g * 0.01), 0.01, &g);
+        assert!(x.specific_force < 1e-12, "{}", x.specific_force);
+        // Brought to rest from 2 m/s down in 0.1 s: 20 m/s² of deceleration plus 1 g held off.
+        x.update_acceleration(&Vector3::new(0.0, 0.0, -2.0), &Vector3::zeros(), 0.1, &g);
+        assert!(
+            (x.specific_force - 29.81).abs() < 1e-9,
+            "{}",
+            x.specific_force
+        );
+        // A step of no length is no measurement.
+        x.update_acceleration(&Vector3::zeros(), &Vector3::new(0.0, 0.0, 5.0), 0.0, &g);
+        assert!((x.specific_force - 29.81).abs() < 1e-9);
     }
 
     #[test]
