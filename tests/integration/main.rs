@@ -15,6 +15,9 @@
 //! * `mujoco`: every scenario exports to MJCF that the pinned MuJoCo loads, in the touchdown
 //!   state;
 //! * `symmetry`: every landing against its mirror image and its legs renumbered;
+//! * `campaign`: campaigns give the same bytes on any threads and shards, extend without
+//!   change, apply what they draw, meet a closed-form probability, refuse bad files and merges,
+//!   and write Parquet that pandas, polars and DuckDB read;
 //! * `fuzz`: mutated scenarios are refused naming a field or run to a clean end (proptest).
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in
@@ -22,6 +25,7 @@
 //! comparison crate, in `crates/compare/tests/robustness.rs`.
 
 mod allocation;
+mod campaign;
 mod docs;
 mod fuzz;
 mod integrators;

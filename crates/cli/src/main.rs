@@ -1,5 +1,6 @@
 //! `touchdown`: runs landing scenarios and reports them.
 
+mod campaign;
 mod plots;
 mod report;
 mod validation;
@@ -184,6 +185,10 @@ enum Command {
         #[arg(long, default_value = ".")]
         root: PathBuf,
     },
+    /// A Monte Carlo campaign: landings of a base scenario with dispersed touchdown conditions,
+    /// in parallel, with the probability of a stable landing and its lower confidence bound,
+    /// failure modes, strokes against capacities and peak loads (docs/campaigns.md).
+    Campaign(CampaignArgs),
     /// The report's stability-boundary search: for each descent speed, every horizontal speed
     /// at which the landing changes between stable and unstable, found on a grid of Vh and
     /// bisected; undecided landings are listed, never counted as either (velocities in the
@@ -223,6 +228,51 @@ enum Command {
         /// project's Python environment), with its data beside it as JSON.
         #[arg(long)]
         plot: Option<PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+struct CampaignArgs {
+    #[command(subcommand)]
+    action: Option<CampaignAction>,
+    /// Campaign file (TOML; docs/campaigns.md).
+    #[arg(required = true)]
+    file: Option<PathBuf>,
+    /// Run only shard K of N (landings ⌊(K−1)·n/N⌋ to ⌊K·n/N⌋ − 1); `touchdown campaign merge`
+    /// joins the shards' folders.
+    #[arg(long, value_name = "K/N", value_parser = str::parse::<touchdown_campaign::Shard>)]
+    shard: Option<touchdown_campaign::Shard>,
+    /// Write manifest.json, landings.jsonl, landings.parquet and statistics.json (and the
+    /// histories the campaign asks for) into DIR; with --add, the finished campaign to extend.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Output on standard output: the statistics as text, or JSON Lines (a landing record per
+    /// line as they finish, in landing order, then one line {"statistics": ...}).
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// Add M landings to the finished campaign in --out, leaving its landings unchanged.
+    #[arg(long, value_name = "M")]
+    add: Option<u64>,
+    /// Threads that land (default: one per core); the records do not depend on it.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+}
+
+#[derive(Subcommand)]
+enum CampaignAction {
+    /// Join the folders of a campaign's shards into one, refusing parts of other campaigns,
+    /// builds or base scenarios, and parts that overlap or leave landings out.
+    Merge {
+        /// The shards' folders.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+        /// Folder of the merged campaign.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Output format (as for a campaign).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
 }
 
@@ -275,6 +325,19 @@ fn main() -> std::process::ExitCode {
 pub fn warn(sc: &Scenario) {
     for w in sc.warnings() {
         eprintln!("warning: {}: field `{}`: {}", w.file, w.field, w.message);
+    }
+}
+
+/// A progress bar of `len` steps on standard error, hidden when standard error is not a
+/// terminal (a pipe, a log file, CI).
+pub fn progress_bar(len: u64, message: &'static str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if std::io::stderr().is_terminal() {
+        let b = indicatif::ProgressBar::new(len);
+        b.set_message(message);
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
     }
 }
 
@@ -371,6 +434,26 @@ fn run(cli: Cli) -> Result<Verdict> {
                 TableFormat::Csv => validation::BoundaryFormat::Csv,
             };
             validation::boundary(&scenario, &vv, settings, &engines, format, plot.as_deref())
+        }
+        Command::Campaign(args) => {
+            let output = |f| match f {
+                Format::Text => campaign::Output::Text,
+                Format::Json => campaign::Output::JsonLines,
+            };
+            match (args.action, args.file) {
+                (Some(CampaignAction::Merge { parts, out, format }), _) => {
+                    campaign::merge(&parts, &out, output(format))
+                }
+                (None, Some(file)) => campaign::run(
+                    &file,
+                    args.shard,
+                    args.add,
+                    args.threads,
+                    args.out.as_deref(),
+                    output(args.format),
+                ),
+                (None, None) => anyhow::bail!("name a campaign file (docs/campaigns.md)"),
+            }
         }
     }?;
     Ok(Verdict::Pass)

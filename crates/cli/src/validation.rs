@@ -3,7 +3,6 @@
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use std::fmt::Write;
-use std::io::IsTerminal;
 use std::path::Path;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
@@ -302,13 +301,7 @@ pub fn boundary(
     for &e in &engines {
         touchdown_registry::require(e, &sc)?;
     }
-    let bar = if std::io::stderr().is_terminal() {
-        let b = indicatif::ProgressBar::new(0);
-        b.set_message("landings");
-        b
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+    let bar = crate::progress_bar(0, "landings");
     let tick = || bar.inc(1);
     let mut points = Vec::new();
     for &engine in &engines {

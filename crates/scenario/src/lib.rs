@@ -28,5 +28,5 @@ mod tests;
 pub mod units;
 
 pub use error::{ScenarioError, Warning};
-pub use load::{merged_table, set_field};
+pub use load::{merged_table, read_strict, read_toml, set_field, ScenarioBase, SchemaMismatch};
 pub use model::Scenario;

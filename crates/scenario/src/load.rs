@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 const MAX_EXTENDS_DEPTH: usize = 8;
 
 /// A parsed file with the chain of files it was merged from (the file itself first).
+#[derive(Debug, Clone)]
 struct Merged {
     table: toml::Table,
     /// (path, its own table before merging), child first.
@@ -51,6 +52,11 @@ fn special_kind(t: &std::fs::FileType) -> Option<&'static str> {
         }
     }
     Some("neither a file nor a directory")
+}
+
+/// Reads a TOML file of the project (a scenario, a campaign) as [`read_table`] does.
+pub fn read_toml(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError> {
+    read_table(path.as_ref())
 }
 
 /// Reads a scenario file: refused unless it is a regular file (checked with `stat` before it is
@@ -283,22 +289,31 @@ impl Scenario {
 
     /// Reads the scenario at `path` with some values replaced: each override is a field path
     /// such as `primary_strut.compression.stages[0].crush_load` and a value in the file's own
-    /// units. The overrides form the top layer of the `extends` chain (named `overrides` in
-    /// messages); a path that does not exist in the merged file is an error.
+    /// units ([`ScenarioBase::with`]).
     pub fn load_with(
         path: impl AsRef<Path>,
         overrides: &[(&str, f64)],
     ) -> Result<Scenario, ScenarioError> {
-        let path = path.as_ref();
-        let mut merged = load_merged(path, 0)?;
-        let mut layer = toml::Table::new();
-        for (field, value) in overrides {
-            set_path(&mut merged.table, field, *value)
-                .map_err(|m| ScenarioError::field(OVERRIDES, *field, m))?;
-            set_path_creating(&mut layer, field, *value);
+        let values: Vec<(&str, toml::Value)> = overrides
+            .iter()
+            .map(|(field, v)| (*field, toml::Value::Float(*v)))
+            .collect();
+        ScenarioBase::load(path)?.with(&values)
+    }
+
+    /// The value at a field path (`touchdown.attitude[2]`) of the resolved scenario, in the
+    /// file's units, every default filled in: what a landing ran with (a campaign reads back the
+    /// values it applied). `None` if there is no such field.
+    pub fn value_of(&self, field: &str) -> Option<toml::Value> {
+        let file = toml::Value::try_from(&self.file).ok()?;
+        let mut node = &file;
+        for (key, index) in path_keys(field) {
+            node = node.get(key)?;
+            if let Some(i) = index {
+                node = node.get(i)?;
+            }
         }
-        merged.layers.insert(0, (OVERRIDES.to_string(), layer));
-        resolve_layers(path.display().to_string(), merged)
+        Some(node.clone())
     }
 
     /// A number of the merged file at a field path (file units), as [`Scenario::load_with`]
@@ -391,6 +406,48 @@ impl Scenario {
     }
 }
 
+/// A scenario file read and merged once (its `extends` chain followed), to be resolved many
+/// times with different values: a campaign's landings, a sensitivity study.
+#[derive(Debug, Clone)]
+pub struct ScenarioBase {
+    source: String,
+    merged: Merged,
+}
+
+impl ScenarioBase {
+    /// Reads and merges the scenario file at `path` (not yet checked against the schema).
+    pub fn load(path: impl AsRef<Path>) -> Result<ScenarioBase, ScenarioError> {
+        let path = path.as_ref();
+        Ok(ScenarioBase {
+            source: path.display().to_string(),
+            merged: load_merged(path, 0)?,
+        })
+    }
+
+    /// The merged file as TOML values, in the file's units.
+    pub fn table(&self) -> &toml::Table {
+        &self.merged.table
+    }
+
+    /// The scenario with some values replaced: each override is a field path such as
+    /// `primary_strut.compression.stages[0].crush_load` or `touchdown.attitude[2]` and a value
+    /// in the file's own units, of the kind the field holds (a number for a number, a string for
+    /// a string, a boolean for a boolean). The overrides form the top layer of the `extends`
+    /// chain (named `overrides` in messages); a path that does not exist in the merged file is
+    /// an error.
+    pub fn with(&self, overrides: &[(&str, toml::Value)]) -> Result<Scenario, ScenarioError> {
+        let mut merged = self.merged.clone();
+        let mut layer = toml::Table::new();
+        for (field, value) in overrides {
+            set_path(&mut merged.table, field, value)
+                .map_err(|m| ScenarioError::field(OVERRIDES, *field, m))?;
+            set_path_creating(&mut layer, field, value);
+        }
+        merged.layers.insert(0, (OVERRIDES.to_string(), layer));
+        resolve_layers(self.source.clone(), merged)
+    }
+}
+
 /// The keys of a field path `a.b[2].c`: (key, optional array index) pairs.
 fn path_keys(field: &str) -> Vec<(&str, Option<usize>)> {
     field
@@ -411,11 +468,24 @@ pub fn merged_table(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError
 /// Replaces the number at `field` (e.g. `primary_strut.compression.stages[0].crush_load`) in a
 /// scenario table; the path must exist and hold a number.
 pub fn set_field(table: &mut toml::Table, field: &str, value: f64) -> Result<(), String> {
-    set_path(table, field, value)
+    set_path(table, field, &toml::Value::Float(value))
 }
 
-/// Replaces the number at `field` in `table`; the path must exist.
-fn set_path(table: &mut toml::Table, field: &str, value: f64) -> Result<(), String> {
+/// The kind of value a field holds, in messages.
+fn kind_of(v: &toml::Value) -> &'static str {
+    match v {
+        toml::Value::Float(_) | toml::Value::Integer(_) => "a number",
+        toml::Value::String(_) => "a string",
+        toml::Value::Boolean(_) => "a boolean",
+        toml::Value::Datetime(_) => "a date",
+        toml::Value::Array(_) => "an array",
+        toml::Value::Table(_) => "a table",
+    }
+}
+
+/// Replaces the value at `field` in `table` with `value`, of the same kind (a number is
+/// written as a float); the path must exist.
+fn set_path(table: &mut toml::Table, field: &str, value: &toml::Value) -> Result<(), String> {
     let keys = path_keys(field);
     let mut node = table;
     for (n, (key, index)) in keys.iter().enumerate() {
@@ -430,10 +500,14 @@ fn set_path(table: &mut toml::Table, field: &str, value: f64) -> Result<(), Stri
             None => entry,
         };
         if last {
-            if !(entry.is_float() || entry.is_integer()) {
-                return Err("the overridden field is not a number".into());
+            let (have, given) = (kind_of(entry), kind_of(value));
+            if have != given || matches!(value, toml::Value::Array(_) | toml::Value::Table(_)) {
+                return Err(format!("the field holds {have}; the override is {given}"));
             }
-            *entry = toml::Value::Float(value);
+            *entry = match value {
+                toml::Value::Integer(i) => toml::Value::Float(*i as f64),
+                v => v.clone(),
+            };
             return Ok(());
         }
         node = entry
@@ -444,7 +518,7 @@ fn set_path(table: &mut toml::Table, field: &str, value: f64) -> Result<(), Stri
 }
 
 /// Records an override in its own layer table (for naming the overrides in messages).
-fn set_path_creating(table: &mut toml::Table, field: &str, value: f64) {
+fn set_path_creating(table: &mut toml::Table, field: &str, value: &toml::Value) {
     let keys = path_keys(field);
     let mut node = table;
     for (key, _) in &keys[..keys.len() - 1] {
@@ -454,10 +528,7 @@ fn set_path_creating(table: &mut toml::Table, field: &str, value: f64) {
             .as_table_mut()
             .expect("created as a table");
     }
-    node.insert(
-        keys[keys.len() - 1].0.to_string(),
-        toml::Value::Float(value),
-    );
+    node.insert(keys[keys.len() - 1].0.to_string(), value.clone());
 }
 
 /// Schema check (types, required and unknown fields, tables only as tables), then resolution.
@@ -469,8 +540,32 @@ fn resolve_layers(source: String, merged: Merged) -> Result<Scenario, ScenarioEr
     {
         return Err(ScenarioError::NotALanding { file: source });
     }
-    let value = toml::Value::Table(merged.table);
-    let file: ScenarioFile = serde_path_to_error::deserialize(Strict(value)).map_err(|e| {
+    let file: ScenarioFile =
+        read_strict(toml::Value::Table(merged.table)).map_err(|m| ScenarioError::Field {
+            file: owner_of(&merged.layers, &m.field).to_string(),
+            field: m.field,
+            message: m.message,
+        })?;
+    resolve(&source, merged.layers, file)
+}
+
+/// Where a TOML document does not fit a schema: the field (a path such as
+/// `dispersion[2].mean`) and what is wrong with it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SchemaMismatch {
+    /// The field path.
+    pub field: String,
+    /// What is wrong (the first line of the deserializer's message).
+    pub message: String,
+}
+
+/// Reads `value` as a `T` through the strict reader of the scenario schema (tables only as
+/// tables, numbers in short notation): the reader of scenario files, and of other project files
+/// in TOML (campaigns). A missing field is reported at its own path, not at its table's.
+pub fn read_strict<T: serde::de::DeserializeOwned>(
+    value: toml::Value,
+) -> Result<T, SchemaMismatch> {
+    serde_path_to_error::deserialize(Strict(value)).map_err(|e| {
         let mut field = e.path().to_string();
         let message = e.inner().to_string();
         let message = message.lines().next().unwrap_or_default().to_string();
@@ -485,14 +580,8 @@ fn resolve_layers(source: String, merged: Merged) -> Result<Scenario, ScenarioEr
                 format!("{field}.{name}")
             };
         }
-        let file = owner_of(&merged.layers, &field).to_string();
-        ScenarioError::Field {
-            file,
-            field,
-            message,
-        }
-    })?;
-    resolve(&source, merged.layers, file)
+        SchemaMismatch { field, message }
+    })
 }
 
 /// The applicable engines in comparison order: at least one, none named twice.

@@ -137,6 +137,80 @@ impl Units {
     pub fn stiffness(&self) -> f64 {
         self.force() / self.length()
     }
+    /// Checks a unit written beside a number meant for this file (`"ft/s"`, `"deg"`,
+    /// `"lbf/ft"`, `"slug*ft^2"`, or `"1"` for a pure number): every unit it names must be the
+    /// file's own for that quantity, so that a number written in other units is refused rather
+    /// than read in the file's. Returns the unit as a name suffix (`ft_s`, `deg`, `lbf_ft`,
+    /// `slug_ft2`, `dimensionless`) or what is wrong.
+    pub fn suffix_of(&self, unit: &str) -> Result<String, String> {
+        let unit = unit.trim();
+        if unit == "1" {
+            return Ok("dimensionless".into());
+        }
+        let mut suffix = Vec::new();
+        for (n, part) in unit.split('/').enumerate() {
+            if n > 1 {
+                return Err(format!(
+                    "{unit:?}: at most one `/` (everything after it divides: \"lbf/ft*s\" is lbf/(ft·s))"
+                ));
+            }
+            for token in part.split('*') {
+                let (name, power) = token.split_once('^').unwrap_or((token, "1"));
+                if !matches!(power, "1" | "2" | "3") {
+                    return Err(format!("{unit:?}: power {power:?} (expected 1, 2 or 3)"));
+                }
+                let (own, quantity) = match name.trim() {
+                    "m" | "ft" | "in" => (self.length_label(), "lengths"),
+                    "kg" | "slug" => (self.mass_label(), "masses"),
+                    "N" | "lbf" => (self.force_label(), "forces"),
+                    "deg" | "rad" => (self.angle_label(), "angles"),
+                    "s" => ("s", "times"),
+                    other => {
+                        return Err(format!(
+                            "{unit:?}: unknown unit {other:?} (expected m, ft, in, kg, slug, N, lbf, deg, rad, s, their products with * and powers ^2, one /, or 1)"
+                        ))
+                    }
+                };
+                if name.trim() != own {
+                    return Err(format!(
+                        "{unit:?}: the scenario states {quantity} in {own}, not {}: write the numbers in the scenario's units",
+                        name.trim()
+                    ));
+                }
+                suffix.push(if power == "1" {
+                    own.to_string()
+                } else {
+                    format!("{own}{power}")
+                });
+            }
+        }
+        Ok(suffix.join("_"))
+    }
+
+    /// The file's mass unit as written.
+    pub fn mass_label(&self) -> &'static str {
+        match self.mass {
+            MassUnit::Kilogram => "kg",
+            MassUnit::Slug => "slug",
+        }
+    }
+
+    /// The file's force unit as written.
+    pub fn force_label(&self) -> &'static str {
+        match self.force {
+            ForceUnit::Newton => "N",
+            ForceUnit::PoundForce => "lbf",
+        }
+    }
+
+    /// The file's angle unit as written.
+    pub fn angle_label(&self) -> &'static str {
+        match self.angle {
+            AngleUnit::Degree => "deg",
+            AngleUnit::Radian => "rad",
+        }
+    }
+
     /// Viscous coefficient of eq. (49), N/(m/s)^γ per force/(length/time)^γ.
     pub fn viscous_coefficient(&self, exponent: f64) -> f64 {
         self.force() / self.velocity().powf(exponent)

@@ -1,0 +1,366 @@
+//! One landing of a campaign as a record: the values applied (read back from the scenario that
+//! ran), what became of the landing (its outcome, and its failure mode as data), and what it
+//! measured (strokes against capacities, peak loads and accelerations, stability distance,
+//! energy residual). A record is a row of named cells; its columns are the same for every
+//! landing of a campaign (docs/campaigns.md, "Records").
+
+use crate::distribution::Value;
+use crate::spec::Campaign;
+use serde::{Deserialize, Serialize};
+use touchdown_record::{Outcome, RunError, Summary};
+use touchdown_scenario::Scenario;
+
+/// What a column holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// A 64-bit integer.
+    Integer,
+    /// A 64-bit float.
+    Float,
+    /// A UTF-8 string.
+    Text,
+    /// A boolean.
+    Flag,
+}
+
+/// A column of the records.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Column {
+    /// Its name, with the unit as a suffix (`_m`, `_n`, `_s`, `_m_s2`; `_of_capacity` for a
+    /// fraction of a strut's capacity).
+    pub name: String,
+    /// What it holds.
+    pub kind: Kind,
+}
+
+/// One cell of a record.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cell {
+    /// An integer.
+    Integer(i64),
+    /// A float (always finite).
+    Float(f64),
+    /// A string.
+    Text(String),
+    /// A boolean.
+    Flag(bool),
+    /// No value: a measurement of a landing that did not complete, or that does not apply
+    /// (a decision time of an undecided landing). Left out of the JSON, null in Parquet.
+    Missing,
+}
+
+impl From<Option<f64>> for Cell {
+    fn from(x: Option<f64>) -> Cell {
+        match x {
+            Some(x) if x.is_finite() => Cell::Float(x),
+            _ => Cell::Missing,
+        }
+    }
+}
+
+impl From<&Value> for Cell {
+    fn from(v: &Value) -> Cell {
+        match v {
+            Value::Number(x) => Cell::Float(*x),
+            Value::Text(s) => Cell::Text(s.clone()),
+            Value::Flag(b) => Cell::Flag(*b),
+        }
+    }
+}
+
+/// What became of a landing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// A stable landing (the report's four conditions held).
+    Stable,
+    /// The vehicle overturned (its centre of mass crossed a stability wall).
+    Unstable,
+    /// Neither before the end time.
+    Undecided,
+    /// The engine stopped the run (a law left its domain, a divergence, the budget).
+    Stopped,
+    /// The engine refused the dispersed scenario (a value out of its domain).
+    Refused,
+}
+
+impl Status {
+    /// Every status, in report order.
+    pub const ALL: [Status; 5] = [
+        Status::Stable,
+        Status::Unstable,
+        Status::Undecided,
+        Status::Stopped,
+        Status::Refused,
+    ];
+
+    /// Its name, as in records.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Stable => "stable",
+            Status::Unstable => "unstable",
+            Status::Undecided => "undecided",
+            Status::Stopped => "stopped",
+            Status::Refused => "refused",
+        }
+    }
+}
+
+/// A landing's failure mode, the first that applies in this order: refused, stopped,
+/// overturned, stroke-out (a strut reached the end of its last crush stage), undecided; `none`
+/// for a stable landing within every strut's capacity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Failure {
+    /// A stable landing within every strut's capacity.
+    None,
+    /// The engine refused the scenario.
+    Refused,
+    /// The engine stopped the run.
+    Stopped,
+    /// The vehicle overturned.
+    Overturned,
+    /// A strut stroked out (named in `stroke_outs`).
+    StrokeOut,
+    /// No stability decision before the end time.
+    Undecided,
+}
+
+impl Failure {
+    /// Every failure mode, in report order.
+    pub const ALL: [Failure; 6] = [
+        Failure::None,
+        Failure::Overturned,
+        Failure::StrokeOut,
+        Failure::Undecided,
+        Failure::Stopped,
+        Failure::Refused,
+    ];
+
+    /// Its name, as in records.
+    pub fn name(self) -> &'static str {
+        match self {
+            Failure::None => "none",
+            Failure::Refused => "refused",
+            Failure::Stopped => "stopped",
+            Failure::Overturned => "overturned",
+            Failure::StrokeOut => "stroke_out",
+            Failure::Undecided => "undecided",
+        }
+    }
+}
+
+/// The struts of one leg, as named in records: the primary, then each secondary (3-1, 4-1) in
+/// compression and in tension.
+const SECONDARIES: [&str; 2] = ["3_1", "4_1"];
+
+/// The columns of a campaign's records, in order.
+pub fn columns(campaign: &Campaign) -> Vec<Column> {
+    let col = |name: String, kind| Column { name, kind };
+    let mut c = vec![col("landing".into(), Kind::Integer)];
+    for d in &campaign.dispersions {
+        let kind = match d.distribution.central() {
+            Value::Number(_) => Kind::Float,
+            Value::Text(_) => Kind::Text,
+            Value::Flag(_) => Kind::Flag,
+        };
+        c.push(col(format!("applied.{}", d.column), kind));
+    }
+    for name in ["outcome", "failure", "stroke_outs"] {
+        c.push(col(name.into(), Kind::Text));
+    }
+    for name in [
+        "decision_time_s",
+        "t_end_s",
+        "overturn_velocity_m_s",
+        "min_stability_distance_m",
+        "peak_specific_force_m_s2",
+        "peak_pitch_rate_rad_s",
+        "energy_residual_j",
+        "energy_scale_j",
+    ] {
+        c.push(col(name.into(), Kind::Float));
+    }
+    for leg in 1..=campaign.base_scenario.legs.len() {
+        for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
+            c.push(col(format!("leg{leg}.primary.{name}"), Kind::Float));
+        }
+        for s in SECONDARIES {
+            for side in ["compression", "tension"] {
+                for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
+                    c.push(col(
+                        format!("leg{leg}.secondary_{s}.{side}.{name}"),
+                        Kind::Float,
+                    ));
+                }
+            }
+        }
+    }
+    c.push(col("stop.time_s".into(), Kind::Float));
+    c.push(col("stop.law".into(), Kind::Text));
+    c.push(col("stop.leg".into(), Kind::Integer));
+    c.push(col("stop.message".into(), Kind::Text));
+    c.push(col("refusal.file".into(), Kind::Text));
+    c.push(col("refusal.field".into(), Kind::Text));
+    c.push(col("refusal.message".into(), Kind::Text));
+    c
+}
+
+/// A landing's record: one cell per column of [`columns`].
+pub type Row = Vec<Cell>;
+
+/// The record of landing `landing` whose values `applied` were read back from `scenario` (if it
+/// resolved) and whose engine run ended with `result`.
+pub fn row(
+    campaign: &Campaign,
+    landing: u64,
+    applied: &[Value],
+    scenario: Option<&Scenario>,
+    result: Result<&Summary, &RunError>,
+) -> Row {
+    let legs = campaign.base_scenario.legs.len();
+    let mut r: Row = Vec::with_capacity(16 + applied.len() + legs * 15);
+    r.push(Cell::Integer(landing as i64));
+    r.extend(applied.iter().map(Cell::from));
+    let measured = match (result, scenario) {
+        (Ok(s), Some(sc)) => Some((s, sc)),
+        _ => None,
+    };
+    let (status, failure, stroke_outs) = match (result, measured) {
+        (Ok(_), Some((s, sc))) => {
+            let outs = stroke_outs(s, sc);
+            let status = match s.outcome {
+                Outcome::Stable => Status::Stable,
+                Outcome::Unstable => Status::Unstable,
+                Outcome::Undecided => Status::Undecided,
+            };
+            let failure = match (s.outcome, outs.is_empty()) {
+                (Outcome::Unstable, _) => Failure::Overturned,
+                (_, false) => Failure::StrokeOut,
+                (Outcome::Undecided, true) => Failure::Undecided,
+                (Outcome::Stable, true) => Failure::None,
+            };
+            (status, failure, outs)
+        }
+        (Err(RunError::Refused(_)), _) | (Ok(_), None) => {
+            (Status::Refused, Failure::Refused, Vec::new())
+        }
+        (Err(_), _) => (Status::Stopped, Failure::Stopped, Vec::new()),
+    };
+    r.push(Cell::Text(status.name().into()));
+    r.push(Cell::Text(failure.name().into()));
+    r.push(Cell::Text(stroke_outs.join(",")));
+    match measured {
+        Some((s, sc)) => {
+            r.push(s.decision_time_s.into());
+            r.push(Some(s.t_end_s).into());
+            r.push(s.overturn_velocity_m_s.into());
+            r.push(Some(s.min_stability_distance_m).into());
+            r.push(Some(s.peak_specific_force_m_s2).into());
+            r.push(Some(s.peak_pitch_rate_rad_s).into());
+            r.push(Some(s.energy_residual_j).into());
+            r.push(Some(s.energy.scale()).into());
+            let caps = capacities(sc);
+            for leg in 0..legs {
+                let strut = |stroke: f64, cap: f64, force: f64, r: &mut Row| {
+                    r.push(Some(stroke).into());
+                    r.push(Some(stroke / cap).into());
+                    r.push(Some(force).into());
+                };
+                strut(
+                    s.max_primary_stroke_m[leg],
+                    caps.primary,
+                    s.peak_primary_force_n[leg],
+                    &mut r,
+                );
+                for j in 0..2 {
+                    strut(
+                        s.max_secondary_compression_m[leg][j],
+                        caps.compression,
+                        s.peak_secondary_compression_force_n[leg][j],
+                        &mut r,
+                    );
+                    strut(
+                        s.max_secondary_tension_m[leg][j],
+                        caps.tension,
+                        s.peak_secondary_tension_force_n[leg][j],
+                        &mut r,
+                    );
+                }
+            }
+        }
+        None => r.extend(std::iter::repeat_n(Cell::Missing, 8 + legs * 15)),
+    }
+    match result {
+        Err(RunError::Stopped(d)) => {
+            r.push(Some(d.time_s).into());
+            r.push(Cell::Text(law_name(d.law)));
+            r.push(d.leg.map_or(Cell::Missing, |l| Cell::Integer(l as i64)));
+            r.push(Cell::Text(d.message.clone()));
+        }
+        _ => r.extend(std::iter::repeat_n(Cell::Missing, 4)),
+    }
+    match result {
+        Err(RunError::Refused(touchdown_scenario::ScenarioError::Field {
+            file,
+            field,
+            message,
+        })) => {
+            r.push(Cell::Text(file.clone()));
+            r.push(Cell::Text(field.clone()));
+            r.push(Cell::Text(message.clone()));
+        }
+        Err(RunError::Refused(e)) => {
+            r.push(Cell::Missing);
+            r.push(Cell::Missing);
+            r.push(Cell::Text(e.to_string()));
+        }
+        _ => r.extend(std::iter::repeat_n(Cell::Missing, 3)),
+    }
+    r
+}
+
+/// The law's name as its serde name (`primary_honeycomb`).
+fn law_name(law: touchdown_record::Law) -> String {
+    serde_json::to_value(law)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
+
+/// The struts' capacities (the end of the last crush stage), m.
+struct Capacities {
+    primary: f64,
+    compression: f64,
+    tension: f64,
+}
+
+fn capacities(sc: &Scenario) -> Capacities {
+    Capacities {
+        primary: sc.primary.compression.capacity(),
+        compression: sc.secondary.compression.capacity(),
+        tension: sc.secondary.tension.capacity(),
+    }
+}
+
+/// The struts that reached the end of their last crush stage, named `leg2.primary`,
+/// `leg1.secondary_3_1.tension`.
+pub fn stroke_outs(s: &Summary, sc: &Scenario) -> Vec<String> {
+    let caps = capacities(sc);
+    let mut out = Vec::new();
+    for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
+        if *p >= caps.primary {
+            out.push(format!("leg{}.primary", i + 1));
+        }
+        for (j, name) in SECONDARIES.iter().enumerate() {
+            if s.max_secondary_compression_m[i][j] >= caps.compression {
+                out.push(format!("leg{}.secondary_{name}.compression", i + 1));
+            }
+            if s.max_secondary_tension_m[i][j] >= caps.tension {
+                out.push(format!("leg{}.secondary_{name}.tension", i + 1));
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,427 @@
+//! Running a campaign: each landing drawn, resolved, read back and landed; landings in parallel
+//! (rayon) with their records handed on in landing order; shards, merges and extensions.
+
+use crate::distribution::{scores, Value};
+use crate::record::{self, Column, Row};
+use crate::spec::Campaign;
+use crate::statistics::Statistics;
+use crate::store::{self, Manifest, Part};
+use crate::CampaignError;
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::ops::Range;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use touchdown_record::{History, RunError};
+use touchdown_registry::Engine;
+use touchdown_scenario::{Scenario, ScenarioError};
+
+/// A shard `K/N` (K from 1): the landings `⌊(K−1)·n/N⌋ .. ⌊K·n/N⌋` of a campaign of n.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// K, from 1.
+    pub index: u64,
+    /// N.
+    pub count: u64,
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Shard, String> {
+        let bad = || format!("{s:?}: expected K/N with 1 ≤ K ≤ N, e.g. 2/4");
+        let (k, n) = s.split_once('/').ok_or_else(bad)?;
+        let (index, count) = (
+            k.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if index == 0 || index > count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+impl Shard {
+    /// The landings of this shard of a campaign of `landings`.
+    pub fn range(self, landings: u64) -> Range<u64> {
+        let at = |k: u64| ((k as u128 * landings as u128) / self.count as u128) as u64;
+        at(self.index - 1)..at(self.index)
+    }
+}
+
+/// The values landing `landing` draws, one per dispersion.
+pub fn draws(campaign: &Campaign, landing: u64) -> Vec<Value> {
+    let z = scores(
+        campaign.seed,
+        landing,
+        campaign.dispersions.len(),
+        campaign.copula.as_ref(),
+    );
+    campaign
+        .dispersions
+        .iter()
+        .zip(z)
+        .map(|(d, z)| d.distribution.quantile(z, landing))
+        .collect()
+}
+
+/// One landing: drawn, resolved, read back, landed; its record. `histories` is the folder for
+/// the histories the campaign asks for. An engine that cannot be set up stops the campaign.
+pub fn land(
+    campaign: &Campaign,
+    landing: u64,
+    histories: Option<&Path>,
+) -> Result<Row, CampaignError> {
+    let drawn = draws(campaign, landing);
+    let overrides: Vec<(&str, toml::Value)> = campaign
+        .dispersions
+        .iter()
+        .zip(&drawn)
+        .map(|(d, v)| (d.field.as_str(), v.to_toml()))
+        .collect();
+    let sc = match campaign
+        .base
+        .with(&overrides)
+        .and_then(|sc| same_legs(campaign, sc))
+    {
+        Ok(sc) => sc,
+        Err(e) => {
+            return Ok(record::row(
+                campaign,
+                landing,
+                &drawn,
+                None,
+                Err(&RunError::Refused(e)),
+            ))
+        }
+    };
+    let applied = read_back(campaign, landing, &sc)?;
+    if let Err(e) = touchdown_registry::require(campaign.engine, &sc) {
+        return Ok(record::row(
+            campaign,
+            landing,
+            &applied,
+            Some(&sc),
+            Err(&RunError::Refused(e)),
+        ));
+    }
+    let history_dir = histories.filter(|_| campaign.histories.contains(&landing));
+    let result = match history_dir {
+        Some(dir) => land_with_history(campaign, landing, &sc, dir),
+        None => {
+            touchdown_registry::land(campaign.engine, &campaign.scenario_path, &sc, &mut (), None)
+        }
+    };
+    match result {
+        Err(f) if matches!(f.error, RunError::Setup(_)) => Err(CampaignError::Engine(Box::new(f))),
+        r => Ok(record::row(
+            campaign,
+            landing,
+            &applied,
+            Some(&sc),
+            r.as_ref().map_err(|f| &f.error),
+        )),
+    }
+}
+
+/// A landing whose history is kept: `dir/landing-N.csv` (the MuJoCo runner writes its own
+/// files into `dir/landing-N/`).
+fn land_with_history(
+    campaign: &Campaign,
+    landing: u64,
+    sc: &Scenario,
+    dir: &Path,
+) -> Result<touchdown_record::Summary, touchdown_registry::EngineFailure> {
+    let setup = |e: String| touchdown_registry::EngineFailure {
+        engine: campaign.engine,
+        scenario: campaign.scenario_path.display().to_string(),
+        error: RunError::setup(campaign.engine, e),
+    };
+    std::fs::create_dir_all(dir)
+        .map_err(|e| setup(format!("cannot create {}: {e}", dir.display())))?;
+    if campaign.engine == Engine::Mujoco {
+        let own = dir.join(format!("landing-{landing}"));
+        std::fs::create_dir_all(&own)
+            .map_err(|e| setup(format!("cannot create {}: {e}", own.display())))?;
+        return touchdown_registry::land(
+            campaign.engine,
+            &campaign.scenario_path,
+            sc,
+            &mut (),
+            Some(&own),
+        );
+    }
+    let path = dir.join(format!("landing-{landing}.csv"));
+    let mut history =
+        Some(History::create(&path, sc.legs.len()).map_err(|e| setup(e.to_string()))?);
+    let summary = touchdown_registry::land(
+        campaign.engine,
+        &campaign.scenario_path,
+        sc,
+        &mut history,
+        None,
+    )?;
+    if let Some(h) = history {
+        h.finish().map_err(|e| setup(e.to_string()))?;
+    }
+    Ok(summary)
+}
+
+/// The scenario, refused if a dispersed value changed its number of legs (the records have a
+/// column per leg of the base).
+fn same_legs(campaign: &Campaign, sc: Scenario) -> Result<Scenario, ScenarioError> {
+    let (n, base) = (sc.legs.len(), campaign.base_scenario.legs.len());
+    if n == base {
+        return Ok(sc);
+    }
+    Err(ScenarioError::field(
+        &campaign.file,
+        "dispersion",
+        format!("a dispersed value gives the vehicle {n} legs, the base scenario has {base}: a campaign keeps its vehicle's legs"),
+    ))
+}
+
+/// The dispersed fields' values as the resolved scenario holds them.
+fn read_back(
+    campaign: &Campaign,
+    landing: u64,
+    sc: &Scenario,
+) -> Result<Vec<Value>, CampaignError> {
+    campaign
+        .dispersions
+        .iter()
+        .map(|d| {
+            sc.value_of(&d.field)
+                .as_ref()
+                .and_then(Value::from_toml)
+                .ok_or_else(|| CampaignError::NotApplied {
+                    landing,
+                    field: d.field.clone(),
+                })
+        })
+        .collect()
+}
+
+/// Runs the landings `range` on `threads` threads (all the machine's with `None`), handing each
+/// record to `each` in landing order as soon as it and every earlier one have finished; the
+/// records, in order. The first landing (in order) whose engine cannot be set up stops the run.
+pub fn run_range(
+    campaign: &Campaign,
+    range: Range<u64>,
+    threads: Option<usize>,
+    histories: Option<&Path>,
+    mut each: impl FnMut(&Row),
+) -> Result<Vec<Row>, CampaignError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| CampaignError::Threads(e.to_string()))?;
+    let cancel = AtomicBool::new(false);
+    let (tx, rx) = std::sync::mpsc::channel::<(u64, Result<Row, CampaignError>)>();
+    let mut rows = Vec::with_capacity((range.end - range.start) as usize);
+    let mut failure: Option<(u64, CampaignError)> = None;
+    std::thread::scope(|s| {
+        let work = range.clone();
+        let cancel = &cancel;
+        s.spawn(move || {
+            pool.install(|| {
+                work.into_par_iter().for_each_with(tx, |tx, i| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let r = land(campaign, i, histories);
+                    if r.is_err() {
+                        cancel.store(true, Ordering::Relaxed);
+                    }
+                    let _ = tx.send((i, r));
+                })
+            })
+        });
+        let mut pending = BTreeMap::new();
+        let mut next = range.start;
+        for (i, r) in rx {
+            match r {
+                Ok(row) => {
+                    pending.insert(i, row);
+                    while let Some(row) = pending.remove(&next) {
+                        each(&row);
+                        rows.push(row);
+                        next += 1;
+                    }
+                }
+                Err(e) => {
+                    if failure.as_ref().is_none_or(|(j, _)| i < *j) {
+                        failure = Some((i, e));
+                    }
+                }
+            }
+        }
+    });
+    match failure {
+        Some((_, e)) => Err(e),
+        None => Ok(rows),
+    }
+}
+
+/// Runs a campaign, or one shard of it, writing its files into `out` when given; `each` sees
+/// every record in landing order. Returns the manifest, the records and their statistics.
+pub fn run(
+    campaign: &Campaign,
+    shard: Option<Shard>,
+    threads: Option<usize>,
+    out: Option<&Path>,
+    each: impl FnMut(&Row),
+) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
+    let range = shard.map_or(0..campaign.landings, |s| s.range(campaign.landings));
+    let columns = record::columns(campaign);
+    let histories = out.map(|d| d.join("histories"));
+    let rows = run_range(campaign, range.clone(), threads, histories.as_deref(), each)?;
+    let part = Part {
+        first_landing: range.start,
+        end_landing: range.end,
+        shard: shard.map(|s| s.to_string()),
+    };
+    finish(campaign, campaign.landings, part, &columns, rows, out)
+}
+
+/// The manifest and statistics of `rows`, written into `out` when given.
+fn finish(
+    campaign: &Campaign,
+    landings: u64,
+    part: Part,
+    columns: &[Column],
+    rows: Vec<Row>,
+    out: Option<&Path>,
+) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
+    let manifest = Manifest::new(campaign, landings, part, columns);
+    let statistics = Statistics::of(columns, &rows, campaign.confidence);
+    if let Some(dir) = out {
+        store::write_all(dir, &manifest, &rows, &statistics)?;
+    }
+    Ok((manifest, rows, statistics))
+}
+
+/// Adds `more` landings to the finished campaign in `dir` (written by a run or a merge of the
+/// same campaign file), without changing the landings it holds: landings n..n+more are run and
+/// the folder rewritten as if the campaign had planned n + more from the start.
+pub fn add(
+    campaign: &Campaign,
+    dir: &Path,
+    more: u64,
+    threads: Option<usize>,
+    each: impl FnMut(&Row),
+) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
+    let (old, mut rows) = store::read_dir(dir)?;
+    let columns = record::columns(campaign);
+    let fresh = Manifest::new(campaign, old.landings, old.part.clone(), &columns);
+    fresh.same_campaign(&old).map_err(|m| {
+        CampaignError::Mismatch(format!("{}: not this campaign's: {m}", dir.display()))
+    })?;
+    if old.part.first_landing != 0 || old.part.end_landing != old.landings {
+        return Err(CampaignError::Mismatch(format!(
+            "{}: holds landings {} to {} of {}: merge the shards first (`touchdown campaign merge`)",
+            dir.display(),
+            old.part.first_landing,
+            old.part.end_landing,
+            old.landings
+        )));
+    }
+    let total = old
+        .landings
+        .checked_add(more)
+        .filter(|n| *n <= crate::spec::MAX_LANDINGS)
+        .ok_or_else(|| {
+            CampaignError::Mismatch(format!(
+                "--add {more}: more than {} landings in all",
+                crate::spec::MAX_LANDINGS
+            ))
+        })?;
+    let histories = dir.join("histories");
+    rows.extend(run_range(
+        campaign,
+        old.landings..total,
+        threads,
+        Some(&histories),
+        each,
+    )?);
+    let part = Part {
+        first_landing: 0,
+        end_landing: total,
+        shard: None,
+    };
+    finish(campaign, total, part, &columns, rows, Some(dir))
+}
+
+/// Merges the campaign folders `parts` (shards of one campaign, run by one build) into `out`:
+/// refused unless they are parts of the same campaign and together hold each of its landings
+/// once. The result is the folder the whole campaign run at once writes, byte for byte.
+pub fn merge(parts: &[&Path], out: &Path) -> Result<(Manifest, Statistics), CampaignError> {
+    let mut read: Vec<(Manifest, Vec<Row>)> = parts
+        .iter()
+        .map(|p| store::read_dir(p))
+        .collect::<Result<_, _>>()?;
+    let Some((first, _)) = read.first() else {
+        return Err(CampaignError::Mismatch(
+            "nothing to merge: name the shards' folders".into(),
+        ));
+    };
+    let first = first.clone();
+    for ((m, _), path) in read.iter().zip(parts) {
+        first.same_campaign(m).map_err(|e| {
+            CampaignError::Mismatch(format!(
+                "{} and {}: {e}",
+                parts[0].display(),
+                path.display()
+            ))
+        })?;
+        if m.landings != first.landings {
+            return Err(CampaignError::Mismatch(format!(
+                "{} plans {} landings, {} plans {}",
+                parts[0].display(),
+                first.landings,
+                path.display(),
+                m.landings
+            )));
+        }
+    }
+    read.sort_by_key(|(m, _)| m.part.first_landing);
+    let mut next = 0;
+    for (m, _) in &read {
+        if m.part.first_landing != next {
+            let what = if m.part.first_landing < next {
+                "overlap"
+            } else {
+                "leave a gap"
+            };
+            return Err(CampaignError::Mismatch(format!(
+                "the parts {what} at landing {}: each landing must be in exactly one part",
+                m.part.first_landing.min(next)
+            )));
+        }
+        next = m.part.end_landing;
+    }
+    if next != first.landings {
+        return Err(CampaignError::Mismatch(format!(
+            "the parts hold landings 0 to {} of {}: landings {next} to {} are missing",
+            next.saturating_sub(1),
+            first.landings,
+            first.landings - 1
+        )));
+    }
+    let rows: Vec<Row> = read.into_iter().flat_map(|(_, r)| r).collect();
+    let mut manifest = first;
+    manifest.part = Part {
+        first_landing: 0,
+        end_landing: manifest.landings,
+        shard: None,
+    };
+    let statistics = Statistics::of(&manifest.columns, &rows, manifest.confidence);
+    store::write_all(out, &manifest, &rows, &statistics)?;
+    Ok((manifest, statistics))
+}

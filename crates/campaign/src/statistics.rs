@@ -1,0 +1,277 @@
+//! A campaign's statistics: the probability of a stable landing with its one-sided
+//! Clopper-Pearson lower bound (the "lower-limit probability of a stable landing" of TN D-3117),
+//! the zero-failure sample sizes, counts per outcome, failure mode and stroked-out strut, and
+//! percentiles of the strokes against their capacities and of the peak loads
+//! (docs/campaigns.md, "Statistics").
+
+use crate::record::{Cell, Column, Failure, Row, Status};
+use serde::Serialize;
+use statrs::distribution::{Beta, ContinuousCDF};
+
+/// A count of landings under a name.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Count {
+    /// The outcome, failure mode or strut.
+    pub name: String,
+    /// Landings.
+    pub landings: u64,
+}
+
+/// A proportion of landings with its lower confidence bound.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Proportion {
+    /// Landings counted.
+    pub landings: u64,
+    /// Their fraction of the campaign.
+    pub fraction: f64,
+    /// The one-sided Clopper-Pearson lower bound of the probability at the campaign's
+    /// confidence.
+    pub lower_bound: f64,
+}
+
+/// Landings a campaign needs to show a reliability at the campaign's confidence with no
+/// failure at all: n = ⌈ln(1 − C)/ln R⌉.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ZeroFailure {
+    /// The reliability R to show.
+    pub reliability: f64,
+    /// Landings needed.
+    pub landings: u64,
+}
+
+/// Percentiles of one column over the landings that measured it (linear interpolation between
+/// order statistics, as numpy's default).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Percentiles {
+    /// The column (its unit in its name).
+    pub column: String,
+    /// Landings that measured it.
+    pub landings: u64,
+    /// Median.
+    pub p50: f64,
+    /// 90th percentile.
+    pub p90: f64,
+    /// 99th percentile.
+    pub p99: f64,
+    /// Maximum.
+    pub max: f64,
+}
+
+/// A campaign's statistics.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Statistics {
+    /// Landings.
+    pub landings: u64,
+    /// Confidence of the lower bounds, in (0, 1).
+    pub confidence: f64,
+    /// Landings per outcome (every outcome, zero counts included).
+    pub outcomes: Vec<Count>,
+    /// Landings per failure mode (each landing has one: docs/campaigns.md).
+    pub failures: Vec<Count>,
+    /// Landings in which each strut stroked out (only the struts that did).
+    pub stroke_outs: Vec<Count>,
+    /// Stable landings: the probability of a stable landing and its lower bound.
+    pub stable: Proportion,
+    /// Stable landings within every strut's capacity.
+    pub stable_within_capacity: Proportion,
+    /// The zero-failure sample sizes at the campaign's confidence.
+    pub zero_failure: Vec<ZeroFailure>,
+    /// Percentiles of the strokes (fractions of capacity), peak loads, the peak specific force
+    /// and the minimum stability distance.
+    pub percentiles: Vec<Percentiles>,
+}
+
+/// The one-sided Clopper-Pearson lower bound on a probability from `k` successes in `n`
+/// trials at confidence `confidence`: the p with P(X ≥ k | p) = 1 − confidence, the
+/// (1 − confidence) quantile of Beta(k, n − k + 1); 0 when k = 0.
+pub fn clopper_pearson_lower(k: u64, n: u64, confidence: f64) -> f64 {
+    if k == 0 || n == 0 {
+        return 0.0;
+    }
+    match Beta::new(k as f64, (n - k + 1) as f64) {
+        Ok(b) => b.inverse_cdf(1.0 - confidence),
+        Err(_) => 0.0,
+    }
+}
+
+/// Landings that show reliability `reliability` at confidence `confidence` with no failure:
+/// the least n with Rⁿ ≤ 1 − C.
+pub fn zero_failure_landings(reliability: f64, confidence: f64) -> u64 {
+    ((1.0 - confidence).ln() / reliability.ln()).ceil() as u64
+}
+
+/// The `p` percentile (0 ≤ p ≤ 1) of sorted values by linear interpolation.
+pub fn percentile(sorted: &[f64], p: f64) -> f64 {
+    let h = (sorted.len() - 1) as f64 * p;
+    let lo = h.floor() as usize;
+    let hi = (lo + 1).min(sorted.len() - 1);
+    sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
+}
+
+/// The reliabilities the zero-failure table lists.
+const RELIABILITIES: [f64; 4] = [0.9, 0.95, 0.99, 0.999];
+
+impl Statistics {
+    /// The statistics of `rows` (records with `columns`) at confidence `confidence`.
+    pub fn of(columns: &[Column], rows: &[Row], confidence: f64) -> Statistics {
+        let index = |name: &str| columns.iter().position(|c| c.name == name);
+        let text = |row: &Row, i: Option<usize>| match i.map(|i| &row[i]) {
+            Some(Cell::Text(s)) => s.clone(),
+            _ => String::new(),
+        };
+        let (outcome, failure, outs) = (index("outcome"), index("failure"), index("stroke_outs"));
+        let n = rows.len() as u64;
+        let count_of = |col: Option<usize>, name: &str| {
+            rows.iter().filter(|r| text(r, col) == name).count() as u64
+        };
+        let outcomes = Status::ALL
+            .iter()
+            .map(|s| Count {
+                name: s.name().into(),
+                landings: count_of(outcome, s.name()),
+            })
+            .collect();
+        let failures = Failure::ALL
+            .iter()
+            .map(|f| Count {
+                name: f.name().into(),
+                landings: count_of(failure, f.name()),
+            })
+            .collect();
+        let mut struts = std::collections::BTreeMap::<String, u64>::new();
+        for r in rows {
+            for s in text(r, outs).split(',').filter(|s| !s.is_empty()) {
+                *struts.entry(s.to_string()).or_default() += 1;
+            }
+        }
+        let proportion = |k: u64| Proportion {
+            landings: k,
+            fraction: if n == 0 { 0.0 } else { k as f64 / n as f64 },
+            lower_bound: clopper_pearson_lower(k, n, confidence),
+        };
+        let stable = count_of(outcome, Status::Stable.name());
+        let within = count_of(failure, Failure::None.name());
+        let percentiles = columns
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| {
+                c.name.ends_with("stroke_of_capacity")
+                    || c.name.ends_with("force_n")
+                    || c.name == "peak_specific_force_m_s2"
+                    || c.name == "min_stability_distance_m"
+            })
+            .filter_map(|(i, c)| {
+                let mut v: Vec<f64> = rows
+                    .iter()
+                    .filter_map(|r| match r[i] {
+                        Cell::Float(x) => Some(x),
+                        _ => None,
+                    })
+                    .collect();
+                if v.is_empty() {
+                    return None;
+                }
+                v.sort_by(f64::total_cmp);
+                Some(Percentiles {
+                    column: c.name.clone(),
+                    landings: v.len() as u64,
+                    p50: percentile(&v, 0.5),
+                    p90: percentile(&v, 0.9),
+                    p99: percentile(&v, 0.99),
+                    max: v[v.len() - 1],
+                })
+            })
+            .collect();
+        Statistics {
+            landings: n,
+            confidence,
+            outcomes,
+            failures,
+            stroke_outs: struts
+                .into_iter()
+                .map(|(name, landings)| Count { name, landings })
+                .collect(),
+            stable: proportion(stable),
+            stable_within_capacity: proportion(within),
+            zero_failure: RELIABILITIES
+                .iter()
+                .map(|r| ZeroFailure {
+                    reliability: *r,
+                    landings: zero_failure_landings(*r, confidence),
+                })
+                .collect(),
+            percentiles,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// P(X ≥ k) for X ~ Binomial(n, p), summed term by term.
+    fn upper_tail(k: u64, n: u64, p: f64) -> f64 {
+        let mut term = (1.0 - p).powi(n as i32); // P(X = 0)
+        let mut sum = if k == 0 { term } else { 0.0 };
+        for j in 1..=n {
+            term *= (n - j + 1) as f64 / j as f64 * p / (1.0 - p);
+            if j >= k {
+                sum += term;
+            }
+        }
+        sum
+    }
+
+    /// The bound against its definition, computed independently of the beta function: the p at
+    /// which P(X ≥ k | p) = 1 − C, by bisection on the exact binomial tail; and the closed forms
+    /// of k = n, (1 − C)^(1/n), and of k = 1, 1 − C^(1/n).
+    #[test]
+    fn clopper_pearson_is_the_exact_binomial_bound() {
+        for (k, n, c) in [
+            (8u64, 10u64, 0.95),
+            (95, 100, 0.95),
+            (1, 20, 0.9),
+            (17, 24, 0.9),
+            (50, 60, 0.99),
+        ] {
+            let (mut lo, mut hi) = (0.0f64, 1.0f64);
+            for _ in 0..100 {
+                let mid = 0.5 * (lo + hi);
+                if upper_tail(k, n, mid) < 1.0 - c {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
+            }
+            let got = clopper_pearson_lower(k, n, c);
+            assert!(
+                (got - lo).abs() < 1e-9,
+                "k {k} n {n} C {c}: {got} against {lo}"
+            );
+        }
+        for (n, c) in [(299u64, 0.95), (10, 0.9), (2995, 0.95)] {
+            let exact = (1.0f64 - c).powf(1.0 / n as f64);
+            assert!((clopper_pearson_lower(n, n, c) - exact).abs() < 1e-9);
+        }
+        assert!(
+            (clopper_pearson_lower(1, 20, 0.9) - (1.0 - 0.9f64.powf(1.0 / 20.0))).abs() < 1e-12
+        );
+        assert_eq!(clopper_pearson_lower(0, 50, 0.95), 0.0);
+    }
+
+    #[test]
+    fn the_zero_failure_rule_gives_the_textbook_sizes() {
+        assert_eq!(zero_failure_landings(0.99, 0.95), 299);
+        assert_eq!(zero_failure_landings(0.999, 0.95), 2995);
+        assert_eq!(zero_failure_landings(0.9, 0.9), 22);
+    }
+
+    #[test]
+    fn percentiles_interpolate_as_numpy_does() {
+        let v = [1.0, 2.0, 3.0, 4.0];
+        // numpy.percentile([1, 2, 3, 4], [50, 90]) = [2.5, 3.7]
+        assert_eq!(percentile(&v, 0.5), 2.5);
+        assert!((percentile(&v, 0.9) - 3.7).abs() < 1e-12);
+        assert_eq!(percentile(&[5.0], 0.99), 5.0);
+    }
+}

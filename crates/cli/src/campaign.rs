@@ -1,0 +1,179 @@
+//! `touchdown campaign`: a Monte Carlo campaign of dispersed landings (docs/campaigns.md), its
+//! shards, merges and extensions, and its statistics as text or JSON.
+
+use anyhow::{Context, Result};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use touchdown_campaign::record::Row;
+use touchdown_campaign::store::{self, Manifest};
+use touchdown_campaign::{Campaign, Shard, Statistics};
+use touchdown_compare::report::text_table;
+
+/// How a campaign reports on standard output.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    /// The statistics as text.
+    Text,
+    /// A landing record per line as each finishes (in landing order), then one line
+    /// `{"statistics": ...}`.
+    JsonLines,
+}
+
+/// `touchdown campaign FILE`: runs the campaign (or a shard of it, or `more` landings added to
+/// the finished campaign in `out`).
+pub fn run(
+    file: &Path,
+    shard: Option<Shard>,
+    add: Option<u64>,
+    threads: Option<usize>,
+    out: Option<&Path>,
+    output: Output,
+) -> Result<()> {
+    let campaign = Campaign::load(file)?;
+    crate::warn(&campaign.base_scenario);
+    if threads == Some(0) {
+        anyhow::bail!("--threads: expected at least 1 thread");
+    }
+    let planned = match (add, shard) {
+        (Some(0), _) => anyhow::bail!("--add: expected at least 1 landing to add"),
+        (Some(_), Some(_)) => anyhow::bail!(
+            "--add and --shard: add landings to a finished (merged) campaign, then shard a new campaign file if it is large"
+        ),
+        (Some(more), None) => more,
+        (None, Some(s)) => {
+            let r = s.range(campaign.landings);
+            r.end - r.start
+        }
+        (None, None) => campaign.landings,
+    };
+    let bar = crate::progress_bar(planned, "landings");
+    let columns = touchdown_campaign::record::columns(&campaign);
+    let stdout = std::io::stdout();
+    let mut lines = stdout.lock();
+    let mut each = |row: &Row| {
+        bar.inc(1);
+        if output == Output::JsonLines {
+            let _ = writeln!(lines, "{}", store::json_line(&columns, row));
+        }
+    };
+    let (manifest, _, statistics) = match add {
+        Some(more) => {
+            let dir = out.context("--add: name the finished campaign's folder with --out")?;
+            touchdown_campaign::add(&campaign, dir, more, threads, &mut each)?
+        }
+        None => touchdown_campaign::run::run(&campaign, shard, threads, out, &mut each)?,
+    };
+    bar.finish_and_clear();
+    report(&manifest, &statistics, output)
+}
+
+/// `touchdown campaign merge DIR... --out DIR`.
+pub fn merge(parts: &[PathBuf], out: &Path, output: Output) -> Result<()> {
+    let parts: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
+    let (manifest, statistics) = touchdown_campaign::merge(&parts, out)?;
+    if output == Output::JsonLines {
+        let (_, rows) = store::read_dir(out)?;
+        for row in &rows {
+            println!("{}", store::json_line(&manifest.columns, row));
+        }
+    }
+    report(&manifest, &statistics, output)
+}
+
+fn report(manifest: &Manifest, statistics: &Statistics, output: Output) -> Result<()> {
+    match output {
+        Output::JsonLines => println!(
+            "{}",
+            serde_json::to_string(&serde_json::json!({ "statistics": statistics }))?
+        ),
+        Output::Text => print!("{}", text(manifest, statistics)),
+    }
+    Ok(())
+}
+
+/// A percentage with its sign-free unit.
+fn percent(x: f64) -> String {
+    format!("{:.2} %", 100.0 * x)
+}
+
+/// The statistics as text.
+pub fn text(m: &Manifest, s: &Statistics) -> String {
+    let mut t = String::new();
+    let part = match &m.part.shard {
+        Some(k) => format!(
+            "shard {k}: landings {} to {} of {}",
+            m.part.first_landing,
+            m.part.end_landing.saturating_sub(1),
+            m.landings
+        ),
+        None => format!("{} landings", m.landings),
+    };
+    t += &format!(
+        "campaign: {} ({})\nbase scenario: {}\nengine: {}   seed: {}   {part}\n\n",
+        m.campaign_name, m.campaign_file, m.base_scenario_file, m.engine, m.seed
+    );
+    let c = percent(s.confidence);
+    t += &format!(
+        "P(stable landing) = {} ({} of {}); lower bound at {c} confidence (one-sided Clopper-Pearson): {}\n",
+        percent(s.stable.fraction),
+        s.stable.landings,
+        s.landings,
+        percent(s.stable.lower_bound)
+    );
+    t += &format!(
+        "P(stable and within every strut's capacity) = {}; lower bound: {}\n\n",
+        percent(s.stable_within_capacity.fraction),
+        percent(s.stable_within_capacity.lower_bound)
+    );
+    t += "landings by outcome and by failure mode (each landing has one of each)\n";
+    let counts = s
+        .outcomes
+        .iter()
+        .map(|o| vec!["outcome".into(), o.name.clone(), o.landings.to_string()])
+        .chain(
+            s.failures
+                .iter()
+                .map(|f| vec!["failure".into(), f.name.clone(), f.landings.to_string()]),
+        )
+        .chain(
+            s.stroke_outs
+                .iter()
+                .map(|f| vec!["stroked out".into(), f.name.clone(), f.landings.to_string()]),
+        );
+    t += &text_table(&["", "", "landings"], &[2], counts);
+    t += &format!("\nlandings to show a reliability with no failure at {c} confidence\n");
+    t += &text_table(
+        &["reliability", "landings"],
+        &[0, 1],
+        s.zero_failure
+            .iter()
+            .map(|z| vec![percent(z.reliability), z.landings.to_string()]),
+    );
+    t += "\npercentiles over the landings that completed: strokes as fractions of their strut's capacity\n(the struts that stroked), primary forces, specific force, stability distance (statistics.json\nhas every strut's force)\n";
+    let shown = s.percentiles.iter().filter(|p| {
+        (p.column.ends_with("stroke_of_capacity") && p.max > 0.0)
+            || !p.column.contains(".secondary_")
+    });
+    t += &text_table(
+        &[
+            "quantity (unit in its name)",
+            "landings",
+            "p50",
+            "p90",
+            "p99",
+            "max",
+        ],
+        &[1, 2, 3, 4, 5],
+        shown.map(|p| {
+            vec![
+                p.column.clone(),
+                p.landings.to_string(),
+                format!("{:.4}", p.p50),
+                format!("{:.4}", p.p90),
+                format!("{:.4}", p.p99),
+                format!("{:.4}", p.max),
+            ]
+        }),
+    );
+    t
+}

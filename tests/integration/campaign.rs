@@ -1,0 +1,330 @@
+//! Campaigns (docs/campaigns.md): the same bytes whatever the threads, shards or order;
+//! extensions that leave the first landings alone; the values applied are the values drawn and
+//! reach the model; a probability known in closed form comes out; bad files and bad merges are
+//! refused by name; the Parquet records read back in pandas, polars and DuckDB.
+
+use std::path::{Path, PathBuf};
+use touchdown_campaign::distribution::Value;
+use touchdown_campaign::record::Cell;
+use touchdown_campaign::run::{draws, run};
+use touchdown_campaign::{merge, Campaign, CampaignError, Shard};
+use touchdown_tests::{python, root, scenario};
+
+/// The files a finished campaign folder holds, each compared byte for byte.
+const FILES: [&str; 4] = [
+    "manifest.json",
+    "landings.jsonl",
+    "landings.parquet",
+    "statistics.json",
+];
+
+fn small() -> PathBuf {
+    scenario("campaigns/small.toml")
+}
+
+fn assert_same_files(a: &Path, b: &Path) {
+    for f in FILES {
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
+        assert!(
+            x == y,
+            "{f} differs between {} and {}",
+            a.display(),
+            b.display()
+        );
+    }
+}
+
+/// A copy of the small campaign with `landings` landings, at `path` (the manifest names the
+/// campaign file, so compared runs read the same path).
+fn small_with(path: &Path, landings: u64) {
+    let text = std::fs::read_to_string(small()).unwrap();
+    let text = text.replace("landings = 24", &format!("landings = {landings}"));
+    let text = text.replace(
+        "scenario = \"../",
+        &format!("scenario = \"{}/", scenario("").display()),
+    );
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn one_shard_or_four_in_any_order_on_any_threads_write_the_same_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    let whole = tmp.path().join("whole");
+    run(&campaign, None, Some(1), Some(&whole), |_| ()).unwrap();
+    let mut parts = Vec::new();
+    for k in [3, 1, 4, 2] {
+        let dir = tmp.path().join(format!("shard-{k}"));
+        let shard = Shard { index: k, count: 4 };
+        run(&campaign, Some(shard), Some(2), Some(&dir), |_| ()).unwrap();
+        parts.push(dir);
+    }
+    let merged = tmp.path().join("merged");
+    let refs: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
+    merge(&refs, &merged).unwrap();
+    assert_same_files(&whole, &merged);
+    // The landings come in order whatever finished first, and the history asked for is kept.
+    let mut seen = Vec::new();
+    run(&campaign, None, Some(2), None, |r| seen.push(r[0].clone())).unwrap();
+    assert_eq!(seen, (0..24).map(Cell::Integer).collect::<Vec<_>>());
+    assert!(whole.join("histories/landing-3.csv").is_file());
+}
+
+#[test]
+fn added_landings_leave_the_first_ones_unchanged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("campaign.toml");
+    small_with(&file, 16);
+    let extended = tmp.path().join("extended");
+    let c16 = Campaign::load(&file).unwrap();
+    run(&c16, None, None, Some(&extended), |_| ()).unwrap();
+    touchdown_campaign::add(&c16, &extended, 8, None, |_| ()).unwrap();
+    small_with(&file, 24);
+    let at_once = tmp.path().join("at-once");
+    run(
+        &Campaign::load(&file).unwrap(),
+        None,
+        None,
+        Some(&at_once),
+        |_| (),
+    )
+    .unwrap();
+    assert_same_files(&extended, &at_once);
+}
+
+#[test]
+fn the_values_applied_are_the_values_drawn_and_reach_the_model() {
+    let campaign = Campaign::load(small()).unwrap();
+    let (_, rows, _) = run(&campaign, None, None, None, |_| ()).unwrap();
+    let n = campaign.dispersions.len();
+    let mut references = std::collections::BTreeSet::new();
+    for (i, row) in rows.iter().enumerate() {
+        let drawn = draws(&campaign, i as u64);
+        let applied: Vec<Cell> = drawn.iter().map(Cell::from).collect();
+        assert_eq!(row[1..=n], applied[..], "landing {i}");
+        if let Value::Text(t) = &drawn[4] {
+            references.insert(t.clone());
+        }
+        // In SI in the model: the vertical velocity (ft/s in the file) and the heading (deg).
+        let overrides: Vec<(&str, toml::Value)> = campaign
+            .dispersions
+            .iter()
+            .zip(&drawn)
+            .map(|(d, v)| (d.field.as_str(), v.to_toml()))
+            .collect();
+        let sc = campaign.base.with(&overrides).unwrap();
+        let (Value::Number(vv), Value::Number(heading)) = (&drawn[0], &drawn[2]) else {
+            panic!("numbers expected")
+        };
+        assert!((sc.touchdown.velocity_g.z - vv * 0.3048).abs() < 1e-12);
+        assert!((sc.touchdown.attitude.z - heading.to_radians()).abs() < 1e-12);
+    }
+    // 24 landings of a 3:1 choice draw both values; the list cycles through its three slopes.
+    assert_eq!(references.len(), 2);
+    let slopes: Vec<&Cell> = rows.iter().take(3).map(|r| &r[6]).collect();
+    assert_eq!(
+        slopes,
+        [&Cell::Float(0.0), &Cell::Float(5.0), &Cell::Float(10.0)]
+    );
+}
+
+/// A vertical drop on flat ground strokes its primaries out exactly when it lands faster than
+/// one speed V*, found here by bisection on single landings: with Vv ~ N(−15, 3²) ft/s, the
+/// probability of a stroke-out is Φ((−V* + 15)/3) in closed form, and the campaign's count of
+/// 400 landings must lie within the binomial 99.9 % interval around it.
+#[test]
+fn an_outcome_decided_by_one_input_has_its_analytic_probability() {
+    use statrs::distribution::{Binomial, ContinuousCDF, DiscreteCDF, Normal};
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("drop.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "schema_version = 1\nname = \"drop\"\nscenario = {:?}\nlandings = 400\nseed = 11\n\n[[dispersion]]\nfield = \"touchdown.vertical_velocity\"\nunit = \"ft/s\"\ndistribution = \"normal\"\nmean = -15.0\nstd_dev = 3.0\n",
+            scenario("flat-drop.toml").display().to_string()
+        ),
+    )
+    .unwrap();
+    let campaign = Campaign::load(&file).unwrap();
+    let strokes_out = |vv: f64| {
+        let sc = campaign
+            .base
+            .with(&[("touchdown.vertical_velocity", toml::Value::Float(-vv))])
+            .unwrap();
+        let s = touchdown_registry::land(campaign.engine, &file, &sc, &mut (), None).unwrap();
+        !touchdown_campaign::record::stroke_outs(&s, &sc).is_empty()
+    };
+    let (mut lo, mut hi) = (5.0, 25.0);
+    assert!(!strokes_out(lo) && strokes_out(hi));
+    while hi - lo > 1e-3 {
+        let mid = 0.5 * (lo + hi);
+        if strokes_out(mid) {
+            hi = mid
+        } else {
+            lo = mid
+        }
+    }
+    let v_star = 0.5 * (lo + hi);
+    let p = Normal::standard().cdf((15.0 - v_star) / 3.0);
+    let (_, rows, stats) = run(&campaign, None, None, None, |_| ()).unwrap();
+    let outs = rows
+        .iter()
+        .filter(|r| r.contains(&Cell::Text("stroke_out".into())))
+        .count() as u64;
+    let b = Binomial::new(p, 400).unwrap();
+    let (low, high) = (b.inverse_cdf(0.0005), b.inverse_cdf(0.9995));
+    assert!(
+        (low..=high).contains(&outs),
+        "V* = {v_star:.3} ft/s, p = {p:.4}: {outs} stroke-outs of 400, expected {low} to {high}"
+    );
+    // Every landing that did not stroke out is stable; the bound is below the fraction.
+    assert_eq!(stats.stable_within_capacity.landings, 400 - outs);
+    assert!(stats.stable_within_capacity.lower_bound < 1.0 - p + 0.05);
+}
+
+fn refused(text: &str) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("bad.toml");
+    std::fs::write(&file, text).unwrap();
+    let e = Campaign::load(&file).unwrap_err();
+    let message = e.to_string();
+    assert!(
+        message.starts_with(&file.display().to_string()),
+        "{message}"
+    );
+    message.replace(&file.display().to_string(), "bad.toml")
+}
+
+#[test]
+fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
+    let good = std::fs::read_to_string(small()).unwrap().replace(
+        "scenario = \"../",
+        &format!("scenario = \"{}/", scenario("").display()),
+    );
+    let cases = [
+        (
+            "std_dev = 1.5",
+            "std_dev = -1.5",
+            "field `dispersion[0].std_dev`: expected a positive number",
+        ),
+        (
+            "unit = \"ft/s\"\ndistribution = \"normal\"",
+            "unit = \"m/s\"\ndistribution = \"normal\"",
+            "field `dispersion[0].unit`: \"m/s\": the scenario states lengths in ft",
+        ),
+        (
+            "touchdown.vertical_velocity\"\nunit",
+            "touchdown.vertical_speed\"\nunit",
+            "field `dispersion[0].field`: `touchdown.vertical_speed` cannot be set",
+        ),
+        (
+            "landings = 24",
+            "landings = 0",
+            "field `landings`: expected between 1 and",
+        ),
+        (
+            "distribution = \"uniform\"",
+            "distribution = \"gamma\"",
+            "field `dispersion[2]",
+        ),
+        (
+            "weights = [3.0, 1.0]",
+            "weights = [3.0]",
+            "field `dispersion[4].weights`: expected one weight per value",
+        ),
+        (
+            "coefficient = -0.5",
+            "coefficient = 1.5",
+            "field `correlation[0].coefficient`",
+        ),
+        ("confidence = 0.9", "confidence = 95", "field `confidence`"),
+        ("seed = 7", "seed = 7\nseeds = 8", "unknown field `seeds`"),
+        (
+            "histories = [3]",
+            "histories = [24]",
+            "field `record.histories`: landing 24 is not in the campaign",
+        ),
+        ("engine = \"core\"", "engine = \"bullet\"", "field `engine`"),
+    ];
+    for (from, to, expected) in cases {
+        assert!(good.contains(from), "{from}");
+        let message = refused(&good.replacen(from, to, 1));
+        assert!(message.contains(expected), "{to}: {message}");
+    }
+    assert!(refused("").contains("empty file"));
+    assert!(refused("landings = [").contains("not valid TOML"));
+    let scene = refused(&good.replace("table-i-2-2-vv8.toml", "no-such.toml"));
+    assert!(
+        scene.contains("field `scenario`: the base scenario") && scene.contains("no-such.toml"),
+        "{scene}"
+    );
+}
+
+#[test]
+fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    let part = |k: u64, n: u64, name: &str| {
+        let dir = tmp.path().join(name);
+        run(
+            &campaign,
+            Some(Shard { index: k, count: n }),
+            None,
+            Some(&dir),
+            |_| (),
+        )
+        .unwrap();
+        dir
+    };
+    let (a, b, c) = (part(1, 2, "a"), part(1, 3, "b"), part(3, 3, "c"));
+    let message = |parts: &[&Path]| match merge(parts, &tmp.path().join("out")) {
+        Err(CampaignError::Mismatch(m)) => m,
+        other => panic!("expected a refusal, got {other:?}"),
+    };
+    assert!(message(&[&a, &b]).contains("overlap"));
+    assert!(message(&[&a]).contains("landings 12 to 23 are missing"));
+    assert!(message(&[&b, &c]).contains("leave a gap"));
+    let other = tmp.path().join("other.toml");
+    small_with(&other, 24);
+    let text = std::fs::read_to_string(&other)
+        .unwrap()
+        .replace("seed = 7", "seed = 8");
+    std::fs::write(&other, text).unwrap();
+    let d = tmp.path().join("d");
+    run(
+        &Campaign::load(&other).unwrap(),
+        Some(Shard { index: 2, count: 2 }),
+        None,
+        Some(&d),
+        |_| (),
+    )
+    .unwrap();
+    assert!(message(&[&a, &d]).contains("campaign (its SHA-256)"));
+}
+
+#[test]
+fn the_parquet_records_read_back_in_pandas_polars_and_duckdb() {
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    run(&campaign, None, None, Some(tmp.path()), |_| ()).unwrap();
+    let out = std::process::Command::new(python())
+        .arg(root().join("python/campaign_read.py"))
+        .arg(tmp.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(report["rows"], 24);
+    assert_eq!(
+        report["readers"],
+        serde_json::json!(["duckdb", "pandas", "polars"])
+    );
+}
