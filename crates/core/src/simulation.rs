@@ -427,9 +427,13 @@ impl Physics {
     /// inertial X axis).
     pub(crate) fn update_extremes(&mut self) {
         for (i, g) in self.gear.iter().enumerate() {
-            self.extremes
-                .update_leg(i, g.primary_stroke, g.secondary_stroke);
-            self.extremes.update_leg_forces(i, g.f2p, g.f_secondary());
+            self.extremes.update_leg(
+                i,
+                g.primary_stroke,
+                g.secondary_stroke,
+                g.f2p,
+                g.f_secondary(),
+            );
         }
         self.extremes
             .update_pitch_rate(self.t, self.vehicle.omega_inertial().x);

@@ -508,9 +508,8 @@ impl GearBook {
     /// `t`, s.
     fn update_extremes(&mut self, t: f64, v: &VehicleState) {
         for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
-            self.extremes.update_leg(i, k.c, k.s);
             self.extremes
-                .update_leg_forces(i, f.primary(k.c_dot), f.secondary());
+                .update_leg(i, k.c, k.s, f.primary(k.c_dot), f.secondary());
         }
         self.extremes.update_pitch_rate(t, v.pitch_rate());
     }

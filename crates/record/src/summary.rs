@@ -157,16 +157,22 @@ pub struct Imbalance {
     pub ledger: EnergyLedger,
 }
 
+/// Running extremes of one leg: strokes (m) and strut forces (N).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct LegExtremes {
+    primary: f64,
+    sec_compression: [f64; 2],
+    sec_tension: [f64; 2],
+    primary_force: f64,
+    sec_compression_force: [f64; 2],
+    sec_tension_force: [f64; 2],
+}
+
 /// Running extremes of the strokes, the strut forces, the vehicle's acceleration and the pitch
 /// rate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Extremes {
-    primary: Vec<f64>,
-    sec_compression: Vec<[f64; 2]>,
-    sec_tension: Vec<[f64; 2]>,
-    primary_force: Vec<f64>,
-    sec_compression_force: Vec<[f64; 2]>,
-    sec_tension_force: Vec<[f64; 2]>,
+    legs: Vec<LegExtremes>,
     specific_force: f64,
     pitch_rate: f64,
     pitch_rate_time: f64,
@@ -176,35 +182,32 @@ impl Extremes {
     /// Extremes of `legs` legs, all zero.
     pub fn new(legs: usize) -> Extremes {
         Extremes {
-            primary: vec![0.0; legs],
-            sec_compression: vec![[0.0; 2]; legs],
-            sec_tension: vec![[0.0; 2]; legs],
-            primary_force: vec![0.0; legs],
-            sec_compression_force: vec![[0.0; 2]; legs],
-            sec_tension_force: vec![[0.0; 2]; legs],
+            legs: vec![LegExtremes::default(); legs],
             specific_force: 0.0,
             pitch_rate: 0.0,
             pitch_rate_time: 0.0,
         }
     }
 
-    /// Updates leg `i` with its primary compression stroke (m) and secondary strokes (m,
-    /// tension positive).
-    pub fn update_leg(&mut self, i: usize, primary: f64, secondary: [f64; 2]) {
-        self.primary[i] = self.primary[i].max(primary);
-        for (j, s) in secondary.into_iter().enumerate() {
-            self.sec_tension[i][j] = self.sec_tension[i][j].max(s);
-            self.sec_compression[i][j] = self.sec_compression[i][j].max(-s);
-        }
-    }
-
-    /// Updates leg `i` with its primary axial force (N, compression positive) and secondary
-    /// axial forces (N, tension positive).
-    pub fn update_leg_forces(&mut self, i: usize, primary: f64, secondary: [f64; 2]) {
-        self.primary_force[i] = self.primary_force[i].max(primary);
-        for (j, f) in secondary.into_iter().enumerate() {
-            self.sec_tension_force[i][j] = self.sec_tension_force[i][j].max(f);
-            self.sec_compression_force[i][j] = self.sec_compression_force[i][j].max(-f);
+    /// Updates leg `i` with its primary compression stroke (m) and force (N, compression
+    /// positive), and its secondary strokes (m) and forces (N), tension positive.
+    #[inline]
+    pub fn update_leg(
+        &mut self,
+        i: usize,
+        primary: f64,
+        secondary: [f64; 2],
+        primary_force: f64,
+        secondary_force: [f64; 2],
+    ) {
+        let leg = &mut self.legs[i];
+        leg.primary = leg.primary.max(primary);
+        leg.primary_force = leg.primary_force.max(primary_force);
+        for j in 0..2 {
+            leg.sec_tension[j] = leg.sec_tension[j].max(secondary[j]);
+            leg.sec_compression[j] = leg.sec_compression[j].max(-secondary[j]);
+            leg.sec_tension_force[j] = leg.sec_tension_force[j].max(secondary_force[j]);
+            leg.sec_compression_force[j] = leg.sec_compression_force[j].max(-secondary_force[j]);
         }
     }
 
@@ -212,6 +215,7 @@ impl Extremes {
     /// of mass reads, m/s²) with an accepted step: the velocity went from `before` to `after`
     /// (m/s, inertial) in `dt` s under `gravity` (m/s², inertial), so the mean specific force
     /// over the step is |(after − before)/dt − gravity|. A step of no length changes nothing.
+    #[inline]
     pub fn update_acceleration(
         &mut self,
         before: &Vector3<f64>,
@@ -227,11 +231,17 @@ impl Extremes {
 
     /// Updates the pitch rate of largest magnitude with `q` (rad/s, about the inertial X axis,
     /// the cross-slope axis normal to the plane of a planar landing) at time `t`, s.
+    #[inline]
     pub fn update_pitch_rate(&mut self, t: f64, q: f64) {
         if q.abs() > self.pitch_rate.abs() {
             self.pitch_rate = q;
             self.pitch_rate_time = t;
         }
+    }
+
+    /// One value per leg.
+    fn per_leg<T>(&self, f: impl Fn(&LegExtremes) -> T) -> Vec<T> {
+        self.legs.iter().map(f).collect()
     }
 }
 
@@ -375,12 +385,12 @@ impl Summary {
             t_end_s: progress.t,
             steps: progress.steps,
             force_evaluations: progress.force_evaluations,
-            max_primary_stroke_m: extremes.primary.clone(),
-            max_secondary_compression_m: extremes.sec_compression.clone(),
-            max_secondary_tension_m: extremes.sec_tension.clone(),
-            peak_primary_force_n: extremes.primary_force.clone(),
-            peak_secondary_compression_force_n: extremes.sec_compression_force.clone(),
-            peak_secondary_tension_force_n: extremes.sec_tension_force.clone(),
+            max_primary_stroke_m: extremes.per_leg(|l| l.primary),
+            max_secondary_compression_m: extremes.per_leg(|l| l.sec_compression),
+            max_secondary_tension_m: extremes.per_leg(|l| l.sec_tension),
+            peak_primary_force_n: extremes.per_leg(|l| l.primary_force),
+            peak_secondary_compression_force_n: extremes.per_leg(|l| l.sec_compression_force),
+            peak_secondary_tension_force_n: extremes.per_leg(|l| l.sec_tension_force),
             peak_specific_force_m_s2: extremes.specific_force,
             peak_pitch_rate_rad_s: extremes.pitch_rate,
             peak_pitch_rate_time_s: extremes.pitch_rate_time,
@@ -401,20 +411,18 @@ mod tests {
     #[test]
     fn extremes_keep_maxima_and_the_signed_peak_rate() {
         let mut x = Extremes::new(2);
-        x.update_leg(1, 0.1, [0.02, -0.03]);
-        x.update_leg(1, 0.05, [-0.01, 0.04]);
-        assert_eq!(x.primary, vec![0.0, 0.1]);
-        assert_eq!(x.sec_tension[1], [0.02, 0.04]);
-        assert_eq!(x.sec_compression[1], [0.01, 0.03]);
+        x.update_leg(1, 0.1, [0.02, -0.03], 900.0, [-40.0, 25.0]);
+        x.update_leg(1, 0.05, [-0.01, 0.04], 700.0, [10.0, -5.0]);
+        assert_eq!(x.per_leg(|l| l.primary), vec![0.0, 0.1]);
+        assert_eq!(x.legs[1].sec_tension, [0.02, 0.04]);
+        assert_eq!(x.legs[1].sec_compression, [0.01, 0.03]);
+        assert_eq!(x.per_leg(|l| l.primary_force), vec![0.0, 900.0]);
+        assert_eq!(x.legs[1].sec_tension_force, [10.0, 25.0]);
+        assert_eq!(x.legs[1].sec_compression_force, [40.0, 5.0]);
         x.update_pitch_rate(0.1, 0.5);
         x.update_pitch_rate(0.2, -0.7);
         x.update_pitch_rate(0.3, 0.6);
         assert_eq!((x.pitch_rate, x.pitch_rate_time), (-0.7, 0.2));
-        x.update_leg_forces(0, 900.0, [-40.0, 25.0]);
-        x.update_leg_forces(0, 700.0, [10.0, -5.0]);
-        assert_eq!(x.primary_force, vec![900.0, 0.0]);
-        assert_eq!(x.sec_tension_force[0], [10.0, 25.0]);
-        assert_eq!(x.sec_compression_force[0], [40.0, 5.0]);
     }
 
     #[test]
