@@ -4,7 +4,7 @@
 //! percentiles of the strokes against their capacities and of the peak loads
 //! (docs/campaigns.md, "Statistics").
 
-use crate::record::{Cell, Column, Failure, Row, Status};
+use crate::record::{Cell, Column, Failure, Kind, Row, Status};
 use serde::Serialize;
 use statrs::distribution::{Beta, ContinuousCDF};
 
@@ -57,6 +57,16 @@ pub struct Percentiles {
     pub max: f64,
 }
 
+/// How strongly a dispersed input goes with a stable landing: the correlation between its
+/// applied value and the indicator of a stable landing (point-biserial), over every landing.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Influence {
+    /// The applied value's column.
+    pub column: String,
+    /// The correlation, in [−1, 1]; 0 when either is constant.
+    pub correlation_with_stable: f64,
+}
+
 /// A campaign's statistics.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Statistics {
@@ -79,6 +89,25 @@ pub struct Statistics {
     /// Percentiles of the strokes (fractions of capacity), peak loads, the peak specific force
     /// and the minimum stability distance.
     pub percentiles: Vec<Percentiles>,
+    /// The numeric dispersed inputs, the most influential on stability first.
+    pub influence: Vec<Influence>,
+}
+
+/// Pearson's correlation of `x` and `y`; 0 when either is constant.
+pub fn correlation(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - mx) * (b - my);
+        sxx += (a - mx) * (a - mx);
+        syy += (b - my) * (b - my);
+    }
+    if sxx > 0.0 && syy > 0.0 {
+        sxy / (sxx * syy).sqrt()
+    } else {
+        0.0
+    }
 }
 
 /// The one-sided Clopper-Pearson lower bound on a probability from `k` successes in `n`
@@ -182,6 +211,34 @@ impl Statistics {
                 })
             })
             .collect();
+        let stable_indicator: Vec<f64> = rows
+            .iter()
+            .map(|r| f64::from(u8::from(text(r, outcome) == Status::Stable.name())))
+            .collect();
+        let mut influence: Vec<Influence> = columns
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.name.starts_with("applied.") && c.kind == Kind::Float)
+            .map(|(i, c)| {
+                let x: Vec<f64> = rows
+                    .iter()
+                    .map(|r| match r[i] {
+                        Cell::Float(x) => x,
+                        _ => 0.0,
+                    })
+                    .collect();
+                Influence {
+                    column: c.name.clone(),
+                    correlation_with_stable: correlation(&x, &stable_indicator),
+                }
+            })
+            .collect();
+        influence.sort_by(|a, b| {
+            b.correlation_with_stable
+                .abs()
+                .total_cmp(&a.correlation_with_stable.abs())
+                .then_with(|| a.column.cmp(&b.column))
+        });
         Statistics {
             landings: n,
             confidence,
@@ -201,6 +258,7 @@ impl Statistics {
                 })
                 .collect(),
             percentiles,
+            influence,
         }
     }
 }
@@ -264,6 +322,15 @@ mod tests {
         assert_eq!(zero_failure_landings(0.99, 0.95), 299);
         assert_eq!(zero_failure_landings(0.999, 0.95), 2995);
         assert_eq!(zero_failure_landings(0.9, 0.9), 22);
+    }
+
+    #[test]
+    fn correlation_is_pearsons() {
+        assert!((correlation(&[1.0, 2.0, 3.0], &[2.0, 4.0, 6.0]) - 1.0).abs() < 1e-12);
+        assert!(
+            (correlation(&[1.0, 2.0, 3.0], &[1.0, 0.0, 0.0]) + 0.8660254037844387).abs() < 1e-12
+        );
+        assert_eq!(correlation(&[1.0, 1.0], &[0.0, 1.0]), 0.0);
     }
 
     #[test]

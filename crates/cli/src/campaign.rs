@@ -19,16 +19,35 @@ pub enum Output {
     JsonLines,
 }
 
-/// `touchdown campaign FILE`: runs the campaign (or a shard of it, or `more` landings added to
-/// the finished campaign in `out`).
-pub fn run(
-    file: &Path,
-    shard: Option<Shard>,
-    add: Option<u64>,
-    threads: Option<usize>,
-    out: Option<&Path>,
-    output: Output,
-) -> Result<()> {
+/// What `touchdown campaign FILE` is asked to do besides running the campaign.
+pub struct Options<'a> {
+    /// Only this shard.
+    pub shard: Option<Shard>,
+    /// Add this many landings to the finished campaign in `out`.
+    pub add: Option<u64>,
+    /// Threads (default: one per core).
+    pub threads: Option<usize>,
+    /// The campaign's folder.
+    pub out: Option<&'a Path>,
+    /// Where to draw the plots.
+    pub plot: Option<&'a Path>,
+}
+
+/// `touchdown campaign FILE`: runs the campaign (or a shard of it, or landings added to the
+/// finished campaign in `out`).
+pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
+    let Options {
+        shard,
+        add,
+        threads,
+        out,
+        plot,
+    } = options;
+    if plot.is_some() && out.is_none() {
+        anyhow::bail!(
+            "--plot: also give --out DIR (the plots are drawn from the records written there)"
+        );
+    }
     let campaign = Campaign::load(file)?;
     crate::warn(&campaign.base_scenario);
     if threads == Some(0) {
@@ -64,6 +83,9 @@ pub fn run(
         None => touchdown_campaign::run::run(&campaign, shard, threads, out, &mut each)?,
     };
     bar.finish_and_clear();
+    if let (Some(dir), Some(records)) = (plot, out) {
+        crate::plots::campaign(records, dir)?;
+    }
     report(&manifest, &statistics, output)
 }
 
@@ -141,6 +163,17 @@ pub fn text(m: &Manifest, s: &Statistics) -> String {
                 .map(|f| vec!["stroked out".into(), f.name.clone(), f.landings.to_string()]),
         );
     t += &text_table(&["", "", "landings"], &[2], counts);
+    t += "\ndispersed inputs by their correlation with a stable landing (point-biserial)\n";
+    t += &text_table(
+        &["input (unit in its name)", "correlation"],
+        &[1],
+        s.influence.iter().map(|i| {
+            vec![
+                i.column.trim_start_matches("applied.").to_string(),
+                format!("{:+.3}", i.correlation_with_stable),
+            ]
+        }),
+    );
     t += &format!("\nlandings to show a reliability with no failure at {c} confidence\n");
     t += &text_table(
         &["reliability", "landings"],

@@ -257,6 +257,11 @@ struct CampaignArgs {
     /// Threads that land (default: one per core); the records do not depend on it.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+    /// Also draw outcomes.png (every landing over the two dispersed inputs most correlated
+    /// with a stable landing) and strokes.png (strokes against capacities) into DIR, from the
+    /// records in --out (matplotlib, in the project's Python environment).
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -446,10 +451,13 @@ fn run(cli: Cli) -> Result<Verdict> {
                 }
                 (None, Some(file)) => campaign::run(
                     &file,
-                    args.shard,
-                    args.add,
-                    args.threads,
-                    args.out.as_deref(),
+                    campaign::Options {
+                        shard: args.shard,
+                        add: args.add,
+                        threads: args.threads,
+                        out: args.out.as_deref(),
+                        plot: args.plot.as_deref(),
+                    },
                     output(args.format),
                 ),
                 (None, None) => anyhow::bail!("name a campaign file (docs/campaigns.md)"),

@@ -7,26 +7,38 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use touchdown_compare::ScenarioComparison;
 
-/// The plotting script.
-fn script() -> PathBuf {
-    Path::new(touchdown_mujoco::launch::WORKSPACE).join("python/plot_compare.py")
+/// Runs `python/plot_compare.py` with `args`.
+fn draw(args: &[&OsStr]) -> Result<()> {
+    run_script("plot_compare.py", args)
 }
 
-/// Runs the plotting script with `args`; its error output becomes the error.
-fn draw(args: &[&OsStr]) -> Result<()> {
+/// Runs the plotting script `python/<name>` with `args`; its error output becomes the error.
+fn run_script(name: &str, args: &[&OsStr]) -> Result<()> {
     let python = touchdown_mujoco::launch::project_python("--plot")?;
+    let script: PathBuf = Path::new(touchdown_mujoco::launch::WORKSPACE)
+        .join("python")
+        .join(name);
     let out = Command::new(&python)
-        .arg(script())
+        .arg(script)
         .args(args)
         .output()
         .with_context(|| format!("cannot start {}", python.display()))?;
     if !out.status.success() {
         bail!(
-            "python/plot_compare.py failed: {}",
+            "python/{name} failed: {}",
             String::from_utf8_lossy(&out.stderr).trim()
         );
     }
     Ok(())
+}
+
+/// `touchdown campaign --plot DIR`: outcomes.png and strokes.png drawn into `plots` from the
+/// campaign folder `records`.
+pub fn campaign(records: &Path, plots: &Path) -> Result<()> {
+    run_script(
+        "plot_campaign.py",
+        &[records.as_os_str(), plots.as_os_str()],
+    )
 }
 
 /// `touchdown compare --plot DIR`: the traces of `c` (run from `scenario`) as CSV and their

@@ -142,6 +142,10 @@ fn json_summary_has_the_documented_fields() {
         "max_primary_stroke_m",
         "max_secondary_compression_m",
         "max_secondary_tension_m",
+        "peak_primary_force_n",
+        "peak_secondary_compression_force_n",
+        "peak_secondary_tension_force_n",
+        "peak_specific_force_m_s2",
         "peak_pitch_rate_rad_s",
         "min_stability_distance_m",
         "first_contact_s",
@@ -649,4 +653,89 @@ fn a_refused_timestep_names_the_argument() {
         let line = err.lines().find(|l| l.starts_with("error:")).unwrap_or("");
         assert!(line.starts_with("error: --timestep"), "{err}");
     }
+}
+
+#[test]
+fn a_campaign_streams_json_lines_then_its_statistics_and_draws_its_plots() {
+    let (dir, plots) = (temp("campaign"), temp("campaign-plots"));
+    let out = touchdown(&[
+        "campaign",
+        "scenarios/campaigns/small.toml",
+        "--format",
+        "json",
+        "--threads",
+        "2",
+        "--out",
+        dir.to_str().unwrap(),
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 25);
+    for (i, l) in lines[..24].iter().enumerate() {
+        assert_eq!(l["landing"], i, "in landing order");
+        assert!(l["outcome"].is_string() && l["failure"].is_string());
+    }
+    let stats = &lines[24]["statistics"];
+    assert_eq!(stats["landings"], 24);
+    let lower = stats["stable"]["lower_bound"].as_f64().unwrap();
+    assert!(lower > 0.0 && lower < stats["stable"]["fraction"].as_f64().unwrap());
+    assert!(!text.contains("null") && !text.contains("NaN"));
+    // The lines on standard output are the file's.
+    let file = std::fs::read_to_string(dir.join("landings.jsonl")).unwrap();
+    assert!(text.starts_with(&file));
+    assert_png(&plots.join("outcomes.png"));
+    assert_png(&plots.join("strokes.png"));
+    // The text report says what its numbers are.
+    let out = touchdown(&["campaign", "scenarios/campaigns/small.toml"]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        report.contains("P(stable landing) = ") && report.contains("one-sided Clopper-Pearson")
+    );
+}
+
+#[test]
+fn campaign_arguments_are_checked_by_name() {
+    let expect = |args: &[&str], says: &str| {
+        let out = touchdown(args);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+    };
+    let small = "scenarios/campaigns/small.toml";
+    expect(
+        &["campaign", small, "--shard", "5/4"],
+        "expected K/N with 1 ≤ K ≤ N",
+    );
+    expect(
+        &["campaign", small, "--plot", "x"],
+        "--plot: also give --out DIR",
+    );
+    expect(
+        &["campaign", small, "--add", "3"],
+        "--add: name the finished campaign's folder with --out",
+    );
+    expect(
+        &["campaign", small, "--threads", "0"],
+        "--threads: expected at least 1 thread",
+    );
+    expect(
+        &["campaign", "scenarios/campaigns/nothing.toml"],
+        "scenarios/campaigns/nothing.toml: cannot read the campaign file",
+    );
+    let empty = temp("merge-empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    expect(
+        &["campaign", "merge", empty.to_str().unwrap(), "--out", "x"],
+        "expected a campaign folder written by `touchdown campaign --out`",
+    );
 }
