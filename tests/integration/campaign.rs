@@ -109,13 +109,7 @@ fn the_values_applied_are_the_values_drawn_and_reach_the_model() {
             references.insert(t.clone());
         }
         // In SI in the model: the vertical velocity (ft/s in the file) and the heading (deg).
-        let overrides: Vec<(&str, toml::Value)> = campaign
-            .dispersions
-            .iter()
-            .zip(&drawn)
-            .map(|(d, v)| (d.field.as_str(), v.to_toml()))
-            .collect();
-        let sc = campaign.base.with(&overrides).unwrap();
+        let sc = campaign.base.with(&campaign.overrides(&drawn)).unwrap();
         let (Value::Number(vv), Value::Number(heading)) = (&drawn[0], &drawn[2]) else {
             panic!("numbers expected")
         };

@@ -79,15 +79,9 @@ pub fn land(
     histories: Option<&Path>,
 ) -> Result<Row, CampaignError> {
     let drawn = draws(campaign, landing);
-    let overrides: Vec<(&str, toml::Value)> = campaign
-        .dispersions
-        .iter()
-        .zip(&drawn)
-        .map(|(d, v)| (d.field.as_str(), v.to_toml()))
-        .collect();
     let sc = match campaign
         .base
-        .with(&overrides)
+        .with(&campaign.overrides(&drawn))
         .and_then(|sc| same_legs(campaign, sc))
     {
         Ok(sc) => sc,

@@ -262,6 +262,18 @@ impl Campaign {
     }
 }
 
+impl Campaign {
+    /// The overrides that set each dispersed field to its value in `values` (one per
+    /// dispersion, in order), for [`ScenarioBase::with`].
+    pub fn overrides<'a>(&'a self, values: &[Value]) -> Vec<(&'a str, toml::Value)> {
+        self.dispersions
+            .iter()
+            .zip(values)
+            .map(|(d, v)| (d.field.as_str(), v.to_toml()))
+            .collect()
+    }
+}
+
 /// SHA-256 (hex) of the campaign table without `landings`, written back as TOML (keys in
 /// order): two files that differ only in their landing count, or in layout and comments, are
 /// one campaign.

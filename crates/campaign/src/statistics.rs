@@ -153,20 +153,16 @@ impl Statistics {
         let count_of = |col: Option<usize>, name: &str| {
             rows.iter().filter(|r| text(r, col) == name).count() as u64
         };
-        let outcomes = Status::ALL
-            .iter()
-            .map(|s| Count {
-                name: s.name().into(),
-                landings: count_of(outcome, s.name()),
-            })
-            .collect();
-        let failures = Failure::ALL
-            .iter()
-            .map(|f| Count {
-                name: f.name().into(),
-                landings: count_of(failure, f.name()),
-            })
-            .collect();
+        let counts = |col: Option<usize>, names: &mut dyn Iterator<Item = &'static str>| {
+            names
+                .map(|name| Count {
+                    name: name.into(),
+                    landings: count_of(col, name),
+                })
+                .collect()
+        };
+        let outcomes = counts(outcome, &mut Status::ALL.iter().map(|s| s.name()));
+        let failures = counts(failure, &mut Failure::ALL.iter().map(|f| f.name()));
         let mut struts = std::collections::BTreeMap::<String, u64>::new();
         for r in rows {
             for s in text(r, outs).split(',').filter(|s| !s.is_empty()) {
