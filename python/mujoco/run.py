@@ -2,6 +2,7 @@
 
 Usage:
   run.py SCENARIO --out DIR --library LIB [--timestep S] [--history] [--profile] [--viewer]
+  run.py --serve --library LIB
 
 The Rust library LIB (crate touchdown-mujoco, built by cargo as
 target/<profile>/deps/libtouchdown_mujoco.so) loads the scenario, generates the MJCF model
@@ -23,6 +24,12 @@ Options:
   --viewer    watch the law-driven run in MuJoCo's passive viewer (needs a display and the
               `glfw` package, which the full `mujoco` package brings; see docs/engines.md)
 
+With --serve the runner lands one scenario per line of standard input, a JSON object
+{"scenario": PATH, "out": DIR, "history": BOOL}, and answers each with one line
+`touchdown-reply {"status": S, "message": "..."}` on standard output (S as the exit status
+below; the files as below, in DIR), until standard input closes: Python's and MuJoCo's start-up
+are paid once for many landings (a campaign's).
+
 Exit status: 0 done; 1 the run failed (the message on stderr); 2 bad arguments or library; 3
 `mujoco` is not installed in this interpreter; 4 the landing stopped with a diagnostic (when,
 where and which law: the message on stderr, and the diagnostic as data in DIR/divergence.json,
@@ -41,19 +48,31 @@ STOPPED_STATUS = 4
 DIVERGENCE_FILE = "divergence.json"
 
 
+REPLY = "touchdown-reply "
+
+
+class Failure(Exception):
+    """A landing that did not complete: its message and the exit status that says why."""
+
+    def __init__(self, message, status=1):
+        super().__init__(message)
+        self.message = message
+        self.status = status
+
+
 def fail(message, status=1):
-    print(f"run.py: {message}", file=sys.stderr)
-    sys.exit(status)
+    raise Failure(message, status)
 
 
 try:
     import mujoco
 except ImportError as e:
-    fail(
-        f"the pinned MuJoCo (python/requirements.txt) cannot be imported by {sys.executable}: {e}; "
+    print(
+        f"run.py: the pinned MuJoCo (python/requirements.txt) cannot be imported by {sys.executable}: {e}; "
         "run scripts/setup-python",
-        SETUP_STATUS,
+        file=sys.stderr,
     )
+    sys.exit(SETUP_STATUS)
 
 MUJOCO_LOG = "MUJOCO_LOG.TXT"
 
@@ -177,28 +196,18 @@ def pointer(array, dtype):
     return array.ctypes.data
 
 
-def main(argv):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("scenario")
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--library", required=True)
-    ap.add_argument("--timestep", type=float, default=0.0)
-    ap.add_argument("--history", action="store_true")
-    ap.add_argument("--profile", action="store_true")
-    ap.add_argument("--viewer", action="store_true")
-    args = ap.parse_args(argv)
+def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
+    """Lands `scenario` (an absolute path) and writes summary.json (and with `history`
+    history.csv) into `out`; `mode` is plain, profile or viewer. Returns the timing of a
+    profiled run, else None; raises Failure when the landing does not complete."""
     # MuJoCo writes its warnings to MUJOCO_LOG.TXT in the current directory: run in the output
     # directory, so that no log is left where the user stands and the warnings are read below.
-    for name in ("scenario", "out", "library"):
-        setattr(args, name, os.path.abspath(getattr(args, name)))
-    os.makedirs(args.out, exist_ok=True)
-    os.chdir(args.out)
-    log = os.path.join(args.out, MUJOCO_LOG)
+    os.makedirs(out, exist_ok=True)
+    os.chdir(out)
+    log = os.path.join(out, MUJOCO_LOG)
     if os.path.exists(log):
         os.remove(log)
-
-    lib = load_library(args.library)
-    h = lib.touchdown_mujoco_open(args.scenario.encode(), args.timestep)
+    h = lib.touchdown_mujoco_open(scenario.encode(), timestep)
 
     def check(status):
         if status < 0:
@@ -206,7 +215,7 @@ def main(argv):
             message = message.decode() if message else "unknown error"
             divergence = lib.touchdown_mujoco_divergence(h)
             if divergence:
-                with open(os.path.join(args.out, DIVERGENCE_FILE), "wb") as f:
+                with open(os.path.join(out, DIVERGENCE_FILE), "wb") as f:
                     f.write(divergence)
                 fail(message, STOPPED_STATUS)
             fail(message)
@@ -247,29 +256,82 @@ def main(argv):
             pointer(data.qfrc_applied, f64),
             pointer(data.xfrc_applied, f64),
         )
-        os.makedirs(args.out, exist_ok=True)
-        history = os.path.join(args.out, "history.csv").encode() if args.history else None
+        history = os.path.join(out, "history.csv").encode() if history else None
         check(
             lib.touchdown_mujoco_bind(
                 h, index, legs, ctypes.byref(sizes), ctypes.byref(ptrs),
                 mujoco.__version__.encode(), history,
             )
         )
-        if args.viewer:
+        timing = None
+        if mode == "viewer":
             status, steps = run_with_viewer(lib, h, model, data)
-            timing = None
-        elif args.profile:
+        elif mode == "profile":
             status, steps, timing = run_profiled(lib, h, model, data)
         else:
             status, steps = run(lib, h, model, data)
-            timing = None
         check(status)
         refuse_warnings(log, "running the landing")
-        check(lib.touchdown_mujoco_finish(h, os.path.join(args.out, "summary.json").encode()))
-        if timing is not None:
-            print(json.dumps(timing))
+        check(lib.touchdown_mujoco_finish(h, os.path.join(out, "summary.json").encode()))
     finally:
         lib.touchdown_mujoco_close(h)
+    return timing
+
+
+def serve(lib):
+    """Lands the scenarios asked for on standard input, one reply line each (see the module
+    documentation), until standard input closes."""
+    for line in sys.stdin:
+        if not line.strip():
+            continue
+        try:
+            request = json.loads(line)
+            land(
+                lib,
+                os.path.abspath(request["scenario"]),
+                os.path.abspath(request["out"]),
+                history=bool(request.get("history", False)),
+            )
+            reply = {"status": 0, "message": ""}
+        except Failure as e:
+            reply = {"status": e.status, "message": e.message}
+        except Exception as e:  # noqa: BLE001 - the caller gets the project's message
+            reply = {"status": 1, "message": f"unexpected {type(e).__name__} in the MuJoCo runner: {e}"}
+        sys.stdout.write(REPLY + json.dumps(reply) + "\n")
+        sys.stdout.flush()
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scenario", nargs="?")
+    ap.add_argument("--out")
+    ap.add_argument("--library", required=True)
+    ap.add_argument("--timestep", type=float, default=0.0)
+    ap.add_argument("--history", action="store_true")
+    ap.add_argument("--profile", action="store_true")
+    ap.add_argument("--viewer", action="store_true")
+    ap.add_argument("--serve", action="store_true")
+    args = ap.parse_args(argv)
+    lib = load_library(os.path.abspath(args.library))
+    if args.serve:
+        serve(lib)
+        return
+    if not args.scenario or not args.out:
+        fail("SCENARIO and --out are required (or --serve)", 2)
+    mode = "viewer" if args.viewer else "profile" if args.profile else "plain"
+    timing = land(
+        lib,
+        os.path.abspath(args.scenario),
+        os.path.abspath(args.out),
+        args.timestep,
+        args.history,
+        mode,
+    )
+    if timing is not None:
+        print(json.dumps(timing))
+
+
+
 
 
 def run(lib, h, model, data):
@@ -369,5 +431,9 @@ def run_with_viewer(lib, h, model, data):
 if __name__ == "__main__":
     try:
         main(sys.argv[1:])
+    except Failure as e:
+        print(f"run.py: {e.message}", file=sys.stderr)
+        sys.exit(e.status)
     except Exception as e:  # noqa: BLE001 - the caller gets the project's message, never a traceback
-        fail(f"unexpected {type(e).__name__} in the MuJoCo runner: {e}")
+        print(f"run.py: unexpected {type(e).__name__} in the MuJoCo runner: {e}", file=sys.stderr)
+        sys.exit(1)

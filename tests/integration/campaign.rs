@@ -322,3 +322,38 @@ fn the_parquet_records_read_back_in_pandas_polars_and_duckdb() {
         serde_json::json!(["duckdb", "pandas", "polars"])
     );
 }
+
+/// A MuJoCo campaign lands through runners that serve many landings (one per thread): each
+/// landing's record is that of a runner started for it alone.
+#[test]
+fn a_mujoco_campaign_lands_as_single_runs_do() {
+    python();
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("mujoco.toml");
+    small_with(&file, 4);
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::write(&file, text.replace("engine = \"core\"", "engine = \"mujoco\"")).unwrap();
+    let campaign = Campaign::load(&file).unwrap();
+    let (manifest, rows, _) = run(&campaign, None, Some(2), None, |_| ()).unwrap();
+    let strokes: Vec<usize> = (0..4)
+        .map(|leg| {
+            let name = format!("leg{}.primary.stroke_m", leg + 1);
+            manifest.columns.iter().position(|c| c.name == name).unwrap()
+        })
+        .collect();
+    for (i, row) in rows.iter().enumerate() {
+        let sc = campaign
+            .base
+            .with(&campaign.overrides(&draws(&campaign, i as u64)))
+            .unwrap();
+        let alone = touchdown_registry::land(campaign.engine, &file, &sc, &mut (), None).unwrap();
+        for (leg, col) in strokes.iter().enumerate() {
+            assert_eq!(
+                row[*col],
+                Cell::Float(alone.max_primary_stroke_m[leg]),
+                "landing {i} leg {}",
+                leg + 1
+            );
+        }
+    }
+}

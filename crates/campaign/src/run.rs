@@ -108,9 +108,13 @@ pub fn land(
     let history_dir = histories.filter(|_| campaign.histories.contains(&landing));
     let result = match history_dir {
         Some(dir) => land_with_history(campaign, landing, &sc, dir),
-        None => {
-            touchdown_registry::land(campaign.engine, &campaign.scenario_path, &sc, &mut (), None)
-        }
+        None => touchdown_registry::land_reusing_runner(
+            campaign.engine,
+            &campaign.scenario_path,
+            &sc,
+            &mut (),
+            None,
+        ),
     };
     match result {
         Err(f) if matches!(f.error, RunError::Setup(_)) => Err(CampaignError::Engine(Box::new(f))),
@@ -143,7 +147,7 @@ fn land_with_history(
         let own = dir.join(format!("landing-{landing}"));
         std::fs::create_dir_all(&own)
             .map_err(|e| setup(format!("cannot create {}: {e}", own.display())))?;
-        return touchdown_registry::land(
+        return touchdown_registry::land_reusing_runner(
             campaign.engine,
             &campaign.scenario_path,
             sc,
@@ -154,7 +158,7 @@ fn land_with_history(
     let path = dir.join(format!("landing-{landing}.csv"));
     let mut history =
         Some(History::create(&path, sc.legs.len()).map_err(|e| setup(e.to_string()))?);
-    let summary = touchdown_registry::land(
+    let summary = touchdown_registry::land_reusing_runner(
         campaign.engine,
         &campaign.scenario_path,
         sc,

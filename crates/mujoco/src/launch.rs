@@ -128,32 +128,170 @@ impl Launch {
                 "the runner was still going after the {RUNNER_WALL_CLOCK_S} s wall-clock guard and was stopped"
             )));
         };
-        match status.code() {
-            Some(0) => {}
-            Some(RUNNER_SETUP_STATUS) => return Err(setup_error(stderr)),
-            Some(RUNNER_STOPPED_STATUS) => {
-                let path = out.join(DIVERGENCE_FILE);
-                let read = std::fs::read_to_string(&path)
-                    .map_err(|e| e.to_string())
-                    .and_then(|text| serde_json::from_str(&text).map_err(|e| e.to_string()));
-                let _ = std::fs::remove_file(&path);
-                return match read {
-                    Ok(d) => Err(MujocoError::Diverged(Box::new(d))),
-                    Err(e) => Err(MujocoError::Runner(format!(
-                        "{stderr} (and its diagnostic {} cannot be read: {e})",
-                        path.display()
-                    ))),
-                };
-            }
-            _ => return Err(MujocoError::Runner(stderr)),
-        }
-        let path = out.join("summary.json");
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            std::io::Error::new(e.kind(), format!("cannot read {}: {e}", path.display()))
-        })?;
-        serde_json::from_str(&text)
-            .map_err(|e| MujocoError::Runner(format!("{}: not a summary: {e}", path.display())))
+        outcome(status.code(), stderr, out)
     }
+
+    /// A runner kept alive to land scenario after scenario ([`Worker`]).
+    pub fn worker(&self) -> Result<Worker, MujocoError> {
+        let mut child = Command::new(&self.python)
+            .arg(&self.runner)
+            .arg("--serve")
+            .arg("--library")
+            .arg(&self.library)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| setup_error(format!("cannot start {}: {e}", self.python.display())))?;
+        let (Some(stdin), Some(stdout), Some(mut stderr)) =
+            (child.stdin.take(), child.stdout.take(), child.stderr.take())
+        else {
+            return Err(MujocoError::Runner("the runner's pipes are missing".into()));
+        };
+        let (tx, replies) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            use std::io::BufRead;
+            for line in std::io::BufReader::new(stdout)
+                .lines()
+                .map_while(Result::ok)
+            {
+                if let Some(reply) = line.strip_prefix(REPLY_PREFIX) {
+                    if tx.send(reply.to_string()).is_err() {
+                        break;
+                    }
+                }
+            }
+        });
+        let errors = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
+        let sink = errors.clone();
+        std::thread::spawn(move || {
+            let mut text = String::new();
+            let _ = stderr.read_to_string(&mut text);
+            if let Ok(mut e) = sink.lock() {
+                *e = text;
+            }
+        });
+        Ok(Worker {
+            child,
+            stdin: Some(stdin),
+            replies,
+            errors,
+        })
+    }
+}
+
+/// The prefix of the runner's reply lines in `--serve` mode.
+const REPLY_PREFIX: &str = "touchdown-reply ";
+
+/// A MuJoCo runner (`run.py --serve`) that lands scenario after scenario: Python's and
+/// MuJoCo's start-up (150-240 ms) paid once, not once per landing. Each landing is the same
+/// code as a runner started for it alone, on a fresh model; the runner ends when the worker is
+/// dropped.
+#[derive(Debug)]
+pub struct Worker {
+    child: std::process::Child,
+    stdin: Option<std::process::ChildStdin>,
+    replies: std::sync::mpsc::Receiver<String>,
+    errors: std::sync::Arc<std::sync::Mutex<String>>,
+}
+
+impl Worker {
+    /// Lands `scenario` and writes `summary.json`, and with `history` also `history.csv`, into
+    /// `out`, as [`Launch::run`] does. A worker that fails outside a landing (it died, it hung
+    /// past the wall-clock guard) is of no further use: start another.
+    pub fn run(
+        &mut self,
+        scenario: &Path,
+        out: &Path,
+        history: bool,
+    ) -> Result<Summary, MujocoError> {
+        use std::io::Write;
+        let request = serde_json::json!({
+            "scenario": scenario,
+            "out": out,
+            "history": history,
+        });
+        let sent = match self.stdin.as_mut() {
+            Some(stdin) => writeln!(stdin, "{request}").and_then(|()| stdin.flush()),
+            None => Err(std::io::Error::other("the runner's input is closed")),
+        };
+        if let Err(e) = sent {
+            return Err(self.died(&format!("cannot send it the landing: {e}")));
+        }
+        match self
+            .replies
+            .recv_timeout(Duration::from_secs(RUNNER_WALL_CLOCK_S))
+        {
+            Ok(line) => {
+                // {"status": S, "message": "..."}: S as the runner's exit status.
+                let reply: serde_json::Value = serde_json::from_str(&line).map_err(|e| {
+                    MujocoError::Runner(format!("the runner's reply {line:?} is not JSON: {e}"))
+                })?;
+                let status = reply["status"].as_i64().and_then(|s| i32::try_from(s).ok());
+                let message = reply["message"].as_str().unwrap_or_default().to_string();
+                outcome(status, message, out)
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                let _ = self.child.kill();
+                Err(MujocoError::Runner(format!(
+                    "the runner was still going after the {RUNNER_WALL_CLOCK_S} s wall-clock guard and was stopped"
+                )))
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => Err(self.died("it ended")),
+        }
+    }
+
+    /// The error of a runner that ended or cannot be reached: what it said on standard error.
+    fn died(&mut self, what: &str) -> MujocoError {
+        let _ = self.child.wait();
+        let said = self
+            .errors
+            .lock()
+            .map(|e| e.trim().to_string())
+            .unwrap_or_default();
+        match self.child.try_wait() {
+            Ok(Some(s)) if s.code() == Some(RUNNER_SETUP_STATUS) => setup_error(said),
+            _ => MujocoError::Runner(format!("the serving runner failed ({what}): {said}")),
+        }
+    }
+}
+
+impl Drop for Worker {
+    /// Closes the runner's input (it ends after its current landing) and waits for it.
+    fn drop(&mut self) {
+        drop(self.stdin.take());
+        let _ = self.child.wait();
+    }
+}
+
+/// What a runner's exit status (or a serving runner's reply status) and message mean for the
+/// landing whose files it wrote into `out`.
+fn outcome(status: Option<i32>, message: String, out: &Path) -> Result<Summary, MujocoError> {
+    match status {
+        Some(0) => {}
+        Some(RUNNER_SETUP_STATUS) => return Err(setup_error(message)),
+        Some(RUNNER_STOPPED_STATUS) => {
+            let path = out.join(DIVERGENCE_FILE);
+            let read = std::fs::read_to_string(&path)
+                .map_err(|e| e.to_string())
+                .and_then(|text| serde_json::from_str(&text).map_err(|e| e.to_string()));
+            let _ = std::fs::remove_file(&path);
+            return match read {
+                Ok(d) => Err(MujocoError::Diverged(Box::new(d))),
+                Err(e) => Err(MujocoError::Runner(format!(
+                    "{message} (and its diagnostic {} cannot be read: {e})",
+                    path.display()
+                ))),
+            };
+        }
+        _ => return Err(MujocoError::Runner(message)),
+    }
+    let path = out.join("summary.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        std::io::Error::new(e.kind(), format!("cannot read {}: {e}", path.display()))
+    })?;
+    serde_json::from_str(&text)
+        .map_err(|e| MujocoError::Runner(format!("{}: not a summary: {e}", path.display())))
 }
 
 /// Runs `cmd` (its standard output discarded, its standard error collected) for at most

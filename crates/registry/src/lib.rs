@@ -62,7 +62,9 @@ where
         Engine::Rapier => {
             touchdown_rapier::RapierSimulation::new(sc).and_then(|mut s| s.run(observer))
         }
-        Engine::Mujoco => land_on_mujoco(sc, out),
+        Engine::Mujoco => land_on_mujoco(sc, out, |resolved, dir, history| {
+            touchdown_mujoco::Launch::locate()?.run(resolved, dir, history)
+        }),
     }
     .map_err(failure)
 }
@@ -75,9 +77,58 @@ pub fn scratch_folder(engine: Engine) -> Result<tempfile::TempDir, RunError> {
         .map_err(|e| RunError::setup(engine, format!("cannot create a scratch folder: {e}")))
 }
 
-fn land_on_mujoco(sc: &Scenario, out: Option<&Path>) -> Result<Summary, RunError> {
+/// As [`land`], but a MuJoCo landing goes to a runner this thread keeps serving
+/// ([`touchdown_mujoco::launch::Worker`]): Python's and MuJoCo's start-up are paid once per
+/// thread, not once per landing (a campaign's landings). Results are those of [`land`].
+pub fn land_reusing_runner<O>(
+    engine: Engine,
+    path: &Path,
+    sc: &Scenario,
+    observer: &mut O,
+    out: Option<&Path>,
+) -> Result<Summary, EngineFailure>
+where
+    O: Observer<touchdown_core::Simulation> + Observer<touchdown_rapier::RapierSimulation>,
+{
+    if engine != Engine::Mujoco {
+        return land(engine, path, sc, observer, out);
+    }
+    land_on_mujoco(sc, out, |resolved, dir, history| {
+        MUJOCO_RUNNER.with(|cell| {
+            let mut runner = cell.borrow_mut();
+            let worker = match runner.as_mut() {
+                Some(w) => w,
+                None => runner.insert(touchdown_mujoco::Launch::locate()?.worker()?),
+            };
+            let result = worker.run(resolved, dir, history);
+            // A runner that failed outside a landing is replaced by the next landing.
+            if matches!(result, Err(touchdown_mujoco::MujocoError::Runner(_))) {
+                *runner = None;
+            }
+            result
+        })
+    })
+    .map_err(|error| EngineFailure {
+        engine,
+        scenario: path.display().to_string(),
+        error,
+    })
+}
+
+thread_local! {
+    /// This thread's serving MuJoCo runner, started by its first MuJoCo landing.
+    static MUJOCO_RUNNER: std::cell::RefCell<Option<touchdown_mujoco::launch::Worker>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Lands `sc` on MuJoCo with `runner` (the resolved scenario's file, the output folder, whether
+/// to write the history), in `out` or a scratch folder.
+fn land_on_mujoco(
+    sc: &Scenario,
+    out: Option<&Path>,
+    runner: impl FnOnce(&Path, &Path, bool) -> Result<Summary, touchdown_mujoco::MujocoError>,
+) -> Result<Summary, RunError> {
     touchdown_mujoco::refusal(sc)?;
-    let launch = touchdown_mujoco::Launch::locate()?;
     let scratch;
     let dir = match out {
         Some(dir) => dir,
@@ -93,8 +144,7 @@ fn land_on_mujoco(sc: &Scenario, out: Option<&Path>) -> Result<Summary, RunError
             format!("cannot write {}: {e}", resolved.display()),
         )
     })?;
-    launch
-        .run(&resolved, dir, out.is_some())
+    runner(&resolved, dir, out.is_some())
         .map_err(RunError::from)
         .map_err(|e| match e {
             // A scratch folder's name changes from run to run: a set-up failure names what the
