@@ -242,6 +242,7 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "field `record.histories`: landing 24 is not in the campaign",
         ),
         ("engine = \"core\"", "engine = \"bullet\"", "field `engine`"),
+        ("log_std_dev = 0.4", "log_std_dev = 1e300", "field `dispersion[3]`: its log_normal draws would overflow"),
     ];
     for (from, to, expected) in cases {
         assert!(good.contains(from), "{from}");
@@ -332,13 +333,21 @@ fn a_mujoco_campaign_lands_as_single_runs_do() {
     let file = tmp.path().join("mujoco.toml");
     small_with(&file, 4);
     let text = std::fs::read_to_string(&file).unwrap();
-    std::fs::write(&file, text.replace("engine = \"core\"", "engine = \"mujoco\"")).unwrap();
+    std::fs::write(
+        &file,
+        text.replace("engine = \"core\"", "engine = \"mujoco\""),
+    )
+    .unwrap();
     let campaign = Campaign::load(&file).unwrap();
     let (manifest, rows, _) = run(&campaign, None, Some(2), None, |_| ()).unwrap();
     let strokes: Vec<usize> = (0..4)
         .map(|leg| {
             let name = format!("leg{}.primary.stroke_m", leg + 1);
-            manifest.columns.iter().position(|c| c.name == name).unwrap()
+            manifest
+                .columns
+                .iter()
+                .position(|c| c.name == name)
+                .unwrap()
         })
         .collect();
     for (i, row) in rows.iter().enumerate() {
@@ -356,4 +365,91 @@ fn a_mujoco_campaign_lands_as_single_runs_do() {
             );
         }
     }
+}
+
+/// Every leaf of the small campaign replaced, one at a time, by a hostile value: the campaign
+/// is refused naming the file (and a field), or its first landings run to records with no
+/// NaN and no panic (proptest, seeded as the scenario fuzzers are).
+#[test]
+fn mutated_campaign_files_are_refused_by_name_or_land_cleanly() {
+    use proptest::prelude::*;
+    let text = std::fs::read_to_string(small()).unwrap().replace(
+        "scenario = \"../",
+        &format!("scenario = \"{}/", scenario("").display()),
+    );
+    let table: toml::Table = toml::from_str(&text).unwrap();
+    let mut leaves = Vec::new();
+    fn walk(prefix: Vec<String>, v: &toml::Value, out: &mut Vec<Vec<String>>) {
+        match v {
+            toml::Value::Table(t) => {
+                for (k, v) in t {
+                    let mut p = prefix.clone();
+                    p.push(k.clone());
+                    walk(p, v, out);
+                }
+            }
+            toml::Value::Array(a) => {
+                for (i, v) in a.iter().enumerate() {
+                    let mut p = prefix.clone();
+                    p.push(i.to_string());
+                    walk(p, v, out);
+                }
+            }
+            _ => out.push(prefix),
+        }
+    }
+    walk(Vec::new(), &toml::Value::Table(table.clone()), &mut leaves);
+    let hostile: Vec<toml::Value> = vec![
+        toml::Value::Float(f64::NAN),
+        toml::Value::Float(f64::INFINITY),
+        toml::Value::Float(-1e308),
+        toml::Value::Float(1e308),
+        toml::Value::Integer(0),
+        toml::Value::Integer(-1),
+        toml::Value::Integer(i64::MAX),
+        toml::Value::Float(1e-300),
+        toml::Value::String("x".into()),
+        toml::Value::Boolean(true),
+        toml::Value::Array(vec![]),
+    ];
+    let tmp = tempfile::tempdir().unwrap();
+    let (mut runner, _, _) = touchdown_tests::fuzz_runner(48);
+    let strategy = (any::<prop::sample::Index>(), any::<prop::sample::Index>());
+    runner
+        .run(&strategy, |(leaf, value)| {
+            let path = &leaves[leaf.index(leaves.len())];
+            let value = &hostile[value.index(hostile.len())];
+            let mut t = toml::Value::Table(table.clone());
+            let mut node = &mut t;
+            for k in path {
+                node = match node {
+                    toml::Value::Table(t) => t.get_mut(k).unwrap(),
+                    toml::Value::Array(a) => &mut a[k.parse::<usize>().unwrap()],
+                    _ => unreachable!(),
+                };
+            }
+            *node = value.clone();
+            let file = tmp.path().join("mutant.toml");
+            std::fs::write(&file, toml::to_string(&t).unwrap()).unwrap();
+            let what = format!("{} = {value}", path.join("."));
+            match Campaign::load(&file) {
+                Err(e) => {
+                    let m = e.to_string();
+                    prop_assert!(m.starts_with(&file.display().to_string()), "{what}: {m}");
+                }
+                Ok(c) => {
+                    for i in 0..c.landings.min(2) {
+                        let row = touchdown_campaign::run::land(&c, i, None)
+                            .map_err(|e| TestCaseError::fail(format!("{what}: {e}")))?;
+                        prop_assert!(
+                            row.iter()
+                                .all(|c| !matches!(c, Cell::Float(x) if !x.is_finite())),
+                            "{what}: a non-finite number in landing {i}"
+                        );
+                    }
+                }
+            }
+            Ok(())
+        })
+        .unwrap();
 }

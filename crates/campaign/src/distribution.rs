@@ -183,6 +183,18 @@ impl Distribution {
         }
     }
 
+    /// Whether every value the distribution can give is a finite number (and, log-normal, a
+    /// positive one): checked at its centre and at ±9 (the normal scores of the open-unit
+    /// uniforms reach ±8.3), where the quantile functions are monotone.
+    pub fn draws_are_finite(&self) -> bool {
+        [-9.0, 0.0, 9.0].iter().all(|z| match self.quantile(*z, 0) {
+            Value::Number(x) => {
+                x.is_finite() && !(matches!(self, Distribution::LogNormal { .. }) && x <= 0.0)
+            }
+            _ => true,
+        })
+    }
+
     /// A central value (the median or the first of a list), for the campaign's dry run.
     pub fn central(&self) -> Value {
         match self {
@@ -308,6 +320,16 @@ mod tests {
         let target = 0.5 * (standard().cdf(-1.0) + standard().cdf(2.0));
         assert!((standard().cdf(m) - target).abs() < 1e-12);
         assert!(Distribution::truncated_normal(0.0, 1.0, 40.0, 41.0).is_err());
+        assert!(t.draws_are_finite() && n.draws_are_finite() && l.draws_are_finite());
+        let wide = Distribution::Uniform {
+            min: -1e308,
+            max: 1e308,
+        };
+        let steep = Distribution::LogNormal {
+            median: 1.0,
+            log_std_dev: 1e3,
+        };
+        assert!(!wide.draws_are_finite() && !steep.draws_are_finite());
         let c = Distribution::choice(
             vec![Value::Text("a".into()), Value::Text("b".into())],
             &[1.0, 3.0],

@@ -418,6 +418,15 @@ fn dispersion(
             (field, unit, Distribution::List { values })
         }
     };
+    if !distribution.draws_are_finite() {
+        return Err((
+            at.to_string(),
+            format!(
+                "its {} draws would overflow: its values out to ±9 standard scores must be finite numbers (and positive, log-normal)",
+                distribution.name()
+            ),
+        ));
+    }
     let column = match &unit {
         Some(u) => format!("{field}_{}", unit_suffix(u)?),
         None => field.clone(),
