@@ -3,6 +3,9 @@
 * outcomes.png: every landing over the two dispersed inputs most correlated with a stable
   landing (statistics.json, "influence"), stable and unstable landings marked apart, the others
   (undecided, stopped, refused) in grey;
+  with, when OUT/boundary.json is there (written by `touchdown campaign --plot` when those two
+  inputs are the descent and horizontal speeds), the engine's stability boundary of the base
+  configuration drawn over them;
 * strokes.png: histograms of the maximum strokes as fractions of their strut's capacity, the
   primaries and the secondaries pooled over the legs, with the capacity (1.0) marked.
 
@@ -43,6 +46,12 @@ def main(folder, out):
         other = [(r[x], r[y]) for r in records if r["outcome"] not in ("stable", "unstable")]
         if other:
             ax.scatter(*zip(*other), s=14, c="grey", marker="s", label=f"undecided, stopped or refused ({len(other)})")
+        boundary = out / "boundary.json"
+        if boundary.exists():
+            b = json.loads(boundary.read_text())
+            pts = sorted(((p[x], p[y]) for p in b["points"] if x in p and y in p), key=lambda q: q[1])
+            if pts:
+                ax.plot(*zip(*pts), "k-", lw=1.8, label=f"{b['engine']} boundary of the base configuration")
         corr = {i["column"]: i["correlation_with_stable"] for i in stats["influence"]}
         ax.set_xlabel(f"{x.removeprefix('applied.')}  (correlation with stable {corr[x]:+.2f})")
         ax.set_ylabel(f"{y.removeprefix('applied.')}  (correlation with stable {corr[y]:+.2f})")

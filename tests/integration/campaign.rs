@@ -242,7 +242,11 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "field `record.histories`: landing 24 is not in the campaign",
         ),
         ("engine = \"core\"", "engine = \"bullet\"", "field `engine`"),
-        ("log_std_dev = 0.4", "log_std_dev = 1e300", "field `dispersion[3]`: its log_normal draws would overflow"),
+        (
+            "log_std_dev = 0.4",
+            "log_std_dev = 1e300",
+            "field `dispersion[3]`: its log_normal draws would overflow",
+        ),
     ];
     for (from, to, expected) in cases {
         assert!(good.contains(from), "{from}");

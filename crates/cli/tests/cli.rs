@@ -739,3 +739,49 @@ fn campaign_arguments_are_checked_by_name() {
         "expected a campaign folder written by `touchdown campaign --out`",
     );
 }
+
+#[test]
+fn a_campaign_of_descent_and_horizontal_speeds_plots_the_engines_boundary() {
+    let (dir, plots) = (temp("speeds"), temp("speeds-plots"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("speeds.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "schema_version = 1\nname = \"speeds\"\nscenario = {:?}\nlandings = 40\nseed = 3\n\n[[dispersion]]\nfield = \"touchdown.vertical_velocity\"\nunit = \"ft/s\"\ndistribution = \"uniform\"\nmin = -12.0\nmax = -4.0\n\n[[dispersion]]\nfield = \"touchdown.horizontal_velocity[1]\"\nunit = \"ft/s\"\ndistribution = \"uniform\"\nmin = 0.0\nmax = 30.0\n",
+            root().join("scenarios/table-i-2-2-vv8.toml").display().to_string()
+        ),
+    )
+    .unwrap();
+    let out = touchdown(&[
+        "campaign",
+        file.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+        "--plot",
+        plots.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let b: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(plots.join("boundary.json")).unwrap())
+            .unwrap();
+    let points = b["points"].as_array().unwrap();
+    assert!(points.len() >= 5, "{b}");
+    for p in points {
+        let vh = p["applied.touchdown.horizontal_velocity[1]_ft_s"]
+            .as_f64()
+            .unwrap();
+        let vv = p["applied.touchdown.vertical_velocity_ft_s"]
+            .as_f64()
+            .unwrap();
+        assert!(
+            (0.0..=30.0).contains(&vh) && (-12.0..=-4.0).contains(&vv),
+            "{p}"
+        );
+    }
+    assert_png(&plots.join("outcomes.png"));
+}
