@@ -712,22 +712,20 @@ fn campaign_arguments_are_checked_by_name() {
         assert!(stderr.contains(says), "{args:?}: {stderr}");
     };
     let small = "scenarios/campaigns/small.toml";
-    expect(
-        &["campaign", small, "--shard", "5/4"],
-        "expected K/N with 1 ≤ K ≤ N",
-    );
-    expect(
-        &["campaign", small, "--plot", "x"],
-        "--plot: also give --out DIR",
-    );
-    expect(
-        &["campaign", small, "--add", "3"],
-        "--add: name the finished campaign's folder with --out",
-    );
-    expect(
-        &["campaign", small, "--threads", "0"],
-        "--threads: expected at least 1 thread",
-    );
+    let cases: [(&[&str], &str); 5] = [
+        (&["--shard", "5/4"], "expected K/N with 1 ≤ K ≤ N"),
+        (&["--plot", "x"], "--plot: also give --out DIR"),
+        (
+            &["--add", "3"],
+            "--add: name the finished campaign's folder with --out",
+        ),
+        (&["--threads", "0"], "--threads: expected at least 1 thread"),
+        (&["--format", "yaml"], "invalid value 'yaml' for '--format"),
+    ];
+    for (extra, says) in cases {
+        let args: Vec<&str> = ["campaign", small].iter().chain(extra).copied().collect();
+        expect(&args, says);
+    }
     expect(
         &["campaign", "scenarios/campaigns/nothing.toml"],
         "scenarios/campaigns/nothing.toml: cannot read the campaign file",
