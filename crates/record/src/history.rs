@@ -3,12 +3,13 @@
 
 use crate::Sample;
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::Path;
 
-/// Writes the time history of a landing as it runs, one [`Sample`] a row, whatever the engine.
-pub struct History {
-    writer: csv::Writer<BufWriter<File>>,
+/// Writes the time history of a landing as it runs, one [`Sample`] a row, whatever the engine:
+/// to a file ([`History::create`]) or to any writer ([`History::to_writer`]).
+pub struct History<W: Write = BufWriter<File>> {
+    writer: csv::Writer<W>,
     error: Option<csv::Error>,
     row: Vec<String>,
     sample: Sample,
@@ -20,7 +21,14 @@ impl History {
         let file = File::create(path).map_err(|e| {
             std::io::Error::new(e.kind(), format!("cannot create {}: {e}", path.display()))
         })?;
-        let mut writer = csv::Writer::from_writer(BufWriter::new(file));
+        History::to_writer(BufWriter::new(file), legs)
+    }
+}
+
+impl<W: Write> History<W> {
+    /// Writes the history of a landing of `legs` legs to `out`, starting with the header.
+    pub fn to_writer(out: W, legs: usize) -> std::io::Result<History<W>> {
+        let mut writer = csv::Writer::from_writer(out);
         let mut header: Vec<String> = [
             "t_s",
             "x_m",
@@ -79,12 +87,18 @@ impl History {
     }
 
     /// Flushes the file, reporting any write error met while running.
-    pub fn finish(mut self) -> std::io::Result<()> {
+    pub fn finish(self) -> std::io::Result<()> {
+        self.into_inner().map(|_| ())
+    }
+
+    /// Flushes and returns the writer, reporting any write error met while running.
+    pub fn into_inner(mut self) -> std::io::Result<W> {
         if let Some(e) = self.error.take() {
             return Err(e.into());
         }
-        self.writer.flush()?;
-        Ok(())
+        self.writer
+            .into_inner()
+            .map_err(|e| std::io::Error::other(e.to_string()))
     }
 }
 
@@ -98,7 +112,7 @@ fn num(x: f64) -> String {
     }
 }
 
-impl History {
+impl<W: Write> History<W> {
     /// The sample to fill before [`History::write`] (made for the file's number of legs).
     pub fn sample_mut(&mut self) -> &mut Sample {
         &mut self.sample

@@ -53,7 +53,7 @@ pub trait Landing: Sized {
 }
 
 /// A history file records any landing: one row per observed state.
-impl<L: Landing> Observer<L> for History {
+impl<L: Landing, W: std::io::Write> Observer<L> for History<W> {
     fn observe(&mut self, landing: &L) {
         landing.sample(self.sample_mut());
         self.write();

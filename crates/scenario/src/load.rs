@@ -424,6 +424,18 @@ impl ScenarioBase {
         })
     }
 
+    /// A scenario given as TOML text (no `extends`); `source` names it in messages.
+    pub fn from_toml(source: &str, text: &str) -> Result<ScenarioBase, ScenarioError> {
+        let table = parse(source, text)?;
+        Ok(ScenarioBase {
+            source: source.to_string(),
+            merged: Merged {
+                layers: vec![(source.to_string(), table.clone())],
+                table,
+            },
+        })
+    }
+
     /// The merged file as TOML values, in the file's units.
     pub fn table(&self) -> &toml::Table {
         &self.merged.table
