@@ -1,0 +1,216 @@
+//! The native half of the Python package `touchdown` (python/touchdown/): a landing on any
+//! engine and a campaign's shard, on the Rust crates, with the interpreter's lock released
+//! while they run. Errors arrive as Python exceptions carrying the file, field and cause the
+//! command line prints.
+
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::Path;
+use touchdown_campaign::{Campaign, CampaignError, Shard};
+use touchdown_record::{History, RunError};
+use touchdown_registry::{Engine, EngineFailure};
+use touchdown_scenario::{ScenarioBase, ScenarioError};
+
+pyo3::create_exception!(
+    _native,
+    TouchdownError,
+    PyException,
+    "Every error of touchdown."
+);
+pyo3::create_exception!(
+    _native,
+    ScenarioInvalid,
+    TouchdownError,
+    "A scenario or campaign file (or text) refused: `file`, `field` and `message`."
+);
+pyo3::create_exception!(
+    _native,
+    LandingStopped,
+    TouchdownError,
+    "A landing the engine stopped: `time_s`, `law`, `leg` and `message`."
+);
+pyo3::create_exception!(
+    _native,
+    EngineUnavailable,
+    TouchdownError,
+    "An engine that cannot be set up (MuJoCo without the project's Python environment)."
+);
+
+/// The exception of a scenario error, with its file and field as attributes.
+fn scenario_error(py: Python<'_>, e: &ScenarioError) -> PyErr {
+    let err = ScenarioInvalid::new_err(e.to_string());
+    let (file, field, message) = match e {
+        ScenarioError::Field {
+            file,
+            field,
+            message,
+        } => (file.clone(), Some(field.clone()), message.clone()),
+        other => (String::new(), None, other.to_string()),
+    };
+    let v = err.value(py);
+    let _ = v.setattr("file", file);
+    let _ = v.setattr("field", field);
+    let _ = v.setattr("message", message);
+    err
+}
+
+/// The exception of an engine's failure.
+fn engine_error(py: Python<'_>, f: &EngineFailure) -> PyErr {
+    match &f.error {
+        RunError::Refused(e) => scenario_error(py, e),
+        RunError::Stopped(d) => {
+            let err = LandingStopped::new_err(f.to_string());
+            let v = err.value(py);
+            let _ = v.setattr("time_s", d.time_s);
+            let _ = v.setattr("law", d.law.name());
+            let _ = v.setattr("leg", d.leg);
+            let _ = v.setattr("message", d.message.clone());
+            err
+        }
+        RunError::Setup(_) => EngineUnavailable::new_err(f.to_string()),
+    }
+}
+
+/// The exception of a campaign's error.
+fn campaign_error(py: Python<'_>, e: &CampaignError) -> PyErr {
+    match e {
+        CampaignError::Field {
+            file,
+            field,
+            message,
+        } => scenario_error(
+            py,
+            &ScenarioError::field(file, field.clone(), message.clone()),
+        ),
+        CampaignError::Engine(f) => engine_error(py, f),
+        other => TouchdownError::new_err(other.to_string()),
+    }
+}
+
+/// A scenario file, or TOML text.
+fn base(scenario: &str) -> Result<ScenarioBase, ScenarioError> {
+    if Path::new(scenario).is_file() {
+        ScenarioBase::load(scenario)
+    } else {
+        ScenarioBase::from_toml("<scenario text>", scenario)
+    }
+}
+
+/// An override's value as TOML.
+fn toml_value(v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    if let Ok(b) = v.extract::<bool>() {
+        return Ok(toml::Value::Boolean(b));
+    }
+    if let Ok(x) = v.extract::<f64>() {
+        return Ok(toml::Value::Float(x));
+    }
+    if let Ok(s) = v.extract::<String>() {
+        return Ok(toml::Value::String(s));
+    }
+    Err(TouchdownError::new_err(format!(
+        "an override must be a number, a string or a boolean, not {}",
+        v.get_type().name()?
+    )))
+}
+
+/// Lands `scenario` (a path or TOML text) on `engine` with `overrides` (field path → value in
+/// the file's units): the summary as JSON and, with `history`, the history as CSV text.
+#[pyfunction]
+#[pyo3(signature = (scenario, engine="core", overrides=None, history=true))]
+fn run(
+    py: Python<'_>,
+    scenario: &str,
+    engine: &str,
+    overrides: Option<&Bound<'_, PyDict>>,
+    history: bool,
+) -> PyResult<(String, Option<String>)> {
+    let engine: Engine = engine
+        .parse()
+        .map_err(|e: String| TouchdownError::new_err(format!("engine: {e}")))?;
+    let mut values = Vec::new();
+    if let Some(d) = overrides {
+        for (k, v) in d.iter() {
+            values.push((k.extract::<String>()?, toml_value(&v)?));
+        }
+    }
+    let result = py.detach(|| -> Result<(String, Option<String>), Box<Failed>> {
+        let refs: Vec<(&str, toml::Value)> = values
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.clone()))
+            .collect();
+        let sc = base(scenario)
+            .and_then(|b| b.with(&refs))
+            .map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let path = Path::new(scenario);
+        let mut recorder = if history && engine != Engine::Mujoco {
+            Some(
+                History::to_writer(Vec::new(), sc.legs.len())
+                    .map_err(|e| Box::new(Failed::Other(e.to_string())))?,
+            )
+        } else {
+            None
+        };
+        let summary = touchdown_registry::land(engine, path, &sc, &mut recorder, None)
+            .map_err(|f| Box::new(Failed::Engine(f)))?;
+        let csv = match recorder {
+            Some(h) => Some(
+                String::from_utf8(
+                    h.into_inner()
+                        .map_err(|e| Box::new(Failed::Other(e.to_string())))?,
+                )
+                .unwrap_or_default(),
+            ),
+            None => None,
+        };
+        Ok((summary.to_json(), csv))
+    });
+    result.map_err(|f| f.into_py_err(py))
+}
+
+/// Runs shard `k` of `n` of the campaign file `campaign` into `out_dir` exactly as
+/// `touchdown campaign CAMPAIGN --shard K/N --out OUT_DIR` does; returns `out_dir`.
+#[pyfunction]
+fn run_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, out_dir: &str) -> PyResult<String> {
+    let shard: Shard = format!("{k}/{n}")
+        .parse()
+        .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))?;
+    py.detach(|| {
+        let c = Campaign::load(campaign)?;
+        touchdown_campaign::run::run(&c, Some(shard), None, Some(Path::new(out_dir)), |_| ())
+            .map(|_| ())
+    })
+    .map_err(|e| campaign_error(py, &e))?;
+    Ok(out_dir.to_string())
+}
+
+/// What failed inside a call that released the interpreter's lock.
+enum Failed {
+    Scenario(ScenarioError),
+    Engine(EngineFailure),
+    Other(String),
+}
+
+impl Failed {
+    fn into_py_err(self, py: Python<'_>) -> PyErr {
+        match self {
+            Failed::Scenario(e) => scenario_error(py, &e),
+            Failed::Engine(f) => engine_error(py, &f),
+            Failed::Other(m) => TouchdownError::new_err(m),
+        }
+    }
+}
+
+/// The native module `touchdown._native`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(run_shard, m)?)?;
+    m.add("TouchdownError", py.get_type::<TouchdownError>())?;
+    m.add("ScenarioInvalid", py.get_type::<ScenarioInvalid>())?;
+    m.add("LandingStopped", py.get_type::<LandingStopped>())?;
+    m.add("EngineUnavailable", py.get_type::<EngineUnavailable>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
