@@ -65,3 +65,71 @@ def test_a_shard_from_python_is_the_command_lines_byte_for_byte(tmp_path):
     )
     for name in ("manifest.json", "landings.jsonl", "landings.parquet", "statistics.json"):
         assert (py / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+def cli_campaign(tmp_path, name="cli"):
+    small = str(ROOT / "scenarios" / "campaigns" / "small.toml")
+    subprocess.run([TOUCHDOWN, "campaign", small, "--out", tmp_path / name], capture_output=True, check=True)
+    return small, tmp_path / name
+
+
+FILES = ("manifest.json", "landings.jsonl", "landings.parquet", "statistics.json")
+
+
+def test_a_campaign_on_a_local_dask_cluster_is_the_single_process_campaign(tmp_path):
+    from dask.distributed import Client, LocalCluster
+
+    import touchdown.dask
+
+    small, whole = cli_campaign(tmp_path)
+    out = tmp_path / "dask"
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
+        with Client(cluster) as client:
+            touchdown.dask.run_campaign(client, small, shards=4, out_dir=out, progress=False)
+    for name in FILES:
+        assert (out / name).read_bytes() == (whole / name).read_bytes(), name
+
+
+def test_a_resumed_campaign_runs_only_its_missing_shards(tmp_path):
+    from dask.distributed import Client, LocalCluster
+
+    import touchdown.dask
+    from touchdown.campaign import shard_dir
+
+    small, whole = cli_campaign(tmp_path)
+    out = tmp_path / "dask"
+    # Shards 1 and 3 finished before the interruption; a marker in each shows if it is redone.
+    for k in (1, 3):
+        campaign.run_shard_atomically(small, k, 4, str(out))
+        (shard_dir(out, k, 4) / "kept").write_text("")
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
+        with Client(cluster) as client:
+            touchdown.dask.run_campaign(client, small, shards=4, out_dir=out, progress=False)
+    assert all((shard_dir(out, k, 4) / "kept").exists() for k in (1, 3))
+    for name in FILES:
+        assert (out / name).read_bytes() == (whole / name).read_bytes(), name
+
+
+def _dies_once(marker, campaign_file, k, n, out_dir):
+    """A shard whose first attempt kills its worker process."""
+    import os
+    from pathlib import Path
+
+    if not Path(marker).exists():
+        Path(marker).write_text("")
+        os._exit(1)
+    return campaign.run_shard_atomically(campaign_file, k, n, out_dir)
+
+
+def test_a_shard_whose_worker_dies_is_run_again(tmp_path):
+    from dask.distributed import Client, LocalCluster
+
+    small, whole = cli_campaign(tmp_path)
+    out = tmp_path / "dask"
+    marker = tmp_path / "died"
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
+        with Client(cluster) as client:
+            f = client.submit(_dies_once, str(marker), small, 2, 4, str(out), retries=2, pure=False)
+            assert client.gather(f) == str(campaign.shard_dir(out, 2, 4))
+    assert marker.exists()
+    assert (campaign.shard_dir(out, 2, 4) / "landings.parquet").exists()

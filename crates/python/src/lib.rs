@@ -184,6 +184,19 @@ fn run_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, out_dir: &str) -> P
     Ok(out_dir.to_string())
 }
 
+/// Merges the campaign folders `parts` into `out_dir` exactly as `touchdown campaign merge`
+/// does (refusing parts of other campaigns, builds or base scenarios, gaps and overlaps);
+/// returns `out_dir`.
+#[pyfunction]
+fn merge(py: Python<'_>, parts: Vec<String>, out_dir: &str) -> PyResult<String> {
+    py.detach(|| {
+        let parts: Vec<&Path> = parts.iter().map(Path::new).collect();
+        touchdown_campaign::merge(&parts, Path::new(out_dir)).map(|_| ())
+    })
+    .map_err(|e| campaign_error(py, &e))?;
+    Ok(out_dir.to_string())
+}
+
 /// What failed inside a call that released the interpreter's lock.
 enum Failed {
     Scenario(ScenarioError),
@@ -207,6 +220,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(run_shard, m)?)?;
+    m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add("TouchdownError", py.get_type::<TouchdownError>())?;
     m.add("ScenarioInvalid", py.get_type::<ScenarioInvalid>())?;
     m.add("LandingStopped", py.get_type::<LandingStopped>())?;
