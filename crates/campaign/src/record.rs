@@ -210,25 +210,22 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
 /// A landing's record: one cell per column of [`columns`].
 pub type Row = Vec<Cell>;
 
-/// The record of landing `landing` whose values `applied` were read back from `scenario` (if it
-/// resolved) and whose engine run ended with `result`.
+/// The record of landing `landing` that ran with the values `applied` and ended with `result`:
+/// the summary of a landing that completed, with the scenario it ran (for the struts'
+/// capacities), or why it did not.
 pub fn row(
     campaign: &Campaign,
     landing: u64,
     applied: &[Value],
-    scenario: Option<&Scenario>,
-    result: Result<&Summary, &RunError>,
+    result: Result<(&Summary, &Scenario), &RunError>,
 ) -> Row {
     let legs = campaign.base_scenario.legs.len();
     let mut r: Row = Vec::with_capacity(16 + applied.len() + legs * 15);
     r.push(Cell::Integer(landing as i64));
     r.extend(applied.iter().map(Cell::from));
-    let measured = match (result, scenario) {
-        (Ok(s), Some(sc)) => Some((s, sc)),
-        _ => None,
-    };
-    let (status, failure, stroke_outs) = match (result, measured) {
-        (Ok(_), Some((s, sc))) => {
+    let measured = result.ok();
+    let (status, failure, stroke_outs) = match result {
+        Ok((s, sc)) => {
             let outs = stroke_outs(s, sc);
             let status = match s.outcome {
                 Outcome::Stable => Status::Stable,
@@ -243,10 +240,8 @@ pub fn row(
             };
             (status, failure, outs)
         }
-        (Err(RunError::Refused(_)), _) | (Ok(_), None) => {
-            (Status::Refused, Failure::Refused, Vec::new())
-        }
-        (Err(_), _) => (Status::Stopped, Failure::Stopped, Vec::new()),
+        Err(RunError::Refused(_)) => (Status::Refused, Failure::Refused, Vec::new()),
+        Err(_) => (Status::Stopped, Failure::Stopped, Vec::new()),
     };
     r.push(Cell::Text(status.name().into()));
     r.push(Cell::Text(failure.name().into()));

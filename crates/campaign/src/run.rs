@@ -90,7 +90,6 @@ pub fn land(
                 campaign,
                 landing,
                 &drawn,
-                None,
                 Err(&RunError::Refused(e)),
             ))
         }
@@ -101,7 +100,6 @@ pub fn land(
             campaign,
             landing,
             &applied,
-            Some(&sc),
             Err(&RunError::Refused(e)),
         ));
     }
@@ -122,8 +120,7 @@ pub fn land(
             campaign,
             landing,
             &applied,
-            Some(&sc),
-            r.as_ref().map_err(|f| &f.error),
+            r.as_ref().map(|s| (s, &sc)).map_err(|f| &f.error),
         )),
     }
 }
@@ -191,12 +188,13 @@ fn read_back(
     landing: u64,
     sc: &Scenario,
 ) -> Result<Vec<Value>, CampaignError> {
+    let held = sc.values_of(campaign.dispersions.iter().map(|d| d.field.as_str()));
     campaign
         .dispersions
         .iter()
-        .map(|d| {
-            sc.value_of(&d.field)
-                .as_ref()
+        .zip(held)
+        .map(|(d, v)| {
+            v.as_ref()
                 .and_then(Value::from_toml)
                 .ok_or_else(|| CampaignError::NotApplied {
                     landing,
@@ -358,8 +356,12 @@ pub fn add(
 
 /// Merges the campaign folders `parts` (shards of one campaign, run by one build) into `out`:
 /// refused unless they are parts of the same campaign and together hold each of its landings
-/// once. The result is the folder the whole campaign run at once writes, byte for byte.
-pub fn merge(parts: &[&Path], out: &Path) -> Result<(Manifest, Statistics), CampaignError> {
+/// once. The result is the folder the whole campaign run at once writes, byte for byte; returns
+/// its manifest, records and statistics.
+pub fn merge(
+    parts: &[&Path],
+    out: &Path,
+) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
     let mut read: Vec<(Manifest, Vec<Row>)> = parts
         .iter()
         .map(|p| store::read_dir(p))
@@ -421,5 +423,5 @@ pub fn merge(parts: &[&Path], out: &Path) -> Result<(Manifest, Statistics), Camp
     };
     let statistics = Statistics::of(&manifest.columns, &rows, manifest.confidence);
     store::write_all(out, &manifest, &rows, &statistics)?;
-    Ok((manifest, statistics))
+    Ok((manifest, rows, statistics))
 }

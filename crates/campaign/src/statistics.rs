@@ -144,10 +144,12 @@ impl Statistics {
     /// The statistics of `rows` (records with `columns`) at confidence `confidence`.
     pub fn of(columns: &[Column], rows: &[Row], confidence: f64) -> Statistics {
         let index = |name: &str| columns.iter().position(|c| c.name == name);
-        let text = |row: &Row, i: Option<usize>| match i.map(|i| &row[i]) {
-            Some(Cell::Text(s)) => s.clone(),
-            _ => String::new(),
-        };
+        fn text(row: &Row, i: Option<usize>) -> &str {
+            match i.map(|i| &row[i]) {
+                Some(Cell::Text(s)) => s,
+                _ => "",
+            }
+        }
         let (outcome, failure, outs) = (index("outcome"), index("failure"), index("stroke_outs"));
         let n = rows.len() as u64;
         let count_of = |col: Option<usize>, name: &str| {
@@ -159,7 +161,7 @@ impl Statistics {
                     name: name.into(),
                     landings: count_of(col, name),
                 })
-                .collect()
+                .collect::<Vec<_>>()
         };
         let outcomes = counts(outcome, &mut Status::ALL.iter().map(|s| s.name()));
         let failures = counts(failure, &mut Failure::ALL.iter().map(|f| f.name()));
@@ -174,8 +176,14 @@ impl Statistics {
             fraction: if n == 0 { 0.0 } else { k as f64 / n as f64 },
             lower_bound: clopper_pearson_lower(k, n, confidence),
         };
-        let stable = count_of(outcome, Status::Stable.name());
-        let within = count_of(failure, Failure::None.name());
+        let landings_of = |counts: &[Count], name: &str| {
+            counts
+                .iter()
+                .find(|c| c.name == name)
+                .map_or(0, |c| c.landings)
+        };
+        let stable = landings_of(&outcomes, Status::Stable.name());
+        let within = landings_of(&failures, Failure::None.name());
         let percentiles = columns
             .iter()
             .enumerate()

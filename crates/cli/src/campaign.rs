@@ -75,7 +75,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
             let _ = writeln!(lines, "{}", store::json_line(&columns, row));
         }
     };
-    let (manifest, _, statistics) = match add {
+    let (manifest, rows, statistics) = match add {
         Some(more) => {
             let dir = out.context("--add: name the finished campaign's folder with --out")?;
             touchdown_campaign::add(&campaign, dir, more, threads, &mut each)?
@@ -87,7 +87,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         let boundary = dir.join("boundary.json");
         let _ = std::fs::remove_file(&boundary);
-        if let Some(json) = base_boundary(&campaign, &statistics, records)? {
+        if let Some(json) = base_boundary(&campaign, &manifest, &rows, &statistics)? {
             std::fs::write(&boundary, json)
                 .with_context(|| format!("cannot write {}", boundary.display()))?;
         }
@@ -103,10 +103,11 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
 /// base values: beside a campaign that disperses them, a reference, not a dividing line.
 fn base_boundary(
     campaign: &Campaign,
+    manifest: &Manifest,
+    rows: &[Row],
     statistics: &Statistics,
-    records: &Path,
 ) -> Result<Option<String>> {
-    use touchdown_validation::boundary::{scenario_landing, search, Settings};
+    use touchdown_validation::boundary::{search_engines, Settings};
     let top: Vec<&str> = statistics
         .influence
         .iter()
@@ -132,7 +133,6 @@ fn base_boundary(
     if !(top.contains(&vv_col.as_str()) && top.contains(&vh_col.as_str())) {
         return Ok(None);
     }
-    let (manifest, rows) = store::read_dir(records)?;
     let index = |name: &str| manifest.columns.iter().position(|c| c.name == name);
     let values = |i: Option<usize>| -> Vec<f64> {
         rows.iter()
@@ -164,20 +164,15 @@ fn base_boundary(
     };
     let vvs: Vec<f64> = (0..=6).map(|k| v0 + (v1 - v0) * k as f64 / 6.0).collect();
     let engine = campaign.engine;
-    let path = campaign.scenario_path.as_path();
-    let landing = scenario_landing(path, move |sc: &touchdown_scenario::Scenario| {
-        touchdown_registry::land(engine, path, sc, &mut (), None)
-            .map(|s| s.outcome)
-            .map_err(|f| f.error)
-    })?;
+    let base = touchdown_scenario::ScenarioBase::load(&campaign.scenario_path)?;
     eprintln!("the engine's boundary of the base configuration, for the plot ...");
-    let points = search(&vvs, settings, landing, &|| ())?;
+    let points = search_engines(&base, &[], &vvs, settings, &[engine], &|| ())?;
     let line: Vec<serde_json::Value> = points
         .iter()
         .filter_map(|p| {
-            p.vh.map(
-                |vh| serde_json::json!({ vh_col.as_str(): vh * along, vv_col.as_str(): -p.vv }),
-            )
+            p.point.vh.map(|vh| {
+                serde_json::json!({ vh_col.as_str(): vh * along, vv_col.as_str(): -p.point.vv })
+            })
         })
         .collect();
     Ok(Some(serde_json::to_string_pretty(&serde_json::json!({
@@ -191,9 +186,8 @@ fn base_boundary(
 /// `touchdown campaign merge DIR... --out DIR`.
 pub fn merge(parts: &[PathBuf], out: &Path, output: Output) -> Result<()> {
     let parts: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
-    let (manifest, statistics) = touchdown_campaign::merge(&parts, out)?;
+    let (manifest, rows, statistics) = touchdown_campaign::merge(&parts, out)?;
     if output == Output::JsonLines {
-        let (_, rows) = store::read_dir(out)?;
         for row in &rows {
             println!("{}", store::json_line(&manifest.columns, row));
         }

@@ -533,12 +533,7 @@ fn compare(
     format: Format,
     plot: Option<&Path>,
 ) -> Result<bool> {
-    let mut engines = engines.to_vec();
-    engines.sort();
-    engines.dedup();
-    if engines.len() < 2 {
-        anyhow::bail!("--engines: name at least two engines to compare");
-    }
+    let engines = touchdown_compare::engine_set(engines).context("--engines")?;
     let mut json = Vec::new();
     let mut passed = true;
     for path in scenarios {

@@ -1,13 +1,14 @@
 //! The validation commands: validate, calibrate, estimate, sensitivity, boundary.
 
 use anyhow::{bail, Context, Result};
-use serde::Serialize;
 use std::fmt::Write;
 use std::path::Path;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
-use touchdown_scenario::Scenario;
-use touchdown_validation::boundary::{self, BoundaryPoint, Direction, Settings, Transition};
+use touchdown_scenario::ScenarioBase;
+use touchdown_validation::boundary::{
+    self, BoundaryPoint, Direction, EnginePoint, Settings, Transition,
+};
 use touchdown_validation::reference::{self, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
 use touchdown_validation::table::{Role, Validation};
@@ -293,27 +294,11 @@ pub fn boundary(
 ) -> Result<()> {
     let vvs = range(vv)?;
     settings.validate()?;
-    let mut engines = engines.to_vec();
-    engines.sort();
-    engines.dedup();
-    let sc = Scenario::load(scenario)?;
+    let base = ScenarioBase::load(scenario)?;
+    let sc = base.with(&[])?;
     crate::warn(&sc);
-    for &e in &engines {
-        touchdown_registry::require(e, &sc)?;
-    }
     let bar = crate::progress_bar(0, "landings");
-    let tick = || bar.inc(1);
-    let mut points = Vec::new();
-    for &engine in &engines {
-        let landing = boundary::scenario_landing(scenario, move |sc: &Scenario| {
-            touchdown_registry::land(engine, scenario, sc, &mut (), None)
-                .map(|s| s.outcome)
-                .map_err(|f| f.error)
-        })?;
-        let found = boundary::search(&vvs, settings, landing, &tick)
-            .with_context(|| format!("{engine} engine"))?;
-        points.extend(found.into_iter().map(|point| EnginePoint { engine, point }));
-    }
+    let points = boundary::search_engines(&base, &[], &vvs, settings, engines, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let vunit = format!("{}/s", sc.file.units.length_label());
     let json = serde_json::to_string_pretty(&points)?;
@@ -327,15 +312,6 @@ pub fn boundary(
         crate::plots::boundaries(&json, &title, &vunit, png)?;
     }
     Ok(())
-}
-
-/// One engine's boundary at one descent speed: in JSON, `engine` beside the fields of
-/// [`BoundaryPoint`] (velocities in the scenario's velocity unit).
-#[derive(Serialize)]
-struct EnginePoint {
-    engine: Engine,
-    #[serde(flatten)]
-    point: BoundaryPoint,
 }
 
 fn opt(x: Option<f64>) -> String {

@@ -44,6 +44,9 @@ pub enum CompareError {
         /// How far apart the last refinements landed.
         message: String,
     },
+    /// Fewer than two distinct engines asked for.
+    #[error("name at least two engines to compare (got {0:?})")]
+    TooFewEngines(Vec<Engine>),
     /// An engine's trace could not be read back.
     #[error("{engine} engine on {scenario}: {message}")]
     Trace {
@@ -128,19 +131,39 @@ pub struct ScenarioComparison {
     pub pairs: Vec<metrics::PairComparison>,
 }
 
+/// The engines of a comparison: `engines` in engine order, each once; at least two.
+pub fn engine_set(engines: &[Engine]) -> Result<Vec<Engine>, CompareError> {
+    let mut set = engines.to_vec();
+    set.sort();
+    set.dedup();
+    if set.len() < 2 {
+        return Err(CompareError::TooFewEngines(set));
+    }
+    Ok(set)
+}
+
 /// Runs the scenario at `path` on those of `engines` that apply to it (`engines.applicable`)
 /// and compares every pair.
 pub fn compare_scenario(
     path: &Path,
     engines: &[Engine],
 ) -> Result<ScenarioComparison, CompareError> {
-    let sc = Scenario::load(path)?;
+    compare_resolved(path, &Scenario::load(path)?, engines)
+}
+
+/// [`compare_scenario`] of a scenario already resolved (with overrides, or read from text);
+/// `path` names it in the report and in errors.
+pub fn compare_resolved(
+    path: &Path,
+    sc: &Scenario,
+    engines: &[Engine],
+) -> Result<ScenarioComparison, CompareError> {
     let (applicable, not_applicable): (Vec<Engine>, Vec<Engine>) = engines
         .iter()
         .partition(|e| sc.applicable_engines.contains(e));
     let runs = applicable
         .iter()
-        .map(|e| run(*e, path, &sc))
+        .map(|e| run(*e, path, sc))
         .collect::<Result<Vec<_>, _>>()?;
     let mut pairs = Vec::new();
     for (i, a) in runs.iter().enumerate() {

@@ -243,14 +243,14 @@ impl Worker {
 
     /// The error of a runner that ended or cannot be reached: what it said on standard error.
     fn died(&mut self, what: &str) -> MujocoError {
-        let _ = self.child.wait();
+        let status = self.child.wait().ok().and_then(|s| s.code());
         let said = self
             .errors
             .lock()
             .map(|e| e.trim().to_string())
             .unwrap_or_default();
-        match self.child.try_wait() {
-            Ok(Some(s)) if s.code() == Some(RUNNER_SETUP_STATUS) => setup_error(said),
+        match status {
+            Some(RUNNER_SETUP_STATUS) => setup_error(said),
             _ => MujocoError::Runner(format!("the serving runner failed ({what}): {said}")),
         }
     }

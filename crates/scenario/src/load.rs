@@ -301,46 +301,34 @@ impl Scenario {
         ScenarioBase::load(path)?.with(&values)
     }
 
-    /// The value at a field path (`touchdown.attitude[2]`) of the resolved scenario, in the
+    /// The values at field paths (`touchdown.attitude[2]`) of the resolved scenario, in the
     /// file's units, every default filled in: what a landing ran with (a campaign reads back the
-    /// values it applied). `None` if there is no such field.
-    pub fn value_of(&self, field: &str) -> Option<toml::Value> {
-        let file = toml::Value::try_from(&self.file).ok()?;
-        let mut node = &file;
-        for (key, index) in path_keys(field) {
-            node = node.get(key)?;
-            if let Some(i) = index {
-                node = node.get(i)?;
-            }
-        }
-        Some(node.clone())
+    /// values it applied). `None` for a path with no field.
+    pub fn values_of<'a>(
+        &self,
+        fields: impl IntoIterator<Item = &'a str>,
+    ) -> Vec<Option<toml::Value>> {
+        let file = toml::Value::try_from(&self.file).ok();
+        fields
+            .into_iter()
+            .map(|field| file.as_ref().and_then(|f| field_at(f, field)).cloned())
+            .collect()
     }
 
     /// A number of the merged file at a field path (file units), as [`Scenario::load_with`]
     /// takes it; `None` if there is no number there.
     pub fn value_at(path: impl AsRef<Path>, field: &str) -> Result<Option<f64>, ScenarioError> {
-        let merged = load_merged(path.as_ref(), 0)?;
-        let mut node = &toml::Value::Table(merged.table);
-        for (key, index) in path_keys(field) {
-            node = match node.get(key) {
-                Some(v) => v,
-                None => return Ok(None),
-            };
-            if let Some(i) = index {
-                node = match node.get(i) {
-                    Some(v) => v,
-                    None => return Ok(None),
-                };
-            }
-        }
-        Ok(node.as_float().or(node.as_integer().map(|i| i as f64)))
+        let merged = toml::Value::Table(load_merged(path.as_ref(), 0)?.table);
+        Ok(
+            field_at(&merged, field)
+                .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))),
+        )
     }
 
     /// Parses a scenario from TOML text (no `extends`); `source` names it in messages.
     pub fn from_toml(source: &str, text: &str) -> Result<Scenario, ScenarioError> {
-        let table = parse(source, text)?;
-        let layers = vec![(source.to_string(), table.clone())];
-        resolve_layers(source.to_string(), Merged { table, layers })
+        let base = ScenarioBase::from_toml(source, text)?;
+        resolve_layers(base.source, base.merged)
     }
 
     /// The resolved scenario as TOML (every default written out, the file's units).
@@ -436,6 +424,11 @@ impl ScenarioBase {
         })
     }
 
+    /// What names the scenario in messages: its file's path, or the name given with its text.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
     /// The merged file as TOML values, in the file's units.
     pub fn table(&self) -> &toml::Table {
         &self.merged.table
@@ -458,6 +451,18 @@ impl ScenarioBase {
         merged.layers.insert(0, (OVERRIDES.to_string(), layer));
         resolve_layers(self.source.clone(), merged)
     }
+}
+
+/// The value at the field path `field` (`a.b[2].c`) of `root`, if there is one.
+fn field_at<'a>(root: &'a toml::Value, field: &str) -> Option<&'a toml::Value> {
+    let mut node = root;
+    for (key, index) in path_keys(field) {
+        node = node.get(key)?;
+        if let Some(i) = index {
+            node = node.get(i)?;
+        }
+    }
+    Some(node)
 }
 
 /// The keys of a field path `a.b[2].c`: (key, optional array index) pairs.

@@ -20,8 +20,9 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
 use touchdown_core::{Outcome, RunError};
+use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
-use touchdown_scenario::Scenario;
+use touchdown_scenario::{Scenario, ScenarioBase};
 
 /// Largest number of grid points at one vertical velocity.
 pub const MAX_GRID_POINTS: usize = 10_000;
@@ -355,38 +356,97 @@ fn bisect(
     Ok((t, landings))
 }
 
-/// A landing closure for [`search`] on a scenario file: its vertical velocity set to −vv and
+/// A landing closure for [`search`] on the scenario `base` with `overrides` (field path and
+/// value in the file's units, [`ScenarioBase::with`]): its vertical velocity set to −vv and
 /// its horizontal velocity to vh along the scenario's own horizontal direction (file units),
 /// landed by `land` (one engine's run of the changed scenario, to its outcome).
 pub fn scenario_landing<'a, L>(
-    path: &'a Path,
+    base: &'a ScenarioBase,
+    overrides: &'a [(&'a str, toml::Value)],
     land: L,
 ) -> Result<impl Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync + 'a, ValidationError>
 where
     L: Fn(&Scenario) -> Result<Outcome, RunError> + Sync + 'a,
 {
-    let sc = Scenario::load(path)?;
+    let sc = base.with(overrides)?;
     let [hx, hy] = sc.file.touchdown.horizontal_velocity;
     let norm = hx.hypot(hy);
     if norm == 0.0 {
         return Err(ValidationError::Reference(format!(
             "{}: touchdown.horizontal_velocity is zero, so it gives no direction to search along",
-            path.display()
+            base.source()
         )));
     }
     let (dx, dy) = (hx / norm, hy / norm);
     Ok(move |vv: f64, vh: f64| {
-        let overrides = [
-            ("touchdown.vertical_velocity", -vv),
-            ("touchdown.horizontal_velocity[0]", dx * vh),
-            ("touchdown.horizontal_velocity[1]", dy * vh),
-        ];
-        let sc = Scenario::load_with(path, &overrides)?;
+        let mut values = overrides.to_vec();
+        values.extend([
+            ("touchdown.vertical_velocity", toml::Value::Float(-vv)),
+            (
+                "touchdown.horizontal_velocity[0]",
+                toml::Value::Float(dx * vh),
+            ),
+            (
+                "touchdown.horizontal_velocity[1]",
+                toml::Value::Float(dy * vh),
+            ),
+        ]);
+        let sc = base.with(&values)?;
         land(&sc).map_err(|source| ValidationError::Run {
-            scenario: format!("{} at Vv = {vv}, Vh = {vh}", path.display()),
+            scenario: format!("{} at Vv = {vv}, Vh = {vh}", base.source()),
             source,
         })
     })
+}
+
+/// One engine's boundary at one descent speed: in JSON, `engine` beside the fields of
+/// [`BoundaryPoint`] (velocities in the scenario's velocity unit).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EnginePoint {
+    /// The engine that searched.
+    pub engine: Engine,
+    /// What it found.
+    #[serde(flatten)]
+    pub point: BoundaryPoint,
+}
+
+/// The boundary search of the scenario `base` with `overrides` ([`scenario_landing`]) on each
+/// of `engines` (in engine order, each once; every one must apply to the scenario), at the
+/// descent speeds `vvs`: one point per engine and descent speed, engine by engine.
+pub fn search_engines(
+    base: &ScenarioBase,
+    overrides: &[(&str, toml::Value)],
+    vvs: &[f64],
+    settings: Settings,
+    engines: &[Engine],
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<EnginePoint>, ValidationError> {
+    settings.validate()?;
+    let mut engines = engines.to_vec();
+    engines.sort();
+    engines.dedup();
+    let sc = base.with(overrides)?;
+    let path = Path::new(base.source());
+    for &e in &engines {
+        touchdown_registry::require(e, &sc)?;
+    }
+    let mut points = Vec::new();
+    for &engine in &engines {
+        let landing = scenario_landing(base, overrides, move |sc: &Scenario| {
+            touchdown_registry::land(engine, path, sc, &mut (), None)
+                .map(|s| s.outcome)
+                .map_err(|f| f.error)
+        })?;
+        let found = search(vvs, settings, landing, tick).map_err(|e| match e {
+            ValidationError::Run { scenario, source } => ValidationError::Run {
+                scenario: format!("{engine} engine on {scenario}"),
+                source,
+            },
+            other => other,
+        })?;
+        points.extend(found.into_iter().map(|point| EnginePoint { engine, point }));
+    }
+    Ok(points)
 }
 
 #[cfg(test)]

@@ -207,8 +207,10 @@ fn boundary_search_brackets_a_real_overturn() {
         ),
     )
     .unwrap();
+    let steep = touchdown_scenario::ScenarioBase::load(&tmp).unwrap();
     let landing =
-        boundary::scenario_landing(&tmp, |sc| touchdown_core::run(sc).map(|s| s.outcome)).unwrap();
+        boundary::scenario_landing(&steep, &[], |sc| touchdown_core::run(sc).map(|s| s.outcome))
+            .unwrap();
     let settings = Settings {
         vh_start: 0.0,
         vh_step: 2.0,
