@@ -1,6 +1,7 @@
 """The Python package `touchdown` (python/touchdown, crates/python), run by scripts/test."""
 
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -133,3 +134,104 @@ def test_a_shard_whose_worker_dies_is_run_again(tmp_path):
             assert client.gather(f) == str(campaign.shard_dir(out, 2, 4))
     assert marker.exists()
     assert (campaign.shard_dir(out, 2, 4) / "landings.parquet").exists()
+
+
+def test_the_history_as_a_pandas_or_polars_frame():
+    arrays = touchdown.run(SCENARIO)["history"]
+    pandas_frame = touchdown.run(SCENARIO, frame="pandas")["history"]
+    polars_frame = touchdown.run(SCENARIO, frame="polars")["history"]
+    assert list(pandas_frame.columns) == list(arrays) == polars_frame.columns
+    for name in ("t_s", "leg1_primary_stroke_m", "z_m"):
+        assert np.array_equal(pandas_frame[name].to_numpy(), arrays[name])
+        assert np.array_equal(polars_frame[name].to_numpy(), arrays[name])
+    with pytest.raises(ValueError, match="frame"):
+        touchdown.run(SCENARIO, frame="arrow")
+
+
+def test_a_comparison_is_the_command_lines():
+    flat = ROOT / "scenarios" / "flat-drop.toml"
+    cli = subprocess.run(
+        [TOUCHDOWN, "compare", flat, "--engines", "core,rapier", "--format", "json", "--report-only"],
+        capture_output=True,
+        check=True,
+    )
+    import json
+
+    py = touchdown.compare(flat, engines=["rapier", "core"])
+    assert [py] == json.loads(cli.stdout)
+    assert [e[0] for e in py["comparison"]["engines"]] == ["core", "rapier"]
+    with pytest.raises(touchdown.TouchdownError, match="at least two engines"):
+        touchdown.compare(flat, engines=["core", "core"])
+
+
+def test_a_boundary_is_the_command_lines_and_overrides_move_it():
+    cli = subprocess.run(
+        [TOUCHDOWN, "boundary", SCENARIO, "--vv", "8:10:2", "--vh-step", "4", "--vh-max", "16", "--format", "json"],
+        capture_output=True,
+        check=True,
+    )
+    import json
+
+    py = touchdown.boundary(SCENARIO, vv=[8.0, 10.0], vh_step=4.0, vh_max=16.0)
+    assert py == json.loads(cli.stdout)
+    assert [p["engine"] for p in py] == ["core", "core"] and [p["vv"] for p in py] == [8.0, 10.0]
+    with pytest.raises(ValueError, match="vh_step"):
+        touchdown.boundary(SCENARIO, vv=[8.0], vh_step=0.0)
+    with pytest.raises(touchdown.ScenarioInvalid) as e:
+        touchdown.boundary(SCENARIO, vv=[8.0], overrides={"touchdown.vertical_speed": 1.0})
+    assert e.value.field == "touchdown.vertical_speed"
+
+
+def test_a_landing_leaves_the_interpreter_free_for_other_threads():
+    """While a landing runs in one thread, another thread keeps running Python: the calls
+    release the interpreter's lock. Landings of several threads equal the same landings run
+    one after the other."""
+    import threading
+    import time
+
+    window = {}
+
+    def land():
+        window["start"] = time.perf_counter()
+        window["summary"] = touchdown.run(SCENARIO, engine="rapier", history=False)["summary"]
+        window["end"] = time.perf_counter()
+
+    ticks = []
+    worker = threading.Thread(target=land)
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+    worker.join()
+    inside = [t for t in ticks if window["start"] <= t <= window["end"]]
+    duration = window["end"] - window["start"]
+    gaps = np.diff([window["start"], *inside, window["end"]])
+    # Were the lock held for the whole landing, this thread would stall for all of it.
+    assert gaps.max() < 0.5 * duration, (gaps.max(), duration)
+
+    from concurrent.futures import ThreadPoolExecutor
+
+    speeds = [-6.0, -8.0, -10.0, -12.0]
+    one_by_one = [
+        touchdown.run(SCENARIO, overrides={"touchdown.vertical_velocity": v}, history=False)["summary"]
+        for v in speeds
+    ]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        threaded = list(
+            pool.map(
+                lambda v: touchdown.run(SCENARIO, overrides={"touchdown.vertical_velocity": v}, history=False)[
+                    "summary"
+                ],
+                speeds,
+            )
+        )
+    assert threaded == one_by_one
+
+
+def test_the_worked_example_regenerates_its_data(tmp_path):
+    """docs/python/dispersion_study.py, run as a script, writes the data committed beside the
+    figure of docs/python.md, byte for byte."""
+    example = ROOT / "docs" / "python" / "dispersion_study.py"
+    subprocess.run([sys.executable, example, "--out", tmp_path], capture_output=True, check=True)
+    committed = ROOT / "docs" / "python" / "dispersion-study.json"
+    assert (tmp_path / "dispersion-study.json").read_bytes() == committed.read_bytes()
+    assert (tmp_path / "dispersion-study.png").stat().st_size > 10_000

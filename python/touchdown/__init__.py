@@ -6,6 +6,9 @@ shards of a campaign, computed by the project's Rust crates (the native module
     landing = touchdown.run("scenarios/table-i-2-2-vv8.toml", engine="core",
                             overrides={"touchdown.vertical_velocity": -10.0})
     landing["summary"]["max_primary_stroke_m"], landing["history"]["t_s"]
+    touchdown.run(path, frame="pandas")["history"]      # a pandas (or "polars") frame
+    touchdown.compare(path, engines=("core", "rapier"))  # as `touchdown compare --format json`
+    touchdown.boundary(path, vv=[6.0, 8.0])              # as `touchdown boundary --format json`
 
 Errors are exceptions carrying what the command line prints: `ScenarioInvalid` (with `file`,
 `field`, `message`), `LandingStopped` (with `time_s`, `law`, `leg`, `message`),
@@ -16,7 +19,7 @@ threads land in parallel.
 import io
 import json
 from os import PathLike
-from typing import Any, Mapping, Optional, Union
+from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -26,6 +29,8 @@ from ._native import EngineUnavailable, LandingStopped, ScenarioInvalid, Touchdo
 __version__ = _native.__version__
 __all__ = [
     "run",
+    "compare",
+    "boundary",
     "TouchdownError",
     "ScenarioInvalid",
     "LandingStopped",
@@ -33,11 +38,22 @@ __all__ = [
 ]
 
 
-def _history(csv_text: str) -> dict:
-    """The history's columns (units in their names) as NumPy arrays; an empty cell (an
-    undefined stability distance) is NaN in its array."""
+def _history(csv_text: str, frame: Optional[str]) -> Any:
+    """The history's columns (units in their names): a dict of NumPy arrays, or a pandas or
+    polars frame; an empty cell (an undefined stability distance) is NaN."""
     data = np.genfromtxt(io.StringIO(csv_text), delimiter=",", names=True, dtype=float)
-    return {name: np.asarray(data[name]) for name in data.dtype.names}
+    columns = {name: np.asarray(data[name]) for name in data.dtype.names}
+    if frame is None:
+        return columns
+    if frame == "pandas":
+        import pandas
+
+        return pandas.DataFrame(columns)
+    if frame == "polars":
+        import polars
+
+        return polars.DataFrame(columns)
+    raise ValueError(f'frame: expected None, "pandas" or "polars", got {frame!r}')
 
 
 def run(
@@ -45,14 +61,61 @@ def run(
     engine: str = "core",
     overrides: Optional[Mapping[str, Any]] = None,
     history: bool = True,
+    frame: Optional[str] = None,
 ) -> dict:
     """Lands `scenario` (a scenario file's path, or its TOML text without `extends`) on
     `engine` ("core", "rapier" or "mujoco"), with `overrides` (field path, e.g.
     "touchdown.attitude[2]", to value in the file's units). Returns {"summary": dict (as
-    `touchdown run --format json`), "history": dict of NumPy arrays or None (MuJoCo, or
+    `touchdown run --format json`), "history": the history (a dict of NumPy arrays, or with
+    `frame="pandas"` or `"polars"` a frame of that package), or None (MuJoCo, or
     history=False)}."""
+    if frame not in (None, "pandas", "polars"):
+        raise ValueError(f'frame: expected None, "pandas" or "polars", got {frame!r}')
     summary, csv_text = _native.run(str(scenario), engine, dict(overrides or {}), history)
     return {
         "summary": json.loads(summary),
-        "history": _history(csv_text) if csv_text else None,
+        "history": _history(csv_text, frame) if csv_text else None,
     }
+
+
+def compare(
+    scenario: Union[str, PathLike],
+    engines: Sequence[str] = ("core", "rapier", "mujoco"),
+    overrides: Optional[Mapping[str, Any]] = None,
+) -> dict:
+    """Lands `scenario` (a path, or TOML text) with `overrides` on each of `engines` that its
+    `engines.applicable` lists and compares every pair channel by channel against the written
+    tolerances (docs/engines.md, "Comparing the engines"): the document `touchdown compare
+    --format json` prints for the scenario, {"comparison": ..., "tolerances": ...}."""
+    return json.loads(_native.compare(str(scenario), list(engines), dict(overrides or {})))
+
+
+def boundary(
+    scenario: Union[str, PathLike],
+    vv: Sequence[float],
+    vh_start: float = 0.0,
+    vh_step: float = 2.0,
+    vh_max: float = 30.0,
+    tol: float = 0.05,
+    engines: Sequence[str] = ("core",),
+    overrides: Optional[Mapping[str, Any]] = None,
+) -> list:
+    """The report's stability-boundary search of `scenario` (a path, or TOML text) with
+    `overrides`, as `touchdown boundary --format json` does: at each descent speed of `vv`
+    (positive down), the horizontal speeds on the grid `vh_start`, `vh_start + vh_step`, ... up
+    to `vh_max`, every change of outcome bisected to `tol`; velocities in the scenario's length
+    unit per second, the horizontal direction the scenario's. One dict per engine and descent
+    speed: `engine`, `vv`, `vh` (the boundary, absent if none), `stable_at`, `unstable_at`,
+    `transitions`, `undecided_at`, `landings`, `undecided`."""
+    return json.loads(
+        _native.boundary(
+            str(scenario),
+            [float(v) for v in vv],
+            float(vh_start),
+            float(vh_step),
+            float(vh_max),
+            float(tol),
+            list(engines),
+            dict(overrides or {}),
+        )
+    )

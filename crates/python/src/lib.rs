@@ -3,14 +3,17 @@
 //! while they run. Errors arrive as Python exceptions carrying the file, field and cause the
 //! command line prints.
 
-use pyo3::exceptions::PyException;
+use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
 use touchdown_campaign::{Campaign, CampaignError, Shard};
+use touchdown_compare::CompareError;
 use touchdown_record::{History, RunError};
 use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::{ScenarioBase, ScenarioError};
+use touchdown_validation::boundary::{search_engines, Settings};
+use touchdown_validation::ValidationError;
 
 pyo3::create_exception!(
     _native,
@@ -57,10 +60,15 @@ fn scenario_error(py: Python<'_>, e: &ScenarioError) -> PyErr {
 
 /// The exception of an engine's failure.
 fn engine_error(py: Python<'_>, f: &EngineFailure) -> PyErr {
-    match &f.error {
+    run_error(py, &f.error, f.to_string())
+}
+
+/// The exception of a landing that did not complete, with `said` as its text.
+fn run_error(py: Python<'_>, e: &RunError, said: String) -> PyErr {
+    match e {
         RunError::Refused(e) => scenario_error(py, e),
         RunError::Stopped(d) => {
-            let err = LandingStopped::new_err(f.to_string());
+            let err = LandingStopped::new_err(said);
             let v = err.value(py);
             let _ = v.setattr("time_s", d.time_s);
             let _ = v.setattr("law", d.law.name());
@@ -68,7 +76,36 @@ fn engine_error(py: Python<'_>, f: &EngineFailure) -> PyErr {
             let _ = v.setattr("message", d.message.clone());
             err
         }
-        RunError::Setup(_) => EngineUnavailable::new_err(f.to_string()),
+        RunError::Setup(_) => EngineUnavailable::new_err(said),
+    }
+}
+
+/// The exception of a comparison's error.
+fn compare_error(py: Python<'_>, e: &CompareError) -> PyErr {
+    match e {
+        CompareError::Scenario(e) => scenario_error(py, e),
+        CompareError::Engine(f) => engine_error(py, f),
+        other => TouchdownError::new_err(other.to_string()),
+    }
+}
+
+/// The exception of a boundary search's error; a setting's is a `ValueError` named by its
+/// keyword argument.
+fn validation_error(py: Python<'_>, e: &ValidationError) -> PyErr {
+    match e {
+        ValidationError::Scenario(e) => scenario_error(py, e),
+        ValidationError::Run { scenario, source } => {
+            run_error(py, source, format!("{scenario}: {source}"))
+        }
+        ValidationError::Setting {
+            argument,
+            expected,
+            got,
+        } => PyValueError::new_err(format!(
+            "{}: expected {expected}, got {got}",
+            argument.trim_start_matches("--").replace('-', "_")
+        )),
+        other => TouchdownError::new_err(other.to_string()),
     }
 }
 
@@ -88,12 +125,15 @@ fn campaign_error(py: Python<'_>, e: &CampaignError) -> PyErr {
     }
 }
 
-/// A scenario file, or TOML text.
-fn base(scenario: &str) -> Result<ScenarioBase, ScenarioError> {
+/// What names a scenario given as text in messages.
+const TEXT_SOURCE: &str = "<scenario text>";
+
+/// A scenario file, or TOML text; with the name messages give it.
+fn base(scenario: &str) -> Result<(ScenarioBase, &str), ScenarioError> {
     if Path::new(scenario).is_file() {
-        ScenarioBase::load(scenario)
+        Ok((ScenarioBase::load(scenario)?, scenario))
     } else {
-        ScenarioBase::from_toml("<scenario text>", scenario)
+        Ok((ScenarioBase::from_toml(TEXT_SOURCE, scenario)?, TEXT_SOURCE))
     }
 }
 
@@ -114,6 +154,36 @@ fn toml_value(v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     )))
 }
 
+/// The overrides of a call: field path → value in the file's units.
+fn override_values(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, toml::Value)>> {
+    let mut values = Vec::new();
+    if let Some(d) = overrides {
+        for (k, v) in d.iter() {
+            values.push((k.extract::<String>()?, toml_value(&v)?));
+        }
+    }
+    Ok(values)
+}
+
+/// The overrides as [`ScenarioBase::with`] takes them.
+fn as_refs(values: &[(String, toml::Value)]) -> Vec<(&str, toml::Value)> {
+    values
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.clone()))
+        .collect()
+}
+
+/// Engines named by the caller.
+fn engines(names: Vec<String>) -> PyResult<Vec<Engine>> {
+    names
+        .iter()
+        .map(|n| {
+            n.parse()
+                .map_err(|e: String| PyValueError::new_err(format!("engines: {e}")))
+        })
+        .collect()
+}
+
 /// Lands `scenario` (a path or TOML text) on `engine` with `overrides` (field path → value in
 /// the file's units): the summary as JSON and, with `history`, the history as CSV text.
 #[pyfunction]
@@ -128,21 +198,12 @@ fn run(
     let engine: Engine = engine
         .parse()
         .map_err(|e: String| TouchdownError::new_err(format!("engine: {e}")))?;
-    let mut values = Vec::new();
-    if let Some(d) = overrides {
-        for (k, v) in d.iter() {
-            values.push((k.extract::<String>()?, toml_value(&v)?));
-        }
-    }
+    let values = override_values(overrides)?;
     let result = py.detach(|| -> Result<(String, Option<String>), Box<Failed>> {
-        let refs: Vec<(&str, toml::Value)> = values
-            .iter()
-            .map(|(k, v)| (k.as_str(), v.clone()))
-            .collect();
-        let sc = base(scenario)
-            .and_then(|b| b.with(&refs))
+        let (sc, source) = base(scenario)
+            .and_then(|(b, source)| Ok((b.with(&as_refs(&values))?, source)))
             .map_err(|e| Box::new(Failed::Scenario(e)))?;
-        let path = Path::new(scenario);
+        let path = Path::new(source);
         let mut recorder = if history && engine != Engine::Mujoco {
             Some(
                 History::to_writer(Vec::new(), sc.legs.len())
@@ -166,6 +227,64 @@ fn run(
         Ok((summary.to_json(), csv))
     });
     result.map_err(|f| f.into_py_err(py))
+}
+
+/// Lands `scenario` (a path or TOML text) with `overrides` on each of `engines` and compares
+/// every pair as `touchdown compare --format json` does: the report as JSON.
+#[pyfunction]
+#[pyo3(signature = (scenario, engines, overrides=None))]
+fn compare(
+    py: Python<'_>,
+    scenario: &str,
+    engines: Vec<String>,
+    overrides: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let engines = self::engines(engines)?;
+    let values = override_values(overrides)?;
+    py.detach(|| -> Result<String, Box<Failed>> {
+        let (sc, source) = base(scenario)
+            .and_then(|(b, source)| Ok((b.with(&as_refs(&values))?, source)))
+            .map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let c = touchdown_compare::engine_set(&engines)
+            .and_then(|set| touchdown_compare::compare_resolved(Path::new(source), &sc, &set))
+            .map_err(|e| Box::new(Failed::Compare(e)))?;
+        Ok(touchdown_compare::report::json(&c).to_string())
+    })
+    .map_err(|f| f.into_py_err(py))
+}
+
+/// The stability-boundary search of `scenario` (a path or TOML text) with `overrides`, as
+/// `touchdown boundary --format json` does: at each descent speed of `vv` (positive down,
+/// the scenario's velocity unit), on each of `engines`; the points as JSON.
+#[pyfunction]
+#[pyo3(signature = (scenario, vv, vh_start, vh_step, vh_max, tol, engines, overrides=None))]
+#[allow(clippy::too_many_arguments)]
+fn boundary(
+    py: Python<'_>,
+    scenario: &str,
+    vv: Vec<f64>,
+    vh_start: f64,
+    vh_step: f64,
+    vh_max: f64,
+    tol: f64,
+    engines: Vec<String>,
+    overrides: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let engines = self::engines(engines)?;
+    let values = override_values(overrides)?;
+    let settings = Settings {
+        vh_start,
+        vh_step,
+        vh_max,
+        tolerance: tol,
+    };
+    py.detach(|| -> Result<String, Box<Failed>> {
+        let (b, _) = base(scenario).map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let points = search_engines(&b, &as_refs(&values), &vv, settings, &engines, &|| ())
+            .map_err(|e| Box::new(Failed::Boundary(e)))?;
+        serde_json::to_string(&points).map_err(|e| Box::new(Failed::Other(e.to_string())))
+    })
+    .map_err(|f| f.into_py_err(py))
 }
 
 /// Runs shard `k` of `n` of the campaign file `campaign` into `out_dir` exactly as
@@ -201,6 +320,8 @@ fn merge(py: Python<'_>, parts: Vec<String>, out_dir: &str) -> PyResult<String> 
 enum Failed {
     Scenario(ScenarioError),
     Engine(EngineFailure),
+    Compare(CompareError),
+    Boundary(ValidationError),
     Other(String),
 }
 
@@ -209,6 +330,8 @@ impl Failed {
         match self {
             Failed::Scenario(e) => scenario_error(py, &e),
             Failed::Engine(f) => engine_error(py, &f),
+            Failed::Compare(e) => compare_error(py, &e),
+            Failed::Boundary(e) => validation_error(py, &e),
             Failed::Other(m) => TouchdownError::new_err(m),
         }
     }
@@ -219,6 +342,8 @@ impl Failed {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(boundary, m)?)?;
     m.add_function(wrap_pyfunction!(run_shard, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add("TouchdownError", py.get_type::<TouchdownError>())?;
