@@ -9,6 +9,7 @@ use touchdown_scenario::ScenarioBase;
 use touchdown_validation::boundary::{
     self, BoundaryPoint, Direction, EnginePoint, Settings, Transition,
 };
+use touchdown_validation::cross_validation::{self, CrossValidation};
 use touchdown_validation::reference::{self, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
 use touchdown_validation::table::{Role, Validation};
@@ -24,7 +25,7 @@ pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
             dir.join("validation.json"),
             serde_json::to_string_pretty(&v)?,
         )?;
-        let run = facts::check(&paths)?;
+        let run = facts::check(&paths, &[])?;
         std::fs::write(
             dir.join("fig-25-26-series.json"),
             serde_json::to_string(&run.series)?,
@@ -137,7 +138,13 @@ pub fn validation_text(v: &Validation) -> String {
         o,
         "\nfigure 25-26 landing: the report's statements beside our run"
     );
-    for f in &v.facts {
+    facts_text(&mut o, &v.facts);
+    o
+}
+
+/// The figure 25-26 facts, one line each: the report's value beside ours.
+fn facts_text(o: &mut String, facts: &[facts::FactCheck]) {
+    for f in facts {
         let _ = writeln!(
             o,
             "  {:<58} report {:<34} ours {:<12} {}",
@@ -147,15 +154,192 @@ pub fn validation_text(v: &Validation) -> String {
             if f.agrees { "agrees" } else { "differs" }
         );
     }
+}
+
+/// `touchdown validate --protocol cv`: whether the target is met.
+pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
+    let paths = Paths::new(root);
+    eprintln!("cross-validating: 8 folds and the fit to every row (about 12 minutes on 2 cores in a release build) ...");
+    let cv = cross_validation::cross_validate(&paths)?;
+    let text = serde_json::to_string_pretty(&cv)?;
+    if let Some(dir) = out {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        let path = dir.join("cross-validation.json");
+        std::fs::write(&path, &text).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if json {
+        println!("{text}");
+    } else {
+        print!("{}", cross_validation_text(&cv));
+    }
+    Ok(cv.target_met())
+}
+
+/// The cross-validation as a readable report.
+pub fn cross_validation_text(cv: &CrossValidation) -> String {
+    let mut o = String::new();
+    let p = &cv.protocol;
+    let _ = writeln!(
+        o,
+        "Cross-validation over Table I (reference/cross-validation-protocol.toml): leave-one-out, \
+         {} parameters fitted to the other {} rows of each fold",
+        p.parameter.len(),
+        cv.folds.len().saturating_sub(1)
+    );
+    let _ = writeln!(
+        o,
+        "strokes in inches; errors (ours or the report's − experiment) / experiment in %; \
+         interval: 2.5-97.5 % over the calibration's uncertainty ({} draws)\n",
+        p.samples
+    );
+    let yes = |b: bool| if b { "yes" } else { "no" }.to_string();
+    let rows = cv.folds.iter().map(|f| {
+        vec![
+            f.held_out.to_string(),
+            format!("{:.3}", f.experiment_in),
+            format!("{:.3}", f.predicted_in),
+            format!("{:.3}-{:.3}", f.interval_in[0], f.interval_in[1]),
+            format!("{:+.1}", f.error_pct),
+            format!("{:.3}", f.report_in),
+            format!("{:+.1}", f.report_error_pct),
+            yes(f.within_10_pct),
+            yes(f.within_interval),
+        ]
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &[
+            "row",
+            "experiment in",
+            "ours (out of fold) in",
+            "interval in",
+            "ours %",
+            "report in",
+            "report %",
+            "within 10 %",
+            "exp. in interval",
+        ],
+        &[0, 1, 2, 3, 4, 5, 6],
+        rows,
+    ));
+    for (what, e) in [
+        ("every row", &cv.all_rows),
+        ("the two-row protocol's held-out rows", &cv.two_row_held_out),
+    ] {
+        let ids: Vec<String> = e.rows.iter().map(u32::to_string).collect();
+        let _ = writeln!(
+            o,
+            "\n{what} ({}): |error| mean {:.1} %, max {:.1} % (the report's analysis: mean {:.1} %, max {:.1} %)",
+            ids.join(", "),
+            e.mean_pct,
+            e.max_pct,
+            e.report_mean_pct,
+            e.report_max_pct
+        );
+    }
+    let _ = writeln!(
+        o,
+        "rows within 10 %: {} of {}; experiment within the interval: {} of {}",
+        cv.rows_within_10_pct,
+        cv.folds.len(),
+        cv.rows_within_interval,
+        cv.folds.len()
+    );
+    let id = &cv.identifiability;
+    let _ = writeln!(
+        o,
+        "\nthe fit to every row ({} iterations, objective {:.3e}; residual variance s² {:.3e}): \
+         what Table I determines",
+        cv.full_fit.iterations, cv.full_fit.objective, id.residual_variance
+    );
+    let rows = id.parameters.iter().map(|d| {
+        vec![
+            d.name.clone(),
+            format!("{}", Short(d.value)),
+            format!("{}", Short(d.sd)),
+            format!("{}", Short(d.prior_sd)),
+            format!("{:.2}", d.ratio),
+            if d.determined {
+                "determined".into()
+            } else {
+                "NOT determined".into()
+            },
+        ]
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &[
+            "parameter (file units)",
+            "value",
+            "sd",
+            "bounds' sd",
+            "sd / bounds' sd",
+            "by the rows",
+        ],
+        &[1, 2, 3, 4],
+        rows,
+    ));
+    let sv: Vec<String> = id
+        .singular_values
+        .iter()
+        .map(|v| format!("{}", Short(*v)))
+        .collect();
+    let _ = writeln!(
+        o,
+        "singular values of the Jacobian (relative error per unit of each parameter's range): {}",
+        sv.join(", ")
+    );
+    let _ = writeln!(
+        o,
+        "a parameter is NOT determined when its sd exceeds {} of its bounds' (the rows narrow it by less than that); its value is then the optimiser's end point, not a fit",
+        p.determined_ratio
+    );
+    let _ = writeln!(
+        o,
+        "profiles (each parameter held over its bounds, the others fitted again): objective, lowest to highest"
+    );
+    for pr in &cv.profiles {
+        let lo = pr.objective.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = pr
+            .objective
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        let _ = writeln!(
+            o,
+            "  {:<62} {} to {} over {} points",
+            pr.name,
+            Short(lo),
+            Short(hi),
+            pr.value.len()
+        );
+    }
+    let _ = writeln!(o, "correlations at the fit (|r| ≥ 0.5):");
+    let names = &id.parameters;
+    for (a, row) in id.correlation.iter().enumerate() {
+        for (b, r) in row.iter().enumerate().skip(a + 1) {
+            if r.abs() >= 0.5 {
+                let _ = writeln!(o, "  {:+.2}  {} ~ {}", r, names[a].name, names[b].name);
+            }
+        }
+    }
+    let _ = writeln!(
+        o,
+        "\nthe figure 25-26 facts (never fitted) at the fit to every row"
+    );
+    facts_text(&mut o, &cv.facts);
+    let verdict = if cv.target_met() { "MET" } else { "NOT MET" };
+    let _ = writeln!(
+        o,
+        "\ntarget (out-of-fold mean below the report's on the two-row protocol's held-out rows, every row within 10 %): {verdict}"
+    );
+    let _ = writeln!(o, "{} landings", cv.landings);
     o
 }
 
-/// `touchdown calibrate`.
-pub fn calibrate(root: &Path, rows: Option<Vec<u32>>) -> Result<()> {
+/// `touchdown calibrate`: into `out`, or over the tracked files when `out` is `None`.
+pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Result<()> {
     let paths = Paths::new(root);
     let protocol: Protocol = reference::read(&paths.reference("calibration-protocol.toml"))?;
     let record = calibrate::calibrate(&paths, &protocol, rows.as_deref())?;
-    calibrate::write(&paths, &record)?;
     let ids: Vec<String> = record.rows.iter().map(u32::to_string).collect();
     println!(
         "calibrated on Table I rows {} ({}: {} iterations, objective {:.3e})",
@@ -164,11 +348,47 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>) -> Result<()> {
         record.iterations,
         record.objective
     );
-    for p in &record.parameter {
-        println!("  {}: {} -> {:.6}", p.name, p.initial, p.value);
+    let determined = cross_validation::determination(&paths, &record, &protocol.parameter)?;
+    for (p, d) in record.parameter.iter().zip(&determined.parameters) {
+        println!(
+            "  {}: {} -> {:.6}  (sd {}, {:.2} of its bounds'; {})",
+            p.name,
+            p.initial,
+            p.value,
+            Short(d.sd),
+            d.ratio,
+            if d.determined {
+                "determined by the rows"
+            } else {
+                "NOT determined by the rows"
+            }
+        );
     }
+    let undetermined: Vec<&str> = determined
+        .parameters
+        .iter()
+        .filter(|d| !d.determined)
+        .map(|d| d.name.as_str())
+        .collect();
+    if !undetermined.is_empty() {
+        eprintln!(
+            "WARNING: Table I rows {} do not determine {}: the optimiser's end point is not a fit \
+             (criterion: reference/cross-validation-protocol.toml)",
+            ids.join(", "),
+            undetermined.join("; ")
+        );
+        if out.is_none() {
+            bail!(
+                "--update-tracked: refusing to write parameters the rows do not determine over the \
+                 tracked calibrated vehicle; write them to a folder with --out DIR"
+            );
+        }
+    }
+    let written = calibrate::write(&paths, &record, out)?;
     println!(
-        "wrote scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml"
+        "wrote {} and {}",
+        written[0].display(),
+        written[1].display()
     );
     Ok(())
 }

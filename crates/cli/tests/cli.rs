@@ -783,3 +783,23 @@ fn a_campaign_of_descent_and_horizontal_speeds_plots_the_engines_boundary() {
     }
     assert_png(&plots.join("outcomes.png"));
 }
+
+/// `touchdown calibrate` writes where it is told: one row for two parameters is refused before
+/// any landing, and without `--out DIR` or `--update-tracked` nothing is written (a usage
+/// error), so the tracked calibrated vehicle changes only when asked.
+#[test]
+fn calibrate_refuses_what_its_rows_cannot_determine_and_writes_only_where_told() {
+    let out = temp("calibrate-one-row");
+    let o = touchdown(&["calibrate", "--rows", "3", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("1 row(s) cannot determine 2 parameters"),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing is written on refusal");
+    let o = touchdown(&["calibrate"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--out"), "{err}");
+}

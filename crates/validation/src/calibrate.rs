@@ -4,32 +4,64 @@
 //! only the fitted fields) and recorded, with the rows used, in
 //! `reference/calibration-result.toml`. Held-out rows never enter the objective.
 
-use crate::reference::{self, CalibrationRecord, Estimates, Fitted, Paths, Protocol, Row, TableI};
+use crate::reference::{
+    self, CalibrationRecord, Estimates, FitParameter, Fitted, Paths, Protocol, Row, TableI,
+};
 use crate::table::{run_row, stroke_in};
 use crate::ValidationError;
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
 
 /// Most iterations of the optimiser.
 const MAX_ITERATIONS: u64 = 200;
+/// The objective of a parameter set the scenario loader refuses (far above any real fit's).
+pub const INFEASIBLE: f64 = 1e3;
 /// Relative size of the initial simplex around the initial values.
 const SIMPLEX: f64 = 0.1;
 
-/// The objective: sum over the calibration rows of the squared relative stroke error.
-struct Objective<'a> {
+/// A row's predicted stroke, in, with the fitted parameters at the values given (file units,
+/// in the protocol's order): the model a fit calibrates.
+pub type Predict<'a> = dyn Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a;
+
+/// The core's stroke for a Table I row with each parameter's value written to its scenario
+/// `fields` (file units): the model every fit of the 1/6-scale model calibrates.
+pub fn table_model<'a>(
     paths: &'a Paths,
-    rows: Vec<Row>,
-    parameters: Vec<(reference::FitParameter, Vec<String>)>,
+    fields: &'a [Vec<String>],
+) -> impl Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a {
+    move |row: &Row, x: &[f64]| {
+        run_row(paths, row, &overrides(fields, x)).map(|s| stroke_in(&s, row.strut))
+    }
 }
 
-impl Objective<'_> {
-    fn overrides<'p>(&'p self, x: &[f64]) -> Vec<(&'p str, f64)> {
-        self.parameters
-            .iter()
-            .zip(x)
-            .flat_map(|((_, fields), v)| fields.iter().map(move |f| (f.as_str(), *v)))
-            .collect()
-    }
+/// The overrides that set each parameter's scenario `fields` to its value in `x` (file units).
+pub fn overrides<'a>(fields: &'a [Vec<String>], x: &[f64]) -> Vec<(&'a str, f64)> {
+    fields
+        .iter()
+        .zip(x)
+        .flat_map(|(f, v)| f.iter().map(move |f| (f.as_str(), *v)))
+        .collect()
+}
+
+/// The relative stroke errors (ours − experiment) / experiment of `rows` at `x`, in row order.
+pub fn relative_errors(
+    rows: &[Row],
+    x: &[f64],
+    predict: &Predict,
+) -> Result<Vec<f64>, ValidationError> {
+    rows.par_iter()
+        .map(|row| predict(row, x).map(|s| (s - row.experiment) / row.experiment))
+        .collect()
+}
+
+/// The objective: sum over the fitted rows of the squared relative stroke error.
+struct Objective<'a> {
+    rows: &'a [Row],
+    parameters: &'a [FitParameter],
+    predict: &'a Predict<'a>,
 }
 
 impl CostFunction for Objective<'_> {
@@ -42,41 +74,154 @@ impl CostFunction for Objective<'_> {
             .parameters
             .iter()
             .zip(x)
-            .map(|((p, _), v)| {
-                ((p.lower - v).max(0.0) + (v - p.upper).max(0.0)) / (p.upper - p.lower)
-            })
+            .map(|(p, v)| ((p.lower - v).max(0.0) + (v - p.upper).max(0.0)) / (p.upper - p.lower))
             .sum();
         if outside > 0.0 {
             return Ok(1e3 * (1.0 + outside));
         }
-        let overrides = self.overrides(x);
-        let mut sum = 0.0;
-        for row in &self.rows {
-            let s = run_row(self.paths, row, &overrides)
-                .map_err(|e| argmin::core::Error::msg(e.to_string()))?;
-            let rel = (stroke_in(&s, row.strut) - row.experiment) / row.experiment;
-            sum += rel * rel;
+        match relative_errors(self.rows, x, self.predict) {
+            Ok(errors) => Ok(errors.iter().fold(0.0, |sum, r| sum + r * r)),
+            // A parameter set whose load-stroke diagram the loader refuses (stages at rising
+            // loads, each long enough for its onset ramp) lies outside the feasible set, as a
+            // value outside the bounds does.
+            Err(e) if infeasible(&e) => Ok(INFEASIBLE),
+            Err(e) => Err(argmin::core::Error::msg(e.to_string())),
         }
-        Ok(sum)
     }
 }
 
-/// Fits the protocol's parameters to its rows (or to `rows`, if given).
-pub fn calibrate(
-    paths: &Paths,
-    protocol: &Protocol,
-    rows: Option<&[u32]>,
-) -> Result<CalibrationRecord, ValidationError> {
-    let table: TableI = reference::read(&paths.reference("table-i.toml"))?;
-    let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
-    let ids = rows.unwrap_or(&protocol.rows).to_vec();
-    if ids.is_empty() || protocol.parameter.is_empty() {
+/// Whether `e` refuses the parameter set itself (the scenario loader or an engine refusing its
+/// load-stroke diagram: stages at rising loads, each long enough for its onset ramp), rather
+/// than reporting a landing that failed: such a set lies outside the feasible set of a fit.
+pub fn infeasible(e: &ValidationError) -> bool {
+    matches!(
+        e,
+        ValidationError::Scenario(_)
+            | ValidationError::Run {
+                source: touchdown_record::RunError::Refused(_),
+                ..
+            }
+    )
+}
+
+/// A fit of parameters to rows.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fit {
+    /// The fitted values, file units, in the parameters' order.
+    pub value: Vec<f64>,
+    /// The objective there: sum of squared relative stroke errors on the rows.
+    pub objective: f64,
+    /// Iterations the optimiser ran.
+    pub iterations: u64,
+}
+
+/// Restarts of a fit: Nelder-Mead run again from its end point with a fresh simplex, until a
+/// restart no longer improves the objective.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restarts {
+    /// Each restart's simplex: a step of this fraction of each parameter's range (towards the
+    /// middle of its bounds).
+    pub simplex: f64,
+    /// Most restarts.
+    pub most: u32,
+    /// A restart that improves the objective by less than this fraction of it ends the fit.
+    pub improvement: f64,
+}
+
+/// Fits `parameters` to `rows` (sum of squared relative stroke errors of `predict`) with
+/// argmin's Nelder-Mead from the initial values, an initial simplex of 10 % steps, bounds by
+/// penalty and at most `max_iterations` iterations a run; with `restarts`, run again from the
+/// end point (a collapsed simplex is not a minimum). Every caller (the two-row calibration,
+/// each cross-validation fold) fits with this one function.
+pub fn fit(
+    rows: &[Row],
+    parameters: &[FitParameter],
+    max_iterations: u64,
+    restarts: Option<Restarts>,
+    predict: &Predict,
+) -> Result<Fit, ValidationError> {
+    if rows.is_empty() || parameters.is_empty() {
         return Err(ValidationError::Calibration(
             "at least one row and one parameter are needed".into(),
         ));
     }
-    let chosen: Vec<Row> = ids
-        .iter()
+    for p in parameters {
+        if !(p.lower < p.initial && p.initial < p.upper) {
+            return Err(ValidationError::Calibration(format!(
+                "{}: expected lower < initial < upper",
+                p.name
+            )));
+        }
+    }
+    let x0: Vec<f64> = parameters.iter().map(|p| p.initial).collect();
+    let mut simplex = vec![x0.clone()];
+    for i in 0..x0.len() {
+        let mut v = x0.clone();
+        v[i] *= 1.0 + SIMPLEX;
+        simplex.push(v);
+    }
+    let mut best = nelder_mead(rows, parameters, simplex, max_iterations, predict)?;
+    let Some(r) = restarts else {
+        return Ok(best);
+    };
+    for _ in 0..r.most {
+        let mut simplex = vec![best.value.clone()];
+        for (i, p) in parameters.iter().enumerate() {
+            let mut v = best.value.clone();
+            let step = r.simplex * (p.upper - p.lower);
+            v[i] += if v[i] + step <= p.upper { step } else { -step };
+            simplex.push(v);
+        }
+        let next = nelder_mead(rows, parameters, simplex, max_iterations, predict)?;
+        let gain = best.objective - next.objective;
+        let iterations = best.iterations + next.iterations;
+        let done = gain <= r.improvement * best.objective;
+        if gain > 0.0 {
+            best = Fit { iterations, ..next };
+        } else {
+            best.iterations = iterations;
+        }
+        if done {
+            break;
+        }
+    }
+    Ok(best)
+}
+
+/// One Nelder-Mead run from `simplex`.
+fn nelder_mead(
+    rows: &[Row],
+    parameters: &[FitParameter],
+    simplex: Vec<Vec<f64>>,
+    max_iterations: u64,
+    predict: &Predict,
+) -> Result<Fit, ValidationError> {
+    let objective = Objective {
+        rows,
+        parameters,
+        predict,
+    };
+    let solver = NelderMead::new(simplex)
+        .with_sd_tolerance(1e-10)
+        .map_err(|e| ValidationError::Calibration(e.to_string()))?;
+    let result = Executor::new(objective, solver)
+        .configure(|state| state.max_iters(max_iterations))
+        .run()
+        .map_err(|e| ValidationError::Calibration(e.to_string()))?;
+    let state = result.state();
+    let value = state.get_best_param().cloned().ok_or_else(|| {
+        ValidationError::Calibration("the optimiser returned no parameters".into())
+    })?;
+    Ok(Fit {
+        value,
+        objective: state.get_best_cost(),
+        iterations: state.get_iter(),
+    })
+}
+
+/// The Table I rows `ids`, in that order.
+pub fn rows_of(table: &TableI, ids: &[u32]) -> Result<Vec<Row>, ValidationError> {
+    ids.iter()
         .map(|id| {
             table
                 .row
@@ -85,69 +230,73 @@ pub fn calibrate(
                 .cloned()
                 .ok_or_else(|| ValidationError::Calibration(format!("Table I has no row {id}")))
         })
-        .collect::<Result<_, _>>()?;
-    let parameters = protocol
-        .parameter
+        .collect()
+}
+
+/// The scenario fields of each parameter, from the estimates.
+pub fn fields_of(
+    estimates: &Estimates,
+    parameters: &[FitParameter],
+) -> Result<Vec<Vec<String>>, ValidationError> {
+    parameters
         .iter()
-        .map(|p| {
-            if !(p.lower < p.initial && p.initial < p.upper) {
-                return Err(ValidationError::Calibration(format!(
-                    "{}: expected lower < initial < upper",
-                    p.name
-                )));
-            }
-            Ok((p.clone(), estimates.get(&p.name)?.fields.clone()))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let x0: Vec<f64> = protocol.parameter.iter().map(|p| p.initial).collect();
-    let mut simplex = vec![x0.clone()];
-    for i in 0..x0.len() {
-        let mut v = x0.clone();
-        v[i] *= 1.0 + SIMPLEX;
-        simplex.push(v);
+        .map(|p| Ok(estimates.get(&p.name)?.fields.clone()))
+        .collect()
+}
+
+/// Fits the protocol's parameters to its rows (or to `rows`, if given). Refused when the rows
+/// are fewer than the parameters: the data could not determine them.
+pub fn calibrate(
+    paths: &Paths,
+    protocol: &Protocol,
+    rows: Option<&[u32]>,
+) -> Result<CalibrationRecord, ValidationError> {
+    let table: TableI = reference::read(&paths.reference("table-i.toml"))?;
+    let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
+    let ids = rows.unwrap_or(&protocol.rows).to_vec();
+    if ids.len() < protocol.parameter.len() {
+        return Err(ValidationError::Calibration(format!(
+            "{} row(s) cannot determine {} parameters: name at least as many rows as parameters",
+            ids.len(),
+            protocol.parameter.len()
+        )));
     }
-    let objective = Objective {
-        paths,
-        rows: chosen,
-        parameters,
-    };
-    let solver = NelderMead::new(simplex)
-        .with_sd_tolerance(1e-10)
-        .map_err(|e| ValidationError::Calibration(e.to_string()))?;
-    let result = Executor::new(objective, solver)
-        .configure(|state| state.max_iters(MAX_ITERATIONS))
-        .run()
-        .map_err(|e| ValidationError::Calibration(e.to_string()))?;
-    let state = result.state();
-    let best = state.get_best_param().cloned().ok_or_else(|| {
-        ValidationError::Calibration("the optimiser returned no parameters".into())
-    })?;
+    let chosen = rows_of(&table, &ids)?;
+    let fields = fields_of(&estimates, &protocol.parameter)?;
+    let model = table_model(paths, &fields);
+    let fitted = fit(&chosen, &protocol.parameter, MAX_ITERATIONS, None, &model)?;
     let parameter = protocol
         .parameter
         .iter()
-        .zip(&best)
-        .map(|(p, v)| {
-            Ok(Fitted {
-                name: p.name.clone(),
-                fields: estimates.get(&p.name)?.fields.clone(),
-                initial: p.initial,
-                value: *v,
-            })
+        .zip(&fitted.value)
+        .zip(&fields)
+        .map(|((p, v), fields)| Fitted {
+            name: p.name.clone(),
+            fields: fields.clone(),
+            initial: p.initial,
+            value: *v,
         })
-        .collect::<Result<Vec<_>, ValidationError>>()?;
+        .collect();
     Ok(CalibrationRecord {
         rows: ids,
         optimiser: "argmin Nelder-Mead".into(),
-        iterations: state.get_iter(),
-        objective: state.get_best_cost(),
+        iterations: fitted.iterations,
+        objective: fitted.objective,
         parameter,
     })
 }
 
-/// Writes the calibrated vehicle file and the record. The vehicle file extends the estimates
-/// and sets only the fitted fields; an array holding a fitted field is written whole (arrays
-/// are replaced whole by `extends`).
-pub fn write(paths: &Paths, record: &CalibrationRecord) -> Result<(), ValidationError> {
+/// Writes the calibrated vehicle file and the record: into the folder `dir`, or, with `None`,
+/// over the tracked files (`scenarios/vehicles/<vehicle>-calibrated.toml`, which the Table I
+/// scenarios extend, and `reference/calibration-result.toml`). The vehicle file extends the
+/// estimates and sets only the fitted fields; an array holding a fitted field is written whole
+/// (arrays are replaced whole by `extends`). In a folder of its own it extends the estimates by
+/// their absolute path. Returns the two files written.
+pub fn write(
+    paths: &Paths,
+    record: &CalibrationRecord,
+    dir: Option<&Path>,
+) -> Result<[PathBuf; 2], ValidationError> {
     let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
     let vehicle = paths.scenario(&estimates.vehicle);
     let mut fitted = touchdown_scenario::merged_table(&vehicle)?;
@@ -157,12 +306,21 @@ pub fn write(paths: &Paths, record: &CalibrationRecord) -> Result<(), Validation
                 .map_err(|m| ValidationError::Calibration(format!("{f}: {m}")))?;
         }
     }
+    let failed = |path: &Path, e: std::io::Error| {
+        ValidationError::Calibration(format!("{}: {e}", path.display()))
+    };
+    let base_name = match dir {
+        None => vehicle
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default(),
+        Some(_) => std::fs::canonicalize(&vehicle)
+            .map_err(|e| failed(&vehicle, e))?
+            .display()
+            .to_string(),
+    };
     let mut out = toml::Table::new();
     out.insert("schema_version".into(), toml::Value::Integer(1));
-    let base_name = vehicle
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_default();
     out.insert("extends".into(), toml::Value::String(base_name));
     out.insert(
         "name".into(),
@@ -189,22 +347,30 @@ pub fn write(paths: &Paths, record: &CalibrationRecord) -> Result<(), Validation
         text.push_str(&format!("# {}: {} -> {:.6}\n", p.name, p.initial, p.value));
     }
     text.push_str(&toml::to_string(&out).map_err(|e| ValidationError::Calibration(e.to_string()))?);
-    let calibrated = vehicle.with_file_name(format!(
+    let name = format!(
         "{}-calibrated.toml",
         vehicle
             .file_stem()
             .map(|s| s.to_string_lossy().to_string())
             .unwrap_or_default()
-    ));
-    std::fs::write(&calibrated, text)
-        .map_err(|e| ValidationError::Calibration(format!("{}: {e}", calibrated.display())))?;
+    );
+    let (calibrated, path) = match dir {
+        None => (
+            vehicle.with_file_name(name),
+            paths.reference("calibration-result.toml"),
+        ),
+        Some(d) => {
+            std::fs::create_dir_all(d).map_err(|e| failed(d, e))?;
+            (d.join(name), d.join("calibration-result.toml"))
+        }
+    };
+    std::fs::write(&calibrated, text).map_err(|e| failed(&calibrated, e))?;
     let record_text = format!(
         "# Written by `touchdown calibrate` from reference/calibration-protocol.toml; the rows used are\n# the calibration rows of `touchdown validate`, every other row is held out.\n{}",
         toml::to_string(record).map_err(|e| ValidationError::Calibration(e.to_string()))?
     );
-    let path = paths.reference("calibration-result.toml");
-    std::fs::write(&path, record_text)
-        .map_err(|e| ValidationError::Calibration(format!("{}: {e}", path.display())))
+    std::fs::write(&path, record_text).map_err(|e| failed(&path, e))?;
+    Ok([calibrated, path])
 }
 
 /// Copies into `out` the part of `from` that holds `field`: the leaf itself, or the whole

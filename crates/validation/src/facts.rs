@@ -294,11 +294,12 @@ pub fn measure(sc: &Scenario, series: &Series, summary: &touchdown_core::Summary
     }
 }
 
-/// Runs the figure 25-26 landing and checks the facts.
-pub fn check(paths: &Paths) -> Result<FactsRun, ValidationError> {
+/// Runs the figure 25-26 landing, with `overrides` (field path, value in file units: a fit's
+/// parameters), and checks the facts.
+pub fn check(paths: &Paths, overrides: &[(&str, f64)]) -> Result<FactsRun, ValidationError> {
     let facts: Facts = reference::read(&paths.reference("fig-25-26-facts.toml"))?;
     let path = paths.scenario(&facts.scenario);
-    let sc = Scenario::load(&path)?;
+    let sc = Scenario::load_with(&path, overrides)?;
     let (series, summary) = record(&sc)?;
     let m = measure(&sc, &series, &summary);
     let (free_flight, strike_t) = (m.free_flight_s, m.downhill_strike_s);

@@ -251,3 +251,81 @@ fn the_figure_25_26_landing_uses_the_estimated_velocities() {
     assert_eq!(t.vertical_velocity, -vv);
     assert_eq!(t.horizontal_velocity[0].hypot(t.horizontal_velocity[1]), vh);
 }
+
+/// The cross-validation on the real model, end to end, with a protocol cut down to stay quick
+/// in a test build (two parameters, four iterations a run and one restart, two draws): eight folds in row
+/// order, each prediction the core's landing of its row with that fold's own fit, the figure
+/// 25-26 facts measured at the fit to every row, and no NaN anywhere in the JSON.
+#[test]
+fn cross_validation_of_the_core_end_to_end() {
+    use touchdown_validation::cross_validation::{self, CvProtocol};
+    let tmp = std::env::temp_dir().join(format!("touchdown-cv-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    copy_dir(&root().join("reference"), &tmp.join("reference"));
+    copy_dir(&root().join("scenarios"), &tmp.join("scenarios"));
+    let paths = Paths::new(&tmp);
+    let file = paths.reference("cross-validation-protocol.toml");
+    let mut protocol: CvProtocol = reference::read(&file).unwrap();
+    protocol
+        .parameter
+        .retain(|p| p.name.contains("FP1") || p.name.contains("FS1"));
+    assert_eq!(protocol.parameter.len(), 2);
+    protocol.max_iterations = 4;
+    protocol.max_restarts = 1;
+    protocol.samples = 2;
+    std::fs::write(&file, toml::to_string(&protocol).unwrap()).unwrap();
+
+    let cv = cross_validation::cross_validate(&paths).unwrap();
+    let ids: Vec<u32> = cv.folds.iter().map(|f| f.held_out).collect();
+    assert_eq!(ids, (1..=8).collect::<Vec<_>>());
+    let table: TableI = reference::read(&paths.reference("table-i.toml")).unwrap();
+    let estimates: reference::Estimates =
+        reference::read(&paths.reference("lm-1-6-estimates.toml")).unwrap();
+    let fields = calibrate::fields_of(&estimates, &protocol.parameter).unwrap();
+    for (f, row) in cv.folds.iter().zip(&table.row) {
+        let own = calibrate::overrides(&fields, &f.fit.value);
+        let s = table::run_row(&paths, row, &own).unwrap();
+        assert_eq!(
+            f.predicted_in,
+            table::stroke_in(&s, row.strut),
+            "row {}",
+            row.id
+        );
+        assert!(f.interval_in[0] <= f.interval_in[1]);
+        assert_eq!(f.identifiability.jacobian.len(), 7);
+    }
+    assert_eq!(cv.two_row_held_out.rows, vec![1, 2, 4, 5, 6, 8]);
+    assert_eq!(cv.facts.len(), 7);
+    assert_eq!(cv.profiles.len(), 2);
+    let json = serde_json::to_string(&cv).unwrap();
+    assert!(!json.contains("null") && !json.contains("NaN"), "{json}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}
+
+/// A calibration to rows that say nothing of a parameter is flagged: rows 3 and 4 measure the
+/// primary strut only, so they cannot determine the secondary crush load; rows 3 and 7 (the
+/// protocol's) determine both. One row for two parameters is refused before any landing.
+#[test]
+fn a_calibration_says_what_its_rows_cannot_determine() {
+    use touchdown_validation::cross_validation;
+    let paths = Paths::new(root());
+    let protocol: Protocol =
+        reference::read(&paths.reference("calibration-protocol.toml")).unwrap();
+    let e = calibrate::calibrate(&paths, &protocol, Some(&[3])).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("1 row(s) cannot determine 2 parameters"),
+        "{e}"
+    );
+    let determined = |rows: &[u32]| -> Vec<bool> {
+        let record = calibrate::calibrate(&paths, &protocol, Some(rows)).unwrap();
+        cross_validation::determination(&paths, &record, &protocol.parameter)
+            .unwrap()
+            .parameters
+            .iter()
+            .map(|d| d.determined)
+            .collect()
+    };
+    assert_eq!(determined(&[3, 7]), vec![true, true]);
+    assert_eq!(determined(&[3, 4]), vec![true, false]);
+}
