@@ -11,20 +11,27 @@ fn validation_plots_regenerate_from_the_committed_data() {
     let python = touchdown_tests::python();
     let out: PathBuf = std::env::temp_dir().join(format!("touchdown-plots-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let status = Command::new(&python)
-        .arg(root.join("python/plot_validation.py"))
-        .arg("--data")
-        .arg(root.join("docs/validation"))
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .expect("the venv's python runs");
-    assert!(
-        status.status.success(),
-        "plot_validation.py failed:\n{}",
-        String::from_utf8_lossy(&status.stderr)
-    );
-    for name in ["table-i.png", "fig-25-26.png", "boundary-2-2.png"] {
+    for script in ["plot_validation.py", "plot_cross_validation.py"] {
+        let status = Command::new(&python)
+            .arg(root.join("python").join(script))
+            .arg("--data")
+            .arg(root.join("docs/validation"))
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .expect("the venv's python runs");
+        assert!(
+            status.status.success(),
+            "{script} failed:\n{}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+    }
+    for name in [
+        "table-i.png",
+        "fig-25-26.png",
+        "boundary-2-2.png",
+        "cross-validation.png",
+    ] {
         let bytes =
             std::fs::read(out.join(name)).unwrap_or_else(|e| panic!("{name} was not written: {e}"));
         assert!(
