@@ -29,6 +29,11 @@ enum Command {
     Run {
         /// Scenario file (TOML).
         scenario: PathBuf,
+        /// Change one value of the scenario: a field path and a value in the scenario's own
+        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
+        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
+        #[arg(long = "set", value_name = "FIELD=VALUE")]
+        set: Vec<Set>,
         /// Output format of the summary on standard output.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
@@ -53,6 +58,11 @@ enum Command {
         /// Scenario files (TOML).
         #[arg(required = true)]
         scenarios: Vec<PathBuf>,
+        /// Change one value of every scenario: a field path and a value in the scenario's own
+        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
+        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
+        #[arg(long = "set", value_name = "FIELD=VALUE")]
+        set: Vec<Set>,
         /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
         /// those its engines.applicable lists.
         #[arg(
@@ -137,6 +147,11 @@ enum Command {
     ExportMjcf {
         /// Scenario file (TOML).
         scenario: PathBuf,
+        /// Change one value of the scenario: a field path and a value in the scenario's own
+        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
+        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
+        #[arg(long = "set", value_name = "FIELD=VALUE")]
+        set: Vec<Set>,
         /// Output file (MJCF XML).
         #[arg(short, long)]
         output: PathBuf,
@@ -216,6 +231,11 @@ enum Command {
     Boundary {
         /// Scenario file (TOML).
         scenario: PathBuf,
+        /// Change one value of the scenario: a field path and a value in the scenario's own
+        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
+        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
+        #[arg(long = "set", value_name = "FIELD=VALUE")]
+        set: Vec<Set>,
         /// Descent speeds FROM:TO:STEP (positive down).
         #[arg(long)]
         vv: String,
@@ -308,6 +328,61 @@ enum TableFormat {
     Csv,
 }
 
+/// A `--set FIELD=VALUE` override: a scenario field path and its value in the scenario's own
+/// units, as TOML (a number, a boolean, a quoted or bare string).
+#[derive(Debug, Clone)]
+pub struct Set {
+    field: String,
+    value: toml::Value,
+}
+
+impl std::str::FromStr for Set {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Set, String> {
+        let (field, value) = s.split_once('=').ok_or_else(|| {
+            format!("expected FIELD=VALUE (e.g. touchdown.vertical_velocity=-10.0), got {s:?}")
+        })?;
+        let field = field.trim();
+        if field.is_empty() {
+            return Err(format!("expected a field path before '=', got {s:?}"));
+        }
+        let value = value.trim();
+        // A TOML value as the file would hold it; a bare word is a string (surface.kind=soil).
+        let value = toml::from_str::<toml::Table>(&format!("v = {value}"))
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(value.to_string()));
+        Ok(Set {
+            field: field.to_string(),
+            value,
+        })
+    }
+}
+
+impl std::fmt::Display for Set {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} = {}", self.field, self.value)
+    }
+}
+
+/// The overrides of `--set`, as [`ScenarioBase::with`] takes them.
+pub fn overrides(set: &[Set]) -> Vec<(&str, toml::Value)> {
+    set.iter()
+        .map(|s| (s.field.as_str(), s.value.clone()))
+        .collect()
+}
+
+/// The scenario file at `path` read once, and resolved with the `--set` overrides (an error
+/// names the field, as for a file).
+pub fn load(path: &Path, set: &[Set]) -> Result<(touchdown_scenario::ScenarioBase, Scenario)> {
+    let base = touchdown_scenario::ScenarioBase::load(path)?;
+    let sc = base
+        .with(&overrides(set))
+        .with_context(|| format!("{} with --set", path.display()))?;
+    Ok((base, sc))
+}
+
 /// The validation protocols of `touchdown validate`.
 #[derive(Clone, Copy, ValueEnum)]
 enum ValidationProtocol {
@@ -389,19 +464,21 @@ fn run(cli: Cli) -> Result<Verdict> {
     let () = match cli.command {
         Command::Run {
             scenario,
+            set,
             format,
             out,
             engine,
             timestep,
-        } => run_landing(&scenario, format, out.as_deref(), engine, timestep),
+        } => run_landing(&scenario, &set, format, out.as_deref(), engine, timestep),
         Command::Compare {
             scenarios,
+            set,
             engines,
             format,
             plot,
             report_only,
         } => {
-            let passed = compare(&scenarios, &engines, format, plot.as_deref())?;
+            let passed = compare(&scenarios, &set, &engines, format, plot.as_deref())?;
             return Ok(verdict(passed, report_only));
         }
         Command::Precision {
@@ -419,8 +496,12 @@ fn run(cli: Cli) -> Result<Verdict> {
             format,
             root,
         } => robustness(&root, &engines, cases, search, format),
-        Command::ExportMjcf { scenario, output } => {
-            let sc = Scenario::load(&scenario)?;
+        Command::ExportMjcf {
+            scenario,
+            set,
+            output,
+        } => {
+            let sc = load(&scenario, &set)?.1;
             warn(&sc);
             touchdown_registry::require(Engine::Mujoco, &sc)?;
             let xml = touchdown_mujoco::export(&sc);
@@ -456,6 +537,7 @@ fn run(cli: Cli) -> Result<Verdict> {
         } => validation::sensitivity(&root, fraction, matches!(format, Format::Json)),
         Command::Boundary {
             scenario,
+            set,
             vv,
             vh_start,
             vh_step,
@@ -476,7 +558,15 @@ fn run(cli: Cli) -> Result<Verdict> {
                 TableFormat::Json => validation::BoundaryFormat::Json,
                 TableFormat::Csv => validation::BoundaryFormat::Csv,
             };
-            validation::boundary(&scenario, &vv, settings, &engines, format, plot.as_deref())
+            validation::boundary(
+                &scenario,
+                &set,
+                &vv,
+                settings,
+                &engines,
+                format,
+                plot.as_deref(),
+            )
         }
         Command::Campaign(args) => {
             let output = |f| match f {
@@ -509,12 +599,13 @@ fn run(cli: Cli) -> Result<Verdict> {
 /// summary.json, history.csv and scenario.resolved.toml in that folder.
 fn run_landing(
     scenario: &Path,
+    set: &[Set],
     format: Format,
     out: Option<&Path>,
     engine: Engine,
     timestep: Option<f64>,
 ) -> Result<()> {
-    let mut sc = Scenario::load(scenario)?;
+    let mut sc = load(scenario, set)?.1;
     touchdown_registry::require(engine, &sc)?;
     if let Some(t) = timestep {
         if !(t.is_finite() && t > 0.0) {
@@ -557,7 +648,7 @@ fn run_landing(
         std::fs::write(dir.join("summary.json"), summary.to_json())?;
     }
     match format {
-        Format::Text => print!("{}", report::text(&sc, &summary)),
+        Format::Text => print!("{}", report::text(&sc, &summary, set)),
         Format::Json => println!("{}", summary.to_json()),
     }
     Ok(())
@@ -567,6 +658,7 @@ fn run_landing(
 /// whether every pair passed on every scenario.
 fn compare(
     scenarios: &[PathBuf],
+    set: &[Set],
     engines: &[Engine],
     format: Format,
     plot: Option<&Path>,
@@ -575,8 +667,9 @@ fn compare(
     let mut json = Vec::new();
     let mut passed = true;
     for path in scenarios {
-        warn(&Scenario::load(path)?);
-        let c = touchdown_compare::compare_scenario(path, &engines)?;
+        let sc = load(path, set)?.1;
+        warn(&sc);
+        let c = touchdown_compare::compare_resolved(path, &sc, &engines)?;
         passed &= c.pairs.iter().all(|p| p.pass);
         if let Some(dir) = plot {
             plots::comparison(&c, path, dir)?;

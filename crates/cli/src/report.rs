@@ -10,7 +10,7 @@ pub fn resolved_scenario(sc: &Scenario) -> String {
 }
 
 /// A readable summary: SI, and the scenario's length unit where it is not metres.
-pub fn text(sc: &Scenario, s: &Summary) -> String {
+pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     let u = sc.file.units;
     let (lu, lname) = (u.length(), u.length_label());
     let len = |m: f64| {
@@ -28,6 +28,9 @@ pub fn text(sc: &Scenario, s: &Summary) -> String {
         s.engine
     );
     let _ = writeln!(o, "scenario: {} ({})", s.scenario, sc.source);
+    for change in set {
+        let _ = writeln!(o, "  with --set {change} (the scenario's units)");
+    }
     if !s.mechanisms.is_empty() {
         let list: Vec<String> = s
             .mechanisms

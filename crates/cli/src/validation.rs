@@ -5,7 +5,6 @@ use std::fmt::Write;
 use std::path::Path;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
-use touchdown_scenario::ScenarioBase;
 use touchdown_validation::boundary::{
     self, BoundaryPoint, Direction, EnginePoint, Settings, Transition,
 };
@@ -506,6 +505,7 @@ pub enum BoundaryFormat {
 /// `touchdown boundary`.
 pub fn boundary(
     scenario: &Path,
+    set: &[crate::Set],
     vv: &str,
     settings: Settings,
     engines: &[Engine],
@@ -514,11 +514,12 @@ pub fn boundary(
 ) -> Result<()> {
     let vvs = range(vv)?;
     settings.validate()?;
-    let base = ScenarioBase::load(scenario)?;
-    let sc = base.with(&[])?;
+    let (base, sc) = crate::load(scenario, set)?;
     crate::warn(&sc);
     let bar = crate::progress_bar(0, "landings");
-    let points = boundary::search_engines(&base, &[], &vvs, settings, engines, &|| bar.inc(1))?;
+    let overrides = crate::overrides(set);
+    let points =
+        boundary::search_engines(&base, &overrides, &vvs, settings, engines, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let vunit = format!("{}/s", sc.file.units.length_label());
     let json = serde_json::to_string_pretty(&points)?;

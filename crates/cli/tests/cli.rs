@@ -803,3 +803,72 @@ fn calibrate_refuses_what_its_rows_cannot_determine_and_writes_only_where_told()
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("--out"), "{err}");
 }
+
+/// `--set FIELD=VALUE` changes a value as a file that extends the scenario would, on `run`
+/// and `boundary`, and is refused as a file would be: an unknown field names the field
+/// (exit 1), a malformed setting is a usage error (exit 2).
+#[test]
+fn set_changes_a_value_as_an_extending_file_would() {
+    let base = "table-i-2-2-vv8.toml";
+    let name = "Table I 2-2, Vv = -8.0 ft/s, Vh = 6.0 ft/s";
+    let file = extending(
+        "set",
+        "faster.toml",
+        base,
+        name,
+        "[touchdown]\nvertical_velocity = -10.0\n",
+    );
+    let scenario = format!("scenarios/{base}");
+    let json = |args: &[&str]| -> serde_json::Value {
+        let o = touchdown(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let set = json(&[
+        "run",
+        &scenario,
+        "--set",
+        "touchdown.vertical_velocity=-10.0",
+        "--format",
+        "json",
+    ]);
+    let extended = json(&["run", file.to_str().unwrap(), "--format", "json"]);
+    let unchanged = json(&["run", &scenario, "--format", "json"]);
+    assert_eq!(set, extended);
+    assert_ne!(
+        set["max_primary_stroke_m"],
+        unchanged["max_primary_stroke_m"]
+    );
+    let boundary = |path: &str, extra: &[&str]| {
+        let mut args = vec![
+            "boundary",
+            path,
+            "--vv",
+            "8:8:1",
+            "--vh-step",
+            "6",
+            "--vh-max",
+            "18",
+            "--format",
+            "json",
+        ];
+        args.extend_from_slice(extra);
+        json(&args)
+    };
+    let heavier = extending("set", "heavier.toml", base, name, "[vehicle]\nmass = 2.2\n");
+    assert_eq!(
+        boundary(&scenario, &["--set", "vehicle.mass=2.2"]),
+        boundary(heavier.to_str().unwrap(), &[])
+    );
+
+    let o = touchdown(&["run", &scenario, "--set", "touchdown.vertical_speed=-10.0"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("touchdown.vertical_speed") && err.contains("--set"),
+        "{err}"
+    );
+    let o = touchdown(&["run", &scenario, "--set", "vertical_velocity"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("FIELD=VALUE"));
+}
