@@ -16,7 +16,8 @@ use touchdown_scenario::Scenario;
 #[command(
     name = "touchdown",
     version,
-    about = "Touchdown dynamics of soft-landing spacecraft (NASA TN D-7045 testbench)"
+    about = "Touchdown dynamics of soft-landing spacecraft (NASA TN D-7045 testbench)",
+    max_term_width = 100
 )]
 struct Cli {
     #[command(subcommand)]
@@ -224,6 +225,19 @@ enum Command {
     /// in parallel, with the probability of a stable landing and its lower confidence bound,
     /// failure modes, strokes against capacities and peak loads (docs/campaigns.md).
     Campaign(CampaignArgs),
+    /// Print the shell completion script for SHELL (bash, zsh, fish, elvish, powershell), e.g.
+    /// `touchdown completions bash > ~/.local/share/bash-completion/completions/touchdown`.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Write the manual pages (roff): touchdown.1 and one touchdown-COMMAND.1 per command, into
+    /// DIR (read with `man -l DIR/touchdown.1`).
+    Man {
+        /// Folder for the pages.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// The report's stability-boundary search: for each descent speed, every horizontal speed
     /// at which the landing changes between stable and unstable, found on a grid of Vh and
     /// bisected; undecided landings are listed, never counted as either (velocities in the
@@ -568,6 +582,12 @@ fn run(cli: Cli) -> Result<Verdict> {
                 plot.as_deref(),
             )
         }
+        Command::Completions { shell } => {
+            let mut cmd = <Cli as clap::CommandFactory>::command();
+            clap_complete::generate(shell, &mut cmd, "touchdown", &mut std::io::stdout());
+            Ok(())
+        }
+        Command::Man { out } => man_pages(&out),
         Command::Campaign(args) => {
             let output = |f| match f {
                 Format::Text => campaign::Output::Text,
@@ -593,6 +613,24 @@ fn run(cli: Cli) -> Result<Verdict> {
         }
     }?;
     Ok(Verdict::Pass)
+}
+
+/// `touchdown man`: the manual page of the command and of each subcommand into `dir`.
+fn man_pages(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let cmd = <Cli as clap::CommandFactory>::command();
+    let write = |name: &str, cmd: clap::Command| -> Result<()> {
+        let path = dir.join(format!("{name}.1"));
+        let mut bytes = Vec::new();
+        clap_mangen::Man::new(cmd).title(name).render(&mut bytes)?;
+        std::fs::write(&path, bytes).with_context(|| format!("cannot write {}", path.display()))
+    };
+    for sub in cmd.get_subcommands() {
+        write(&format!("touchdown-{}", sub.get_name()), sub.clone())?;
+    }
+    write("touchdown", cmd)?;
+    println!("wrote the manual pages into {}", dir.display());
+    Ok(())
 }
 
 /// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
