@@ -89,3 +89,135 @@ fn engines_page_lists_what_each_engine_declares() {
         }
     }
 }
+
+/// Every markdown file of the project (README.md, docs/, reference/, python/): the inline links
+/// `[text](target)` that are not web addresses.
+fn markdown_links() -> Vec<(std::path::PathBuf, String)> {
+    let root = touchdown_tests::root();
+    let mut files = vec![root.join("README.md")];
+    for dir in ["docs", "reference", "python", "scenarios"] {
+        let mut stack = vec![root.join(dir)];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).unwrap() {
+                let p = e.unwrap().path();
+                if p.is_dir() {
+                    stack.push(p);
+                } else if p.extension().is_some_and(|x| x == "md") {
+                    files.push(p);
+                }
+            }
+        }
+    }
+    files.sort();
+    let mut links = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let mut in_code = false;
+        for line in text.lines() {
+            if line.trim_start().starts_with("```") {
+                in_code = !in_code;
+            }
+            if in_code {
+                continue;
+            }
+            let mut rest = line;
+            while let Some(i) = rest.find("](") {
+                let after = &rest[i + 2..];
+                let Some(end) = after.find(')') else { break };
+                let target = &after[..end];
+                if !target.contains("://") && !target.starts_with("mailto:") {
+                    links.push((f.clone(), target.to_string()));
+                }
+                rest = &after[end..];
+            }
+        }
+    }
+    links
+}
+
+/// A heading's anchor as GitHub makes it: lower case, spaces to hyphens, punctuation dropped.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Every relative link of the project's pages reaches a file inside the repository, and every
+/// `#section` a heading of that file: no page points outside the project or at a section that
+/// does not exist.
+#[test]
+fn every_link_of_the_docs_reaches_a_file_and_section_of_the_repository() {
+    let root = touchdown_tests::root();
+    let mut broken = Vec::new();
+    let links = markdown_links();
+    assert!(links.len() > 20, "{links:?}");
+    for (file, target) in links {
+        let (path, section) = match target.split_once('#') {
+            Some((p, s)) => (p, Some(s)),
+            None => (target.as_str(), None),
+        };
+        let dest = if path.is_empty() {
+            file.clone()
+        } else {
+            file.parent().unwrap().join(path)
+        };
+        let Ok(dest) = dest.canonicalize() else {
+            broken.push(format!("{}: {target}: no such file", file.display()));
+            continue;
+        };
+        if !dest.starts_with(&root) {
+            broken.push(format!(
+                "{}: {target}: outside the repository",
+                file.display()
+            ));
+            continue;
+        }
+        if let Some(section) = section {
+            let text = std::fs::read_to_string(&dest).unwrap_or_default();
+            let found = text
+                .lines()
+                .filter(|l| l.starts_with('#'))
+                .any(|l| anchor(l.trim_start_matches('#')) == section);
+            if !found {
+                broken.push(format!("{}: {target}: no such section", file.display()));
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+}
+
+/// The README names every bundled scenario (each file under scenarios/, by its path there), so
+/// a new scenario cannot go unlisted.
+#[test]
+fn the_readme_lists_every_bundled_scenario() {
+    let root = touchdown_tests::root();
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let mut missing = Vec::new();
+    let mut stack = vec![root.join("scenarios")];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "toml") {
+                let rel = p.strip_prefix(root.join("scenarios")).unwrap();
+                let rel = rel.to_string_lossy().replace('\\', "/");
+                if !readme.contains(&rel) {
+                    missing.push(rel);
+                }
+            }
+        }
+    }
+    missing.sort();
+    assert!(
+        missing.is_empty(),
+        "scenarios the README does not list: {missing:?}"
+    );
+}
