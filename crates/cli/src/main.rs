@@ -5,7 +5,7 @@ mod plots;
 mod report;
 mod validation;
 
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::{Path, PathBuf};
 use touchdown_record::History;
@@ -139,9 +139,10 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
-        /// Workspace root holding scenarios/.
-        #[arg(long, default_value = ".")]
-        root: PathBuf,
+        /// The project's folder, holding scenarios/ (default: $TOUCHDOWN_HOME, else the project
+        /// found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
     },
     /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
     /// how to open it in MuJoCo's viewer.
@@ -168,9 +169,10 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
-        /// Workspace root holding reference/ and scenarios/.
-        #[arg(long, default_value = ".")]
-        root: PathBuf,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
         /// Also write the data behind the plots here: validation.json and fig-25-26-series.json
         /// (two-row), cross-validation.json (cv).
         #[arg(long)]
@@ -198,16 +200,18 @@ enum Command {
         /// Write them over the tracked files the Table I scenarios extend.
         #[arg(long)]
         update_tracked: bool,
-        /// Workspace root holding reference/ and scenarios/.
-        #[arg(long, default_value = ".")]
-        root: PathBuf,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
     },
     /// Estimate the figure 25-26 landing's touchdown velocities from the facts the text states
     /// (reference/fig-25-26-velocity-protocol.toml) and write reference/fig-25-26-velocities.toml.
     Estimate {
-        /// Workspace root holding reference/ and scenarios/.
-        #[arg(long, default_value = ".")]
-        root: PathBuf,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
     },
     /// How each estimated parameter (±fraction) moves each Table I stroke.
     Sensitivity {
@@ -217,9 +221,10 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
-        /// Workspace root holding reference/ and scenarios/.
-        #[arg(long, default_value = ".")]
-        root: PathBuf,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
     },
     /// A Monte Carlo campaign: landings of a base scenario with dispersed touchdown conditions,
     /// in parallel, with the probability of a stable landing and its lower confidence bound,
@@ -509,7 +514,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             search,
             format,
             root,
-        } => robustness(&root, &engines, cases, search, format),
+        } => robustness(&home(root)?, &engines, cases, search, format),
         Command::ExportMjcf {
             scenario,
             set,
@@ -532,8 +537,12 @@ fn run(cli: Cli) -> Result<Verdict> {
         } => {
             let json = matches!(format, Format::Json);
             let passed = match protocol {
-                ValidationProtocol::TwoRow => validation::validate(&root, json, out.as_deref())?,
-                ValidationProtocol::Cv => validation::cross_validate(&root, json, out.as_deref())?,
+                ValidationProtocol::TwoRow => {
+                    validation::validate(&home(root)?, json, out.as_deref())?
+                }
+                ValidationProtocol::Cv => {
+                    validation::cross_validate(&home(root)?, json, out.as_deref())?
+                }
             };
             return Ok(verdict(passed, report_only));
         }
@@ -542,13 +551,13 @@ fn run(cli: Cli) -> Result<Verdict> {
             out,
             update_tracked: _,
             root,
-        } => validation::calibrate(&root, rows, out.as_deref()),
-        Command::Estimate { root } => validation::estimate(&root),
+        } => validation::calibrate(&home(root)?, rows, out.as_deref()),
+        Command::Estimate { root } => validation::estimate(&home(root)?),
         Command::Sensitivity {
             fraction,
             format,
             root,
-        } => validation::sensitivity(&root, fraction, matches!(format, Format::Json)),
+        } => validation::sensitivity(&home(root)?, fraction, matches!(format, Format::Json)),
         Command::Boundary {
             scenario,
             set,
@@ -613,6 +622,19 @@ fn run(cli: Cli) -> Result<Verdict> {
         }
     }?;
     Ok(Verdict::Pass)
+}
+
+/// The project's folder: `--root` if given, else found as the MuJoCo engine finds its runner
+/// (`touchdown_mujoco::launch::home`).
+fn home(root: Option<PathBuf>) -> Result<PathBuf> {
+    match root {
+        Some(r) if r.join("reference").is_dir() && r.join("scenarios").is_dir() => Ok(r),
+        Some(r) => bail!(
+            "--root {}: expected the project's folder, holding reference/ and scenarios/",
+            r.display()
+        ),
+        None => Ok(touchdown_mujoco::launch::home()?),
+    }
 }
 
 /// `touchdown man`: the manual page of the command and of each subcommand into `dir`.

@@ -15,9 +15,7 @@ fn draw(args: &[&OsStr]) -> Result<()> {
 /// Runs the plotting script `python/<name>` with `args`; its error output becomes the error.
 fn run_script(name: &str, args: &[&OsStr]) -> Result<()> {
     let python = touchdown_mujoco::launch::project_python("--plot")?;
-    let script: PathBuf = Path::new(touchdown_mujoco::launch::WORKSPACE)
-        .join("python")
-        .join(name);
+    let script: PathBuf = touchdown_mujoco::launch::home()?.join("python").join(name);
     let out = Command::new(&python)
         .arg(script)
         .args(args)

@@ -929,3 +929,39 @@ fn typos_get_suggestions_help_wraps_and_completions_and_man_pages_are_generated(
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The project's data is found wherever the command runs from: above the executable when the
+/// current directory is elsewhere, at `$TOUCHDOWN_HOME` when set; a wrong `$TOUCHDOWN_HOME` or
+/// `--root` is an error saying what was expected.
+#[test]
+fn the_project_is_found_from_any_directory() {
+    let elsewhere = std::env::temp_dir();
+    let run = |envs: &[(&str, &str)], args: &[&str]| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_touchdown"));
+        c.args(args)
+            .current_dir(&elsewhere)
+            .env_remove("TOUCHDOWN_HOME");
+        for (k, v) in envs {
+            c.env(k, v);
+        }
+        c.output().unwrap()
+    };
+    let o = run(&[], &["validate", "--report-only", "--format", "json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let home = root();
+    let o = run(
+        &[("TOUCHDOWN_HOME", home.to_str().unwrap())],
+        &["sensitivity", "--fraction", "0.1", "--format", "json"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(&[("TOUCHDOWN_HOME", "/nonexistent")], &["validate"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("$TOUCHDOWN_HOME is /nonexistent") && err.contains("python/mujoco/run.py"),
+        "{err}"
+    );
+    let o = run(&[], &["validate", "--root", elsewhere.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("expected the project's folder"));
+}

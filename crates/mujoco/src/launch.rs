@@ -13,8 +13,14 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 use touchdown_record::Summary;
 
-/// The workspace this crate was built from (holds `.venv/`, `python/` and `scripts/`).
-pub const WORKSPACE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+/// The workspace this crate was built from: where [`home`] looks last.
+const BUILT_IN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+
+/// The environment variable that names the project's folder.
+pub const HOME_VARIABLE: &str = "TOUCHDOWN_HOME";
+
+/// A file every copy of the project holds, by which [`home`] recognises it.
+const MARKER: &str = "python/mujoco/run.py";
 
 /// The command that sets up the Python environment.
 pub const SETUP_COMMAND: &str = "scripts/setup-python";
@@ -57,21 +63,68 @@ pub struct Launch {
 fn setup_error(what: String) -> MujocoError {
     MujocoError::Setup(format!(
         "{what}; run `{SETUP_COMMAND}` in {} (it creates .venv with the pinned mujoco and matplotlib)",
-        workspace().display()
+        home_shown().display()
     ))
 }
 
-fn workspace() -> PathBuf {
-    let p = PathBuf::from(WORKSPACE);
-    p.canonicalize().unwrap_or(p)
+/// Where the project's folder was looked for, and why it was not found.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct HomeNotFound(String);
+
+/// The project's folder (holding `.venv/`, `python/`, `scripts/`, `reference/` and
+/// `scenarios/`): `$TOUCHDOWN_HOME` if set; else the first folder holding the project above the
+/// running executable (`target/release/touchdown`), then above the current directory; else the
+/// folder this crate was built from. An error says where it looked.
+pub fn home() -> Result<PathBuf, HomeNotFound> {
+    let holds = |d: &Path| d.join(MARKER).is_file();
+    if let Some(h) = std::env::var_os(HOME_VARIABLE) {
+        let h = PathBuf::from(h);
+        return if holds(&h) {
+            Ok(h.canonicalize().unwrap_or(h))
+        } else {
+            Err(HomeNotFound(format!(
+                "${HOME_VARIABLE} is {}, which does not hold the project ({MARKER} is missing)",
+                h.display()
+            )))
+        };
+    }
+    let above = |start: Option<PathBuf>| {
+        start.and_then(|s| s.ancestors().find(|d| holds(d)).map(Path::to_path_buf))
+    };
+    let exe = std::env::current_exe()
+        .ok()
+        .and_then(|e| e.canonicalize().ok());
+    let cwd = std::env::current_dir().ok();
+    if let Some(found) = above(exe.clone()).or_else(|| above(cwd.clone())) {
+        return Ok(found);
+    }
+    let built = PathBuf::from(BUILT_IN);
+    if holds(&built) {
+        return Ok(built.canonicalize().unwrap_or(built));
+    }
+    let shown = |p: Option<PathBuf>| p.map_or("?".into(), |p| p.display().to_string());
+    Err(HomeNotFound(format!(
+        "cannot find the project's folder (one holding {MARKER}): ${HOME_VARIABLE} is not set, \
+         and none was found above the executable ({}), above the current directory ({}) or at \
+         {}; set {HOME_VARIABLE} to the project's folder",
+        shown(exe),
+        shown(cwd),
+        built.display()
+    )))
 }
 
-/// The project's Python interpreter (`$TOUCHDOWN_PYTHON`, else the workspace's `.venv`), or a
-/// setup error saying that `needed_for` needs it and how to create it.
+/// The project's folder for a message: [`home`], or where it was built.
+fn home_shown() -> PathBuf {
+    home().unwrap_or_else(|_| PathBuf::from(BUILT_IN))
+}
+
+/// The project's Python interpreter (`$TOUCHDOWN_PYTHON`, else the `.venv` of the project's
+/// folder, [`home`]), or a setup error saying that `needed_for` needs it and how to create it.
 pub fn project_python(needed_for: &str) -> Result<PathBuf, MujocoError> {
     let python = match std::env::var_os("TOUCHDOWN_PYTHON") {
         Some(p) => PathBuf::from(p),
-        None => workspace().join(".venv").join("bin").join("python"),
+        None => home()?.join(".venv").join("bin").join("python"),
     };
     if !python.is_file() {
         return Err(setup_error(format!(
@@ -83,11 +136,11 @@ pub fn project_python(needed_for: &str) -> Result<PathBuf, MujocoError> {
 }
 
 impl Launch {
-    /// Finds the interpreter (`$TOUCHDOWN_PYTHON`, else the workspace's `.venv`), the runner and
+    /// Finds the interpreter (`$TOUCHDOWN_PYTHON`, else the project's `.venv`), the runner and
     /// the library (`$TOUCHDOWN_MUJOCO_LIBRARY`, else next to the running executable or in its
     /// `deps/`), or says which is missing and how to set it up.
     pub fn locate() -> Result<Launch, MujocoError> {
-        let root = workspace();
+        let root = home()?;
         let python = project_python("the MuJoCo engine")?;
         let runner = root.join("python").join("mujoco").join("run.py");
         if !runner.is_file() {

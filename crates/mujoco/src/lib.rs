@@ -47,6 +47,9 @@ pub enum MujocoError {
     /// Reading or writing a file.
     #[error("{0}")]
     Io(#[from] std::io::Error),
+    /// The project's folder (runner, venv) cannot be found.
+    #[error(transparent)]
+    Home(#[from] launch::HomeNotFound),
 }
 
 impl From<MujocoError> for touchdown_record::RunError {
