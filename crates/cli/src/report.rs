@@ -68,29 +68,64 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
         len(s.min_stability_distance_m)
     );
     let e = &s.energy;
-    let _ = writeln!(o, "\nenergy since touchdown (J)");
-    let rows = [
-        ("initial kinetic energy", e.kinetic_initial_j),
-        ("kinetic energy now", e.kinetic_j),
-        ("potential energy change", e.potential_change_j),
-        ("footpads in contact", e.footpad_j),
-        ("honeycomb stored (elastic)", e.honeycomb_stored_j),
-        ("honeycomb dissipated", e.honeycomb_dissipated_j),
-        ("viscous", e.viscous_j),
-        ("bearing friction", e.bearing_friction_j),
-        ("sliding friction", e.sliding_friction_j),
-        ("contact events", e.contact_events_j),
-        ("mechanisms (soil, curbs, ...)", e.mechanisms_j),
-    ];
-    for (name, v) in rows {
-        let _ = writeln!(o, "  {name:<28}{v:12.4}");
-    }
-    let scale = e.scale();
+    // The balance of the record's EnergyLedger::report: the initial kinetic energy plus the
+    // residual is the sum of the lines signed + and −.
     let _ = writeln!(
         o,
-        "  {:<28}{:12.4}  (touchdown kinetic, potential released, thrust and RCS input)",
-        "energy put in", scale
+        "\nenergy since touchdown, J: initial kinetic energy + residual = the sum of the lines signed + and −"
     );
+    let line = |o: &mut String, sign: &str, name: &str, v: f64, note: &str| {
+        let text = format!("  {sign} {name:<30}{v:12.4}  {note}");
+        let _ = writeln!(o, "{}", text.trim_end());
+    };
+    line(
+        &mut o,
+        " ",
+        "initial kinetic energy",
+        e.kinetic_initial_j,
+        "the vehicle's, at first contact",
+    );
+    let terms = [
+        ("+", "kinetic energy now", e.kinetic_j, ""),
+        (
+            "+",
+            "potential energy change",
+            e.potential_change_j,
+            "negative: released by the descent",
+        ),
+        (
+            "+",
+            "gear masses",
+            e.footpad_j,
+            "the footpads in contact (core), every gear link (multibody)",
+        ),
+        (
+            "+",
+            "honeycomb stored (elastic)",
+            e.honeycomb_stored_j,
+            "recoverable",
+        ),
+        ("+", "honeycomb dissipated", e.honeycomb_dissipated_j, ""),
+        ("+", "viscous", e.viscous_j, ""),
+        ("+", "bearing friction", e.bearing_friction_j, ""),
+        ("+", "sliding friction", e.sliding_friction_j, ""),
+        (
+            "+",
+            "mechanisms (soil, curbs, ...)",
+            e.mechanisms_j,
+            "work done on them; thrust and RCS count negative",
+        ),
+        (
+            "−",
+            "contact events",
+            e.contact_events_j,
+            "given to the footpads by contact; negative: absorbed by impacts",
+        ),
+    ];
+    for (sign, name, v, note) in terms {
+        line(&mut o, sign, name, v, note);
+    }
+    let scale = e.scale();
     let rel = if scale > 0.0 {
         format!(
             "{:+.3} % of the energy put in",
@@ -99,10 +134,19 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     } else {
         "no energy put in".to_string()
     };
-    let _ = writeln!(
-        o,
-        "  {:<28}{:12.4}  ({rel})",
-        "balance residual", e.residual_j
+    line(
+        &mut o,
+        " ",
+        "balance residual",
+        e.residual_j,
+        &format!("integration error: {rel}"),
+    );
+    line(
+        &mut o,
+        " ",
+        "energy put in",
+        scale,
+        "touchdown kinetic, potential released, thrust and RCS input (the residual's scale)",
     );
     o
 }

@@ -965,3 +965,45 @@ fn the_project_is_found_from_any_directory() {
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("expected the project's folder"));
 }
+
+/// `run`'s energy lines say which side of the balance each is on: the initial kinetic energy
+/// plus the residual equals the sum of the lines signed + and −, as printed (to their rounding),
+/// on a sliding landing and on one with thrust (a mechanism that puts energy in).
+#[test]
+fn the_energy_lines_of_run_add_up_with_their_signs() {
+    for scenario in [
+        "scenarios/level-sliding.toml",
+        "scenarios/thrust-tailoff.toml",
+    ] {
+        let o = touchdown(&["run", scenario]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8_lossy(&o.stdout);
+        let section = text.split("energy since touchdown, J").nth(1).unwrap();
+        let value = |line: &str| -> f64 {
+            line.split_whitespace()
+                .find_map(|w| w.parse::<f64>().ok())
+                .unwrap_or_else(|| panic!("no number in {line:?}"))
+        };
+        let (mut sum, mut initial, mut residual, mut signed) = (0.0, None, None, 0);
+        for line in section.lines().skip(1).take_while(|l| l.starts_with("  ")) {
+            let body = line.trim_start();
+            if let Some(rest) = body.strip_prefix("+ ") {
+                sum += value(rest);
+                signed += 1;
+            } else if let Some(rest) = body.strip_prefix("− ") {
+                sum -= value(rest);
+                signed += 1;
+            } else if body.starts_with("initial kinetic energy") {
+                initial = Some(value(body));
+            } else if body.starts_with("balance residual") {
+                residual = Some(value(body));
+            }
+        }
+        assert_eq!(signed, 10, "{section}");
+        let (initial, residual) = (initial.unwrap(), residual.unwrap());
+        assert!(
+            (initial + residual - sum).abs() < 1e-3,
+            "{scenario}: {initial} + {residual} vs {sum}\n{section}"
+        );
+    }
+}
