@@ -141,18 +141,22 @@ pub fn validation_text(v: &Validation) -> String {
     o
 }
 
-/// The figure 25-26 facts, one line each: the report's value beside ours.
+/// The figure 25-26 facts as a table: the report's value beside ours, and the tolerance.
 fn facts_text(o: &mut String, facts: &[facts::FactCheck]) {
-    for f in facts {
-        let _ = writeln!(
-            o,
-            "  {:<58} report {:<34} ours {:<12} {}",
-            f.fact,
-            f.report,
-            f.ours,
-            if f.agrees { "agrees" } else { "differs" }
-        );
-    }
+    let rows = facts.iter().map(|f| {
+        vec![
+            f.fact.clone(),
+            f.report.clone(),
+            f.ours.clone(),
+            f.tolerance.clone(),
+            if f.agrees { "agrees" } else { "differs" }.to_string(),
+        ]
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &["fact", "report", "ours", "tolerance", ""],
+        &[],
+        rows,
+    ));
 }
 
 /// `touchdown validate --protocol cv`: whether the target is met.
@@ -440,25 +444,44 @@ pub fn sensitivity(root: &Path, fraction: f64, json: bool) -> Result<()> {
     Ok(())
 }
 
-/// The sensitivity table as text: for each parameter, the stroke change of each row at −/+.
+/// The sensitivity table as text: for each parameter (its value in the scenario file's units),
+/// the stroke change of each row at −/+.
 pub fn sensitivity_text(table: &[ParameterSensitivity], fraction: f64) -> String {
     let mut o = String::new();
     let pct = 100.0 * fraction;
-    let _ = writeln!(o, "stroke change (%) of each Table I row with each estimated parameter at −{pct:.0} % / +{pct:.0} %");
-    let mut header = format!("{:<62}", "parameter (value)");
-    if let Some(first) = table.first() {
-        for r in &first.rows {
-            let _ = write!(header, "   row {:<9}", r.id);
-        }
-    }
-    let _ = writeln!(o, "{header}");
-    for p in table {
-        let mut line = format!("{:<62}", format!("{} ({:.4})", p.parameter, p.value));
-        for r in &p.rows {
-            let _ = write!(line, "  {:>+6.1}/{:<+6.1}", r.minus_pct, r.plus_pct);
-        }
-        let _ = writeln!(o, "{line}");
-    }
+    let _ = writeln!(
+        o,
+        "stroke change (%) of each Table I row with each estimated parameter at −{pct:.0} % / +{pct:.0} % \
+         (values in the scenario file's units)"
+    );
+    let ids: Vec<String> = table
+        .first()
+        .map(|p| {
+            p.rows
+                .iter()
+                .map(|r| format!("row {} −/+ %", r.id))
+                .collect()
+        })
+        .unwrap_or_default();
+    let mut header = vec!["parameter", "value", "unit"];
+    header.extend(ids.iter().map(String::as_str));
+    let rows = table.iter().map(|p| {
+        let mut row = vec![
+            p.parameter.clone(),
+            Short(p.value).to_string(),
+            p.unit.clone(),
+        ];
+        row.extend(
+            p.rows
+                .iter()
+                .map(|r| format!("{:+.1}/{:+.1}", r.minus_pct, r.plus_pct)),
+        );
+        row
+    });
+    let right: Vec<usize> = std::iter::once(1).chain(3..header.len()).collect();
+    o.push_str(&touchdown_compare::report::text_table(
+        &header, &right, rows,
+    ));
     o
 }
 

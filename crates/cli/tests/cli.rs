@@ -954,6 +954,25 @@ fn the_project_is_found_from_any_directory() {
         &["sensitivity", "--fraction", "0.1", "--format", "json"],
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Each parameter's value carries the unit of the scenario file it is written in.
+    let table: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let units: Vec<(&str, &str)> = table
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            (
+                p["parameter"].as_str().unwrap(),
+                p["unit"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert!(units.contains(&("vehicle mass M", "slug")), "{units:?}");
+    assert!(
+        units.contains(&("primary onset rate", "lbf/ft")),
+        "{units:?}"
+    );
+    assert!(units.iter().all(|(_, u)| !u.is_empty()), "{units:?}");
     let o = run(&[("TOUCHDOWN_HOME", "/nonexistent")], &["validate"]);
     assert_eq!(o.status.code(), Some(1));
     let err = String::from_utf8_lossy(&o.stderr);

@@ -223,6 +223,54 @@ impl Units {
             LengthUnit::Inch => "in",
         }
     }
+
+    /// The unit, in this file's units, of a quantity whose SI unit is `si` (as the ranges
+    /// table writes it: `N`, `m`, `kg`, `N/m`, `kg·m²`, `m/s`, `rad`, and `deg` for angles):
+    /// each metre, kilogram, newton and angle unit becomes the file's length, mass, force and
+    /// angle unit.
+    pub fn file_unit_of(&self, si: &str) -> String {
+        let mut out = String::new();
+        let mut word = String::new();
+        let flush = |word: &mut String, out: &mut String| {
+            out.push_str(match word.as_str() {
+                "m" => self.length_label(),
+                "kg" => self.mass_label(),
+                "N" => self.force_label(),
+                "rad" | "deg" => self.angle_label(),
+                other => other,
+            });
+            word.clear();
+        };
+        for c in si.chars() {
+            if c.is_alphabetic() && !matches!(c, '²' | '³' | 'γ') {
+                word.push(c);
+            } else {
+                flush(&mut word, &mut out);
+                out.push(c);
+            }
+        }
+        flush(&mut word, &mut out);
+        out
+    }
+}
+
+#[cfg(test)]
+mod file_unit_tests {
+    use super::*;
+
+    #[test]
+    fn si_units_become_the_files() {
+        let u: Units = toml::from_str(
+            "length = \"ft\"\nmass = \"slug\"\nforce = \"lbf\"\nangle = \"deg\"\ntime = \"s\"",
+        )
+        .unwrap();
+        assert_eq!(u.file_unit_of("N/m"), "lbf/ft");
+        assert_eq!(u.file_unit_of("kg·m²"), "slug·ft²");
+        assert_eq!(u.file_unit_of("m/s"), "ft/s");
+        assert_eq!(u.file_unit_of("N/(m/s)^γ"), "lbf/(ft/s)^γ");
+        assert_eq!(u.file_unit_of("s"), "s");
+        assert_eq!(u.file_unit_of("rad"), "deg");
+    }
 }
 
 /// A number in short notation, for messages: at most six significant digits, trailing zeros

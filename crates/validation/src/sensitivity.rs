@@ -28,6 +28,8 @@ pub struct ParameterSensitivity {
     pub parameter: String,
     /// Its current value in the scenarios (calibrated if calibrated), file units.
     pub value: f64,
+    /// The unit of `value`: the scenario file's own (`lbf`, `slug`, `lbf/ft`, ...).
+    pub unit: String,
     /// One response per Table I row.
     pub rows: Vec<Response>,
 }
@@ -45,8 +47,9 @@ pub fn sensitivity(
         .map(|r| run_row(paths, r, &[]).map(|s| stroke_in(&s, r.strut)))
         .collect::<Result<_, _>>()?;
     let mut out = Vec::with_capacity(estimates.parameter.len());
+    let first = paths.scenario(&table.row[0].scenario);
+    let units = Scenario::load(&first)?.file.units;
     for p in &estimates.parameter {
-        let first = paths.scenario(&table.row[0].scenario);
         let value = Scenario::value_at(&first, &p.fields[0])?.ok_or_else(|| {
             ValidationError::Reference(format!("{}: no number at {}", first.display(), p.fields[0]))
         })?;
@@ -79,6 +82,8 @@ pub fn sensitivity(
         out.push(ParameterSensitivity {
             parameter: p.name.clone(),
             value,
+            unit: touchdown_scenario::ranges::lookup(&p.fields[0])
+                .map_or_else(String::new, |r| units.file_unit_of(r.unit)),
             rows,
         });
     }
