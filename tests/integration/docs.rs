@@ -90,23 +90,30 @@ fn engines_page_lists_what_each_engine_declares() {
     }
 }
 
+/// Every file under `dir`, at any depth, whose name ends in `.ext`.
+fn files_under(dir: &std::path::Path, ext: &str) -> Vec<std::path::PathBuf> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == ext) {
+                found.push(p);
+            }
+        }
+    }
+    found
+}
+
 /// Every markdown file of the project (README.md, docs/, reference/, python/): the inline links
 /// `[text](target)` that are not web addresses.
 fn markdown_links() -> Vec<(std::path::PathBuf, String)> {
     let root = touchdown_tests::root();
     let mut files = vec![root.join("README.md")];
     for dir in ["docs", "reference", "python", "scenarios"] {
-        let mut stack = vec![root.join(dir)];
-        while let Some(d) = stack.pop() {
-            for e in std::fs::read_dir(&d).unwrap() {
-                let p = e.unwrap().path();
-                if p.is_dir() {
-                    stack.push(p);
-                } else if p.extension().is_some_and(|x| x == "md") {
-                    files.push(p);
-                }
-            }
-        }
+        files.extend(files_under(&root.join(dir), "md"));
     }
     files.sort();
     let mut links = Vec::new();
@@ -199,22 +206,17 @@ fn every_link_of_the_docs_reaches_a_file_and_section_of_the_repository() {
 fn the_readme_lists_every_bundled_scenario() {
     let root = touchdown_tests::root();
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let mut missing = Vec::new();
-    let mut stack = vec![root.join("scenarios")];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "toml") {
-                let rel = p.strip_prefix(root.join("scenarios")).unwrap();
-                let rel = rel.to_string_lossy().replace('\\', "/");
-                if !readme.contains(&rel) {
-                    missing.push(rel);
-                }
-            }
-        }
-    }
+    let scenarios = root.join("scenarios");
+    let mut missing: Vec<String> = files_under(&scenarios, "toml")
+        .iter()
+        .map(|p| {
+            p.strip_prefix(&scenarios)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/")
+        })
+        .filter(|rel| !readme.contains(rel.as_str()))
+        .collect();
     missing.sort();
     assert!(
         missing.is_empty(),
