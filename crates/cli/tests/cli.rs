@@ -1026,3 +1026,68 @@ fn the_energy_lines_of_run_add_up_with_their_signs() {
         );
     }
 }
+
+/// `history.csv` carries every account of the energy balance, so the balance rebuilds from
+/// each row on every engine: the residual column equals the sum of the accounts (each with its
+/// sign) minus the initial kinetic energy, to the 10 digits the file writes.
+#[test]
+fn the_energy_balance_rebuilds_from_every_row_of_the_history() {
+    for (scenario, engine) in [
+        ("scenarios/level-sliding.toml", "core"),
+        ("scenarios/thrust-tailoff.toml", "core"),
+        ("scenarios/level-sliding.toml", "rapier"),
+        ("scenarios/level-sliding.toml", "mujoco"),
+    ] {
+        let dir = temp(&format!("history-{engine}"));
+        let o = touchdown(&[
+            "run",
+            scenario,
+            "--engine",
+            engine,
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut csv = csv::Reader::from_path(dir.join("history.csv")).unwrap();
+        let header = csv.headers().unwrap().clone();
+        let col = |name: &str| {
+            header
+                .iter()
+                .position(|h| h == name)
+                .unwrap_or_else(|| panic!("{engine}: no column {name}"))
+        };
+        let plus: Vec<usize> = [
+            "kinetic_j",
+            "potential_change_j",
+            "footpad_j",
+            "honeycomb_stored_j",
+            "honeycomb_dissipated_j",
+            "viscous_j",
+            "bearing_friction_j",
+            "sliding_friction_j",
+            "mechanisms_j",
+        ]
+        .map(col)
+        .to_vec();
+        let (events, initial, residual) = (
+            col("contact_events_j"),
+            col("kinetic_initial_j"),
+            col("residual_j"),
+        );
+        let mut rows = 0;
+        for record in csv.records() {
+            let r = record.unwrap();
+            let v = |i: usize| r[i].parse::<f64>().unwrap();
+            let sum: f64 = plus.iter().map(|&i| v(i)).sum::<f64>() - v(events) - v(initial);
+            assert!(
+                (sum - v(residual)).abs() <= 1e-7 * v(initial).abs().max(1.0),
+                "{engine} {scenario} at t = {}: {sum} vs {}",
+                &r[0],
+                v(residual)
+            );
+            rows += 1;
+        }
+        assert!(rows > 10, "{engine}: {rows} rows");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

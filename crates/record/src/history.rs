@@ -6,6 +6,26 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
+/// The energy columns, J, one per account of [`crate::summary::EnergyReport`], so that the balance
+/// rebuilds from a row: `residual_j` = `kinetic_j` + `potential_change_j` + `footpad_j` +
+/// `honeycomb_stored_j` + `honeycomb_dissipated_j` + `viscous_j` + `bearing_friction_j` +
+/// `sliding_friction_j` + `mechanisms_j` − `contact_events_j` − `kinetic_initial_j`
+/// (`EnergyLedger::report`).
+pub const ENERGY_COLUMNS: [&str; 12] = [
+    "kinetic_initial_j",
+    "kinetic_j",
+    "potential_change_j",
+    "footpad_j",
+    "honeycomb_stored_j",
+    "honeycomb_dissipated_j",
+    "viscous_j",
+    "bearing_friction_j",
+    "sliding_friction_j",
+    "mechanisms_j",
+    "contact_events_j",
+    "residual_j",
+];
+
 /// Writes the time history of a landing as it runs, one [`Sample`] a row, whatever the engine:
 /// to a file ([`History::create`]) or to any writer ([`History::to_writer`]).
 pub struct History<W: Write = BufWriter<File>> {
@@ -67,14 +87,7 @@ impl<W: Write> History<W> {
         for i in 1..=legs {
             header.push(format!("sd_wall{i}{}_m", i % legs + 1));
         }
-        for c in [
-            "kinetic_j",
-            "potential_change_j",
-            "honeycomb_dissipated_j",
-            "honeycomb_stored_j",
-            "friction_j",
-            "residual_j",
-        ] {
+        for c in ENERGY_COLUMNS {
             header.push(c.to_string());
         }
         writer.write_record(&header)?;
@@ -157,12 +170,19 @@ impl<W: Write> History<W> {
             row.push(num(*sd));
         }
         let e = &s.energy;
+        // In the order of ENERGY_COLUMNS.
         for x in [
+            e.kinetic_initial_j,
             e.kinetic_j,
             e.potential_change_j,
-            e.honeycomb_dissipated_j,
+            e.footpad_j,
             e.honeycomb_stored_j,
-            e.viscous_j + e.bearing_friction_j + e.sliding_friction_j,
+            e.honeycomb_dissipated_j,
+            e.viscous_j,
+            e.bearing_friction_j,
+            e.sliding_friction_j,
+            e.mechanisms_j,
+            e.contact_events_j,
             e.residual_j,
         ] {
             row.push(num(x));
