@@ -137,6 +137,16 @@ fn base(scenario: &str) -> Result<(ScenarioBase, &str), ScenarioError> {
     }
 }
 
+/// A scenario (a path or TOML text) resolved with `values`, and the name messages give it.
+fn resolved<'a>(
+    scenario: &'a str,
+    values: &[(String, toml::Value)],
+) -> Result<(touchdown_scenario::Scenario, &'a str), Box<Failed>> {
+    base(scenario)
+        .and_then(|(b, source)| Ok((b.with(&as_refs(values))?, source)))
+        .map_err(|e| Box::new(Failed::Scenario(e)))
+}
+
 /// An override's value as TOML.
 fn toml_value(v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if let Ok(b) = v.extract::<bool>() {
@@ -200,9 +210,7 @@ fn run(
         .map_err(|e: String| TouchdownError::new_err(format!("engine: {e}")))?;
     let values = override_values(overrides)?;
     let result = py.detach(|| -> Result<(String, Option<String>), Box<Failed>> {
-        let (sc, source) = base(scenario)
-            .and_then(|(b, source)| Ok((b.with(&as_refs(&values))?, source)))
-            .map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let (sc, source) = resolved(scenario, &values)?;
         let path = Path::new(source);
         let mut recorder = if history && engine != Engine::Mujoco {
             Some(
@@ -242,9 +250,7 @@ fn compare(
     let engines = self::engines(engines)?;
     let values = override_values(overrides)?;
     py.detach(|| -> Result<String, Box<Failed>> {
-        let (sc, source) = base(scenario)
-            .and_then(|(b, source)| Ok((b.with(&as_refs(&values))?, source)))
-            .map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let (sc, source) = resolved(scenario, &values)?;
         let c = touchdown_compare::engine_set(&engines)
             .and_then(|set| touchdown_compare::compare_resolved(Path::new(source), &sc, &set))
             .map_err(|e| Box::new(Failed::Compare(e)))?;

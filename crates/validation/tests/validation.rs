@@ -143,15 +143,22 @@ fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
-/// By construction: changing every held-out row's experimental value (×2) changes nothing in
-/// the calibration, so held-out rows cannot have entered it.
-#[test]
-fn held_out_rows_never_enter_the_calibration() {
-    let tmp = std::env::temp_dir().join(format!("touchdown-heldout-{}", std::process::id()));
+/// A copy of the project's reference/ and scenarios/ in a fresh temporary folder, for a test
+/// that changes them: the folder and its paths.
+fn project_copy(tag: &str) -> (PathBuf, Paths) {
+    let tmp = std::env::temp_dir().join(format!("touchdown-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     copy_dir(&root().join("reference"), &tmp.join("reference"));
     copy_dir(&root().join("scenarios"), &tmp.join("scenarios"));
     let paths = Paths::new(&tmp);
+    (tmp, paths)
+}
+
+/// By construction: changing every held-out row's experimental value (×2) changes nothing in
+/// the calibration, so held-out rows cannot have entered it.
+#[test]
+fn held_out_rows_never_enter_the_calibration() {
+    let (tmp, paths) = project_copy("heldout");
     let protocol: Protocol =
         reference::read(&paths.reference("calibration-protocol.toml")).unwrap();
     let before = calibrate::calibrate(&paths, &protocol, None).unwrap();
@@ -253,17 +260,13 @@ fn the_figure_25_26_landing_uses_the_estimated_velocities() {
 }
 
 /// The cross-validation on the real model, end to end, with a protocol cut down to stay quick
-/// in a test build (two parameters, four iterations a run and one restart, two draws): eight folds in row
-/// order, each prediction the core's landing of its row with that fold's own fit, the figure
+/// in a test build (two parameters, four iterations a run and one restart, two draws): eight
+/// folds in row order, each prediction the core's landing of its row with that fold's own fit, the figure
 /// 25-26 facts measured at the fit to every row, and no NaN anywhere in the JSON.
 #[test]
 fn cross_validation_of_the_core_end_to_end() {
     use touchdown_validation::cross_validation::{self, CvProtocol};
-    let tmp = std::env::temp_dir().join(format!("touchdown-cv-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
-    copy_dir(&root().join("reference"), &tmp.join("reference"));
-    copy_dir(&root().join("scenarios"), &tmp.join("scenarios"));
-    let paths = Paths::new(&tmp);
+    let (tmp, paths) = project_copy("cv");
     let file = paths.reference("cross-validation-protocol.toml");
     let mut protocol: CvProtocol = reference::read(&file).unwrap();
     protocol
