@@ -7,13 +7,15 @@
 use crate::reference::{
     self, CalibrationRecord, Estimates, FitParameter, Fitted, Paths, Protocol, Row, TableI,
 };
-use crate::table::{run_row, stroke_in};
+use crate::table::{land, stroke_in};
 use crate::ValidationError;
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use rayon::prelude::*;
 use serde::Serialize;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use touchdown_scenario::ScenarioBase;
 
 /// Most iterations of the optimiser.
 const MAX_ITERATIONS: u64 = 200;
@@ -26,15 +28,30 @@ const SIMPLEX: f64 = 0.1;
 /// in the protocol's order): the model a fit calibrates.
 pub type Predict<'a> = dyn Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a;
 
-/// The core's stroke for a Table I row with each parameter's value written to its scenario
-/// `fields` (file units): the model every fit of the 1/6-scale model calibrates.
+/// The core's stroke for a Table I row of `rows` with each parameter's value written to its
+/// scenario `fields` (file units): the model every fit of the 1/6-scale model calibrates. Each
+/// row's scenario file is read and merged once, here, and resolved with the values at each call.
 pub fn table_model<'a>(
-    paths: &'a Paths,
+    paths: &Paths,
+    rows: &[Row],
     fields: &'a [Vec<String>],
-) -> impl Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a {
-    move |row: &Row, x: &[f64]| {
-        run_row(paths, row, &overrides(fields, x)).map(|s| stroke_in(&s, row.strut))
+) -> Result<impl Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a, ValidationError> {
+    let mut bases: HashMap<String, (PathBuf, ScenarioBase)> = HashMap::new();
+    for row in rows {
+        let path = paths.scenario(&row.scenario);
+        let base = ScenarioBase::load(&path)?;
+        bases.insert(row.scenario.clone(), (path, base));
     }
+    Ok(move |row: &Row, x: &[f64]| {
+        let (path, base) = bases.get(&row.scenario).ok_or_else(|| {
+            ValidationError::Calibration(format!("row {} is not one of the model's rows", row.id))
+        })?;
+        let values: Vec<(&str, toml::Value)> = overrides(fields, x)
+            .into_iter()
+            .map(|(f, v)| (f, toml::Value::Float(v)))
+            .collect();
+        land(path, &base.with(&values)?).map(|s| stroke_in(&s, row.strut))
+    })
 }
 
 /// The overrides that set each parameter's scenario `fields` to its value in `x` (file units).
@@ -263,7 +280,7 @@ pub fn calibrate(
     }
     let chosen = rows_of(&table, &ids)?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
-    let model = table_model(paths, &fields);
+    let model = table_model(paths, &chosen, &fields)?;
     let fitted = fit(&chosen, &protocol.parameter, MAX_ITERATIONS, None, &model)?;
     let parameter = protocol
         .parameter

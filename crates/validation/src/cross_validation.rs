@@ -266,17 +266,17 @@ fn unscaled(parameters: &[FitParameter], u: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// The Jacobian of the relative stroke errors of `rows` to the scaled parameters at `x`, by
-/// central differences of `step` (one-sided against a bound).
+/// The Jacobian of the relative stroke errors of `rows` to the scaled parameters at `x` (where
+/// they are `centre`), by central differences of `step` (one-sided against a bound).
 fn jacobian(
     rows: &[Row],
     parameters: &[FitParameter],
     x: &[f64],
     step: f64,
+    centre: &[f64],
     predict: &Predict,
 ) -> Result<DMatrix<f64>, ValidationError> {
     let u = scaled(parameters, x);
-    let centre = relative_errors(rows, x, predict)?;
     let columns: Vec<Vec<f64>> = (0..parameters.len())
         .into_par_iter()
         .map(|j| {
@@ -292,7 +292,7 @@ fn jacobian(
                 Err(e) if infeasible(&e) => Ok(None),
                 Err(e) => Err(e),
             };
-            let here = (centre.clone(), u[j]);
+            let here = (centre.to_vec(), u[j]);
             let ((ra, ua), (rb, ub)) = match (side(&a, lo)?, side(&b, hi)?) {
                 (Some(a), Some(b)) => (a, b),
                 (Some(a), None) => (a, here),
@@ -336,8 +336,15 @@ fn identifiability(
     x: &[f64],
     predict: &Predict,
 ) -> Result<(Identifiability, DMatrix<f64>), ValidationError> {
-    let j = jacobian(rows, parameters, x, protocol.jacobian_step, predict)?;
     let residuals = relative_errors(rows, x, predict)?;
+    let j = jacobian(
+        rows,
+        parameters,
+        x,
+        protocol.jacobian_step,
+        &residuals,
+        predict,
+    )?;
     let ssr: f64 = residuals.iter().map(|r| r * r).sum();
     let dof = rows.len().saturating_sub(parameters.len()).max(1);
     let residual_variance = ssr / dof as f64;
@@ -671,14 +678,14 @@ pub fn cross_validate(paths: &Paths) -> Result<CrossValidation, ValidationError>
     let table: TableI = reference::read(&paths.reference("table-i.toml"))?;
     let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
-    let model = table_model(paths, &fields);
-    let ids: Vec<u32> = table.row.iter().map(|r| r.id).collect();
-    let rows = rows_of(&table, &ids)?;
-    let held_out: Vec<u32> = ids
-        .into_iter()
+    let model = table_model(paths, &table.row, &fields)?;
+    let held_out: Vec<u32> = table
+        .row
+        .iter()
+        .map(|r| r.id)
         .filter(|id| !two_row.rows.contains(id))
         .collect();
-    let mut cv = cross_validate_with(&rows, &protocol, &held_out, &model)?;
+    let mut cv = cross_validate_with(&table.row, &protocol, &held_out, &model)?;
     cv.facts = facts::check(paths, &overrides(&fields, &cv.full_fit.value))?.checks;
     cv.landings += 1;
     Ok(cv)
@@ -698,7 +705,7 @@ pub fn determination(
     let rows = rows_of(&table, &record.rows)?;
     let fields: Vec<Vec<String>> = record.parameter.iter().map(|p| p.fields.clone()).collect();
     let x: Vec<f64> = record.parameter.iter().map(|p| p.value).collect();
-    let model = table_model(paths, &fields);
+    let model = table_model(paths, &rows, &fields)?;
     identifiability(&rows, parameters, &protocol, &x, &model).map(|(i, _)| i)
 }
 

@@ -5,6 +5,7 @@ use crate::facts::{self, FactCheck};
 use crate::reference::{self, CalibrationRecord, Paths, Row, Strut, TableI, INCH};
 use crate::ValidationError;
 use serde::Serialize;
+use std::path::Path;
 use touchdown_core::{Outcome, Summary};
 use touchdown_scenario::Scenario;
 
@@ -129,8 +130,12 @@ pub fn run_row(
     overrides: &[(&str, f64)],
 ) -> Result<Summary, ValidationError> {
     let path = paths.scenario(&row.scenario);
-    let sc = Scenario::load_with(&path, overrides)?;
-    touchdown_core::run(&sc).map_err(|source| ValidationError::Run {
+    land(&path, &Scenario::load_with(&path, overrides)?)
+}
+
+/// The core's landing of `sc`, read from `path` (named in an error).
+pub fn land(path: &Path, sc: &Scenario) -> Result<Summary, ValidationError> {
+    touchdown_core::run(sc).map_err(|source| ValidationError::Run {
         scenario: path.display().to_string(),
         source,
     })
