@@ -9,10 +9,18 @@
 * strokes.png: histograms of the maximum strokes as fractions of their strut's capacity, the
   primaries and the secondaries pooled over the legs, with the capacity (1.0) marked.
 
+Each PNG has the data it draws beside it under the same name: outcomes.csv (each landing's two
+inputs and its outcome; the boundary is boundary.json) and strokes.csv (each histogram's bins
+and counts).
+
 Usage: plot_campaign.py DIR OUT. The data behind both is DIR/landings.jsonl and
 DIR/statistics.json. Run by `touchdown campaign --plot` (docs/campaigns.md).
+
+The inputs' field names are read in one function per input (read_landings, read_statistics,
+read_manifest, read_boundary): a renamed field is changed there and nowhere else.
 """
 
+import csv
 import json
 import sys
 from pathlib import Path
@@ -22,60 +30,111 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+# Records' columns: a stroke as a fraction of its strut's capacity ends with this; a primary's
+# contains ".primary.".
+STROKE_OF_CAPACITY = "stroke_of_capacity"
+
+
+def read_landings(folder):
+    """DIR/landings.jsonl: one dict per landing with "outcome" (stable, unstable, undecided,
+    stopped, refused), "inputs" (every column, for the inputs named by the statistics) and
+    "strokes" ([(kind "primary" or "secondary", stroke / capacity)] of every strut)."""
+    landings = []
+    for line in (folder / "landings.jsonl").read_text().splitlines():
+        r = json.loads(line)
+        strokes = [
+            ("primary" if ".primary." in k else "secondary", v)
+            for k, v in r.items()
+            if k.endswith(STROKE_OF_CAPACITY)
+        ]
+        landings.append({"outcome": r["outcome"], "inputs": r, "strokes": strokes})
+    return landings
+
+
+def read_statistics(folder):
+    """DIR/statistics.json: {"landings", "influence": [(input column, correlation with a stable
+    landing)], strongest first}."""
+    stats = json.loads((folder / "statistics.json").read_text())
+    return {
+        "landings": stats["landings"],
+        "influence": [(i["column"], i["correlation_with_stable"]) for i in stats["influence"]],
+    }
+
+
+def read_manifest(folder):
+    """DIR/manifest.json: {"name" (the campaign's), "engine"}."""
+    manifest = json.loads((folder / "manifest.json").read_text())
+    return {"name": manifest["campaign_name"], "engine": manifest["engine"]}
+
+
+def read_boundary(path, x, y):
+    """OUT/boundary.json: {"engine", "points": [(x, y)]} of the points with both inputs, by y."""
+    b = json.loads(path.read_text())
+    pts = sorted(((p[x], p[y]) for p in b["points"] if x in p and y in p), key=lambda q: q[1])
+    return {"engine": b["engine"], "points": pts}
+
+
+def write_csv(path, header, rows):
+    with path.open("w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(header)
+        w.writerows(rows)
+
 
 def main(folder, out):
     folder, out = Path(folder), Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    records = [json.loads(l) for l in (folder / "landings.jsonl").read_text().splitlines()]
-    stats = json.loads((folder / "statistics.json").read_text())
-    manifest = json.loads((folder / "manifest.json").read_text())
-    title = f"{manifest['campaign_name']} ({manifest['engine']}, {stats['landings']} landings)"
+    records = read_landings(folder)
+    stats = read_statistics(folder)
+    manifest = read_manifest(folder)
+    title = f"{manifest['name']} ({manifest['engine']}, {stats['landings']} landings)"
 
-    inputs = [i["column"] for i in stats["influence"]][:2]
+    inputs = [column for column, _ in stats["influence"]][:2]
     if len(inputs) == 2:
         x, y = inputs
-        fig, ax = plt.subplots(figsize=(7.5, 5.5))
+        fig, ax = plt.subplots(figsize=(9.5, 5.5), layout="constrained")
         groups = [
             ("stable", "tab:blue", "o"),
             ("unstable", "tab:red", "x"),
         ]
         for outcome, colour, marker in groups:
-            pts = [(r[x], r[y]) for r in records if r["outcome"] == outcome]
+            pts = [(r["inputs"][x], r["inputs"][y]) for r in records if r["outcome"] == outcome]
             if pts:
                 ax.scatter(*zip(*pts), s=10, c=colour, marker=marker, label=f"{outcome} ({len(pts)})")
-        other = [(r[x], r[y]) for r in records if r["outcome"] not in ("stable", "unstable")]
+        other = [(r["inputs"][x], r["inputs"][y]) for r in records if r["outcome"] not in ("stable", "unstable")]
         if other:
             ax.scatter(*zip(*other), s=14, c="grey", marker="s", label=f"undecided, stopped or refused ({len(other)})")
+        write_csv(
+            out / "outcomes.csv",
+            [x, y, "outcome"],
+            ([r["inputs"][x], r["inputs"][y], r["outcome"]] for r in records),
+        )
         boundary = out / "boundary.json"
         if boundary.exists():
-            b = json.loads(boundary.read_text())
-            pts = sorted(((p[x], p[y]) for p in b["points"] if x in p and y in p), key=lambda q: q[1])
-            if pts:
-                ax.plot(*zip(*pts), "k-", lw=1.8, label=f"{b['engine']} boundary of the base configuration")
-        corr = {i["column"]: i["correlation_with_stable"] for i in stats["influence"]}
+            b = read_boundary(boundary, x, y)
+            if b["points"]:
+                ax.plot(*zip(*b["points"]), "k-", lw=1.8, label=f"{b['engine']} boundary of the base\nconfiguration (boundary.json)")
+        corr = dict(stats["influence"])
         ax.set_xlabel(f"{x.removeprefix('applied.')}  (correlation with stable {corr[x]:+.2f})")
         ax.set_ylabel(f"{y.removeprefix('applied.')}  (correlation with stable {corr[y]:+.2f})")
         ax.set_title(title, fontsize=10)
-        ax.legend(loc="best", fontsize=8)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="landings", title_fontsize=8)
         ax.grid(alpha=0.3)
-        fig.tight_layout()
         fig.savefig(out / "outcomes.png", dpi=120)
         plt.close(fig)
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=False)
+    bins = []
     for ax, kind in zip(axes, ("primary", "secondary")):
-        values = [
-            v
-            for r in records
-            for k, v in r.items()
-            if k.endswith("stroke_of_capacity") and (".primary." in k) == (kind == "primary") and v > 0
-        ]
-        ax.hist(values, bins=40, color="tab:blue" if kind == "primary" else "tab:green")
+        values = [v for r in records for k, v in r["strokes"] if k == kind and v > 0]
+        counts, edges, _ = ax.hist(values, bins=40, color="tab:blue" if kind == "primary" else "tab:green")
+        bins += [(kind, edges[i], edges[i + 1], int(counts[i])) for i in range(len(counts))]
         ax.axvline(1.0, color="k", linestyle="--", label="capacity (end of the last crush stage)")
         ax.set_xlabel(f"{kind} stroke / its capacity")
         ax.set_ylabel("strut-landings")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
+    write_csv(out / "strokes.csv", ["strut", "stroke_of_capacity_from", "stroke_of_capacity_to", "strut_landings"], bins)
     fig.suptitle(f"{title}\nmaximum strokes of every strut of every leg that stroked", fontsize=10)
     fig.tight_layout()
     fig.savefig(out / "strokes.png", dpi=120)

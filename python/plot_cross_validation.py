@@ -36,6 +36,10 @@ C_OURS = "#0072B2"
 C_BAD = "#D55E00"
 
 
+# Metres per inch.
+M_PER_IN = 0.0254
+
+
 def main(argv=None) -> int:
     default = Path(__file__).resolve().parent.parent / "docs" / "validation"
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -52,7 +56,17 @@ def main(argv=None) -> int:
 
     fig, (a, b, c) = plt.subplots(1, 3, figsize=(16, 5.4), gridspec_kw={"width_ratios": [1.5, 1.2, 1.0]},
                                   constrained_layout=True)
-    folds = cv["folds"]
+    # The document is SI; Table I's strokes are drawn in the report's inches.
+    folds = [
+        {
+            **f,
+            "experiment_in": f["experiment_m"] / M_PER_IN,
+            "report_in": f["report_m"] / M_PER_IN,
+            "predicted_in": f["predicted_m"] / M_PER_IN,
+            "interval_in": [v / M_PER_IN for v in f["interval_m"]],
+        }
+        for f in cv["folds"]
+    ]
     x = list(range(len(folds)))
     exp = [f["experiment_in"] for f in folds]
     a.bar(x, [0.2 * e for e in exp], bottom=[0.9 * e for e in exp], width=0.6, color="0.88",

@@ -5,14 +5,19 @@ Reads the data files that the `touchdown` CLI writes into a folder (default docs
 
 * validation.json        `touchdown validate --out DIR` (Table I rows, held-out errors, facts)
 * fig-25-26-series.json  `touchdown validate --out DIR` (time histories of the figs. 25-26 landing)
-* boundary-2-2.json      `touchdown boundary scenarios/fig-25-26.toml ... --format json`
+* boundary-2-2.jsonl     `touchdown boundary scenarios/fig-25-26.toml ... --format json` (JSON Lines)
 
-and writes three PNGs into an output folder (default: the data folder):
+and writes three PNGs into an output folder (default: the data folder), each with the data it
+draws beside it under the same name:
 
-* table-i.png      Table I maximum strokes per row: experiment, the report's analysis, ours;
+* table-i.png      Table I maximum strokes per row: experiment, the report's analysis, ours
+                   (table-i.csv: the bars);
 * fig-25-26.png    vertical acceleration, pitch rate and primary strokes against time, with the
-                   report's stated facts about figures 25-26 overlaid;
-* boundary-2-2.png the 2-2 stability boundary (horizontal vs descent velocity).
+                   report's stated facts about figures 25-26 overlaid (fig-25-26.csv: the curves);
+* boundary-2-2.png the stability boundary of the figure 25-26 configuration (horizontal vs
+                   descent velocity), drawn as `touchdown boundary --plot` draws one
+                   (python/plot_compare.py) (boundary-2-2.jsonl, copied when --out is another
+                   folder).
 
 Usage: python/plot_validation.py [--data DIR] [--out DIR]
 
@@ -24,7 +29,9 @@ allows: Agg backend, fixed figure sizes and DPI, no software/time stamps in the 
 from __future__ import annotations
 
 import argparse
+import csv
 import json
+import shutil
 import sys
 from pathlib import Path
 
@@ -33,7 +40,11 @@ import matplotlib
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+
+# The boundary is drawn, and its JSON read, as `touchdown boundary --plot` draws and reads one.
+from plot_compare import boundary_legends, boundary_title, draw_boundary, read_boundary_points  # noqa: E402
 
 FT_PER_M = 1.0 / 0.3048
 DPI = 110
@@ -41,7 +52,10 @@ PNG_METADATA = {"Software": None}
 
 VALIDATION = "validation.json"
 SERIES = "fig-25-26-series.json"
-BOUNDARY = "boundary-2-2.json"
+BOUNDARY = "boundary-2-2.jsonl"
+# Metres per foot and per inch: the documents are SI, the report's Table I and figures are not.
+M_PER_FT = 0.3048
+M_PER_IN = 0.0254
 
 # Colours (colour-blind friendly, Okabe-Ito).
 C_EXPERIMENT = "#000000"
@@ -81,11 +95,67 @@ def load_json(data_dir: Path, name: str, how: str):
         raise DataError(f"cannot read {path}: {e}") from e
 
 
-def field(obj, key, where):
+# The inputs' field names are read in one function per input (read_validation, read_series,
+# load_boundary): a renamed field is changed there and nowhere else.
+
+
+def read_validation(data_dir: Path) -> dict:
+    """VALIDATION as {"rows": [{"id", "strut" ("primary" or "secondary"), "calibration" (bool),
+    "vv", "vh" (ft/s), "experiment", "analysis", "ours" (maximum stroke, in), "error_pct" (ours
+    against the experiment, or None)}], "held_out_ours" and "held_out_report" ({"mean_pct",
+    "max_pct"} of the held-out rows' |error|, or None), "facts" ({fact: ours, as text})}."""
+    v = load_json(data_dir, VALIDATION, "touchdown validate --out DIR")
     try:
-        return obj[key]
-    except (KeyError, IndexError, TypeError) as e:
-        raise DataError(f"{where}: missing field {key!r}") from e
+        rows = [
+            {
+                "id": r["id"],
+                "strut": r["strut"],
+                "calibration": r.get("role") == "calibration",
+                # The document is SI; Table I is drawn in the report's units.
+                "vv": r["vv_m_s"] / M_PER_FT,
+                "vh": r["vh_m_s"] / M_PER_FT,
+                "experiment": r["experiment_m"] / M_PER_IN,
+                "analysis": r["analysis_m"] / M_PER_IN,
+                "ours": r["ours_m"] / M_PER_IN,
+                "error_pct": r.get("error_vs_experiment_pct"),
+            }
+            for r in v["rows"]
+        ]
+
+        def held_out(key):
+            h = v.get(key)
+            return {"mean_pct": h["mean_abs_error_pct"], "max_pct": h["max_abs_error_pct"]} if h else None
+
+        facts = {f.get("fact"): f.get("ours") for f in (v.get("facts") or []) if isinstance(f, dict)}
+        return {"rows": rows, "held_out_ours": held_out("held_out_ours"),
+                "held_out_report": held_out("held_out_report"), "facts": facts}
+    except (KeyError, TypeError) as e:
+        raise DataError(f"{VALIDATION}: missing field {e}") from e
+
+
+def read_series(data_dir: Path) -> dict:
+    """SERIES as {"t" (s), "acc_g" (vertical acceleration, g), "pitch_rate" (rad/s), "strokes"
+    (primary stroke per footpad, m), "contacts" (footpads in contact per sample, bit i set:
+    footpad i + 1)}, every series as long as "t"."""
+    s = load_json(data_dir, SERIES, "touchdown validate --out DIR")
+    try:
+        t = s["t_s"]
+        series = {
+            "t": t,
+            "acc_g": s["vertical_acceleration_g"],
+            "pitch_rate": s["pitch_rate_rad_s"],
+            "strokes": s["primary_stroke_m"],
+            "contacts": s.get("contacts") or [1] * len(t),
+        }
+    except (KeyError, TypeError) as e:
+        raise DataError(f"{SERIES}: missing field {e}") from e
+    for name in ("acc_g", "pitch_rate", "contacts"):
+        if len(series[name]) != len(t):
+            raise DataError(f"{SERIES}: {name} has {len(series[name])} samples, t has {len(t)}")
+    for i, leg in enumerate(series["strokes"]):
+        if len(leg) != len(t):
+            raise DataError(f"{SERIES}: primary stroke {i + 1} has {len(leg)} samples, t has {len(t)}")
+    return series
 
 
 def save(fig, out: Path):
@@ -98,7 +168,7 @@ def save(fig, out: Path):
 
 
 def plot_table_i(validation, out: Path):
-    rows = field(validation, "rows", VALIDATION)
+    rows = validation["rows"]
     groups = [
         ("primary", "Primary strut stroke (1-2-1 landings)"),
         ("secondary", "Secondary strut stroke (2-2 landings)"),
@@ -106,34 +176,34 @@ def plot_table_i(validation, out: Path):
     fig, axes = plt.subplots(1, 2, figsize=(12, 6), layout="constrained")
     width = 0.26
     for ax, (strut, title) in zip(axes, groups):
-        sel = [r for r in rows if field(r, "strut", VALIDATION) == strut]
+        sel = [r for r in rows if r["strut"] == strut]
         sel.sort(key=lambda r: r["id"])
         xs = list(range(len(sel)))
-        top = max([1.0] + [max(r["experiment_in"], r["analysis_in"], r["ours_in"]) for r in sel])
+        top = max([1.0] + [max(r["experiment"], r["analysis"], r["ours"]) for r in sel])
         for x, r in zip(xs, sel):
-            if r.get("role") == "calibration":
+            if r["calibration"]:
                 ax.axvspan(x - 0.5, x + 0.5, color=C_CALIBRATION, alpha=0.25, lw=0, zorder=0)
-        ax.bar([x - width for x in xs], [r["experiment_in"] for r in sel], width,
+        ax.bar([x - width for x in xs], [r["experiment"] for r in sel], width,
                color=C_EXPERIMENT, label="experiment (Table I)", zorder=2)
-        ax.bar(xs, [r["analysis_in"] for r in sel], width,
+        ax.bar(xs, [r["analysis"] for r in sel], width,
                color=C_ANALYSIS, label="report's analysis (Table I)", zorder=2)
-        ours = ax.bar([x + width for x in xs], [r["ours_in"] for r in sel], width,
+        ours = ax.bar([x + width for x in xs], [r["ours"] for r in sel], width,
                       color=C_OURS, label="ours", zorder=2)
         for bar, r in zip(ours, sel):
-            if r.get("role") == "calibration":
+            if r["calibration"]:
                 bar.set_hatch("//")
                 bar.set_edgecolor("white")
-            err = r.get("error_vs_experiment_pct")
+            err = r["error_pct"]
             if err is not None:
                 ax.annotate(f"{err:+.0f}%", (bar.get_x() + bar.get_width() / 2, bar.get_height()),
                             xytext=(0, 3), textcoords="offset points", ha="center",
                             va="bottom", fontsize=8, color=C_OURS)
         labels = []
         for r in sel:
-            role = "calibration" if r.get("role") == "calibration" else "held out"
+            role = "calibration" if r["calibration"] else "held out"
             labels.append(
                 f"row {r['id']} ({role})\n"
-                f"Vv {abs(r['vv_ft_s']):g}, Vh {r['vh_ft_s']:g} ft/s"
+                f"Vv {abs(r['vv']):g}, Vh {r['vh']:g} ft/s"
             )
         ax.set_xticks(xs, labels, fontsize=8.5)
         ax.set_xlim(-0.6, len(sel) - 0.4)
@@ -149,9 +219,9 @@ def plot_table_i(validation, out: Path):
     ho, hr = validation.get("held_out_ours"), validation.get("held_out_report")
     if ho and hr:
         title += (
-            f"\nheld-out rows mean |error| vs experiment: ours {ho['mean_abs_error_pct']:.1f}% "
-            f"(max {ho['max_abs_error_pct']:.1f}%), report's analysis {hr['mean_abs_error_pct']:.1f}% "
-            f"(max {hr['max_abs_error_pct']:.1f}%)"
+            f"\nheld-out rows mean |error| vs experiment: ours {ho['mean_pct']:.1f}% "
+            f"(max {ho['max_pct']:.1f}%), report's analysis {hr['mean_pct']:.1f}% "
+            f"(max {hr['max_pct']:.1f}%)"
         )
     fig.suptitle(title, fontsize=11.5)
     save(fig, out)
@@ -177,28 +247,15 @@ def free_flight_intervals(t, contacts):
     return out
 
 
-def facts_by_name(validation):
-    return {f.get("fact"): f for f in (validation.get("facts") or []) if isinstance(f, dict)}
-
-
 def ours_of(facts, name):
-    f = facts.get(name)
-    return f" (ours {f['ours']})" if f and f.get("ours") else ""
+    ours = facts.get(name)
+    return f" (ours {ours})" if ours else ""
 
 
 def plot_fig_25_26(series, validation, out: Path):
-    t = field(series, "t", SERIES)
-    acc = field(series, "vertical_acceleration_g", SERIES)
-    q = field(series, "pitch_rate", SERIES)
-    strokes = field(series, "primary_stroke", SERIES)
-    contacts = series.get("contacts") or [1] * len(t)
-    for name, arr in (("vertical_acceleration_g", acc), ("pitch_rate", q), ("contacts", contacts)):
-        if len(arr) != len(t):
-            raise DataError(f"{SERIES}: {name} has {len(arr)} samples, t has {len(t)}")
-    for i, leg in enumerate(strokes):
-        if len(leg) != len(t):
-            raise DataError(f"{SERIES}: primary_stroke[{i}] has {len(leg)} samples, t has {len(t)}")
-    facts = facts_by_name(validation)
+    t, acc, q = series["t"], series["acc_g"], series["pitch_rate"]
+    strokes, contacts = series["strokes"], series["contacts"]
+    facts = validation["facts"]
 
     fig, (a1, a2, a3) = plt.subplots(3, 1, figsize=(11, 11), sharex=True, layout="constrained")
     flights = free_flight_intervals(t, contacts)
@@ -269,60 +326,76 @@ def plot_fig_25_26(series, validation, out: Path):
 # Stability boundary
 
 
-def plot_boundary(boundary, out: Path):
-    if not isinstance(boundary, list):
-        raise DataError(f"{BOUNDARY}: expected an array of boundary points")
-    pts = [(field(p, "vv", BOUNDARY), p) for p in boundary]
-    pts.sort(key=lambda x: x[0])
-    fig, ax = plt.subplots(figsize=(10, 6.5), layout="constrained")
-    found = [(p["vh"], vv) for vv, p in pts if p.get("vh") is not None]
-    xmax = 1.0
-    if found:
-        ax.plot([x for x, _ in found], [y for _, y in found], "o-", color=C_OURS, ms=7,
-                label="ours: boundary (overturn above this Vh)")
-        xmax = max(xmax, max(x for x, _ in found))
-    first_arrow = True
-    for vv, p in pts:
-        # No boundary and nothing unstable (an unresolved boundary has both bracket ends).
-        if p.get("vh") is None and p.get("stable_at") is not None and p.get("unstable_at") is None:
-            s = p["stable_at"]
-            ax.annotate("", xy=(s, vv), xytext=(0, vv),
-                        arrowprops=dict(arrowstyle="-|>", color="#009E73", lw=2, mutation_scale=18))
-            ax.plot([], [], color="#009E73", lw=2, marker=">",
-                    label="ours: stable up to this Vh, no overturn found" if first_arrow else None)
-            first_arrow = False
-            ax.annotate(f"stable to {s:g} ft/s", (s, vv), xytext=(8, 0),
-                        textcoords="offset points", va="center", fontsize=8.5, color="#009E73")
-            xmax = max(xmax, s)
-        if p.get("unstable_at") is not None:
-            xmax = max(xmax, p["unstable_at"])
-        extra = []
-        if p.get("undecided"):
-            extra.append(f"{p['undecided']} undecided")
-        if p.get("landings") is not None:
-            extra.append(f"{p['landings']} landings")
-        if extra:
-            ax.annotate(", ".join(extra), (0, vv), xytext=(4, 6), textcoords="offset points",
-                        fontsize=7.5, color="0.35")
-    unstable = [(p["unstable_at"], vv) for vv, p in pts if p.get("unstable_at") is not None]
-    if unstable:
-        ax.plot([x for x, _ in unstable], [y for _, y in unstable], "x", color=C_REPORT, ms=8,
-                label="ours: first overturning landing found")
+def load_boundary(data_dir: Path):
+    """The boundary points of BOUNDARY (read by plot_compare.read_boundary_points, which names
+    the JSON's fields for both boundary plots)."""
+    path = data_dir / BOUNDARY
+    if not path.is_file():
+        raise DataError(f"missing data file {path} (written by `touchdown boundary ... --format json`; "
+                        "`scripts/plots` regenerates all)")
+    try:
+        return read_boundary_points(path, "ft/s")
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise DataError(f"cannot read {path}: {e}") from e
 
-    ax.axhline(10, color=C_REPORT, ls="--", lw=1)
-    ax.text(0.01, 0.98, "dashed: report, fig. 27: the analysis's boundary is within 1 ft/s of the "
-            "experiment's at Vv = 10 ft/s (the figure's points are not available)",
-            color=C_REPORT, fontsize=8.5, va="top", ha="left", transform=ax.transAxes)
-    ax.set_xlim(0, xmax * 1.3)
-    vvs = [vv for vv, _ in pts] or [10]
+
+def plot_boundary(points, out: Path):
+    """The stability boundary of the figure 25-26 configuration, drawn as `touchdown boundary
+    --plot` draws one (python/plot_compare.py), with the report's statement about fig. 27 in the
+    legend (its points are not available, so nothing of it is drawn)."""
+    fig, ax = plt.subplots(figsize=(12, 6.5), layout="constrained")
+    engine_handles, kind_handles = draw_boundary(ax, points, "ft/s")
+    vvs = [p["vv"] for p in points] or [10.0]
     ax.set_ylim(0, max(max(vvs), 10) + 2)
-    ax.set_xlabel("horizontal velocity Vh (ft/s)")
-    ax.set_ylabel("descent velocity Vv (ft/s)")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="lower right", fontsize=9)
-    ax.set_title("2-2 landing stability boundary, reconstructed 1/6-scale model "
-                 "(scenarios/fig-25-26.toml)", fontsize=11)
+    report = Line2D([], [], ls="none", label="report, fig. 27: its analysis's boundary is within\n"
+                                             "1 ft/s of the experiment's at Vv = 10 ft/s (the\n"
+                                             "figure's points are not available: not drawn)")
+    boundary_legends(ax, engine_handles, kind_handles, extra=[report])
+    first_line = ("Stability boundary of the figures 25-26 configuration (scenarios/fig-25-26.toml):\n"
+                  "reconstructed 1/6-scale model, 2-2, 5° slope, 4-in depressions under the downhill footpads")
+    fig.suptitle(boundary_title(first_line, points, "ft/s"), fontsize=10.5)
     save(fig, out)
+
+
+# --------------------------------------------------------------------------------------------
+# The data beside each plot: what it draws, as CSV with the plot's basename.
+
+
+def write_csv(path: Path, header: list[str], rows) -> None:
+    with path.open("w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(header)
+        w.writerows(rows)
+
+
+def table_i_data(validation, path: Path) -> None:
+    """table-i.csv: the bars of table-i.png, one row per Table I row."""
+    rows = sorted(validation["rows"], key=lambda r: (r["strut"], r["id"]))
+    write_csv(
+        path,
+        ["row", "strut", "role", "vv_m_s", "vh_m_s", "experiment_m", "analysis_m", "ours_m",
+         "ours_error_vs_experiment_pct"],
+        ([r["id"], r["strut"], "calibration" if r["calibration"] else "held out",
+          f"{r['vv'] * M_PER_FT:.6g}", f"{r['vh'] * M_PER_FT:.6g}", f"{r['experiment'] * M_PER_IN:.6g}",
+          f"{r['analysis'] * M_PER_IN:.6g}", f"{r['ours'] * M_PER_IN:.6g}",
+          "" if r["error_pct"] is None else r["error_pct"]]
+         for r in rows),
+    )
+
+
+def fig_25_26_data(series, path: Path) -> None:
+    """fig-25-26.csv: the curves of fig-25-26.png, one row per sample."""
+    t, strokes, contacts = series["t"], series["strokes"], series["contacts"]
+    header = ["t_s", "vertical_acceleration_g", "pitch_rate_rad_s"]
+    header += [f"footpad{i + 1}_primary_stroke_m" for i in range(len(strokes))]
+    header += [f"footpad{i + 1}_in_contact" for i in range(len(strokes))]
+    write_csv(
+        path,
+        header,
+        ([t[k], series["acc_g"][k], series["pitch_rate"][k]]
+         + [f"{leg[k]:.6g}" for leg in strokes]
+         + [(int(contacts[k]) >> i) & 1 for i in range(len(strokes))] for k in range(len(t))),
+    )
 
 
 # --------------------------------------------------------------------------------------------
@@ -343,13 +416,17 @@ def main(argv=None) -> int:
     try:
         if not data_dir.is_dir():
             raise DataError(f"data folder {data_dir} does not exist")
-        validation = load_json(data_dir, VALIDATION, "touchdown validate --out DIR")
-        series = load_json(data_dir, SERIES, "touchdown validate --out DIR")
-        boundary = load_json(data_dir, BOUNDARY, "touchdown boundary ... --format json")
+        validation = read_validation(data_dir)
+        series = read_series(data_dir)
+        boundary = load_boundary(data_dir)
         out_dir.mkdir(parents=True, exist_ok=True)
         plot_table_i(validation, out_dir / "table-i.png")
+        table_i_data(validation, out_dir / "table-i.csv")
         plot_fig_25_26(series, validation, out_dir / "fig-25-26.png")
+        fig_25_26_data(series, out_dir / "fig-25-26.csv")
         plot_boundary(boundary, out_dir / "boundary-2-2.png")
+        if out_dir.resolve() != data_dir.resolve():
+            shutil.copyfile(data_dir / BOUNDARY, out_dir / BOUNDARY)
     except DataError as e:
         print(f"plot_validation: error: {e}", file=sys.stderr)
         return 2

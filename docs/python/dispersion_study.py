@@ -76,10 +76,18 @@ for name in ("stable", "unstable", "undecided"):
 # draws every transition, not only the reported boundary (the lowest stable → unstable one).
 
 # %%
-points = touchdown.boundary(SCENARIO, vv=np.linspace(4.0, 12.0, 9), vh_step=0.5, vh_max=24.0, tol=0.05)
-line = [(p["vh"], p["vv"]) for p in points if "vh" in p]
+# Vertical velocities as the scenario files write them (negative down, ft/s); the points come
+# back in SI (docs/schemas/boundary.schema.json) and are drawn in ft/s, descent positive down.
+points = touchdown.boundary(SCENARIO, vv=-np.linspace(4.0, 12.0, 9), vh_step=0.5, vh_max=24.0, tol=0.05)
+FT = 0.3048  # m per ft
+line = [(p["vh_m_s"] / FT, -p["vv_m_s"] / FT) for p in points if "vh_m_s" in p]
 others = {
-    direction: [(t["vh"], p["vv"]) for p in points for t in p["transitions"] if t["direction"] == direction and "vh" in t and t["vh"] != p.get("vh")]
+    direction: [
+        (t["vh_m_s"] / FT, -p["vv_m_s"] / FT)
+        for p in points
+        for t in p["transitions"]
+        if t["direction"] == direction and "vh_m_s" in t and t["vh_m_s"] != p.get("vh_m_s")
+    ]
     for direction in ("stable_to_unstable", "unstable_to_stable")
 }
 

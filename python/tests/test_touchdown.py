@@ -48,7 +48,7 @@ def test_errors_carry_the_file_field_and_cause():
     with pytest.raises(touchdown.ScenarioInvalid) as e:
         touchdown.run(SCENARIO, overrides={"touchdown.vertical_speed": -10.0})
     assert e.value.field == "touchdown.vertical_speed"
-    assert "no field `vertical_speed`" in e.value.message
+    assert "unknown field `vertical_speed`" in e.value.message and "vertical_velocity" in e.value.message
     with pytest.raises(touchdown.ScenarioInvalid) as e:
         touchdown.run(SCENARIO, overrides={"touchdown.vertical_velocity": float("nan")})
     assert e.value.field == "touchdown.vertical_velocity"
@@ -158,27 +158,38 @@ def test_a_comparison_is_the_command_lines():
     import json
 
     py = touchdown.compare(flat, engines=["rapier", "core"])
-    assert [py] == json.loads(cli.stdout)
-    assert [e[0] for e in py["comparison"]["engines"]] == ["core", "rapier"]
+    assert py == json.loads(cli.stdout)  # the one line of JSON Lines, for one scenario
+    assert [e["name"] for e in py["engines"]] == ["core", "rapier"]
+    assert py["schema"] == "touchdown.compare/1" and py["settings"]["engines"] == ["core", "rapier"]
     with pytest.raises(touchdown.TouchdownError, match="at least two engines"):
         touchdown.compare(flat, engines=["core", "core"])
 
 
 def test_a_boundary_is_the_command_lines_and_overrides_move_it():
     cli = subprocess.run(
-        [TOUCHDOWN, "boundary", SCENARIO, "--vv", "8:10:2", "--vh-step", "4", "--vh-max", "16", "--format", "json"],
+        [TOUCHDOWN, "boundary", SCENARIO, "--vv=-8:-10:2", "--vh-step", "4", "--vh-max", "16", "--format", "json"],
         capture_output=True,
         check=True,
     )
     import json
 
-    py = touchdown.boundary(SCENARIO, vv=[8.0, 10.0], vh_step=4.0, vh_max=16.0)
-    assert py == json.loads(cli.stdout)
-    assert [p["engine"] for p in py] == ["core", "core"] and [p["vv"] for p in py] == [8.0, 10.0]
+    py = touchdown.boundary(SCENARIO, vv=[-8.0, -10.0], vh_step=4.0, vh_max=16.0)
+    # The same documents but for how the scenario was named: the settings as given.
+    for p in py:
+        p["scenario"]["path"] = str(SCENARIO)
+    cli_points = [json.loads(line) for line in cli.stdout.splitlines()]
+    for p in cli_points:
+        p["scenario"]["path"] = str(SCENARIO)
+        p["settings"]["vv_ft_s"] = [-8.0, -10.0]
+    assert py == cli_points
+    assert [p["engine"] for p in py] == ["core", "core"]
+    assert [p["vv_m_s"] for p in py] == [-8.0 * 0.3048, -10.0 * 0.3048]
     with pytest.raises(ValueError, match="vh_step"):
-        touchdown.boundary(SCENARIO, vv=[8.0], vh_step=0.0)
+        touchdown.boundary(SCENARIO, vv=[-8.0], vh_step=0.0)
+    with pytest.raises(ValueError, match="negative down"):
+        touchdown.boundary(SCENARIO, vv=[8.0])
     with pytest.raises(touchdown.ScenarioInvalid) as e:
-        touchdown.boundary(SCENARIO, vv=[8.0], overrides={"touchdown.vertical_speed": 1.0})
+        touchdown.boundary(SCENARIO, vv=[-8.0], overrides={"touchdown.vertical_speed": 1.0})
     assert e.value.field == "touchdown.vertical_speed"
 
 

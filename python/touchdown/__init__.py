@@ -66,7 +66,7 @@ def run(
     """Lands `scenario` (a scenario file's path, or its TOML text without `extends`) on
     `engine` ("core", "rapier" or "mujoco"), with `overrides` (field path, e.g.
     "touchdown.attitude[2]", to value in the file's units). Returns {"summary": dict (as
-    `touchdown run --format json`), "history": the history (a dict of NumPy arrays, or with
+    `touchdown run --format json`, docs/schemas/run.schema.json), "history": the history (a dict of NumPy arrays, or with
     `frame="pandas"` or `"polars"` a frame of that package), or None (MuJoCo, or
     history=False)}."""
     if frame not in (None, "pandas", "polars"):
@@ -86,7 +86,7 @@ def compare(
     """Lands `scenario` (a path, or TOML text) with `overrides` on each of `engines` that its
     `engines.applicable` lists and compares every pair channel by channel against the written
     tolerances (docs/engines.md, "Comparing the engines"): the document `touchdown compare
-    --format json` prints for the scenario, {"comparison": ..., "tolerances": ...}."""
+    --format json` prints for the scenario (docs/schemas/compare.schema.json)."""
     return json.loads(_native.compare(str(scenario), list(engines), dict(overrides or {})))
 
 
@@ -101,21 +101,23 @@ def boundary(
     overrides: Optional[Mapping[str, Any]] = None,
 ) -> list:
     """The report's stability-boundary search of `scenario` (a path, or TOML text) with
-    `overrides`, as `touchdown boundary --format json` does: at each descent speed of `vv`
-    (positive down), the horizontal speeds on the grid `vh_start`, `vh_start + vh_step`, ... up
-    to `vh_max`, every change of outcome bisected to `tol`; velocities in the scenario's length
-    unit per second, the horizontal direction the scenario's. One dict per engine and descent
-    speed: `engine`, `vv`, `vh` (the boundary, absent if none), `stable_at`, `unstable_at`,
-    `transitions`, `undecided_at`, `landings`, `undecided`."""
-    return json.loads(
-        _native.boundary(
-            str(scenario),
-            [float(v) for v in vv],
-            float(vh_start),
-            float(vh_step),
-            float(vh_max),
-            float(tol),
-            list(engines),
-            dict(overrides or {}),
-        )
+    `overrides`, as `touchdown boundary --format json` does: at each vertical velocity of `vv`
+    (negative down, as the scenario files write `touchdown.vertical_velocity`), the horizontal
+    speeds on the grid `vh_start`, `vh_start + vh_step`, ... up to `vh_max`, every change of
+    outcome bisected to `tol`; the settings in the scenario's length unit per second, the
+    horizontal direction the scenario's. One dict per engine and vertical velocity, the
+    command's JSON Lines document (docs/schemas/boundary.schema.json): in SI, `vv_m_s`,
+    `vh_m_s` (the boundary, absent if none), `stable_at_vh_m_s`, `unstable_at_vh_m_s`,
+    `transitions`, `undecided_at_vh_m_s`, `landings`, `undecided`, with the scenario and the
+    settings."""
+    lines = _native.boundary(
+        str(scenario),
+        [float(v) for v in vv],
+        float(vh_start),
+        float(vh_step),
+        float(vh_max),
+        float(tol),
+        list(engines),
+        dict(overrides or {}),
     )
+    return [json.loads(line) for line in lines]

@@ -29,8 +29,8 @@ pub struct Options<'a> {
     pub threads: Option<usize>,
     /// The campaign's folder.
     pub out: Option<&'a Path>,
-    /// Where to draw the plots.
-    pub plot: Option<&'a Path>,
+    /// Whether to draw the plots into `out`.
+    pub plot: bool,
 }
 
 /// `touchdown campaign FILE`: runs the campaign (or a shard of it, or landings added to the
@@ -43,11 +43,6 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         out,
         plot,
     } = options;
-    if plot.is_some() && out.is_none() {
-        anyhow::bail!(
-            "--plot: also give --out DIR (the plots are drawn from the records written there)"
-        );
-    }
     let campaign = Campaign::load(file)?;
     crate::warn(&campaign.base_scenario);
     if threads == Some(0) {
@@ -83,15 +78,14 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         None => touchdown_campaign::run::run(&campaign, shard, threads, out, &mut each)?,
     };
     bar.finish_and_clear();
-    if let (Some(dir), Some(records)) = (plot, out) {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    if let (true, Some(dir)) = (plot, out) {
         let boundary = dir.join("boundary.json");
         let _ = std::fs::remove_file(&boundary);
         if let Some(json) = base_boundary(&campaign, &manifest, &rows, &statistics)? {
             std::fs::write(&boundary, json)
                 .with_context(|| format!("cannot write {}", boundary.display()))?;
         }
-        crate::plots::campaign(records, dir)?;
+        crate::plots::campaign(dir, dir)?;
     }
     report(&manifest, &statistics, output)
 }
@@ -166,7 +160,7 @@ fn base_boundary(
     let engine = campaign.engine;
     let base = touchdown_scenario::ScenarioBase::load(&campaign.scenario_path)?;
     eprintln!("the engine's boundary of the base configuration, for the plot ...");
-    let points = search_engines(&base, &[], &vvs, settings, &[engine], &|| ())?;
+    let points = search_engines(&base, &[], &vvs, settings, &[engine], &|| (), &|_| ())?;
     let line: Vec<serde_json::Value> = points
         .iter()
         .filter_map(|p| {

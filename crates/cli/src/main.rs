@@ -30,17 +30,17 @@ enum Command {
     Run {
         /// Scenario file (TOML).
         scenario: PathBuf,
-        /// Change one value of the scenario: a field path and a value in the scenario's own
-        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
-        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
-        #[arg(long = "set", value_name = "FIELD=VALUE")]
-        set: Vec<Set>,
+        #[command(flatten)]
+        set: Overrides,
         /// Output format of the summary on standard output.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
         /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
-        #[arg(long)]
+        #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// history.csv: keep every Nth step's row (and the last), not every step's.
+        #[arg(long, value_name = "N", requires = "out", default_value_t = 1)]
+        every: usize,
         /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
         /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
         /// in the project's Python environment with the shared laws; settings in
@@ -59,11 +59,8 @@ enum Command {
         /// Scenario files (TOML).
         #[arg(required = true)]
         scenarios: Vec<PathBuf>,
-        /// Change one value of every scenario: a field path and a value in the scenario's own
-        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
-        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
-        #[arg(long = "set", value_name = "FIELD=VALUE")]
-        set: Vec<Set>,
+        #[command(flatten)]
+        set: Overrides,
         /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
         /// those its engines.applicable lists.
         #[arg(
@@ -76,13 +73,16 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
-        /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
-        /// window, pitch rate, primary strokes against time) into DIR/<scenario>.png, with the
-        /// traces beside it as DIR/<scenario>.<engine>.csv (matplotlib, in the project's Python
-        /// environment). `touchdown boundary --engines ... --plot` overlays the engines'
-        /// stability boundaries.
+        /// Also write each scenario's comparison into DIR: DIR/<scenario>.json (its document, as
+        /// --format json prints it) and the traces the metrics were computed from,
+        /// DIR/<scenario>.<engine>.csv.
         #[arg(long, value_name = "DIR")]
-        plot: Option<PathBuf>,
+        out: Option<PathBuf>,
+        /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
+        /// window, pitch rate, strokes against time, each channel's verdict) into
+        /// DIR/<scenario>.png (matplotlib, in the project's Python environment).
+        #[arg(long, requires = "out")]
+        plot: bool,
         /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
         #[arg(long)]
         report_only: bool,
@@ -94,6 +94,8 @@ enum Command {
     Precision {
         /// Scenario file (TOML).
         scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
         /// Engines to measure, comma-separated (the core with each of its three schemes);
         /// those the scenario's engines.applicable lists.
         #[arg(
@@ -112,10 +114,14 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
-        /// Also draw the log-log work-precision plot into this PNG (matplotlib, in the project's
-        /// Python environment), with its data beside it as JSON.
-        #[arg(long)]
-        plot: Option<PathBuf>,
+        /// Also write the study into DIR/precision-<scenario>.json (its document, as --format
+        /// json prints it).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Also draw the log-log work-precision plot into DIR/precision-<scenario>.png
+        /// (matplotlib, in the project's Python environment).
+        #[arg(long, requires = "out")]
+        plot: bool,
     },
     /// The stiff and extreme catalogue (docs/robustness.md): every case on every engine that
     /// applies, classified as completed (bounded energy, strokes within the struts), stopped or
@@ -149,14 +155,11 @@ enum Command {
     ExportMjcf {
         /// Scenario file (TOML).
         scenario: PathBuf,
-        /// Change one value of the scenario: a field path and a value in the scenario's own
-        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
-        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
-        #[arg(long = "set", value_name = "FIELD=VALUE")]
-        set: Vec<Set>,
-        /// Output file (MJCF XML).
-        #[arg(short, long)]
-        output: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Folder to write the model into, as DIR/<scenario>.xml.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
     },
     /// Run every Table I landing and the figure 25-26 landing against the report.
     Validate {
@@ -243,20 +246,19 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
-    /// The report's stability-boundary search: for each descent speed, every horizontal speed
-    /// at which the landing changes between stable and unstable, found on a grid of Vh and
-    /// bisected; undecided landings are listed, never counted as either (velocities in the
-    /// scenario's length unit per second; the horizontal direction is the scenario's).
+    /// The report's stability-boundary search: for each vertical velocity, every horizontal
+    /// speed at which the landing changes between stable and unstable, found on a grid of Vh
+    /// and bisected; undecided landings are listed, never counted as either (settings in the
+    /// scenario's length unit per second, the horizontal direction the scenario's; JSON and CSV
+    /// in SI).
     Boundary {
         /// Scenario file (TOML).
         scenario: PathBuf,
-        /// Change one value of the scenario: a field path and a value in the scenario's own
-        /// units, as in the file (`--set touchdown.vertical_velocity=-10.0`,
-        /// `--set surface.kind=soil`, `--set 'touchdown.attitude[2]=45.0'`); repeatable.
-        #[arg(long = "set", value_name = "FIELD=VALUE")]
-        set: Vec<Set>,
-        /// Descent speeds FROM:TO:STEP (positive down).
-        #[arg(long)]
+        #[command(flatten)]
+        set: Overrides,
+        /// Vertical velocities FROM:TO:STEP as the scenario files write them, negative down, in
+        /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12).
+        #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
         vv: String,
         /// First horizontal speed of the grid.
         #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
@@ -283,10 +285,14 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value_t = TableFormat::Text)]
         format: TableFormat,
-        /// Also draw the engines' boundaries, overlaid, into this PNG (matplotlib, in the
-        /// project's Python environment), with its data beside it as JSON.
-        #[arg(long)]
-        plot: Option<PathBuf>,
+        /// Also write the points into DIR/boundary-<scenario>.jsonl (as --format json prints
+        /// them).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Also draw the engines' boundaries, overlaid, into DIR/boundary-<scenario>.png
+        /// (matplotlib, in the project's Python environment).
+        #[arg(long, requires = "out")]
+        plot: bool,
     },
 }
 
@@ -317,10 +323,10 @@ struct CampaignArgs {
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
     /// Also draw outcomes.png (every landing over the two dispersed inputs most correlated
-    /// with a stable landing) and strokes.png (strokes against capacities) into DIR, from the
-    /// records in --out (matplotlib, in the project's Python environment).
-    #[arg(long, value_name = "DIR")]
-    plot: Option<PathBuf>,
+    /// with a stable landing) and strokes.png (strokes against capacities) into --out, from
+    /// the records there (matplotlib, in the project's Python environment).
+    #[arg(long, requires = "out")]
+    plot: bool,
 }
 
 #[derive(Subcommand)]
@@ -338,6 +344,16 @@ enum CampaignAction {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+}
+
+/// `--set FIELD=VALUE`, on every command that takes a scenario.
+#[derive(clap::Args)]
+struct Overrides {
+    /// Change one value of the scenario: a field path and a value in the scenario's own units,
+    /// as in the file (`--set touchdown.vertical_velocity=-10.0`, `--set surface.kind=soil`,
+    /// `--set 'touchdown.attitude[2]=45.0'`); repeatable.
+    #[arg(long = "set", value_name = "FIELD=VALUE")]
+    set: Vec<Set>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -392,13 +408,22 @@ pub fn overrides(set: &[Set]) -> Vec<(&str, toml::Value)> {
         .collect()
 }
 
+/// The settings of a command's documents: the `--set` overrides, then its `options` (an
+/// object, each name with its unit).
+pub fn settings(set: &[Set], options: serde_json::Value) -> serde_json::Value {
+    touchdown_record::document::settings(set.iter().map(|s| (s.field.as_str(), &s.value)), options)
+}
+
 /// The scenario file at `path` read once, and resolved with the `--set` overrides (an error
 /// names the field, as for a file).
 pub fn load(path: &Path, set: &[Set]) -> Result<(touchdown_scenario::ScenarioBase, Scenario)> {
     let base = touchdown_scenario::ScenarioBase::load(path)?;
-    let sc = base
-        .with(&overrides(set))
-        .with_context(|| format!("{} with --set", path.display()))?;
+    let sc = base.with(&overrides(set));
+    let sc = if set.is_empty() {
+        sc?
+    } else {
+        sc.with_context(|| format!("{} with --set", path.display()))?
+    };
     Ok((base, sc))
 }
 
@@ -486,28 +511,46 @@ fn run(cli: Cli) -> Result<Verdict> {
             set,
             format,
             out,
+            every,
             engine,
             timestep,
-        } => run_landing(&scenario, &set, format, out.as_deref(), engine, timestep),
+        } => run_landing(
+            &scenario,
+            &set.set,
+            format,
+            out.as_deref().map(|dir| (dir, every)),
+            (engine, timestep),
+        ),
         Command::Compare {
             scenarios,
             set,
             engines,
             format,
+            out,
             plot,
             report_only,
         } => {
-            let passed = compare(&scenarios, &set, &engines, format, plot.as_deref())?;
+            let passed = compare(&scenarios, &set.set, &engines, format, out.as_deref(), plot)?;
             return Ok(verdict(passed, report_only));
         }
         Command::Precision {
             scenario,
+            set,
             engines,
             repeats,
             rungs,
             format,
+            out,
             plot,
-        } => precision(&scenario, &engines, repeats, rungs, format, plot.as_deref()),
+        } => precision(
+            &scenario,
+            &set.set,
+            &engines,
+            (repeats, rungs),
+            format,
+            out.as_deref(),
+            plot,
+        ),
         Command::Robustness {
             engines,
             cases,
@@ -515,17 +558,15 @@ fn run(cli: Cli) -> Result<Verdict> {
             format,
             root,
         } => robustness(&home(root)?, &engines, cases, search, format),
-        Command::ExportMjcf {
-            scenario,
-            set,
-            output,
-        } => {
-            let sc = load(&scenario, &set)?.1;
+        Command::ExportMjcf { scenario, set, out } => {
+            let sc = load(&scenario, &set.set)?.1;
             warn(&sc);
             touchdown_registry::require(Engine::Mujoco, &sc)?;
             let xml = touchdown_mujoco::export(&sc);
-            std::fs::write(&output, xml)
-                .with_context(|| format!("cannot write {}", output.display()))?;
+            let path = out_file(&out, "", &scenario, "xml")?;
+            std::fs::write(&path, xml)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            println!("wrote {}", path.display());
             Ok(())
         }
         Command::Validate {
@@ -568,6 +609,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             tol,
             engines,
             format,
+            out,
             plot,
         } => {
             let settings = touchdown_validation::boundary::Settings {
@@ -583,12 +625,12 @@ fn run(cli: Cli) -> Result<Verdict> {
             };
             validation::boundary(
                 &scenario,
-                &set,
+                &set.set,
                 &vv,
                 settings,
                 &engines,
                 format,
-                plot.as_deref(),
+                out.as_deref().map(|dir| (dir, plot)),
             )
         }
         Command::Completions { shell } => {
@@ -613,7 +655,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                         add: args.add,
                         threads: args.threads,
                         out: args.out.as_deref(),
-                        plot: args.plot.as_deref(),
+                        plot: args.plot,
                     },
                     output(args.format),
                 ),
@@ -622,6 +664,17 @@ fn run(cli: Cli) -> Result<Verdict> {
         }
     }?;
     Ok(Verdict::Pass)
+}
+
+/// The file `DIR/<prefix><scenario's stem>.<ext>` of an output folder `dir`, the folder
+/// created.
+pub fn out_file(dir: &Path, prefix: &str, scenario: &Path, ext: &str) -> Result<PathBuf> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let stem = scenario
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scenario".into());
+    Ok(dir.join(format!("{prefix}{stem}.{ext}")))
 }
 
 /// The project's folder: `--root` if given, else found as the MuJoCo engine finds its runner
@@ -661,10 +714,12 @@ fn run_landing(
     scenario: &Path,
     set: &[Set],
     format: Format,
-    out: Option<&Path>,
-    engine: Engine,
-    timestep: Option<f64>,
+    out: Option<(&Path, usize)>,
+    (engine, timestep): (Engine, Option<f64>),
 ) -> Result<()> {
+    if out.is_some_and(|(_, every)| every == 0) {
+        anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
+    }
     let mut sc = load(scenario, set)?.1;
     touchdown_registry::require(engine, &sc)?;
     if let Some(t) = timestep {
@@ -681,6 +736,7 @@ fn run_landing(
         sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
     }
     warn(&sc);
+    let (out, every) = (out.map(|o| o.0), out.map_or(1, |o| o.1));
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
@@ -701,15 +757,29 @@ fn run_landing(
         r.finish()?;
     }
     if let Some(dir) = out {
+        // Every engine has written the same history.csv: one thinning for all.
+        if every > 1 {
+            touchdown_record::history::decimate(&dir.join("history.csv"), every)?;
+        }
         std::fs::write(
             dir.join("scenario.resolved.toml"),
             report::resolved_scenario(&sc),
         )?;
-        std::fs::write(dir.join("summary.json"), summary.to_json())?;
+    }
+    let options = match timestep {
+        Some(t) => serde_json::json!({ "timestep_s": t }),
+        None => serde_json::json!({}),
+    };
+    let document = summary.document(
+        &touchdown_record::ScenarioId::new(scenario.display(), &sc),
+        &settings(set, options),
+    );
+    if let Some(dir) = out {
+        std::fs::write(dir.join("summary.json"), &document)?;
     }
     match format {
         Format::Text => print!("{}", report::text(&sc, &summary, set)),
-        Format::Json => println!("{}", summary.to_json()),
+        Format::Json => println!("{document}"),
     }
     Ok(())
 }
@@ -721,30 +791,33 @@ fn compare(
     set: &[Set],
     engines: &[Engine],
     format: Format,
-    plot: Option<&Path>,
+    out: Option<&Path>,
+    plot: bool,
 ) -> Result<bool> {
     let engines = touchdown_compare::engine_set(engines).context("--engines")?;
-    let mut json = Vec::new();
+    let names: Vec<_> = engines.iter().map(|e| e.name()).collect();
+    let settings = settings(set, serde_json::json!({ "engines": names }));
     let mut passed = true;
     for path in scenarios {
         let sc = load(path, set)?.1;
         warn(&sc);
         let c = touchdown_compare::compare_resolved(path, &sc, &engines)?;
         passed &= c.pairs.iter().all(|p| p.pass);
-        if let Some(dir) = plot {
-            plots::comparison(&c, path, dir)?;
+        let document = touchdown_compare::report::json_line(&c, &settings);
+        if let Some(dir) = out {
+            plots::comparison(&c, &document, path, dir, plot)?;
         }
+        // One line per scenario as it finishes (JSON Lines).
         match format {
             Format::Text => println!("{}", touchdown_compare::report::text(&c)),
-            Format::Json => json.push(touchdown_compare::report::json(&c)),
+            Format::Json => println!("{document}"),
         }
     }
-    match format {
-        Format::Text => print!(
+    if let Format::Text = format {
+        print!(
             "tolerances\n{}",
             touchdown_compare::report::tolerances_text()
-        ),
-        Format::Json => println!("{}", serde_json::to_string_pretty(&json)?),
+        );
     }
     Ok(passed)
 }
@@ -752,11 +825,12 @@ fn compare(
 /// `touchdown precision`: the work-precision study of a scenario.
 fn precision(
     scenario: &Path,
+    set: &[Set],
     engines: &[Engine],
-    repeats: usize,
-    rungs: Option<usize>,
+    (repeats, rungs): (usize, Option<usize>),
     format: Format,
-    plot: Option<&Path>,
+    out: Option<&Path>,
+    plot: bool,
 ) -> Result<()> {
     use touchdown_compare::precision::{self, Method};
     if repeats == 0 {
@@ -770,20 +844,39 @@ fn precision(
         .filter(|m| engines.contains(&m.engine()))
         .collect();
     eprintln!("computing the converged reference ...");
-    let study = precision::work_precision(scenario, &methods, rungs, repeats, |rung| {
-        eprintln!(
-            "  {} {}: {}",
-            rung.method.name(),
-            precision::setting_label(rung.method, rung.value),
-            match (&rung.measured, &rung.failure) {
-                (Some(m), _) => format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
-                (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
-            }
-        );
-    })?;
-    let json = serde_json::to_string_pretty(&study)?;
-    if let Some(png) = plot {
-        plots::precision(&json, &study.scenario, png)?;
+    let sc = load(scenario, set)?.1;
+    warn(&sc);
+    let study =
+        precision::work_precision_resolved(scenario, &sc, &methods, rungs, repeats, |rung| {
+            eprintln!(
+                "  {} {}: {}",
+                rung.method.name(),
+                precision::setting_label(rung.method, rung.value),
+                match (&rung.measured, &rung.failure) {
+                    (Some(m), _) => format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
+                    (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
+                }
+            );
+        })?;
+    let mut options = serde_json::json!({
+        "engines": engines.iter().map(|e| e.name()).collect::<Vec<_>>(),
+        "repeats": repeats,
+    });
+    if let Some(n) = rungs {
+        options["rungs"] = n.into();
+    }
+    let id = touchdown_record::ScenarioId {
+        path: study.file.clone(),
+        sha256: study.scenario_sha256.clone(),
+    };
+    let settings = settings(set, options);
+    let json = touchdown_record::Document::new("precision", Some(&id), &settings, &study).pretty();
+    if let Some(dir) = out {
+        let data = out_file(dir, "precision-", scenario, "json")?;
+        std::fs::write(&data, &json).with_context(|| format!("cannot write {}", data.display()))?;
+        if plot {
+            plots::precision(&data, &study.scenario, &data.with_extension("png"))?;
+        }
     }
     match format {
         Format::Text => print!("{}", precision::text(&study)),
@@ -825,7 +918,16 @@ fn robustness(
     })?;
     match format {
         Format::Text => print!("{}", robustness::text(&r, &chosen)),
-        Format::Json => println!("{}", serde_json::to_string_pretty(&r)?),
+        Format::Json => {
+            let options = serde_json::json!({
+                "engines": engines.iter().map(|e| e.name()).collect::<Vec<_>>(),
+                "cases": chosen.iter().map(|c| c.name).collect::<Vec<_>>(),
+                "search": search,
+            });
+            let settings = settings(&[], options);
+            let document = touchdown_record::Document::new("robustness", None, &settings, &r);
+            println!("{}", document.pretty());
+        }
     }
     Ok(())
 }

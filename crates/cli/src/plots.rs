@@ -39,9 +39,16 @@ pub fn campaign(records: &Path, plots: &Path) -> Result<()> {
     )
 }
 
-/// `touchdown compare --plot DIR`: the traces of `c` (run from `scenario`) as CSV and their
-/// overlay as DIR/<stem>.png.
-pub fn comparison(c: &ScenarioComparison, scenario: &Path, dir: &Path) -> Result<()> {
+/// `touchdown compare --out DIR [--plot]`: the traces of `c` (run from `scenario`) as CSV, its
+/// `document` (the comparison's JSON, with every verdict) as DIR/<stem>.json, and with `plot`
+/// their overlay as DIR/<stem>.png.
+pub fn comparison(
+    c: &ScenarioComparison,
+    document: &str,
+    scenario: &Path,
+    dir: &Path,
+    plot: bool,
+) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let stem = scenario
         .file_stem()
@@ -49,6 +56,12 @@ pub fn comparison(c: &ScenarioComparison, scenario: &Path, dir: &Path) -> Result
         .unwrap_or_else(|| "scenario".into());
     touchdown_compare::plot::write_traces(c, dir, &stem)
         .with_context(|| format!("cannot write the traces into {}", dir.display()))?;
+    let comparison = dir.join(format!("{stem}.json"));
+    std::fs::write(&comparison, document)
+        .with_context(|| format!("cannot write {}", comparison.display()))?;
+    if !plot {
+        return Ok(());
+    }
     let engines: Vec<&str> = c.runs.iter().map(|r| r.engine.name()).collect();
     let png = dir.join(format!("{stem}.png"));
     draw(&[
@@ -59,6 +72,8 @@ pub fn comparison(c: &ScenarioComparison, scenario: &Path, dir: &Path) -> Result
         stem.as_ref(),
         "--engines".as_ref(),
         engines.join(",").as_ref(),
+        "--report".as_ref(),
+        comparison.as_os_str(),
         "--title".as_ref(),
         c.scenario.as_ref(),
         "--out".as_ref(),
@@ -66,23 +81,12 @@ pub fn comparison(c: &ScenarioComparison, scenario: &Path, dir: &Path) -> Result
     ])
 }
 
-/// Writes `json` beside `png` (same stem, .json), creating its folder; returns the data file.
-fn data_beside(json: &str, png: &Path) -> Result<PathBuf> {
-    if let Some(dir) = png.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    }
-    let data = png.with_extension("json");
-    std::fs::write(&data, json).with_context(|| format!("cannot write {}", data.display()))?;
-    Ok(data)
-}
-
-/// `touchdown boundary --plot FILE`: the boundary points (JSON, written beside FILE) overlaid
-/// per engine into FILE: the boundary (lowest stable → unstable transition) per descent speed,
-/// every transition's bracket, the further transitions, the unresolved brackets and the
-/// undecided landings, each kind with a legend entry.
-/// `unit` is the velocity unit of the points.
-pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()> {
-    let data = data_beside(json, png)?;
+/// `touchdown boundary --out DIR --plot`: the boundary points (the JSON Lines file `data`)
+/// overlaid per engine into `png`: the boundary (lowest stable → unstable transition) per
+/// descent speed, every transition's bracket, the further transitions, the unresolved brackets
+/// and the undecided landings, each kind with a legend entry. `unit` is the velocity unit of
+/// the axes (the points are SI).
+pub fn boundaries(data: &Path, title: &str, unit: &str, png: &Path) -> Result<()> {
     draw(&[
         "boundaries".as_ref(),
         "--data".as_ref(),
@@ -96,10 +100,9 @@ pub fn boundaries(json: &str, title: &str, unit: &str, png: &Path) -> Result<()>
     ])
 }
 
-/// `touchdown precision --plot FILE`: the work-precision study (JSON, written beside FILE) as
-/// log-log plots of error against wall time, one line per engine and scheme, into FILE.
-pub fn precision(json: &str, title: &str, png: &Path) -> Result<()> {
-    let data = data_beside(json, png)?;
+/// `touchdown precision --out DIR --plot`: the work-precision study (the JSON file `data`) as
+/// log-log plots of error against wall time, one line per engine and scheme, into `png`.
+pub fn precision(data: &Path, title: &str, png: &Path) -> Result<()> {
     draw(&[
         "precision".as_ref(),
         "--data".as_ref(),

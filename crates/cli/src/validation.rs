@@ -3,6 +3,7 @@
 use anyhow::{bail, Context, Result};
 use std::fmt::Write;
 use std::path::Path;
+use touchdown_record::{Document, ScenarioId};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
 use touchdown_validation::boundary::{
@@ -18,20 +19,17 @@ use touchdown_validation::{calibrate, estimate, facts, sensitivity, table};
 pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
     let paths = Paths::new(root);
     let v = table::validate(&paths)?;
+    let settings = serde_json::json!({ "protocol": "two-row" });
+    let document = Document::new("validate", None, &settings, &v).pretty();
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        std::fs::write(
-            dir.join("validation.json"),
-            serde_json::to_string_pretty(&v)?,
-        )?;
+        std::fs::write(dir.join("validation.json"), &document)?;
         let run = facts::check(&paths, &[])?;
-        std::fs::write(
-            dir.join("fig-25-26-series.json"),
-            serde_json::to_string(&run.series)?,
-        )?;
+        let series = Document::new("series", Some(&run.scenario), &settings, &run.series);
+        std::fs::write(dir.join("fig-25-26-series.json"), series.line())?;
     }
     if json {
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        println!("{document}");
     } else {
         print!("{}", validation_text(&v));
     }
@@ -164,7 +162,8 @@ pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<boo
     let paths = Paths::new(root);
     eprintln!("cross-validating: 8 folds and the fit to every row (about 12 minutes on 2 cores in a release build) ...");
     let cv = cross_validation::cross_validate(&paths)?;
-    let text = serde_json::to_string_pretty(&cv)?;
+    let settings = serde_json::json!({ "protocol": "cv" });
+    let text = Document::new("cross-validation", None, &settings, &cv).pretty();
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         let path = dir.join("cross-validation.json");
@@ -426,7 +425,9 @@ pub fn estimate(root: &Path) -> Result<()> {
         m.second_stage_depth_ft,
         m.outcome
     );
-    println!("wrote {}", path.display());
+    // Named within the project, so the report reads the same on every machine.
+    let shown = path.strip_prefix(root).unwrap_or(&path);
+    println!("wrote {}", shown.display());
     Ok(())
 }
 
@@ -437,7 +438,12 @@ pub fn sensitivity(root: &Path, fraction: f64, json: bool) -> Result<()> {
     }
     let table = sensitivity::sensitivity(&Paths::new(root), fraction)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&table)?);
+        let settings = serde_json::json!({ "fraction": fraction });
+        let body = serde_json::json!({ "parameters": table });
+        println!(
+            "{}",
+            Document::new("sensitivity", None, &settings, &body).pretty()
+        );
     } else {
         print!("{}", sensitivity_text(&table, fraction));
     }
@@ -485,8 +491,9 @@ pub fn sensitivity_text(table: &[ParameterSensitivity], fraction: f64) -> String
     o
 }
 
-/// Parses the descent speeds FROM:TO:STEP: finite, 0 ≤ FROM ≤ TO, STEP > 0 and at most
-/// [`boundary::MAX_GRID_POINTS`] speeds, each FROM + i·STEP.
+/// Parses the vertical velocities FROM:TO:STEP, written as in the scenario files (negative
+/// down): finite, FROM and TO negative, STEP > 0 and at most [`boundary::MAX_GRID_POINTS`]
+/// velocities, FROM, FROM ± STEP, ... towards TO.
 fn range(spec: &str) -> Result<Vec<f64>> {
     let parts: Vec<f64> = spec
         .split(':')
@@ -499,19 +506,25 @@ fn range(spec: &str) -> Result<Vec<f64>> {
     if !(from.is_finite() && to.is_finite() && step.is_finite()) {
         bail!("--vv {spec:?}: expected finite FROM:TO:STEP numbers");
     }
-    if !(step > 0.0 && to >= from && from >= 0.0) {
-        bail!("--vv {spec:?}: expected 0 ≤ FROM ≤ TO and STEP > 0 (descent speeds, positive down)");
+    if !(step > 0.0 && from < 0.0 && to < 0.0) {
+        bail!(
+            "--vv {spec:?}: expected vertical velocities as the scenario files write them, \
+             negative down (e.g. --vv=-4:-12:2), and STEP > 0"
+        );
     }
-    let n = ((to - from) / step + 1e-9).floor();
+    let n = ((to - from).abs() / step + 1e-9).floor();
     if n.is_nan() || n >= boundary::MAX_GRID_POINTS as f64 {
         bail!(
-            "--vv {spec:?}: expected at most {} descent speeds from FROM to TO (a STEP ≥ {}), got {}",
+            "--vv {spec:?}: expected at most {} vertical velocities from FROM to TO (a STEP ≥ {}), got {}",
             boundary::MAX_GRID_POINTS,
-            Short((to - from) / (boundary::MAX_GRID_POINTS - 1) as f64),
+            Short((to - from).abs() / (boundary::MAX_GRID_POINTS - 1) as f64),
             Short(n + 1.0)
         );
     }
-    Ok((0..=n as usize).map(|i| from + step * i as f64).collect())
+    let sign = if to < from { -1.0 } else { 1.0 };
+    Ok((0..=n as usize)
+        .map(|i| from + sign * step * i as f64)
+        .collect())
 }
 
 /// Output of `touchdown boundary`.
@@ -533,27 +546,60 @@ pub fn boundary(
     settings: Settings,
     engines: &[Engine],
     format: BoundaryFormat,
-    plot: Option<&Path>,
+    out: Option<(&Path, bool)>,
 ) -> Result<()> {
     let vvs = range(vv)?;
+    let speeds = boundary::descent_speeds(&vvs, "--vv")?;
     settings.validate()?;
     let (base, sc) = crate::load(scenario, set)?;
     crate::warn(&sc);
     let bar = crate::progress_bar(0, "landings");
     let overrides = crate::overrides(set);
-    let points =
-        boundary::search_engines(&base, &overrides, &vvs, settings, engines, &|| bar.inc(1))?;
-    bar.finish_and_clear();
     let vunit = format!("{}/s", sc.file.units.length_label());
-    let json = serde_json::to_string_pretty(&points)?;
+    let velocity = sc.file.units.velocity();
+    let id = ScenarioId::new(scenario.display(), &sc);
+    let options = boundary::options(&vvs, settings, &vunit, engines);
+    let settings_json = crate::settings(set, options);
+    // JSON Lines: each point as soon as it and those before it are found.
+    let stream = |p: &EnginePoint| {
+        if format == BoundaryFormat::Json {
+            bar.suspend(|| {
+                println!(
+                    "{}",
+                    boundary::document_line(p, velocity, &id, &settings_json)
+                )
+            });
+        }
+    };
+    let points = boundary::search_engines(
+        &base,
+        &overrides,
+        &speeds,
+        settings,
+        engines,
+        &|| bar.inc(1),
+        &stream,
+    )?;
+    bar.finish_and_clear();
     match format {
-        BoundaryFormat::Json => println!("{json}"),
-        BoundaryFormat::Csv => print!("{}", boundary_csv(&points)?),
+        BoundaryFormat::Json => {}
+        BoundaryFormat::Csv => print!("{}", boundary_csv(&points, velocity)?),
         BoundaryFormat::Text => print!("{}", boundary_text(&points, &vunit, settings)),
     }
-    if let Some(png) = plot {
-        let title = format!("{}\nstability boundary per engine", sc.file.name);
-        crate::plots::boundaries(&json, &title, &vunit, png)?;
+    if let Some((dir, plot)) = out {
+        let lines: Vec<String> = points
+            .iter()
+            .map(|p| boundary::document_line(p, velocity, &id, &settings_json) + "\n")
+            .collect();
+        let data = crate::out_file(dir, "boundary-", scenario, "jsonl")?;
+        std::fs::write(&data, lines.concat())
+            .with_context(|| format!("cannot write {}", data.display()))?;
+        if !plot {
+            return Ok(());
+        }
+        // The plot says what the search varies and holds, and on which engines.
+        let png = data.with_extension("png");
+        crate::plots::boundaries(&data, &sc.file.name, &vunit, &png)?;
     }
     Ok(())
 }
@@ -605,13 +651,13 @@ fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "stability boundary: horizontal velocity at which the landing turns unstable ({unit}; \
-         Vh grid {} to {} step {}, tolerance {})",
+        "stability boundary: horizontal velocity at which the landing turns unstable, at each \
+         vertical velocity Vv (negative down)\n({unit}; Vh grid {} to {} step {}, tolerance {})",
         s.vh_start, s.vh_max, s.vh_step, s.tolerance
     );
     let _ = writeln!(
         o,
-        "  engine   descent Vv   boundary Vh   stable at   unstable at   landings   undecided"
+        "  engine           Vv   boundary Vh   stable at   unstable at   landings   undecided"
     );
     for EnginePoint { engine, point: p } in points {
         let boundary = match (p.vh, reported(p)) {
@@ -622,7 +668,7 @@ fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
             o,
             "  {:<6}   {:>10.3}   {:>11}   {:>9}   {:>11}   {:>8}   {:>9}",
             engine.name(),
-            p.vv,
+            -p.vv,
             boundary,
             opt(p.stable_at),
             opt(p.unstable_at),
@@ -648,28 +694,30 @@ fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
     o
 }
 
-/// One row per transition (engine, vv, direction, stable_at, unstable_at, vh, resolved,
-/// undecided: the landings undecided at that descent speed); a descent speed without a
-/// transition has one row with direction `none`, its `stable_at` / `unstable_at` and empty
-/// `vh` and `resolved`.
-fn boundary_csv(points: &[EnginePoint]) -> Result<String> {
+/// One row per transition (engine, vv_m_s, direction, stable_at_vh_m_s, unstable_at_vh_m_s,
+/// vh_m_s, resolved, undecided: the landings undecided at that descent speed), SI, the
+/// vertical velocity negative down; a descent speed without a transition has one row with
+/// direction `none`, its `stable_at_vh_m_s` / `unstable_at_vh_m_s` and empty `vh_m_s` and
+/// `resolved`. `velocity` is the scenario's velocity unit in m/s.
+fn boundary_csv(points: &[EnginePoint], velocity: f64) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "engine",
-        "vv",
+        "vv_m_s",
         "direction",
-        "stable_at",
-        "unstable_at",
-        "vh",
+        "stable_at_vh_m_s",
+        "unstable_at_vh_m_s",
+        "vh_m_s",
         "resolved",
         "undecided",
     ])?;
     let f = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
-    for EnginePoint { engine, point: p } in points {
+    for point in points {
+        let p = point.si(velocity);
         let row = |direction: &str, stable_at, unstable_at, vh, resolved: String| {
             [
-                engine.name().to_string(),
-                format!("{}", p.vv),
+                p.engine.to_string(),
+                format!("{}", p.vv_m_s),
                 direction.to_string(),
                 f(stable_at),
                 f(unstable_at),
@@ -679,14 +727,20 @@ fn boundary_csv(points: &[EnginePoint]) -> Result<String> {
             ]
         };
         if p.transitions.is_empty() {
-            w.write_record(row("none", p.stable_at, p.unstable_at, None, String::new()))?;
+            w.write_record(row(
+                "none",
+                p.stable_at_vh_m_s,
+                p.unstable_at_vh_m_s,
+                None,
+                String::new(),
+            ))?;
         }
         for t in &p.transitions {
             w.write_record(row(
                 direction(t.direction),
-                Some(t.stable_at),
-                Some(t.unstable_at),
-                t.vh,
+                Some(t.stable_at_vh_m_s),
+                Some(t.unstable_at_vh_m_s),
+                t.vh_m_s,
                 t.resolved.to_string(),
             ))?;
         }
@@ -749,16 +803,17 @@ mod boundary_tests {
 
     #[test]
     fn boundary_csv_has_one_row_per_transition() {
-        let csv = boundary_csv(&points()).unwrap();
+        // In SI (a velocity unit of 0.5 m/s), the vertical velocity negative down.
+        let csv = boundary_csv(&points(), 0.5).unwrap();
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(
             lines,
             [
-                "engine,vv,direction,stable_at,unstable_at,vh,resolved,undecided",
-                "core,8,stable_to_unstable,9.99,10.01,10,true,2",
-                "core,8,unstable_to_stable,14.01,13.99,14,true,2",
-                "core,8,stable_to_unstable,18,22,,false,2",
-                "core,10,none,30,,,,0",
+                "engine,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided",
+                "core,-4,stable_to_unstable,4.995,5.005,5,true,2",
+                "core,-4,unstable_to_stable,7.005,6.995,7,true,2",
+                "core,-4,stable_to_unstable,9,11,,false,2",
+                "core,-5,none,15,,,,0",
             ]
         );
     }
@@ -773,28 +828,37 @@ mod boundary_tests {
         };
         let text = boundary_text(&points(), "ft/s", s);
         let lines: Vec<&str> = text.lines().collect();
-        assert!(lines[0].contains("ft/s") && lines[0].contains("tolerance 0.05"));
+        assert!(lines[0].contains("negative down"), "{text}");
+        assert!(lines[1].contains("ft/s") && lines[1].contains("tolerance 0.05"));
         assert!(
-            lines[2].starts_with("  core          8.000        10.000"),
+            lines[3].starts_with("  core         -8.000        10.000"),
             "{text}"
         );
-        assert!(lines[3].contains("unstable → stable") && lines[3].contains("at Vh 14.000"));
-        assert!(lines[4].contains("stable → unstable") && lines[4].contains("unresolved"));
-        assert!(lines[4].contains("undecided at 21.000"), "{text}");
-        assert!(lines[5].contains("undecided") && lines[5].ends_with("17.000, 21.000"));
+        assert!(lines[4].contains("unstable → stable") && lines[4].contains("at Vh 14.000"));
+        assert!(lines[5].contains("stable → unstable") && lines[5].contains("unresolved"));
+        assert!(lines[5].contains("undecided at 21.000"), "{text}");
+        assert!(lines[6].contains("undecided") && lines[6].ends_with("17.000, 21.000"));
         assert!(
-            lines[6].starts_with("  core         10.000             —"),
+            lines[7].starts_with("  core        -10.000             —"),
             "{text}"
         );
-        assert_eq!(lines.len(), 9, "{text}");
+        assert_eq!(lines.len(), 10, "{text}");
     }
 
     #[test]
-    fn vv_ranges_are_finite_positive_and_bounded() {
-        assert_eq!(range("4:8:2").unwrap(), vec![4.0, 6.0, 8.0]);
-        assert_eq!(range("0:0.3:0.1").unwrap().len(), 4);
+    fn vv_ranges_are_finite_negative_and_bounded() {
+        assert_eq!(range("-4:-8:2").unwrap(), vec![-4.0, -6.0, -8.0]);
+        assert_eq!(range("-8:-4:2").unwrap(), vec![-8.0, -6.0, -4.0]);
+        assert_eq!(range("-0.1:-0.4:0.1").unwrap().len(), 4);
         for bad in [
-            "12:4:1", "4:8:0", "4:8:-1", "nan:8:1", "4:inf:1", "0:1e9:1", "1:2",
+            "4:8:2",
+            "0:-4:1",
+            "-4:-8:0",
+            "-4:-8:-1",
+            "nan:-8:1",
+            "-4:-inf:1",
+            "-1:-1e9:1",
+            "-1:-2",
         ] {
             let e = range(bad).unwrap_err().to_string();
             assert!(
@@ -802,6 +866,6 @@ mod boundary_tests {
                 "{bad}: {e}"
             );
         }
-        assert!(range("0:9999:1").is_ok() && range("0:10000:1").is_err());
+        assert!(range("-1:-10000:1").is_ok() && range("-1:-10001:1").is_err());
     }
 }

@@ -205,7 +205,13 @@ fn resolved_scenario_reloads_to_the_same_result() {
         "{}",
         String::from_utf8_lossy(&again.stderr)
     );
-    assert_eq!(out.stdout, again.stdout);
+    // The same landing (the same resolved scenario's hash), but for the file's path.
+    let without_path = |bytes: &[u8]| {
+        let mut v: serde_json::Value = serde_json::from_slice(bytes).unwrap();
+        v["scenario"]["path"] = serde_json::Value::Null;
+        v
+    };
+    assert_eq!(without_path(&out.stdout), without_path(&again.stdout));
 }
 
 #[test]
@@ -257,12 +263,12 @@ fn validate_json_carries_every_row_and_the_targets() {
     for key in [
         "id",
         "landing",
-        "vv_ft_s",
-        "vh_ft_s",
+        "vv_m_s",
+        "vh_m_s",
         "strut",
-        "experiment_in",
-        "analysis_in",
-        "ours_in",
+        "experiment_m",
+        "analysis_m",
+        "ours_m",
         "error_vs_experiment_pct",
         "error_vs_analysis_pct",
         "role",
@@ -288,8 +294,7 @@ fn boundary_prints_csv_and_json() {
         [
             "boundary",
             f.to_str().unwrap(),
-            "--vv",
-            "12:12:1",
+            "--vv=-12:-12:1",
             "--vh-step",
             "2",
             "--vh-max",
@@ -311,45 +316,60 @@ fn boundary_prints_csv_and_json() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("engine,vv,direction,stable_at,unstable_at,vh,resolved,undecided")
+        Some(
+            "engine,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided"
+        )
     );
-    // One row per transition; the first is the boundary (the lowest stable -> unstable).
+    // One row per transition; the first is the boundary (the lowest stable -> unstable), in SI.
     let row: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(row[..3], ["core", "12", "stable_to_unstable"]);
+    assert_eq!(row[0], "core");
+    assert_eq!(row[1].parse::<f64>().unwrap(), -12.0 * 0.3048);
+    assert_eq!(row[2], "stable_to_unstable");
     let vh: f64 = row[5].parse().expect("a boundary was found");
-    assert!(vh > 0.0 && vh < 12.0);
+    assert!(vh > 0.0 && vh < 12.0 * 0.3048);
     assert_eq!(row[6], "true");
     let (lo, hi): (f64, f64) = (row[3].parse().unwrap(), row[4].parse().unwrap());
-    assert!(lo < vh && vh < hi && hi - lo <= 0.1 + 1e-12);
+    assert!(lo < vh && vh < hi && hi - lo <= 0.1 * 0.3048 + 1e-12);
+    // JSON Lines: one document per point, with the scenario and the settings as given.
     let json = touchdown(&args("json").iter().map(String::as_str).collect::<Vec<_>>());
-    let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let lines: Vec<serde_json::Value> = String::from_utf8(json.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 1);
+    let v = &lines[0];
+    assert_eq!(v["schema"], "touchdown.boundary/1");
+    assert!(v["scenario"]["sha256"].as_str().unwrap().len() == 64);
+    assert_eq!(v["settings"]["vv_ft_s"][0], -12.0);
+    assert_eq!(v["settings"]["tolerance_ft_s"], 0.1);
     assert!(
-        (v[0]["vh"].as_f64().unwrap() - vh).abs() < 1e-12,
+        (v["vh_m_s"].as_f64().unwrap() - vh).abs() < 1e-12,
         "csv and json agree"
     );
-    let transitions = v[0]["transitions"].as_array().unwrap();
+    let transitions = v["transitions"].as_array().unwrap();
     assert_eq!(
         transitions.len(),
         text.lines().count() - 1,
         "a CSV row per transition"
     );
     for key in [
-        "stable_at",
-        "unstable_at",
-        "vh",
+        "stable_at_vh_m_s",
+        "unstable_at_vh_m_s",
+        "vh_m_s",
         "direction",
         "resolved",
-        "undecided_at",
+        "undecided_at_vh_m_s",
     ] {
         assert!(transitions[0].get(key).is_some(), "transition field {key}");
     }
-    assert_eq!(transitions[0]["vh"], v[0]["vh"]);
+    assert_eq!(transitions[0]["vh_m_s"], v["vh_m_s"]);
     assert_eq!(
-        v[0]["undecided_at"].as_array().unwrap().len() as u64,
-        v[0]["undecided"].as_u64().unwrap()
+        v["undecided_at_vh_m_s"].as_array().unwrap().len() as u64,
+        v["undecided"].as_u64().unwrap()
     );
     assert!(
-        v[0]["landings"].as_u64().unwrap() >= 7,
+        v["landings"].as_u64().unwrap() >= 7,
         "the whole grid 0, 2, ..., 12"
     );
     let table = touchdown(&args("text").iter().map(String::as_str).collect::<Vec<_>>());
@@ -358,17 +378,18 @@ fn boundary_prints_csv_and_json() {
     assert!(
         table
             .lines()
-            .any(|l| l.starts_with("  core") && l.contains(&format!("{vh:.3}"))),
+            .any(|l| l.starts_with("  core") && l.contains(&format!("{:.3}", vh / 0.3048))),
         "{table}"
     );
     // A bad range is a clear error.
     let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv", "12:4:1"]);
     assert!(!bad.status.success());
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("FROM"));
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(e.contains("negative down"), "{e}");
     // So are bad search settings, naming the argument.
     for (flag, value) in [("--vh-step", "0"), ("--tol", "1e-12"), ("--vh-max", "-1")] {
         let arg = format!("{flag}={value}");
-        let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv", "12:12:1", &arg]);
+        let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv=-12:-12:1", &arg]);
         assert!(!bad.status.success());
         let e = String::from_utf8_lossy(&bad.stderr);
         assert!(
@@ -382,12 +403,12 @@ fn boundary_prints_csv_and_json() {
 fn export_mjcf_writes_a_standalone_model() {
     let dir = temp("mjcf");
     std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("lander.xml");
+    let file = dir.join("flat-drop.xml");
     let out = touchdown(&[
         "export-mjcf",
         "scenarios/flat-drop.toml",
-        "-o",
-        file.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
     ]);
     assert!(
         out.status.success(),
@@ -422,10 +443,10 @@ fn an_engine_the_scenario_leaves_out_is_refused_by_run_and_left_out_by_compare()
         "[engines]\napplicable = [\"rapier\", \"core\"]\n",
     );
     let path = f.to_str().unwrap();
-    let xml = f.with_file_name("model.xml");
+    let xml = f.with_file_name("model");
     for args in [
         &["run", path, "--engine", "mujoco"][..],
-        &["export-mjcf", path, "--output", xml.to_str().unwrap()],
+        &["export-mjcf", path, "--out", xml.to_str().unwrap()],
     ] {
         let out = touchdown(args);
         assert!(!out.status.success(), "{args:?} should fail");
@@ -476,8 +497,9 @@ fn compare_plot_overlays_the_traces_behind_the_metrics() {
         "scenarios/flat-drop.toml",
         "--engines",
         "core,rapier",
-        "--plot",
+        "--out",
         d.to_str().unwrap(),
+        "--plot",
     ]);
     assert!(
         out.status.success(),
@@ -490,7 +512,7 @@ fn compare_plot_overlays_the_traces_behind_the_metrics() {
         let mut lines = text.lines();
         assert_eq!(
             lines.next(),
-            Some("t_s,pitch_rate_rad_s,leg1_primary_stroke_m,leg2_primary_stroke_m,leg3_primary_stroke_m,leg4_primary_stroke_m,acceleration_t_s,vertical_acceleration_m_s2")
+            Some("t_s,pitch_rate_rad_s,leg1_primary_stroke_m,leg2_primary_stroke_m,leg3_primary_stroke_m,leg4_primary_stroke_m,vertical_acceleration_m_s2")
         );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
         assert!(rows.len() > 100, "{engine}: {} rows", rows.len());
@@ -500,21 +522,27 @@ fn compare_plot_overlays_the_traces_behind_the_metrics() {
             .map(|r| r[2].parse::<f64>().unwrap())
             .fold(0.0, f64::max);
         assert!((max - 0.0622).abs() < 0.001, "{engine}: {max}");
-        // The windowed acceleration column stops 2 ms before the end; never a NaN.
-        assert!(rows.last().unwrap()[7].is_empty());
+        // The acceleration over the 2 ms window centred on each time: none within 1 ms of
+        // either end; never a NaN.
+        assert!(rows.first().unwrap()[6].is_empty() && rows.last().unwrap()[6].is_empty());
+        assert!(rows.iter().any(|r| !r[6].is_empty()));
         assert!(!text.contains("NaN") && !text.contains("inf"));
     }
+    // The comparison's document beside the traces, with every channel's verdict.
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("flat-drop.json")).unwrap()).unwrap();
+    assert_eq!(doc["schema"], "touchdown.compare/1");
+    assert!(doc["pairs"][0]["channels"][0]["pass"].is_boolean());
 }
 
 #[test]
 fn boundary_plot_overlays_the_engines() {
     let d = temp("boundary-plot");
-    let png = d.join("boundary.png");
+    let png = d.join("boundary-near-boundary-overturn.png");
     let out = touchdown(&[
         "boundary",
         "scenarios/near-boundary-overturn.toml",
-        "--vv",
-        "8:10:2",
+        "--vv=-8:-10:2",
         "--vh-step",
         "8",
         "--vh-max",
@@ -523,8 +551,9 @@ fn boundary_plot_overlays_the_engines() {
         "1",
         "--format",
         "csv",
+        "--out",
+        d.to_str().unwrap(),
         "--plot",
-        png.to_str().unwrap(),
     ]);
     assert!(
         out.status.success(),
@@ -532,22 +561,18 @@ fn boundary_plot_overlays_the_engines() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_png(&png);
-    let points: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(png.with_extension("json")).unwrap())
-            .unwrap();
-    assert_eq!(points.as_array().unwrap().len(), 2);
-    assert!(points
-        .as_array()
+    let points: Vec<serde_json::Value> = std::fs::read_to_string(png.with_extension("jsonl"))
         .unwrap()
-        .iter()
-        .all(|p| p["engine"] == "core"));
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(points.len(), 2);
+    assert!(points.iter().all(|p| p["engine"] == "core"));
     assert!(points
-        .as_array()
-        .unwrap()
         .iter()
-        .all(|p| p["transitions"].is_array() && p["undecided_at"].is_array()));
+        .all(|p| p["transitions"].is_array() && p["undecided_at_vh_m_s"].is_array()));
     let csv = String::from_utf8(out.stdout).unwrap();
-    assert!(csv.starts_with("engine,vv,direction,"), "{csv}");
+    assert!(csv.starts_with("engine,vv_m_s,direction,"), "{csv}");
     // Refused: an engine the scenario leaves out.
     let f = extending(
         "boundary-applicable",
@@ -559,8 +584,7 @@ fn boundary_plot_overlays_the_engines() {
     let out = touchdown(&[
         "boundary",
         f.to_str().unwrap(),
-        "--vv",
-        "8:8:1",
+        "--vv=-8:-8:1",
         "--engines",
         "core,rapier",
     ]);
@@ -657,7 +681,8 @@ fn a_refused_timestep_names_the_argument() {
 
 #[test]
 fn a_campaign_streams_json_lines_then_its_statistics_and_draws_its_plots() {
-    let (dir, plots) = (temp("campaign"), temp("campaign-plots"));
+    let dir = temp("campaign");
+    let plots = dir.clone();
     let out = touchdown(&[
         "campaign",
         "scenarios/campaigns/small.toml",
@@ -668,7 +693,6 @@ fn a_campaign_streams_json_lines_then_its_statistics_and_draws_its_plots() {
         "--out",
         dir.to_str().unwrap(),
         "--plot",
-        plots.to_str().unwrap(),
     ]);
     assert!(
         out.status.success(),
@@ -714,7 +738,10 @@ fn campaign_arguments_are_checked_by_name() {
     let small = "scenarios/campaigns/small.toml";
     let cases: [(&[&str], &str); 5] = [
         (&["--shard", "5/4"], "expected K/N with 1 ≤ K ≤ N"),
-        (&["--plot", "x"], "--plot: also give --out DIR"),
+        (
+            &["--plot"],
+            "the following required arguments were not provided:\n  --out <DIR>",
+        ),
         (
             &["--add", "3"],
             "--add: name the finished campaign's folder with --out",
@@ -740,7 +767,8 @@ fn campaign_arguments_are_checked_by_name() {
 
 #[test]
 fn a_campaign_of_descent_and_horizontal_speeds_plots_the_engines_boundary() {
-    let (dir, plots) = (temp("speeds"), temp("speeds-plots"));
+    let dir = temp("speeds");
+    let plots = dir.join("out");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("speeds.toml");
     std::fs::write(
@@ -757,7 +785,6 @@ fn a_campaign_of_descent_and_horizontal_speeds_plots_the_engines_boundary() {
         "--out",
         dir.join("out").to_str().unwrap(),
         "--plot",
-        plots.to_str().unwrap(),
     ]);
     assert!(
         out.status.success(),
@@ -834,7 +861,20 @@ fn set_changes_a_value_as_an_extending_file_would() {
     ]);
     let extended = json(&["run", file.to_str().unwrap(), "--format", "json"]);
     let unchanged = json(&["run", &scenario, "--format", "json"]);
-    assert_eq!(set, extended);
+    // The same landing (the same resolved scenario): the documents differ in the file and the
+    // settings they name.
+    assert_eq!(set["scenario"]["sha256"], extended["scenario"]["sha256"]);
+    assert_eq!(
+        set["settings"]["set"][0]["field"],
+        "touchdown.vertical_velocity"
+    );
+    let landing = |v: &serde_json::Value| {
+        let mut v = v.clone();
+        v["scenario"] = serde_json::Value::Null;
+        v["settings"] = serde_json::Value::Null;
+        v
+    };
+    assert_eq!(landing(&set), landing(&extended));
     assert_ne!(
         set["max_primary_stroke_m"],
         unchanged["max_primary_stroke_m"]
@@ -843,8 +883,7 @@ fn set_changes_a_value_as_an_extending_file_would() {
         let mut args = vec![
             "boundary",
             path,
-            "--vv",
-            "8:8:1",
+            "--vv=-8:-8:1",
             "--vh-step",
             "6",
             "--vh-max",
@@ -857,8 +896,8 @@ fn set_changes_a_value_as_an_extending_file_would() {
     };
     let heavier = extending("set", "heavier.toml", base, name, "[vehicle]\nmass = 2.2\n");
     assert_eq!(
-        boundary(&scenario, &["--set", "vehicle.mass=2.2"]),
-        boundary(heavier.to_str().unwrap(), &[])
+        landing(&boundary(&scenario, &["--set", "vehicle.mass=2.2"])),
+        landing(&boundary(heavier.to_str().unwrap(), &[]))
     );
 
     let o = touchdown(&["run", &scenario, "--set", "touchdown.vertical_speed=-10.0"]);
@@ -956,7 +995,8 @@ fn the_project_is_found_from_any_directory() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // Each parameter's value carries the unit of the scenario file it is written in.
     let table: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let units: Vec<(&str, &str)> = table
+    assert_eq!(table["schema"], "touchdown.sensitivity/1");
+    let units: Vec<(&str, &str)> = table["parameters"]
         .as_array()
         .unwrap()
         .iter()
@@ -1090,4 +1130,56 @@ fn the_energy_balance_rebuilds_from_every_row_of_the_history() {
         assert!(rows > 10, "{engine}: {rows} rows");
         let _ = std::fs::remove_dir_all(&dir);
     }
+}
+
+/// `run --out DIR --every N` keeps every Nth step's row of history.csv and the last, on every
+/// engine (each writes the same file, thinned in one place).
+#[test]
+fn every_thins_the_history_on_every_engine() {
+    let rows = |dir: &Path| -> Vec<String> {
+        std::fs::read_to_string(dir.join("history.csv"))
+            .unwrap()
+            .lines()
+            .map(String::from)
+            .collect()
+    };
+    for engine in ["core", "mujoco"] {
+        let (all, thinned) = (
+            temp(&format!("every-all-{engine}")),
+            temp(&format!("every-7-{engine}")),
+        );
+        for (dir, every) in [(&all, "1"), (&thinned, "7")] {
+            let o = touchdown(&[
+                "run",
+                "scenarios/flat-drop.toml",
+                "--engine",
+                engine,
+                "--out",
+                dir.to_str().unwrap(),
+                "--every",
+                every,
+            ]);
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        }
+        let (all, thinned) = (rows(&all), rows(&thinned));
+        assert!(all.len() > 100, "{engine}: {} rows", all.len());
+        let mut expected: Vec<String> = std::iter::once(all[0].clone())
+            .chain(all[1..].iter().step_by(7).cloned())
+            .collect();
+        if (all.len() - 2) % 7 != 0 {
+            expected.push(all.last().unwrap().clone());
+        }
+        assert_eq!(thinned, expected, "{engine}");
+    }
+    let o = touchdown(&["run", "scenarios/flat-drop.toml", "--every", "2"]);
+    assert_eq!(o.status.code(), Some(2), "--every needs --out");
+    let o = touchdown(&[
+        "run",
+        "scenarios/flat-drop.toml",
+        "--out",
+        "x",
+        "--every",
+        "0",
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--every: expected at least 1"));
 }

@@ -7,14 +7,18 @@ use serde::Serialize;
 use touchdown_record::Outcome;
 
 /// A channel's tolerance and why it is that.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tolerance {
-    /// The channel family.
+    /// The channel family, as the text reports and docs/engines.md name it.
     pub channel: &'static str,
-    /// Largest difference that passes, in `unit`.
+    /// The channel family's identifier: the `quantity` of its channels.
+    pub quantity: &'static str,
+    /// Largest difference that passes, in `difference_unit`.
     pub limit: f64,
+    /// The unit of the difference and the limit: `fraction` (a ratio) or an SI unit.
+    pub difference_unit: &'static str,
     /// How the difference is measured.
-    pub unit: &'static str,
+    pub measured_as: &'static str,
     /// Why this tolerance.
     pub reason: &'static str,
 }
@@ -23,8 +27,10 @@ pub struct Tolerance {
 /// against 10 mm.
 pub const PRIMARY_STROKE: Tolerance = Tolerance {
     channel: "primary stroke",
+    quantity: "primary_stroke",
     limit: 0.05,
-    unit: "fraction of the larger maximum stroke (at least 10 mm)",
+    difference_unit: "fraction",
+    measured_as: "fraction of the larger maximum stroke (at least 10 mm)",
     reason: "the agreement asked of the rebuilds on the Table I primary strokes; below 10 mm a stroke is within the scatter of the drop tests' records",
 };
 
@@ -32,72 +38,90 @@ pub const PRIMARY_STROKE: Tolerance = Tolerance {
 /// 5 mm measured against 5 mm.
 pub const SECONDARY_STROKE: Tolerance = Tolerance {
     channel: "secondary stroke",
+    quantity: "secondary_stroke",
     limit: 0.10,
-    unit: "fraction of the larger maximum stroke (at least 5 mm)",
+    difference_unit: "fraction",
+    measured_as: "fraction of the larger maximum stroke (at least 5 mm)",
     reason: "the agreement asked of the rebuilds on the Table I secondary strokes; secondaries are short and follow the gear's swing, so twice the primaries' tolerance",
 };
 
 /// Peak pitch rate.
 pub const PEAK_PITCH_RATE: Tolerance = Tolerance {
     channel: "peak pitch rate",
+    quantity: "peak_pitch_rate",
     limit: 0.05,
-    unit: "fraction of the larger peak magnitude (at least 0.1 rad/s)",
+    difference_unit: "fraction",
+    measured_as: "fraction of the larger peak magnitude (at least 0.1 rad/s)",
     reason: "the pitch rate drives the overturn; 5 % of its peak moves a stability boundary by about as much as the report's 0.05 ft/s search tolerance at 8 ft/s",
 };
 
 /// Time of the peak pitch rate.
 pub const PEAK_PITCH_RATE_TIME: Tolerance = Tolerance {
     channel: "peak pitch rate time",
+    quantity: "peak_pitch_rate_time",
     limit: 0.01,
-    unit: "s",
+    difference_unit: "s",
+    measured_as: "the absolute difference of the times of the peaks",
     reason: "10 ms, 5 % of a 0.2 s landing: the same phase of the landing",
 };
 
 /// Time-aligned pitch-rate history, RMS of the difference.
 pub const PITCH_RATE_RMS: Tolerance = Tolerance {
     channel: "pitch rate history RMS difference",
+    quantity: "pitch_rate_history_rms_difference",
     limit: 0.10,
-    unit: "fraction of the first engine's peak magnitude",
+    difference_unit: "fraction",
+    measured_as: "fraction of the first engine's peak magnitude",
     reason: "over the common span, the histories tell the same story when their RMS difference stays within a tenth of the peak",
 };
 
 /// Time-aligned pitch-rate history, largest difference.
 pub const PITCH_RATE_MAX: Tolerance = Tolerance {
     channel: "pitch rate history largest difference",
+    quantity: "pitch_rate_history_largest_difference",
     limit: 0.25,
-    unit: "fraction of the first engine's peak magnitude",
+    difference_unit: "fraction",
+    measured_as: "fraction of the first engine's peak magnitude",
     reason: "a contact event a step earlier or later shifts a steep stretch of the history: a quarter of the peak allows that, not a different landing",
 };
 
 /// Peak vertical acceleration (2 ms window).
 pub const PEAK_VERTICAL_ACCELERATION: Tolerance = Tolerance {
     channel: "peak vertical acceleration",
+    quantity: "peak_vertical_acceleration",
     limit: 0.10,
-    unit: "fraction of the larger peak magnitude (at least 1 m/s²), 2 ms window",
+    difference_unit: "fraction",
+    measured_as: "fraction of the larger peak magnitude (at least 1 m/s²), 2 ms window",
     reason: "the load the vehicle feels; a 2 ms average filters the multibody's contact spikes as an accelerometer would",
 };
 
 /// Minimum stability distance.
 pub const MIN_STABILITY_DISTANCE: Tolerance = Tolerance {
     channel: "minimum stability distance",
+    quantity: "min_stability_distance",
     limit: 0.01,
-    unit: "m",
+    difference_unit: "m",
+    measured_as: "the absolute difference of the minima",
     reason: "1 cm of margin at 1/6 scale (6 cm full scale): finer than the footpad's own size",
 };
 
 /// Overturning velocity (both engines unstable).
 pub const OVERTURN_VELOCITY: Tolerance = Tolerance {
     channel: "overturn velocity",
+    quantity: "overturn_velocity",
     limit: 0.05,
-    unit: "m/s",
+    difference_unit: "m/s",
+    measured_as: "the absolute difference of the velocities at the crossing",
     reason: "the velocity across the wall at the crossing; 5 cm/s is the scale of the report's boundary-search tolerance",
 };
 
 /// Energy dissipated per mechanism.
 pub const ENERGY: Tolerance = Tolerance {
     channel: "energy",
+    quantity: "energy",
     limit: 0.05,
-    unit: "fraction of the first engine's touchdown kinetic energy",
+    difference_unit: "fraction",
+    measured_as: "fraction of the first engine's touchdown kinetic energy",
     reason: "where the touchdown energy goes; 5 % of it per mechanism separates a shifted share from rounding",
 };
 
@@ -115,21 +139,83 @@ pub const TOLERANCES: [Tolerance; 10] = [
     ENERGY,
 ];
 
-/// One channel of a pair comparison.
+/// Which strut of a leg a channel is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Strut {
+    /// The primary strut.
+    #[serde(rename = "primary")]
+    Primary,
+    /// The secondary strut from B3 (the report's 3-1; `sec31` in history.csv).
+    #[serde(rename = "sec31")]
+    Secondary31,
+    /// The secondary strut from B4 (the report's 4-1; `sec41` in history.csv).
+    #[serde(rename = "sec41")]
+    Secondary41,
+}
+
+impl Strut {
+    /// The strut as the text reports name it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Strut::Primary => "primary",
+            Strut::Secondary31 => "3-1",
+            Strut::Secondary41 => "4-1",
+        }
+    }
+}
+
+/// One channel of a pair comparison, identified by data: its quantity (the family of its
+/// tolerance), and the leg, strut or energy account it is about.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Channel {
-    /// Channel name (with the leg or strut).
-    pub name: String,
-    /// The first engine's value (SI); for a history channel, the difference itself.
-    pub a: f64,
-    /// The second engine's value (SI); NaN (null in JSON) for a history channel.
-    pub b: f64,
-    /// The difference, measured as the tolerance says.
+    /// The quantity compared: the `quantity` of its [`Tolerance`].
+    pub quantity: &'static str,
+    /// The leg, numbered from 1 (stroke channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub leg: Option<usize>,
+    /// The strut (stroke channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strut: Option<Strut>,
+    /// The energy account, as history.csv's column without `_j` (energy channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub account: Option<&'static str>,
+    /// The SI unit of `a`, `b` and `absolute_difference`.
+    pub unit: &'static str,
+    /// The first engine's value (left out of the history channels, which compare two time
+    /// series).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<f64>,
+    /// The second engine's value (left out of the history channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b: Option<f64>,
+    /// How far apart the engines are, in `unit`: |a − b|, or for a history channel the RMS or
+    /// the largest difference of the time-aligned histories.
+    pub absolute_difference: f64,
+    /// The difference as the tolerance measures it, in `difference_unit`.
     pub difference: f64,
-    /// The tolerance's limit.
+    /// The unit of `difference` and `tolerance`: `fraction` or an SI unit.
+    pub difference_unit: &'static str,
+    /// The tolerance's limit, in `difference_unit`.
     pub tolerance: f64,
     /// Whether the difference is within the tolerance.
     pub pass: bool,
+}
+
+impl Channel {
+    /// The channel as the text reports name it ("primary stroke leg 1", "secondary stroke leg
+    /// 2 3-1", "energy: viscous").
+    pub fn name(&self) -> String {
+        let family = TOLERANCES
+            .iter()
+            .find(|t| t.quantity == self.quantity)
+            .map_or(self.quantity, |t| t.channel);
+        match (self.leg, self.strut, self.account) {
+            (Some(leg), Some(Strut::Primary), _) => format!("{family} leg {leg}"),
+            (Some(leg), Some(strut), _) => format!("{family} leg {leg} {}", strut.label()),
+            (_, _, Some(account)) => format!("{family}: {}", account.replace('_', " ")),
+            _ => family.to_string(),
+        }
+    }
 }
 
 /// Two engines on one landing.
@@ -139,16 +225,30 @@ pub struct PairComparison {
     pub a: Engine,
     /// Second engine.
     pub b: Engine,
-    /// Outcomes of the two.
-    pub outcome: (Outcome, Outcome),
+    /// The first engine's outcome.
+    pub outcome_a: Outcome,
+    /// The second engine's outcome.
+    pub outcome_b: Outcome,
     /// Whether the outcomes agree.
     pub outcome_agrees: bool,
     /// Every channel.
     pub channels: Vec<Channel>,
-    /// The channel furthest beyond (or nearest to) its tolerance, or "outcome".
-    pub worst: String,
+    /// The index in `channels` of the channel furthest beyond (or nearest to) its tolerance;
+    /// left out when the outcomes disagree (the outcome is then the worst).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_channel: Option<usize>,
     /// Whether the outcomes agree and every channel passes.
     pub pass: bool,
+}
+
+impl PairComparison {
+    /// The worst, as the text reports name it: a channel, or "outcome".
+    pub fn worst(&self) -> String {
+        match self.worst_channel {
+            Some(i) => self.channels[i].name(),
+            None => "outcome".into(),
+        }
+    }
 }
 
 /// Peak pitch rate below which a landing does not pitch, rad/s (0.06 °/s): a symmetric drop's
@@ -159,15 +259,49 @@ fn relative(a: f64, b: f64, floor: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(floor)
 }
 
-fn channel(name: String, a: f64, b: f64, difference: f64, t: &Tolerance) -> Channel {
+/// What a channel is about: its leg, strut or energy account.
+#[derive(Default)]
+struct About {
+    leg: Option<usize>,
+    strut: Option<Strut>,
+    account: Option<&'static str>,
+}
+
+/// A channel of two values `a` and `b` (`unit`), or of a history difference when they are
+/// `None`: `absolute` apart, `difference` as the tolerance `t` measures it.
+fn channel(
+    about: About,
+    unit: &'static str,
+    values: Option<(f64, f64)>,
+    absolute: f64,
+    difference: f64,
+    t: &Tolerance,
+) -> Channel {
     Channel {
-        name,
-        a,
-        b,
+        quantity: t.quantity,
+        leg: about.leg,
+        strut: about.strut,
+        account: about.account,
+        unit,
+        a: values.map(|v| v.0),
+        b: values.map(|v| v.1),
+        absolute_difference: absolute,
         difference,
+        difference_unit: t.difference_unit,
         tolerance: t.limit,
         pass: difference <= t.limit,
     }
+}
+
+/// A channel of two values `x` and `y` (`unit`), their difference measured by `difference`.
+fn values(
+    about: About,
+    unit: &'static str,
+    (x, y): (f64, f64),
+    difference: f64,
+    t: &Tolerance,
+) -> Channel {
+    channel(about, unit, Some((x, y)), (x - y).abs(), difference, t)
 }
 
 /// Time-aligned pitch-rate differences over the common span: RMS and largest, rad/s (`b`
@@ -197,35 +331,39 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
         .zip(&sb.max_primary_stroke_m)
         .enumerate()
     {
-        channels.push(channel(
-            format!("primary stroke leg {}", i + 1),
-            *x,
-            *y,
-            relative(*x, *y, 0.010),
-            &PRIMARY_STROKE,
-        ));
+        let about = About {
+            leg: Some(i + 1),
+            strut: Some(Strut::Primary),
+            ..About::default()
+        };
+        let d = relative(*x, *y, 0.010);
+        channels.push(values(about, "m", (*x, *y), d, &PRIMARY_STROKE));
     }
     let secondary = |s: &touchdown_record::Summary, i: usize, j: usize| {
         s.max_secondary_compression_m[i][j].max(s.max_secondary_tension_m[i][j])
     };
     for i in 0..sa.max_primary_stroke_m.len() {
-        for (j, name) in ["3-1", "4-1"].into_iter().enumerate() {
+        for (j, strut) in [Strut::Secondary31, Strut::Secondary41]
+            .into_iter()
+            .enumerate()
+        {
             let (x, y) = (secondary(sa, i, j), secondary(sb, i, j));
-            channels.push(channel(
-                format!("secondary stroke leg {} {name}", i + 1),
-                x,
-                y,
-                relative(x, y, 0.005),
-                &SECONDARY_STROKE,
-            ));
+            let about = About {
+                leg: Some(i + 1),
+                strut: Some(strut),
+                ..About::default()
+            };
+            let d = relative(x, y, 0.005);
+            channels.push(values(about, "m", (x, y), d, &SECONDARY_STROKE));
         }
     }
     let (qa, qb) = (sa.peak_pitch_rate_rad_s, sb.peak_pitch_rate_rad_s);
-    channels.push(channel(
-        "peak pitch rate".into(),
-        qa,
-        qb,
-        relative(qa, qb, 0.1),
+    let d = relative(qa, qb, 0.1);
+    channels.push(values(
+        About::default(),
+        "rad/s",
+        (qa, qb),
+        d,
         &PEAK_PITCH_RATE,
     ));
     // A landing that does not pitch (a symmetric drop) has a peak of solver noise whose time
@@ -235,109 +373,110 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
         time_of(qa, sa.peak_pitch_rate_time_s),
         time_of(qb, sb.peak_pitch_rate_time_s),
     );
-    channels.push(channel(
-        "peak pitch rate time".into(),
-        ta,
-        tb,
-        (ta - tb).abs(),
+    let d = (ta - tb).abs();
+    channels.push(values(
+        About::default(),
+        "s",
+        (ta, tb),
+        d,
         &PEAK_PITCH_RATE_TIME,
     ));
     let (rms, max) = pitch_rate_differences(&a.trace, &b.trace);
     let scale = qa.abs().max(0.1);
-    // History channels: `a` holds the difference itself (rad/s), `b` is not applicable.
-    channels.push(channel(
-        "pitch rate history RMS difference".into(),
-        rms,
-        f64::NAN,
-        rms / scale,
-        &PITCH_RATE_RMS,
-    ));
-    channels.push(channel(
-        "pitch rate history largest difference".into(),
-        max,
-        f64::NAN,
-        max / scale,
-        &PITCH_RATE_MAX,
-    ));
+    for (absolute, t) in [(rms, &PITCH_RATE_RMS), (max, &PITCH_RATE_MAX)] {
+        channels.push(channel(
+            About::default(),
+            "rad/s",
+            None,
+            absolute,
+            absolute / scale,
+            t,
+        ));
+    }
     let (ga, gb) = (
         a.trace.peak_vertical_acceleration().0,
         b.trace.peak_vertical_acceleration().0,
     );
-    channels.push(channel(
-        "peak vertical acceleration".into(),
-        ga,
-        gb,
-        relative(ga, gb, 1.0),
+    let d = relative(ga, gb, 1.0);
+    channels.push(values(
+        About::default(),
+        "m/s^2",
+        (ga, gb),
+        d,
         &PEAK_VERTICAL_ACCELERATION,
     ));
     let (da, db) = (sa.min_stability_distance_m, sb.min_stability_distance_m);
-    channels.push(channel(
-        "minimum stability distance".into(),
-        da,
-        db,
-        (da - db).abs(),
+    let d = (da - db).abs();
+    channels.push(values(
+        About::default(),
+        "m",
+        (da, db),
+        d,
         &MIN_STABILITY_DISTANCE,
     ));
     if let (Some(va), Some(vb)) = (sa.overturn_velocity_m_s, sb.overturn_velocity_m_s) {
-        channels.push(channel(
-            "overturn velocity".into(),
-            va,
-            vb,
-            (va - vb).abs(),
+        let d = (va - vb).abs();
+        channels.push(values(
+            About::default(),
+            "m/s",
+            (va, vb),
+            d,
             &OVERTURN_VELOCITY,
         ));
     }
     let (ea, eb) = (&sa.energy, &sb.energy);
     let ke0 = ea.kinetic_initial_j.max(f64::MIN_POSITIVE);
-    for (name, x, y) in [
+    let mut accounts = vec![
         (
-            "energy: honeycomb dissipated",
+            "honeycomb_dissipated",
             ea.honeycomb_dissipated_j,
             eb.honeycomb_dissipated_j,
         ),
-        ("energy: viscous", ea.viscous_j, eb.viscous_j),
+        ("viscous", ea.viscous_j, eb.viscous_j),
         (
-            "energy: bearing friction",
+            "bearing_friction",
             ea.bearing_friction_j,
             eb.bearing_friction_j,
         ),
         (
-            "energy: sliding friction",
+            "sliding_friction",
             ea.sliding_friction_j,
             eb.sliding_friction_j,
         ),
-        (
-            "energy: contact events",
-            ea.contact_events_j,
-            eb.contact_events_j,
-        ),
-    ] {
-        channels.push(channel(name.into(), x, y, (x - y).abs() / ke0, &ENERGY));
-    }
+        ("contact_events", ea.contact_events_j, eb.contact_events_j),
+    ];
     // The optional mechanisms' account only where a scene has them.
-    let (x, y) = (ea.mechanisms_j, eb.mechanisms_j);
-    if x != 0.0 || y != 0.0 {
-        let name = "energy: mechanisms".into();
-        channels.push(channel(name, x, y, (x - y).abs() / ke0, &ENERGY));
+    if ea.mechanisms_j != 0.0 || eb.mechanisms_j != 0.0 {
+        accounts.push(("mechanisms", ea.mechanisms_j, eb.mechanisms_j));
+    }
+    for (account, x, y) in accounts {
+        let about = About {
+            account: Some(account),
+            ..About::default()
+        };
+        channels.push(values(about, "J", (x, y), (x - y).abs() / ke0, &ENERGY));
     }
     let outcome_agrees = sa.outcome == sb.outcome;
-    let worst = if outcome_agrees {
+    let worst_channel = if outcome_agrees {
         channels
             .iter()
-            .max_by(|x, y| (x.difference / x.tolerance).total_cmp(&(y.difference / y.tolerance)))
-            .map(|c| c.name.clone())
-            .unwrap_or_default()
+            .enumerate()
+            .max_by(|(_, x), (_, y)| {
+                (x.difference / x.tolerance).total_cmp(&(y.difference / y.tolerance))
+            })
+            .map(|(i, _)| i)
     } else {
-        "outcome".to_string()
+        None
     };
     let pass = outcome_agrees && channels.iter().all(|c| c.pass);
     PairComparison {
         a: a.engine,
         b: b.engine,
-        outcome: (sa.outcome, sb.outcome),
+        outcome_a: sa.outcome,
+        outcome_b: sb.outcome,
         outcome_agrees,
         channels,
-        worst,
+        worst_channel,
         pass,
     }
 }

@@ -128,17 +128,22 @@ impl Method {
 pub struct Errors {
     /// Largest difference of any maximum stroke (primary; secondary compression and tension),
     /// as a fraction of the reference's largest primary stroke.
+    #[serde(rename = "max_stroke_fraction")]
     pub max_stroke: f64,
     /// RMS difference of the pitch-rate history over the common span (interpolated at the
     /// reference's times), as a fraction of the reference's peak pitch-rate magnitude (at least
     /// 0.1 rad/s).
+    #[serde(rename = "pitch_rate_rms_fraction")]
     pub pitch_rate_rms: f64,
     /// Angle of the rotation between the two attitudes at the common end time, rad.
     pub final_attitude_rad: f64,
     /// [`Errors::max_stroke`] against the finest rung of the run's own ladder instead of the
     /// reference (the ladder's own convergence; `None` outside a ladder, and for the finest
     /// rung itself; left out of the JSON then).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        rename = "self_max_stroke_fraction",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub self_max_stroke: Option<f64>,
 }
 
@@ -194,8 +199,10 @@ pub fn errors(reference: &EngineRun, run: &EngineRun) -> Errors {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Agreement {
     /// On every maximum stroke, fraction of the largest primary stroke.
+    #[serde(rename = "max_stroke_fraction")]
     pub max_stroke: f64,
     /// On the pitch-rate history, RMS as a fraction of its peak.
+    #[serde(rename = "pitch_rate_rms_fraction")]
     pub pitch_rate_rms: f64,
     /// On the final attitude, rad.
     pub final_attitude_rad: f64,
@@ -375,10 +382,13 @@ pub struct AtError {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WorkPrecision {
     /// Scenario name.
+    #[serde(rename = "scenario_name")]
     pub scenario: String,
-    /// Scenario file.
+    /// Scenario file (in the document's envelope).
+    #[serde(skip)]
     pub file: String,
-    /// SHA-256 of the resolved scenario.
+    /// SHA-256 of the resolved scenario (in the document's envelope).
+    #[serde(skip)]
     pub scenario_sha256: String,
     /// Runs per rung whose median is the wall time.
     pub repeats: usize,
@@ -389,7 +399,8 @@ pub struct WorkPrecision {
     pub reference: Reference,
     /// Every rung, method by method, coarsest first.
     pub rungs: Vec<Rung>,
-    /// Stroke error at which [`WorkPrecision::at_error`] is read.
+    /// Stroke error at which [`WorkPrecision::at_error`] is read, a fraction.
+    #[serde(rename = "fixed_error_fraction")]
     pub fixed_error: f64,
     /// For each method, the cheapest rung within [`WorkPrecision::fixed_error`].
     pub at_error: Vec<AtError>,
@@ -509,10 +520,29 @@ pub fn work_precision(
     methods: &[Method],
     rungs: Option<usize>,
     repeats: usize,
+    progress: impl FnMut(&Rung),
+) -> Result<WorkPrecision, CompareError> {
+    work_precision_resolved(
+        path,
+        &Scenario::load(path)?,
+        methods,
+        rungs,
+        repeats,
+        progress,
+    )
+}
+
+/// [`work_precision`] of a scenario already resolved (with overrides); `path` names it in the
+/// study and in errors.
+pub fn work_precision_resolved(
+    path: &Path,
+    sc: &Scenario,
+    methods: &[Method],
+    rungs: Option<usize>,
+    repeats: usize,
     mut progress: impl FnMut(&Rung),
 ) -> Result<WorkPrecision, CompareError> {
-    let sc = Scenario::load(path)?;
-    let reference = reference(path, &sc)?;
+    let reference = reference(path, sc)?;
     let methods: Vec<Method> = methods
         .iter()
         .copied()
@@ -525,7 +555,7 @@ pub fn work_precision(
         let mut measured: Vec<Rung> = ladder
             .iter()
             .map(|&value| {
-                let rung = measure(path, &sc, &reference.run, method, value, repeats);
+                let rung = measure(path, sc, &reference.run, method, value, repeats);
                 progress(&rung);
                 rung
             })

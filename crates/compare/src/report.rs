@@ -4,7 +4,9 @@
 
 use crate::metrics::TOLERANCES;
 use crate::ScenarioComparison;
+use serde::Serialize;
 use std::fmt::Write;
+use touchdown_record::{Document, ScenarioId};
 
 /// Below this magnitude (SI) a number is written as 0.
 pub const NOISE: f64 = 1e-6;
@@ -62,17 +64,20 @@ pub fn text(c: &ScenarioComparison) -> String {
             p.a.name(),
             p.b.name(),
             if p.pass { "PASS" } else { "FAIL" },
-            p.outcome.0,
-            p.outcome.1,
-            p.worst
+            p.outcome_a,
+            p.outcome_b,
+            p.worst()
         );
+        let value = |v: Option<f64>| v.map_or_else(|| "-".to_string(), sig3);
         let rows = p.channels.iter().map(|ch| {
             vec![
-                ch.name.clone(),
-                sig3(ch.a),
-                sig3(ch.b),
-                sig3(ch.difference),
-                sig3(ch.tolerance),
+                ch.name(),
+                value(ch.a),
+                value(ch.b),
+                sig3(ch.absolute_difference),
+                ch.unit.to_string(),
+                with_unit(ch.difference, ch.difference_unit),
+                with_unit(ch.tolerance, ch.difference_unit),
                 (if ch.pass { "pass" } else { "FAIL" }).to_string(),
             ]
         });
@@ -81,15 +86,26 @@ pub fn text(c: &ScenarioComparison) -> String {
                 "channel",
                 p.a.name(),
                 p.b.name(),
+                "|a - b|",
+                "unit",
                 "difference",
                 "tolerance",
                 "",
             ],
-            &[1, 2, 3, 4],
+            &[1, 2, 3, 5, 6],
             rows,
         ));
     }
     o
+}
+
+/// `x` in `unit` to three significant figures: a fraction as a percentage, an SI value with
+/// its unit.
+pub fn with_unit(x: f64, unit: &str) -> String {
+    match unit {
+        "fraction" => format!("{} %", sig3(100.0 * x)),
+        unit => format!("{} {unit}", sig3(x)),
+    }
 }
 
 /// A plain-text table: a header, then rows, with no borders, each column padded to its widest
@@ -126,23 +142,54 @@ pub fn tolerances_text() -> String {
     for t in &TOLERANCES {
         let _ = writeln!(
             o,
-            "{}: {} ({}): {}",
+            "{}: {}, {}: {}",
             t.channel,
-            sig3(t.limit),
-            t.unit,
+            with_unit(t.limit, t.difference_unit),
+            t.measured_as,
             t.reason
         );
     }
     o
 }
 
-/// The comparison and the tolerances as a JSON value (`touchdown compare --format json` prints
-/// an array of them).
-pub fn json(c: &ScenarioComparison) -> serde_json::Value {
-    serde_json::json!({
-        "comparison": c,
-        "tolerances": TOLERANCES,
-    })
+/// An engine that ran and what computed it, in a comparison's document.
+#[derive(Serialize)]
+struct EngineVersion<'a> {
+    name: &'static str,
+    version: &'a str,
+}
+
+/// The fields of a scenario's comparison document, after its envelope.
+#[derive(Serialize)]
+struct ComparisonBody<'a> {
+    scenario_name: &'a str,
+    engines: Vec<EngineVersion<'a>>,
+    not_applicable: Vec<&'static str>,
+    pairs: &'a [crate::metrics::PairComparison],
+}
+
+/// The comparison as one line of `touchdown compare --format json`'s JSON Lines
+/// (docs/schemas/compare.schema.json): the envelope naming the scenario and the `settings`,
+/// the engines with their versions, every pair with its channels.
+pub fn json_line(c: &ScenarioComparison, settings: &serde_json::Value) -> String {
+    let id = ScenarioId {
+        path: c.file.clone(),
+        sha256: c.scenario_sha256.clone(),
+    };
+    let body = ComparisonBody {
+        scenario_name: &c.scenario,
+        engines: c
+            .engines
+            .iter()
+            .map(|(e, v)| EngineVersion {
+                name: e.name(),
+                version: v,
+            })
+            .collect(),
+        not_applicable: c.not_applicable.iter().map(|e| e.name()).collect(),
+        pairs: &c.pairs,
+    };
+    Document::new("compare", Some(&id), settings, &body).line()
 }
 
 #[cfg(test)]

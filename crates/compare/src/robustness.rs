@@ -290,14 +290,21 @@ pub struct CaseRun {
     /// How it ended.
     pub verdict: Verdict,
     /// The diagnostic (stopped, refused, failed).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub message: Option<String>,
     /// Outcome of a run that ended.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub outcome: Option<Outcome>,
     /// Steps of a run that ended.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub steps: Option<u64>,
     /// Energy residual over the energy scale ([`touchdown_record::EnergyReport::scale`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(rename = "energy_residual_fraction")]
     pub energy_residual: Option<f64>,
     /// Largest primary stroke over the primary capacity.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(rename = "primary_stroke_over_capacity_fraction")]
     pub primary_stroke_over_capacity: Option<f64>,
 }
 
@@ -354,13 +361,37 @@ pub struct StepSearch {
     /// The scenario's own step, s.
     pub default_step_s: f64,
     /// The largest step that completed, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub largest_stable_step_s: Option<f64>,
     /// The next step of the ladder above it, s, and why it did not complete (`None` if the
     /// ceiling completed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(with = "first_unstable")]
     pub first_unstable: Option<(f64, String)>,
     /// Why the method does not apply to the case at any step (the report's scheme refuses a
     /// quaternion attitude), if it does not; nothing is searched then.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub refused: Option<String>,
+}
+
+/// The first unstable step as `{"step_s": ..., "why": ...}` rather than a pair.
+mod first_unstable {
+    use serde::{Serialize, Serializer};
+
+    #[derive(Serialize)]
+    struct FirstUnstable<'a> {
+        step_s: f64,
+        why: &'a str,
+    }
+
+    pub fn serialize<S: Serializer>(v: &Option<(f64, String)>, s: S) -> Result<S::Ok, S::Error> {
+        v.as_ref()
+            .map(|(step_s, why)| FirstUnstable {
+                step_s: *step_s,
+                why,
+            })
+            .serialize(s)
+    }
 }
 
 /// Largest step of the search, s.

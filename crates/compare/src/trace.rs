@@ -140,6 +140,16 @@ impl Trace {
             })
     }
 
+    /// The vertical acceleration averaged over the [`ACCELERATION_WINDOW`] centred on `t`
+    /// (m/s², positive up): the function whose values at the windows' middles
+    /// [`Trace::vertical_acceleration`] gives; `None` where the window leaves the trace.
+    pub fn vertical_acceleration_at(&self, t: f64) -> Option<f64> {
+        let (from, to) = (t - 0.5 * ACCELERATION_WINDOW, t + 0.5 * ACCELERATION_WINDOW);
+        let start = *self.t.first()?;
+        (from >= start && to <= self.end())
+            .then(|| (self.at(&self.vz, to) - self.at(&self.vz, from)) / ACCELERATION_WINDOW)
+    }
+
     /// The vertical acceleration of largest magnitude, averaged over
     /// [`ACCELERATION_WINDOW`] (m/s², signed; positive up), and its time (the window's
     /// middle, s).

@@ -6,13 +6,16 @@
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use serde_json::json;
 use std::path::Path;
 use touchdown_campaign::{Campaign, CampaignError, Shard};
 use touchdown_compare::CompareError;
 use touchdown_record::{History, RunError};
 use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::{ScenarioBase, ScenarioError};
-use touchdown_validation::boundary::{search_engines, Settings};
+use touchdown_validation::boundary::{
+    descent_speeds, document_line, options, search_engines, Settings,
+};
 use touchdown_validation::ValidationError;
 
 pyo3::create_exception!(
@@ -183,6 +186,11 @@ fn as_refs(values: &[(String, toml::Value)]) -> Vec<(&str, toml::Value)> {
         .collect()
 }
 
+/// The settings of a call's documents, as the command line's: the overrides, then `options`.
+fn settings(values: &[(String, toml::Value)], options: serde_json::Value) -> serde_json::Value {
+    touchdown_record::document::settings(values.iter().map(|(k, v)| (k.as_str(), v)), options)
+}
+
 /// Engines named by the caller.
 fn engines(names: Vec<String>) -> PyResult<Vec<Engine>> {
     names
@@ -232,13 +240,14 @@ fn run(
             ),
             None => None,
         };
-        Ok((summary.to_json(), csv))
+        let id = touchdown_record::ScenarioId::new(source, &sc);
+        Ok((summary.document(&id, &settings(&values, json!({}))), csv))
     });
     result.map_err(|f| f.into_py_err(py))
 }
 
 /// Lands `scenario` (a path or TOML text) with `overrides` on each of `engines` and compares
-/// every pair as `touchdown compare --format json` does: the report as JSON.
+/// every pair as `touchdown compare --format json` does: its line for the scenario.
 #[pyfunction]
 #[pyo3(signature = (scenario, engines, overrides=None))]
 fn compare(
@@ -251,17 +260,22 @@ fn compare(
     let values = override_values(overrides)?;
     py.detach(|| -> Result<String, Box<Failed>> {
         let (sc, source) = resolved(scenario, &values)?;
-        let c = touchdown_compare::engine_set(&engines)
-            .and_then(|set| touchdown_compare::compare_resolved(Path::new(source), &sc, &set))
+        let set =
+            touchdown_compare::engine_set(&engines).map_err(|e| Box::new(Failed::Compare(e)))?;
+        let c = touchdown_compare::compare_resolved(Path::new(source), &sc, &set)
             .map_err(|e| Box::new(Failed::Compare(e)))?;
-        Ok(touchdown_compare::report::json(&c).to_string())
+        // The engines as the command line records them: in engine order, each once.
+        let names: Vec<_> = set.iter().map(|e| e.name()).collect();
+        let settings = settings(&values, json!({ "engines": names }));
+        Ok(touchdown_compare::report::json_line(&c, &settings))
     })
     .map_err(|f| f.into_py_err(py))
 }
 
 /// The stability-boundary search of `scenario` (a path or TOML text) with `overrides`, as
-/// `touchdown boundary --format json` does: at each descent speed of `vv` (positive down,
-/// the scenario's velocity unit), on each of `engines`; the points as JSON.
+/// `touchdown boundary --format json` does: at each vertical velocity of `vv` (negative down,
+/// as in the scenario files, the scenario's velocity unit), on each of `engines`; the points
+/// as the command's JSON Lines.
 #[pyfunction]
 #[pyo3(signature = (scenario, vv, vh_start, vh_step, vh_max, tol, engines, overrides=None))]
 #[allow(clippy::too_many_arguments)]
@@ -275,7 +289,7 @@ fn boundary(
     tol: f64,
     engines: Vec<String>,
     overrides: Option<&Bound<'_, PyDict>>,
-) -> PyResult<String> {
+) -> PyResult<Vec<String>> {
     let engines = self::engines(engines)?;
     let values = override_values(overrides)?;
     let settings = Settings {
@@ -284,11 +298,30 @@ fn boundary(
         vh_max,
         tolerance: tol,
     };
-    py.detach(|| -> Result<String, Box<Failed>> {
-        let (b, _) = base(scenario).map_err(|e| Box::new(Failed::Scenario(e)))?;
-        let points = search_engines(&b, &as_refs(&values), &vv, settings, &engines, &|| ())
-            .map_err(|e| Box::new(Failed::Boundary(e)))?;
-        serde_json::to_string(&points).map_err(|e| Box::new(Failed::Other(e.to_string())))
+    py.detach(|| -> Result<Vec<String>, Box<Failed>> {
+        let speeds = descent_speeds(&vv, "vv").map_err(|e| Box::new(Failed::Boundary(e)))?;
+        let (b, source) = base(scenario).map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let sc = b
+            .with(&as_refs(&values))
+            .map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let points = search_engines(
+            &b,
+            &as_refs(&values),
+            &speeds,
+            settings,
+            &engines,
+            &|| (),
+            &|_| (),
+        )
+        .map_err(|e| Box::new(Failed::Boundary(e)))?;
+        let unit = format!("{}/s", sc.file.units.length_label());
+        let id = touchdown_record::ScenarioId::new(source, &sc);
+        let settings = self::settings(&values, options(&vv, settings, &unit, &engines));
+        let velocity = sc.file.units.velocity();
+        Ok(points
+            .iter()
+            .map(|p| document_line(p, velocity, &id, &settings))
+            .collect())
     })
     .map_err(|f| f.into_py_err(py))
 }

@@ -192,3 +192,61 @@ impl<W: Write> History<W> {
         }
     }
 }
+
+/// Thins the history file at `path` to every `every`-th row (the first row, row `every`, row
+/// 2·`every`, ...) and the last row, the header kept (`touchdown run --every N`); the same for
+/// every engine, since each writes the same file. Returns the rows kept.
+pub fn decimate(path: &Path, every: usize) -> std::io::Result<usize> {
+    use std::io::{BufRead, BufReader};
+    if every <= 1 {
+        return Ok(BufReader::new(File::open(path)?)
+            .lines()
+            .count()
+            .saturating_sub(1));
+    }
+    let thinned = path.with_extension("csv.thinning");
+    let mut out = BufWriter::new(File::create(&thinned)?);
+    let mut lines = BufReader::new(File::open(path)?).lines();
+    if let Some(header) = lines.next() {
+        writeln!(out, "{}", header?)?;
+    }
+    let (mut kept, mut last) = (0, None);
+    for (i, line) in lines.enumerate() {
+        let line = line?;
+        if i % every == 0 {
+            writeln!(out, "{line}")?;
+            kept += 1;
+            last = None;
+        } else {
+            last = Some(line);
+        }
+    }
+    if let Some(line) = last {
+        writeln!(out, "{line}")?;
+        kept += 1;
+    }
+    out.flush()?;
+    drop(out);
+    std::fs::rename(&thinned, path)?;
+    Ok(kept)
+}
+
+#[cfg(test)]
+mod decimate_tests {
+    use super::*;
+
+    #[test]
+    fn keeps_the_header_every_nth_row_and_the_last() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("history.csv");
+        let rows: Vec<String> = (0..10).map(|i| format!("{i},x")).collect();
+        std::fs::write(&path, format!("t_s,a\n{}\n", rows.join("\n"))).unwrap();
+        assert_eq!(decimate(&path, 4).unwrap(), 4);
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(text, "t_s,a\n0,x\n4,x\n8,x\n9,x\n");
+        // A last row already kept is not written twice.
+        std::fs::write(&path, "t_s,a\n0,x\n1,x\n2,x\n").unwrap();
+        assert_eq!(decimate(&path, 2).unwrap(), 2);
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "t_s,a\n0,x\n2,x\n");
+    }
+}

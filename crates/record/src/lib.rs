@@ -7,12 +7,14 @@
 //! | [`summary`] | the landing summary, the energy report and the running extremes behind them |
 //! | [`sample`] | one row of the time history |
 //! | [`history`] | the time-history file `history.csv` |
+//! | [`document`] | the envelope of every JSON document: which document, the scenario, the settings |
 //! | [`landing`] | the run loop every stepping engine shares, and its observers |
 //!
 //! An engine feeds a [`stability::StabilityTracker`] and an [`summary::Extremes`] after every
 //! accepted step, fills a [`sample::Sample`] when asked, and builds its [`summary::Summary`] with
 //! [`summary::Summary::new`].
 
+pub mod document;
 pub mod history;
 pub mod landing;
 pub mod outcome;
@@ -20,6 +22,7 @@ pub mod sample;
 pub mod stability;
 pub mod summary;
 
+pub use document::{Document, ScenarioId};
 pub use history::History;
 pub use landing::{Landing, Observer};
 pub use outcome::{Divergence, Law, RunError, SetupFailure, StateAtStop};

@@ -250,7 +250,8 @@ impl Extremes {
 pub struct Summary {
     /// Engine that produced it ("core", "rapier").
     pub engine: String,
-    /// Scenario name.
+    /// Scenario name (its `name` field).
+    #[serde(rename = "scenario_name")]
     pub scenario: String,
     /// The engine's settings as used (names carry their units), including any masses the
     /// engine adds to the report's model.
@@ -357,9 +358,17 @@ pub struct Progress {
 }
 
 impl Summary {
-    /// The summary as pretty JSON (`summary.json`; deterministic: fields in declaration order).
+    /// The summary alone as pretty JSON (what the MuJoCo runner hands back to the engine;
+    /// deterministic: fields in declaration order).
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("a summary serialises: plain numbers and strings")
+    }
+
+    /// The summary as the document `touchdown run --format json` prints and `summary.json`
+    /// holds (docs/schemas/run.schema.json): the envelope naming `scenario` and the
+    /// `settings` it ran with, then the summary's fields.
+    pub fn document(&self, scenario: &crate::ScenarioId, settings: &serde_json::Value) -> String {
+        crate::Document::new("run", Some(scenario), settings, self).pretty()
     }
 
     /// The summary of a run by `engine` on `scenario`.

@@ -501,12 +501,25 @@ fn kind_of(v: &toml::Value) -> &'static str {
 }
 
 /// Replaces the value at `field` in `table` with `value`, of the same kind (a number is
-/// written as a float); the path must exist.
+/// written as a float). A field no file of the chain writes is added, with the tables that
+/// lead to it, as a file extending the scenario would add it: the scenario's strict schema then
+/// refuses a field that does not exist, naming it. An array element must exist.
 fn set_path(table: &mut toml::Table, field: &str, value: &toml::Value) -> Result<(), String> {
     let keys = path_keys(field);
     let mut node = table;
     for (n, (key, index)) in keys.iter().enumerate() {
         let last = n + 1 == keys.len();
+        if !node.contains_key(*key) && index.is_none() {
+            let added = if last {
+                value.clone()
+            } else {
+                toml::Value::Table(toml::Table::new())
+            };
+            node.insert((*key).to_string(), added);
+            if last {
+                return Ok(());
+            }
+        }
         let entry = node
             .get_mut(*key)
             .ok_or_else(|| format!("no field `{key}` to override"))?;

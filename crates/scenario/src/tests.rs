@@ -622,3 +622,33 @@ fn the_format_page_documents_every_range() {
         crate::units::short(ranges::MIN_LEG_SEPARATION_DEG)
     )));
 }
+
+/// An override of a field no file of the chain writes adds it, as a file extending the
+/// scenario would (the resolved scenarios are the same); a field the format does not have is
+/// refused by name.
+#[test]
+fn an_override_adds_a_field_no_file_writes_as_an_extending_file_would() {
+    let base = crate::ScenarioBase::load(scenario("flat-drop.toml")).unwrap();
+    let overridden = base
+        .with(&[
+            (
+                "touchdown.body_rates",
+                Value::try_from([0.5, 0.0, 0.0]).unwrap(),
+            ),
+            ("stability.terminate_on_decision", Value::Boolean(false)),
+            ("name", Value::String("test".into())),
+        ])
+        .unwrap();
+    let dir = scratch("override-adds");
+    let file = extending(
+        &dir,
+        "adds.toml",
+        &scenario("flat-drop.toml"),
+        "[touchdown]\nbody_rates = [0.5, 0.0, 0.0]\n\n[stability]\nterminate_on_decision = false\n",
+    );
+    let extended = Scenario::load(&file).unwrap();
+    assert_eq!(overridden.sha256(), extended.sha256());
+    let (_, field, message) = field_error(base.with(&[("touchdown.body_rate", Value::Float(1.0))]));
+    assert_eq!(field, "touchdown.body_rate");
+    assert!(message.contains("unknown field"), "{message}");
+}

@@ -229,6 +229,22 @@ pub fn search<F>(
 where
     F: Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync,
 {
+    search_streaming(vvs, settings, landing, tick, &|_| ())
+}
+
+/// [`search`], handing each point to `found` as soon as it and every point before it (in the
+/// order of `vvs`) are found: the points stream in the order of the result, whatever the
+/// threads, so that a stream of them is deterministic.
+pub fn search_streaming<F>(
+    vvs: &[f64],
+    settings: Settings,
+    landing: F,
+    tick: &(dyn Fn() + Sync),
+    found: &(dyn Fn(&BoundaryPoint) + Sync),
+) -> Result<Vec<BoundaryPoint>, ValidationError>
+where
+    F: Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync,
+{
     let grid = settings.grid()?;
     if let Some(&vv) = vvs.iter().find(|v| !v.is_finite()) {
         return Err(refuse("--vv", "finite descent speeds".into(), vv));
@@ -238,9 +254,23 @@ where
         tick();
         Ok(o)
     };
+    // The points found out of order wait here until those before them are found.
+    let waiting = std::sync::Mutex::new((0usize, std::collections::BTreeMap::new()));
     let points: Vec<Result<BoundaryPoint, ValidationError>> = vvs
         .par_iter()
-        .map(|&vv| at_descent_speed(vv, &grid, settings.tolerance, &|vh| run(vv, vh)))
+        .enumerate()
+        .map(|(i, &vv)| {
+            let point = at_descent_speed(vv, &grid, settings.tolerance, &|vh| run(vv, vh))?;
+            let mut w = waiting.lock().unwrap_or_else(|e| e.into_inner());
+            w.1.insert(i, point.clone());
+            loop {
+                let next = w.0;
+                let Some(p) = w.1.remove(&next) else { break };
+                found(&p);
+                w.0 += 1;
+            }
+            Ok(point)
+        })
         .collect();
     points.into_iter().collect()
 }
@@ -412,7 +442,8 @@ pub struct EnginePoint {
 
 /// The boundary search of the scenario `base` with `overrides` ([`scenario_landing`]) on each
 /// of `engines` (in engine order, each once; every one must apply to the scenario), at the
-/// descent speeds `vvs`: one point per engine and descent speed, engine by engine.
+/// descent speeds `vvs`: one point per engine and descent speed, engine by engine, each also
+/// handed to `found` as soon as it and those before it are found.
 pub fn search_engines(
     base: &ScenarioBase,
     overrides: &[(&str, toml::Value)],
@@ -420,6 +451,7 @@ pub fn search_engines(
     settings: Settings,
     engines: &[Engine],
     tick: &(dyn Fn() + Sync),
+    found: &(dyn Fn(&EnginePoint) + Sync),
 ) -> Result<Vec<EnginePoint>, ValidationError> {
     settings.validate()?;
     let mut engines = engines.to_vec();
@@ -437,16 +469,151 @@ pub fn search_engines(
                 .map(|s| s.outcome)
                 .map_err(|f| f.error)
         })?;
-        let found = search(vvs, settings, landing, tick).map_err(|e| match e {
-            ValidationError::Run { scenario, source } => ValidationError::Run {
-                scenario: format!("{engine} engine on {scenario}"),
-                source,
-            },
-            other => other,
-        })?;
+        let point = |p: &BoundaryPoint| {
+            found(&EnginePoint {
+                engine,
+                point: p.clone(),
+            })
+        };
+        let found =
+            search_streaming(vvs, settings, landing, tick, &point).map_err(|e| match e {
+                ValidationError::Run { scenario, source } => ValidationError::Run {
+                    scenario: format!("{engine} engine on {scenario}"),
+                    source,
+                },
+                other => other,
+            })?;
         points.extend(found.into_iter().map(|point| EnginePoint { engine, point }));
     }
     Ok(points)
+}
+
+/// A transition in SI, in a boundary document.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TransitionSi {
+    /// Which way the outcome changes as Vh increases.
+    pub direction: Direction,
+    /// The bracket's end found stable, m/s.
+    pub stable_at_vh_m_s: f64,
+    /// The bracket's end found unstable, m/s.
+    pub unstable_at_vh_m_s: f64,
+    /// The transition's Vh, m/s; left out if unresolved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vh_m_s: Option<f64>,
+    /// Whether the bracket was narrowed to the tolerance.
+    pub resolved: bool,
+    /// The undecided landings inside the bracket, m/s, ascending.
+    pub undecided_at_vh_m_s: Vec<f64>,
+}
+
+/// One engine's boundary at one descent speed in SI, its vertical velocity signed as in the
+/// scenario files (negative down): the fields of a line of `touchdown boundary --format json`
+/// after its envelope (docs/schemas/boundary.schema.json). The fields mean what those of
+/// [`BoundaryPoint`] do.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PointSi {
+    /// The engine that searched.
+    pub engine: &'static str,
+    /// The vertical velocity, m/s, negative down (`touchdown.vertical_velocity`).
+    pub vv_m_s: f64,
+    /// The boundary's horizontal speed, m/s (left out if none or unresolved).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vh_m_s: Option<f64>,
+    /// The stable end of the boundary's bracket (or the largest Vh found stable), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stable_at_vh_m_s: Option<f64>,
+    /// The unstable end of the boundary's bracket (or the smallest Vh found unstable), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unstable_at_vh_m_s: Option<f64>,
+    /// Every transition, ascending in Vh.
+    pub transitions: Vec<TransitionSi>,
+    /// The Vh of every undecided landing, m/s, ascending.
+    pub undecided_at_vh_m_s: Vec<f64>,
+    /// Landings run.
+    pub landings: usize,
+    /// Landings that ended undecided.
+    pub undecided: usize,
+}
+
+impl EnginePoint {
+    /// The point in SI, `velocity` being the scenario's velocity unit in m/s.
+    pub fn si(&self, velocity: f64) -> PointSi {
+        let p = &self.point;
+        let si = |v: f64| v * velocity;
+        let all = |v: &[f64]| v.iter().map(|x| si(*x)).collect();
+        PointSi {
+            engine: self.engine.name(),
+            vv_m_s: -si(p.vv),
+            vh_m_s: p.vh.map(si),
+            stable_at_vh_m_s: p.stable_at.map(si),
+            unstable_at_vh_m_s: p.unstable_at.map(si),
+            transitions: p
+                .transitions
+                .iter()
+                .map(|t| TransitionSi {
+                    direction: t.direction,
+                    stable_at_vh_m_s: si(t.stable_at),
+                    unstable_at_vh_m_s: si(t.unstable_at),
+                    vh_m_s: t.vh.map(si),
+                    resolved: t.resolved,
+                    undecided_at_vh_m_s: all(&t.undecided_at),
+                })
+                .collect(),
+            undecided_at_vh_m_s: all(&p.undecided_at),
+            landings: p.landings,
+            undecided: p.undecided,
+        }
+    }
+}
+
+/// The descent speeds (positive down, as the search takes them) of vertical velocities `vvs`
+/// written as in the scenario files (negative down); refuses a vertical velocity that is not
+/// negative, naming `argument`.
+pub fn descent_speeds(vvs: &[f64], argument: &'static str) -> Result<Vec<f64>, ValidationError> {
+    vvs.iter()
+        .map(|&v| {
+            if v.is_finite() && v < 0.0 {
+                Ok(-v)
+            } else {
+                Err(refuse(
+                    argument,
+                    "vertical velocities as the scenario files write them, negative down (e.g. -8.0)".into(),
+                    v,
+                ))
+            }
+        })
+        .collect()
+}
+
+/// The options of a boundary search as its documents record them: the vertical velocities
+/// `vvs` (negative down), the grid and the tolerance as given, in the scenario's velocity unit
+/// `unit` (`ft/s`, written into each name as `_ft_s`), and the engines.
+pub fn options(vvs: &[f64], s: Settings, unit: &str, engines: &[Engine]) -> serde_json::Value {
+    let suffix = unit.replace('/', "_");
+    let names: Vec<&str> = engines.iter().map(|e| e.name()).collect();
+    let mut o = serde_json::Map::new();
+    let mut put = |name: &str, value: serde_json::Value| {
+        o.insert(format!("{name}_{suffix}"), value);
+    };
+    put("vv", serde_json::json!(vvs));
+    put("vh_start", serde_json::json!(s.vh_start));
+    put("vh_step", serde_json::json!(s.vh_step));
+    put("vh_max", serde_json::json!(s.vh_max));
+    put("tolerance", serde_json::json!(s.tolerance));
+    o.insert("engines".into(), serde_json::json!(names));
+    serde_json::Value::Object(o)
+}
+
+/// A point as one line of `touchdown boundary --format json` (JSON Lines): the envelope
+/// naming the scenario `id` and the `settings`, then the point in SI ([`EnginePoint::si`];
+/// `velocity` is the scenario's velocity unit in m/s).
+pub fn document_line(
+    point: &EnginePoint,
+    velocity: f64,
+    id: &touchdown_record::ScenarioId,
+    settings: &serde_json::Value,
+) -> String {
+    touchdown_record::Document::new("boundary", Some(id), settings, &point.si(velocity)).line()
 }
 
 #[cfg(test)]

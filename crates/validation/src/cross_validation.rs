@@ -178,13 +178,17 @@ pub struct Fold {
     pub fit: Fit,
     /// What those rows determine.
     pub identifiability: Identifiability,
-    /// Our predicted stroke of the held-out row, in.
+    /// Our predicted stroke of the held-out row, in (`predicted_m` in the JSON).
+    #[serde(rename = "predicted_m", serialize_with = "crate::si::inches")]
     pub predicted_in: f64,
     /// The 2.5 and 97.5 percentiles of the prediction over the calibration's uncertainty, in.
+    #[serde(rename = "interval_m", serialize_with = "crate::si::inches_pair")]
     pub interval_in: [f64; 2],
-    /// The experiment's stroke, in.
+    /// The experiment's stroke, in (`experiment_m` in the JSON).
+    #[serde(rename = "experiment_m", serialize_with = "crate::si::inches")]
     pub experiment_in: f64,
-    /// The report's analytical stroke, in.
+    /// The report's analytical stroke, in (`report_m` in the JSON).
+    #[serde(rename = "report_m", serialize_with = "crate::si::inches")]
     pub report_in: f64,
     /// (ours − experiment) / experiment, %.
     pub error_pct: f64,

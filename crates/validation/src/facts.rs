@@ -117,14 +117,18 @@ fn fact(
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Series {
     /// Time, s.
+    #[serde(rename = "t_s")]
     pub t: Vec<f64>,
     /// Vertical specific force (acceleration less gravity along Z_G), g.
     pub vertical_acceleration_g: Vec<f64>,
     /// Pitch rate (about the inertial X axis), rad/s.
+    #[serde(rename = "pitch_rate_rad_s")]
     pub pitch_rate: Vec<f64>,
     /// Primary compression stroke per leg, m.
+    #[serde(rename = "primary_stroke_m")]
     pub primary_stroke: Vec<Vec<f64>>,
     /// Largest secondary compression stroke per leg, m.
+    #[serde(rename = "secondary_compression_m")]
     pub secondary_compression: Vec<Vec<f64>>,
     /// Footpads in contact per sample (bit i set: leg i + 1).
     pub contacts: Vec<u32>,
@@ -196,6 +200,8 @@ pub struct FactsRun {
     pub series: Series,
     /// Our summary.
     pub summary: touchdown_core::Summary,
+    /// The scenario landed (its file, as the protocol names it, and hash).
+    pub scenario: touchdown_record::ScenarioId,
 }
 
 /// What our run of the figure 25-26 landing gives for each fact the text states.
@@ -376,5 +382,6 @@ pub fn check(paths: &Paths, overrides: &[(&str, f64)]) -> Result<FactsRun, Valid
         checks,
         series,
         summary,
+        scenario: touchdown_record::ScenarioId::new(format!("scenarios/{}", facts.scenario), &sc),
     })
 }

@@ -13,6 +13,7 @@ pub mod estimate;
 pub mod facts;
 pub mod reference;
 pub mod sensitivity;
+pub mod si;
 pub mod table;
 
 /// Errors of the validation tools.

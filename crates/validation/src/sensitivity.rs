@@ -13,7 +13,8 @@ use touchdown_scenario::Scenario;
 pub struct Response {
     /// Table I row.
     pub id: u32,
-    /// Stroke with the parameter at its value, in.
+    /// Stroke with the parameter at its value, in (`base_m` in the JSON).
+    #[serde(rename = "base_m", serialize_with = "crate::si::inches")]
     pub base_in: f64,
     /// Relative stroke change with the parameter scaled by 1 − fraction, %.
     pub minus_pct: f64,

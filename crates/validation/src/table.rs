@@ -26,17 +26,22 @@ pub struct RowResult {
     pub id: u32,
     /// "1-2-1" or "2-2".
     pub landing: String,
-    /// Vv, ft/s.
+    /// Vv, ft/s (negative down; `vv_m_s` in the JSON).
+    #[serde(rename = "vv_m_s", serialize_with = "crate::si::feet_per_second")]
     pub vv_ft_s: f64,
-    /// Vh, ft/s.
+    /// Vh, ft/s (`vh_m_s` in the JSON).
+    #[serde(rename = "vh_m_s", serialize_with = "crate::si::feet_per_second")]
     pub vh_ft_s: f64,
     /// Strut measured.
     pub strut: Strut,
-    /// Experimental stroke, in.
+    /// Experimental stroke, in (`experiment_m` in the JSON).
+    #[serde(rename = "experiment_m", serialize_with = "crate::si::inches")]
     pub experiment_in: f64,
-    /// The report's analytical stroke, in.
+    /// The report's analytical stroke, in (`analysis_m` in the JSON).
+    #[serde(rename = "analysis_m", serialize_with = "crate::si::inches")]
     pub analysis_in: f64,
-    /// Our stroke, in.
+    /// Our stroke, in (`ours_m` in the JSON).
+    #[serde(rename = "ours_m", serialize_with = "crate::si::inches")]
     pub ours_in: f64,
     /// (ours − experiment)/experiment, %.
     pub error_vs_experiment_pct: f64,
