@@ -122,6 +122,10 @@ bx.set_title("Largest primary stroke of each landing")
 out = args.out
 out.mkdir(parents=True, exist_ok=True)
 fig.savefig(out / "dispersion-study.png", dpi=110)
+# The points name the scenario as it was given (an absolute path here); within the project it
+# is the same file wherever the project lies.
+for p in points:
+    p["scenario"]["path"] = "scenarios/table-i-2-2-vv8.toml"
 (out / "dispersion-study.json").write_text(
     json.dumps(
         {
