@@ -279,10 +279,6 @@ def verdict_value(difference: float, unit: str) -> str:
     return f"{value:.3g} {shown}"
 
 
-def channel_unit(name: str, units: dict[str, str]) -> str:
-    """How the channel `name` is measured: its family's unit (the longest family it starts with)."""
-    family = max((f for f in units if name.startswith(f)), key=len, default=None)
-    return units.get(family, "") if family else ""
 
 
 def verdict_table(ax, verdicts: dict | None, channels: list[tuple[str, str]], legend_height: float):
@@ -311,7 +307,7 @@ def verdict_table(ax, verdicts: dict | None, channels: list[tuple[str, str]], le
         return
     header = ["pair"]
     for name, shown in channels:
-        unit = channel_unit(name, verdicts["units"])
+        unit = verdicts["units"].get(name, "")
         tolerance = next((p["channels"][name]["tolerance"] for p in pairs if name in p["channels"]), None)
         header.append(shown + ("" if tolerance is None else f"\n≤ {verdict_value(tolerance, unit)}"))
     text, colours = [], []
@@ -324,7 +320,7 @@ def verdict_table(ax, verdicts: dict | None, channels: list[tuple[str, str]], le
                 row.append("—")
                 row_colours.append("white")
             else:
-                unit = channel_unit(name, verdicts["units"])
+                unit = verdicts["units"].get(name, "")
                 row.append(f"{'PASS' if ch['pass'] else 'FAIL'} {verdict_value(ch['difference'], unit)}")
                 row_colours.append(C_PASS if ch["pass"] else C_FAIL)
         text.append(row)

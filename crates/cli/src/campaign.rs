@@ -85,7 +85,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
             std::fs::write(&boundary, json)
                 .with_context(|| format!("cannot write {}", boundary.display()))?;
         }
-        crate::plots::campaign(dir, dir)?;
+        crate::plots::campaign(dir)?;
     }
     report(&manifest, &statistics, output)
 }

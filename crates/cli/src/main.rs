@@ -518,7 +518,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             &scenario,
             &set.set,
             format,
-            out.as_deref().map(|dir| (dir, every)),
+            (out.as_deref(), every),
             (engine, timestep),
         ),
         Command::Compare {
@@ -630,7 +630,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                 settings,
                 &engines,
                 format,
-                out.as_deref().map(|dir| (dir, plot)),
+                (out.as_deref(), plot),
             )
         }
         Command::Completions { shell } => {
@@ -714,10 +714,10 @@ fn run_landing(
     scenario: &Path,
     set: &[Set],
     format: Format,
-    out: Option<(&Path, usize)>,
+    (out, every): (Option<&Path>, usize),
     (engine, timestep): (Engine, Option<f64>),
 ) -> Result<()> {
-    if out.is_some_and(|(_, every)| every == 0) {
+    if every == 0 {
         anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
     }
     let mut sc = load(scenario, set)?.1;
@@ -736,7 +736,6 @@ fn run_landing(
         sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
     }
     warn(&sc);
-    let (out, every) = (out.map(|o| o.0), out.map_or(1, |o| o.1));
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
@@ -795,8 +794,7 @@ fn compare(
     plot: bool,
 ) -> Result<bool> {
     let engines = touchdown_compare::engine_set(engines).context("--engines")?;
-    let names: Vec<_> = engines.iter().map(|e| e.name()).collect();
-    let settings = settings(set, serde_json::json!({ "engines": names }));
+    let settings = settings(set, serde_json::json!({ "engines": engines }));
     let mut passed = true;
     for path in scenarios {
         let sc = load(path, set)?.1;
@@ -859,7 +857,7 @@ fn precision(
             );
         })?;
     let mut options = serde_json::json!({
-        "engines": engines.iter().map(|e| e.name()).collect::<Vec<_>>(),
+        "engines": engines,
         "repeats": repeats,
     });
     if let Some(n) = rungs {
@@ -920,7 +918,7 @@ fn robustness(
         Format::Text => print!("{}", robustness::text(&r, &chosen)),
         Format::Json => {
             let options = serde_json::json!({
-                "engines": engines.iter().map(|e| e.name()).collect::<Vec<_>>(),
+                "engines": engines,
                 "cases": chosen.iter().map(|c| c.name).collect::<Vec<_>>(),
                 "search": search,
             });

@@ -30,13 +30,10 @@ fn run_script(name: &str, args: &[&OsStr]) -> Result<()> {
     Ok(())
 }
 
-/// `touchdown campaign --plot DIR`: outcomes.png and strokes.png drawn into `plots` from the
-/// campaign folder `records`.
-pub fn campaign(records: &Path, plots: &Path) -> Result<()> {
-    run_script(
-        "plot_campaign.py",
-        &[records.as_os_str(), plots.as_os_str()],
-    )
+/// `touchdown campaign --out DIR --plot`: outcomes.png and strokes.png drawn into the campaign
+/// folder `dir` from its records.
+pub fn campaign(dir: &Path) -> Result<()> {
+    run_script("plot_campaign.py", &[dir.as_os_str(), dir.as_os_str()])
 }
 
 /// `touchdown compare --out DIR [--plot]`: the traces of `c` (run from `scenario`) as CSV, its

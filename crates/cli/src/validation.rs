@@ -546,7 +546,7 @@ pub fn boundary(
     settings: Settings,
     engines: &[Engine],
     format: BoundaryFormat,
-    out: Option<(&Path, bool)>,
+    (out, plot): (Option<&Path>, bool),
 ) -> Result<()> {
     let vvs = range(vv)?;
     let speeds = boundary::descent_speeds(&vvs, "--vv")?;
@@ -586,7 +586,7 @@ pub fn boundary(
         BoundaryFormat::Csv => print!("{}", boundary_csv(&points, velocity)?),
         BoundaryFormat::Text => print!("{}", boundary_text(&points, &vunit, settings)),
     }
-    if let Some((dir, plot)) = out {
+    if let Some(dir) = out {
         let lines: Vec<String> = points
             .iter()
             .map(|p| boundary::document_line(p, velocity, &id, &settings_json) + "\n")

@@ -111,16 +111,21 @@ pub fn engine_version(run: &EngineRun) -> String {
     touchdown_registry::version(run.engine, &run.summary)
 }
 
-/// A scenario through several engines, every pair compared.
+/// A scenario through several engines, every pair compared. Serialised as the fields of its
+/// document after the envelope, which names the file and the hash ([`report::json_line`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ScenarioComparison {
     /// Scenario name.
+    #[serde(rename = "scenario_name")]
     pub scenario: String,
     /// Scenario file.
+    #[serde(skip)]
     pub file: String,
     /// SHA-256 of the resolved scenario.
+    #[serde(skip)]
     pub scenario_sha256: String,
-    /// Each engine run and what computed it.
+    /// Each engine run and what computed it (`{"name", "version"}` in the JSON).
+    #[serde(serialize_with = "engine_versions")]
     pub engines: Vec<(Engine, String)>,
     /// Engines asked for that the scenario's `engines.applicable` leaves out (not run).
     pub not_applicable: Vec<Engine>,
@@ -129,6 +134,19 @@ pub struct ScenarioComparison {
     pub runs: Vec<EngineRun>,
     /// Every pair, in engine order.
     pub pairs: Vec<metrics::PairComparison>,
+}
+
+/// The engines that ran as `[{"name": "core", "version": ...}]`.
+fn engine_versions<S: serde::Serializer>(
+    engines: &[(Engine, String)],
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeSeq;
+    let mut seq = s.serialize_seq(Some(engines.len()))?;
+    for (name, version) in engines {
+        seq.serialize_element(&serde_json::json!({ "name": name, "version": version }))?;
+    }
+    seq.end()
 }
 
 /// The engines of a comparison: `engines` in engine order, each once; at least two.

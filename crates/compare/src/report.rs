@@ -4,7 +4,6 @@
 
 use crate::metrics::TOLERANCES;
 use crate::ScenarioComparison;
-use serde::Serialize;
 use std::fmt::Write;
 use touchdown_record::{Document, ScenarioId};
 
@@ -152,44 +151,15 @@ pub fn tolerances_text() -> String {
     o
 }
 
-/// An engine that ran and what computed it, in a comparison's document.
-#[derive(Serialize)]
-struct EngineVersion<'a> {
-    name: &'static str,
-    version: &'a str,
-}
-
-/// The fields of a scenario's comparison document, after its envelope.
-#[derive(Serialize)]
-struct ComparisonBody<'a> {
-    scenario_name: &'a str,
-    engines: Vec<EngineVersion<'a>>,
-    not_applicable: Vec<&'static str>,
-    pairs: &'a [crate::metrics::PairComparison],
-}
-
 /// The comparison as one line of `touchdown compare --format json`'s JSON Lines
 /// (docs/schemas/compare.schema.json): the envelope naming the scenario and the `settings`,
-/// the engines with their versions, every pair with its channels.
+/// then the comparison (the engines with their versions, every pair with its channels).
 pub fn json_line(c: &ScenarioComparison, settings: &serde_json::Value) -> String {
     let id = ScenarioId {
         path: c.file.clone(),
         sha256: c.scenario_sha256.clone(),
     };
-    let body = ComparisonBody {
-        scenario_name: &c.scenario,
-        engines: c
-            .engines
-            .iter()
-            .map(|(e, v)| EngineVersion {
-                name: e.name(),
-                version: v,
-            })
-            .collect(),
-        not_applicable: c.not_applicable.iter().map(|e| e.name()).collect(),
-        pairs: &c.pairs,
-    };
-    Document::new("compare", Some(&id), settings, &body).line()
+    Document::new("compare", Some(&id), settings, c).line()
 }
 
 #[cfg(test)]

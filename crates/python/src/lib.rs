@@ -265,8 +265,7 @@ fn compare(
         let c = touchdown_compare::compare_resolved(Path::new(source), &sc, &set)
             .map_err(|e| Box::new(Failed::Compare(e)))?;
         // The engines as the command line records them: in engine order, each once.
-        let names: Vec<_> = set.iter().map(|e| e.name()).collect();
-        let settings = settings(&values, json!({ "engines": names }));
+        let settings = settings(&values, json!({ "engines": set }));
         Ok(touchdown_compare::report::json_line(&c, &settings))
     })
     .map_err(|f| f.into_py_err(py))

@@ -32,7 +32,7 @@ pub const MAX_GRID_POINTS: usize = 10_000;
 pub const MAX_RELATIVE_RESOLUTION: f64 = 1e9;
 
 /// Search settings; velocities in the scenario's velocity unit.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// First grid point (`--vh-start`), scenario velocity unit.
     pub vh_start: f64,
@@ -155,8 +155,9 @@ pub enum Direction {
     UnstableToStable,
 }
 
-/// One change of outcome between two neighbouring decided landings at one Vv.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One change of outcome between two neighbouring decided landings at one Vv (written in SI
+/// as a [`TransitionSi`]).
+#[derive(Debug, Clone, PartialEq)]
 pub struct Transition {
     /// Which way the outcome changes as Vh increases.
     pub direction: Direction,
@@ -166,8 +167,7 @@ pub struct Transition {
     /// The bracket's end found unstable, scenario velocity unit.
     pub unstable_at: f64,
     /// The transition's Vh, middle of the final bracket (no wider than the tolerance),
-    /// scenario velocity unit; left out of the JSON if unresolved.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// scenario velocity unit; `None` if unresolved.
     pub vh: Option<f64>,
     /// Whether the bracket was narrowed to the tolerance. False when undecided grid points lie
     /// between its ends (it was never bisected) or a bisection midpoint ended undecided (the
@@ -185,23 +185,20 @@ impl Transition {
     }
 }
 
-/// The boundary at one vertical velocity.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// The boundary at one vertical velocity (written in SI as a [`PointSi`]).
+#[derive(Debug, Clone, PartialEq)]
 pub struct BoundaryPoint {
     /// Descent speed (positive down), scenario velocity unit.
     pub vv: f64,
     /// The boundary: the Vh of the lowest stable → unstable transition, scenario velocity
-    /// unit; left out of the JSON if there is none or it is unresolved.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// unit; `None` if there is none or it is unresolved.
     pub vh: Option<f64>,
     /// The stable end of the lowest stable → unstable transition's bracket; without one, the
-    /// largest grid Vh found stable if none was found unstable, else left out. Scenario velocity
+    /// largest grid Vh found stable if none was found unstable, else `None`. Scenario velocity
     /// unit.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub stable_at: Option<f64>,
     /// The unstable end of the lowest stable → unstable transition's bracket; without one, the
-    /// smallest grid Vh found unstable (left out if none). Scenario velocity unit.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// smallest grid Vh found unstable (`None` if none). Scenario velocity unit.
     pub unstable_at: Option<f64>,
     /// Every transition, in either direction, ascending in Vh.
     pub transitions: Vec<Transition>,
@@ -429,14 +426,12 @@ where
     })
 }
 
-/// One engine's boundary at one descent speed: in JSON, `engine` beside the fields of
-/// [`BoundaryPoint`] (velocities in the scenario's velocity unit).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One engine's boundary at one descent speed (written in SI by [`EnginePoint::si`]).
+#[derive(Debug, Clone, PartialEq)]
 pub struct EnginePoint {
     /// The engine that searched.
     pub engine: Engine,
     /// What it found.
-    #[serde(flatten)]
     pub point: BoundaryPoint,
 }
 
@@ -590,7 +585,6 @@ pub fn descent_speeds(vvs: &[f64], argument: &'static str) -> Result<Vec<f64>, V
 /// `unit` (`ft/s`, written into each name as `_ft_s`), and the engines.
 pub fn options(vvs: &[f64], s: Settings, unit: &str, engines: &[Engine]) -> serde_json::Value {
     let suffix = unit.replace('/', "_");
-    let names: Vec<&str> = engines.iter().map(|e| e.name()).collect();
     let mut o = serde_json::Map::new();
     let mut put = |name: &str, value: serde_json::Value| {
         o.insert(format!("{name}_{suffix}"), value);
@@ -600,7 +594,7 @@ pub fn options(vvs: &[f64], s: Settings, unit: &str, engines: &[Engine]) -> serd
     put("vh_step", serde_json::json!(s.vh_step));
     put("vh_max", serde_json::json!(s.vh_max));
     put("tolerance", serde_json::json!(s.tolerance));
-    o.insert("engines".into(), serde_json::json!(names));
+    o.insert("engines".into(), serde_json::json!(engines));
     serde_json::Value::Object(o)
 }
 
