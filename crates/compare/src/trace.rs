@@ -38,50 +38,10 @@ impl Trace {
             .extend(s.legs.iter().map(|l| l.primary_stroke));
     }
 
-    /// Reads the trace from a `history.csv`.
+    /// Reads the trace from a `history.csv` ([`touchdown_record::history::read`]).
     pub fn from_history(path: &Path) -> Result<Trace, String> {
-        let what = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-        let mut reader = csv::Reader::from_path(path).map_err(|e| what(&e))?;
-        let header = reader.headers().map_err(|e| what(&e))?.clone();
-        let column = |name: &str| {
-            header
-                .iter()
-                .position(|h| h == name)
-                .ok_or_else(|| what(&format!("no column {name}")))
-        };
-        let (ct, cz, cq) = (
-            column("t_s")?,
-            column("vz_m_s")?,
-            column("pitch_rate_rad_s")?,
-        );
-        let ca = [
-            column("theta_x_rad")?,
-            column("theta_y_rad")?,
-            column("theta_z_rad")?,
-        ];
-        let strokes = (1..)
-            .map(|n| format!("leg{n}_primary_stroke_m"))
-            .map_while(|name| header.iter().position(|h| h == name))
-            .collect::<Vec<_>>();
-        let mut trace = Trace {
-            legs: strokes.len(),
-            ..Trace::default()
-        };
-        for row in reader.records() {
-            let row = row.map_err(|e| what(&e))?;
-            let num = |c: usize| {
-                row[c]
-                    .parse::<f64>()
-                    .map_err(|e| what(&format!("column {c}: {e}")))
-            };
-            trace.t.push(num(ct)?);
-            trace.vz.push(num(cz)?);
-            trace.pitch_rate.push(num(cq)?);
-            trace.attitude.push([num(ca[0])?, num(ca[1])?, num(ca[2])?]);
-            for &c in &strokes {
-                trace.primary_stroke.push(num(c)?);
-            }
-        }
+        let mut trace = Trace::default();
+        touchdown_record::history::read(path, |s| trace.push(s)).map_err(|e| e.to_string())?;
         Ok(trace)
     }
 
