@@ -158,6 +158,37 @@ def test_precision_and_robustness(tmp_path):
     assert {r["verdict"] for r in robustness["runs"]} == {"completed", "stopped"}
 
 
+def embedded_trajectory(page: Path) -> dict:
+    """The trajectory document a view page plays (its `<script id="trajectory">`)."""
+    html = page.read_text(encoding="utf-8")
+    m = re.search(r'<script type="application/json" id="trajectory">(.*?)</script>', html, re.S)
+    assert m, f"{page}: no embedded trajectory"
+    return parse(m.group(1).replace("<\\/", "</"))
+
+
+def test_view_writes_a_trajectory_and_its_page(tmp_path):
+    out = cli("view", "scenarios/curb-slide.toml", "--engines", "core", "--frame-interval", "0.005",
+              "--set", "touchdown.vertical_velocity=-9.0", "--out", str(tmp_path))
+    assert "curb-slide.html" in out
+    document = parse((tmp_path / "curb-slide.trajectory.json").read_text())
+    check(document, "trajectory")
+    assert document["settings"] == {"engines": ["core"], "frame_interval_s": 0.005,
+                                    "set": [{"field": "touchdown.vertical_velocity", "value": -9.0}]}
+    core = document["engines"][0]
+    assert core["curbs"] and core["events"]
+    frames = core["frames"]
+    assert all(len(v) == len(frames["t_s"]) for k, v in frames.items() if k not in ("legs", "walls"))
+    assert document == embedded_trajectory(tmp_path / "curb-slide.html")
+    # A comparison's pages: one per scenario, every engine that ran.
+    cli("compare", "scenarios/flat-drop.toml", "scenarios/level-sliding.toml", "--engines", "core,rapier",
+        "--report-only", "--view", str(tmp_path / "view"))
+    for name in ("flat-drop", "level-sliding"):
+        document = parse((tmp_path / "view" / f"{name}.trajectory.json").read_text())
+        check(document, "trajectory")
+        assert [e["name"] for e in document["engines"]] == ["core", "rapier"]
+        assert document == embedded_trajectory(tmp_path / "view" / f"{name}.html")
+
+
 @pytest.mark.parametrize(
     "path",
     sorted(

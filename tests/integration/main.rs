@@ -37,3 +37,4 @@ mod plots;
 mod rapier;
 mod scenario_errors;
 mod symmetry;
+mod trajectory;

@@ -4,6 +4,7 @@ mod campaign;
 mod plots;
 mod report;
 mod validation;
+mod view;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
@@ -83,9 +84,42 @@ enum Command {
         /// DIR/<scenario>.png (matplotlib, in the project's Python environment).
         #[arg(long, requires = "out")]
         plot: bool,
+        /// Also write each scenario's landings to watch into DIR: DIR/<scenario>.html (a
+        /// self-contained page playing the engines side by side) and the trajectory file it
+        /// plays, DIR/<scenario>.trajectory.json (as `touchdown view` writes them).
+        #[arg(long, value_name = "DIR")]
+        view: Option<PathBuf>,
+        /// With --view: landing time between the frames kept, s (every contact event is kept
+        /// besides).
+        #[arg(long, value_name = "S", requires = "view", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
+        frame_interval: f64,
         /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
         #[arg(long)]
         report_only: bool,
+    },
+    /// Watch a landing: run the scenario on each engine and write a page that plays them side by
+    /// side or overlaid in a browser (struts coloured by force, footpad contact, the ground, the
+    /// stability walls; strokes and pitch rate linked to a time slider), with the trajectory file
+    /// it plays (docs/engines.md, "Watching the engines land").
+    View {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Engines to run, comma-separated: those the scenario's engines.applicable lists.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Landing time between the frames kept, s (every contact event is kept besides).
+        #[arg(long, value_name = "S", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
+        frame_interval: f64,
+        /// Write DIR/<scenario>.html and DIR/<scenario>.trajectory.json here.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
     },
     /// Work-precision: each engine and integration scheme over a ladder of step sizes or
     /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
@@ -528,11 +562,28 @@ fn run(cli: Cli) -> Result<Verdict> {
             format,
             out,
             plot,
+            view,
+            frame_interval,
             report_only,
         } => {
-            let passed = compare(&scenarios, &set.set, &engines, format, out.as_deref(), plot)?;
+            let view = view.map(|dir| (dir, frame_interval));
+            let passed = compare(
+                &scenarios,
+                &set.set,
+                &engines,
+                format,
+                (out.as_deref(), plot),
+                view.as_ref().map(|(d, f)| (d.as_path(), *f)),
+            )?;
             return Ok(verdict(passed, report_only));
         }
+        Command::View {
+            scenario,
+            set,
+            engines,
+            frame_interval,
+            out,
+        } => view::view(&scenario, &set.set, &engines, frame_interval, &out),
         Command::Precision {
             scenario,
             set,
@@ -790,20 +841,31 @@ fn compare(
     set: &[Set],
     engines: &[Engine],
     format: Format,
-    out: Option<&Path>,
-    plot: bool,
+    (out, plot): (Option<&Path>, bool),
+    watch: Option<(&Path, f64)>,
 ) -> Result<bool> {
     let engines = touchdown_compare::engine_set(engines).context("--engines")?;
     let settings = settings(set, serde_json::json!({ "engines": engines }));
+    if let Some((_, interval)) = watch {
+        view::check_interval(interval)?;
+    }
     let mut passed = true;
     for path in scenarios {
         let sc = load(path, set)?.1;
         warn(&sc);
-        let c = touchdown_compare::compare_resolved(path, &sc, &engines)?;
+        let interval = watch.map(|(_, f)| f);
+        let c = touchdown_compare::compare_recorded(path, &sc, &engines, interval)?;
         passed &= c.pairs.iter().all(|p| p.pass);
         let document = touchdown_compare::report::json_line(&c, &settings);
         if let Some(dir) = out {
             plots::comparison(&c, &document, path, dir, plot)?;
+        }
+        if let Some((dir, interval)) = watch {
+            let ran: Vec<Engine> = c.runs.iter().map(|r| r.engine).collect();
+            let options = view::options(&ran, interval);
+            let (data, page) =
+                view::write(dir, path, &sc, &c.runs, &crate::settings(set, options))?;
+            eprintln!("wrote {} and {}", page.display(), data.display());
         }
         // One line per scenario as it finishes (JSON Lines).
         match format {

@@ -25,6 +25,7 @@ use touchdown_record::{Landing, Observer, Sample, Summary};
 use touchdown_registry::land;
 pub use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::Scenario;
+use touchdown_view::{EngineTrajectory, Recorder, Recording, Scene, Trajectory};
 pub use trace::Trace;
 
 /// Errors of a comparison: a scenario that does not load, an engine that did not complete it.
@@ -68,42 +69,102 @@ pub struct EngineRun {
     pub summary: Summary,
     /// Its trace.
     pub trace: Trace,
+    /// Its frames for a viewer, when asked for ([`run_recorded`]).
+    pub recording: Option<Recording>,
 }
 
-/// Collects a trace from any stepping engine.
-struct Tracer(Sample, Trace);
+/// Collects a trace, and the frames for a viewer if asked, from any stepping engine.
+struct Tracer {
+    sample: Sample,
+    sink: Sink,
+}
+
+/// Where a run's samples go: the trace, and the recorder when asked for.
+struct Sink {
+    trace: Trace,
+    recorder: Option<Recorder>,
+}
+
+impl Sink {
+    fn push(&mut self, s: &Sample) {
+        self.trace.push(s);
+        if let Some(r) = &mut self.recorder {
+            r.push(s);
+        }
+    }
+}
 
 impl<L: Landing> Observer<L> for Tracer {
     fn observe(&mut self, landing: &L) {
-        landing.sample(&mut self.0);
-        self.1.push(&self.0);
+        landing.sample(&mut self.sample);
+        self.sink.push(&self.sample);
     }
 }
 
 /// Runs the scenario `sc` (read from `path`, named in errors) on `engine`, with its trace.
 pub fn run(engine: Engine, path: &Path, sc: &Scenario) -> Result<EngineRun, CompareError> {
+    run_recorded(engine, path, sc, None)
+}
+
+/// [`run`], also recording the frames of a trajectory file when `frame_interval` (s between
+/// kept frames, [`touchdown_view::Recorder`]) is given.
+pub fn run_recorded(
+    engine: Engine,
+    path: &Path,
+    sc: &Scenario,
+    frame_interval: Option<f64>,
+) -> Result<EngineRun, CompareError> {
     let failure = |error| EngineFailure {
         engine,
         scenario: path.display().to_string(),
         error,
     };
     let scratch = touchdown_registry::scratch_folder(engine).map_err(failure)?;
-    let mut tracer = Tracer(Sample::new(sc.legs.len()), Trace::default());
+    let mut tracer = Tracer {
+        sample: Sample::new(sc.legs.len()),
+        sink: Sink {
+            trace: Trace::default(),
+            recorder: frame_interval.map(|dt| Recorder::new(sc, dt)),
+        },
+    };
     let summary = land(engine, path, sc, &mut tracer, Some(scratch.path()))?;
     if engine == Engine::Mujoco {
-        tracer.1 = Trace::from_history(&scratch.path().join("history.csv")).map_err(|message| {
-            CompareError::Trace {
-                engine,
-                scenario: path.display().to_string(),
-                message,
-            }
+        // The runner wrote its history outside this process: its rows are the samples.
+        touchdown_record::history::read(&scratch.path().join("history.csv"), |s| {
+            tracer.sink.push(s)
+        })
+        .map_err(|e| CompareError::Trace {
+            engine,
+            scenario: path.display().to_string(),
+            message: e.to_string(),
         })?;
     }
     Ok(EngineRun {
         engine,
         summary,
-        trace: tracer.1,
+        trace: tracer.sink.trace,
+        recording: tracer.sink.recorder.map(Recorder::finish),
     })
+}
+
+/// The trajectory document's body of the runs of `sc` that recorded their frames
+/// ([`run_recorded`]), in the order given.
+pub fn trajectory(sc: &Scenario, runs: &[EngineRun]) -> Trajectory {
+    Trajectory {
+        scene: Scene::new(sc),
+        engines: runs
+            .iter()
+            .filter_map(|r| {
+                let recording = r.recording.clone()?;
+                Some(EngineTrajectory::new(
+                    r.engine,
+                    engine_version(r),
+                    &r.summary,
+                    recording,
+                ))
+            })
+            .collect(),
+    }
 }
 
 /// The version of what computed a run (for the snapshot metadata).
@@ -176,12 +237,23 @@ pub fn compare_resolved(
     sc: &Scenario,
     engines: &[Engine],
 ) -> Result<ScenarioComparison, CompareError> {
+    compare_recorded(path, sc, engines, None)
+}
+
+/// [`compare_resolved`], each run also recording the frames of a trajectory file when
+/// `frame_interval` is given ([`run_recorded`], [`trajectory`]).
+pub fn compare_recorded(
+    path: &Path,
+    sc: &Scenario,
+    engines: &[Engine],
+    frame_interval: Option<f64>,
+) -> Result<ScenarioComparison, CompareError> {
     let (applicable, not_applicable): (Vec<Engine>, Vec<Engine>) = engines
         .iter()
         .partition(|e| sc.applicable_engines.contains(e));
     let runs = applicable
         .iter()
-        .map(|e| run(*e, path, sc))
+        .map(|e| run_recorded(*e, path, sc, frame_interval))
         .collect::<Result<Vec<_>, _>>()?;
     let mut pairs = Vec::new();
     for (i, a) in runs.iter().enumerate() {

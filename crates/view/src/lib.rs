@@ -1,0 +1,65 @@
+//! A landing to watch: the trajectory file every viewer can read, and the self-contained HTML
+//! page that plays the engines' landings side by side (docs/outputs.md, "The trajectory file";
+//! docs/engines.md, "Watching the engines land").
+//!
+//! | module | content |
+//! |---|---|
+//! | [`trajectory`] | the scene (vehicle and ground) and an engine's frames, decimated with every contact event kept, from the samples every engine records |
+//! | [`page`] | the HTML page: the trajectory embedded, the page's script and the vendored plotting library inlined |
+
+pub mod page;
+pub mod trajectory;
+
+use serde::Serialize;
+use touchdown_record::{Outcome, Summary};
+use touchdown_scenario::schema::Engine;
+pub use trajectory::{Recorder, Recording, Scene, DEFAULT_FRAME_INTERVAL};
+
+/// One engine's landing in a trajectory file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EngineTrajectory {
+    /// The engine (`core`, `rapier`, `mujoco`).
+    pub name: Engine,
+    /// What computed it.
+    pub version: String,
+    /// The landing's outcome.
+    pub outcome: Outcome,
+    /// When the outcome was decided, s (left out when undecided).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decision_time_s: Option<f64>,
+    /// Accepted steps of the landing.
+    pub steps: u64,
+    /// Every change of a footpad's contact state.
+    pub events: Vec<trajectory::ContactEvent>,
+    /// The curbs of the footpads that touched.
+    pub curbs: Vec<trajectory::CurbView>,
+    /// The kept states.
+    pub frames: trajectory::Frames,
+}
+
+impl EngineTrajectory {
+    /// The landing of `summary` recorded into `recording` by the engine `name` at `version`.
+    pub fn new(name: Engine, version: String, summary: &Summary, recording: Recording) -> Self {
+        EngineTrajectory {
+            name,
+            version,
+            outcome: summary.outcome,
+            decision_time_s: summary.decision_time_s.map(trajectory::time),
+            steps: summary.steps,
+            events: recording.events,
+            curbs: recording.curbs,
+            frames: recording.frames,
+        }
+    }
+}
+
+/// The body of a trajectory document (`touchdown.trajectory/1`): the scene, then each engine's
+/// landing.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Trajectory {
+    /// The vehicle and the ground.
+    #[serde(flatten)]
+    pub scene: Scene,
+    /// The engines' landings, in engine order.
+    pub engines: Vec<EngineTrajectory>,
+}
