@@ -165,6 +165,26 @@ def test_a_comparison_is_the_command_lines():
         touchdown.compare(flat, engines=["core", "core"])
 
 
+def test_a_view_is_the_command_lines(tmp_path):
+    scenario = ROOT / "scenarios" / "table-i-2-2-vv8.toml"
+    subprocess.run(
+        [TOUCHDOWN, "view", scenario, "--engines", "core,rapier", "--set", "touchdown.vertical_velocity=-9.0",
+         "--out", tmp_path],
+        capture_output=True,
+        check=True,
+    )
+    v = touchdown.view(scenario, engines=["rapier", "core"], overrides={"touchdown.vertical_velocity": -9.0})
+    assert v["html"] == (tmp_path / "table-i-2-2-vv8.html").read_text(encoding="utf-8")
+    import json
+
+    assert v["trajectory"] == json.loads((tmp_path / "table-i-2-2-vv8.trajectory.json").read_text())
+    assert [e["name"] for e in v["trajectory"]["engines"]] == ["core", "rapier"]
+    with pytest.raises(ValueError, match="frame_interval: expected a time between frames > 0 s"):
+        touchdown.view(scenario, frame_interval=0.0)
+    with pytest.raises(touchdown.TouchdownError, match="none of the engines asked for"):
+        touchdown.view(ROOT / "scenarios" / "tripod-drop.toml", engines=["rapier"])
+
+
 def test_a_boundary_is_the_command_lines_and_overrides_move_it():
     cli = subprocess.run(
         [TOUCHDOWN, "boundary", SCENARIO, "--vv=-8:-10:2", "--vh-step", "4", "--vh-max", "16", "--format", "json"],

@@ -232,6 +232,21 @@ def test_open_trajectory_replaces_the_landing(page, landing):
     assert page.execute_script("return touchdownView.timeRange()")[1] == other["engines"][0]["frames"]["t_s"][-1]
 
 
+def test_a_file_that_is_not_a_trajectory_is_refused_and_the_landing_kept(page, landing, tmp_path):
+    shown = page.find_element(By.ID, "scenario-name").text
+    wrong = tmp_path / "summary.json"
+    wrong.write_text(json.dumps({"schema": "touchdown.run/1", "engine": "core"}))
+    page.find_element(By.ID, "open-file").send_keys(str(wrong))
+    deadline = time.monotonic() + 30
+    while "Could not open" not in page.find_element(By.ID, "status").text:
+        assert time.monotonic() < deadline, "no message about the refused file"
+        time.sleep(0.05)
+    status = page.find_element(By.ID, "status").text
+    assert "summary.json" in status and "touchdown.run/1" in status and "touchdown.trajectory/1" in status, status
+    assert page.find_element(By.ID, "scenario-name").text == shown
+    assert page.execute_script("return touchdownView.ready") is True
+
+
 def test_side_by_side_shows_one_view_per_engine_and_the_camera_turns(page, landing):
     names = [e["name"] for e in landing["doc"]["engines"]]
     page.find_element(By.CSS_SELECTOR, "input[name=layout][value=side-by-side]").click()

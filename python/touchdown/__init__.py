@@ -30,6 +30,7 @@ __version__ = _native.__version__
 __all__ = [
     "run",
     "compare",
+    "view",
     "boundary",
     "TouchdownError",
     "ScenarioInvalid",
@@ -88,6 +89,22 @@ def compare(
     tolerances (docs/engines.md, "Comparing the engines"): the document `touchdown compare
     --format json` prints for the scenario (docs/schemas/compare.schema.json)."""
     return json.loads(_native.compare(str(scenario), list(engines), dict(overrides or {})))
+
+
+def view(
+    scenario: Union[str, PathLike],
+    engines: Sequence[str] = ("core", "rapier", "mujoco"),
+    overrides: Optional[Mapping[str, Any]] = None,
+    frame_interval: float = 1.0e-3,
+) -> dict:
+    """A landing to watch, as `touchdown view` writes it: `scenario` (a path, or TOML text) with
+    `overrides` on each of `engines` that its `engines.applicable` lists, a frame kept every
+    `frame_interval` s of landing (every contact event besides). Returns `{"trajectory": ...,
+    "html": ...}`: the trajectory document (docs/schemas/trajectory.schema.json) and the
+    self-contained page that plays it (write it to a file and open it in a browser, or show it
+    in a notebook: `IPython.display.IFrame` of the file, docs/python.md)."""
+    data, html = _native.view(str(scenario), list(engines), float(frame_interval), dict(overrides or {}))
+    return {"trajectory": json.loads(data), "html": html}
 
 
 def boundary(

@@ -861,10 +861,7 @@ fn compare(
             plots::comparison(&c, &document, path, dir, plot)?;
         }
         if let Some((dir, interval)) = watch {
-            let ran: Vec<Engine> = c.runs.iter().map(|r| r.engine).collect();
-            let options = view::options(&ran, interval);
-            let (data, page) =
-                view::write(dir, path, &sc, &c.runs, &crate::settings(set, options))?;
+            let (data, page) = view::write(dir, (path, &sc, set), &c.runs, interval)?;
             eprintln!("wrote {} and {}", page.display(), data.display());
         }
         // One line per scenario as it finishes (JSON Lines).

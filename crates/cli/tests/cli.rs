@@ -1282,7 +1282,7 @@ fn view_writes_the_same_page_twice_and_refuses_bad_arguments() {
                 "--out",
                 "x",
             ],
-            "--engines: none of rapier applies to",
+            "none of the engines asked for (rapier) applies to",
         ),
         (
             vec![

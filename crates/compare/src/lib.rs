@@ -48,6 +48,16 @@ pub enum CompareError {
     /// Fewer than two distinct engines asked for.
     #[error("name at least two engines to compare (got {0:?})")]
     TooFewEngines(Vec<Engine>),
+    /// None of the engines asked for applies to the scenario.
+    #[error("none of the engines asked for ({}) applies to {scenario} (its engines.applicable: {})", names(.asked), names(.applicable))]
+    NoneApplicable {
+        /// The scenario file.
+        scenario: String,
+        /// The engines asked for.
+        asked: Vec<Engine>,
+        /// The scenario's `engines.applicable`.
+        applicable: Vec<Engine>,
+    },
     /// An engine's trace could not be read back.
     #[error("{engine} engine on {scenario}: {message}")]
     Trace {
@@ -145,6 +155,66 @@ pub fn run_recorded(
         trace: tracer.sink.trace,
         recording: tracer.sink.recorder.map(Recorder::finish),
     })
+}
+
+/// Engine names, comma-separated.
+fn names(engines: &[Engine]) -> String {
+    engines
+        .iter()
+        .map(|e| e.name())
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// A landing to watch (`touchdown view`): `sc` on each of `engines` it applies to, in engine
+/// order, each run recording its frames every `frame_interval` s; with the engines left out
+/// because the scenario's `engines.applicable` does not list them.
+pub fn watch(
+    path: &Path,
+    sc: &Scenario,
+    engines: &[Engine],
+    frame_interval: f64,
+) -> Result<(Vec<EngineRun>, Vec<Engine>), CompareError> {
+    let mut asked = engines.to_vec();
+    asked.sort();
+    asked.dedup();
+    let (run, skipped): (Vec<Engine>, Vec<Engine>) = asked
+        .into_iter()
+        .partition(|e| sc.applicable_engines.contains(e));
+    if run.is_empty() {
+        return Err(CompareError::NoneApplicable {
+            scenario: path.display().to_string(),
+            asked: skipped,
+            applicable: sc.applicable_engines.clone(),
+        });
+    }
+    let runs = run
+        .iter()
+        .map(|&e| run_recorded(e, path, sc, Some(frame_interval)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((runs, skipped))
+}
+
+/// The trajectory file of the runs of the scenario at `path`, which recorded their frames every
+/// `frame_interval` s (`touchdown.trajectory/1`, on one line; its settings: the `overrides`
+/// that resolved `sc`, the engines that ran and the frame interval), and the page that plays
+/// it.
+pub fn trajectory_files<'v>(
+    path: &Path,
+    sc: &Scenario,
+    runs: &[EngineRun],
+    overrides: impl IntoIterator<Item = (&'v str, &'v toml::Value)>,
+    frame_interval: f64,
+) -> (String, String) {
+    let engines: Vec<Engine> = runs.iter().map(|r| r.engine).collect();
+    let options = serde_json::json!({ "engines": engines, "frame_interval_s": frame_interval });
+    let settings = touchdown_record::document::settings(overrides, options);
+    let body = trajectory(sc, runs);
+    let id = touchdown_record::ScenarioId::new(path.display(), sc);
+    let json = touchdown_record::Document::new("trajectory", Some(&id), &settings, &body).line();
+    let title = format!("{}: touchdown view", sc.file.name);
+    let html = touchdown_view::page::page(&title, &json);
+    (json, html)
 }
 
 /// The trajectory document's body of the runs of `sc` that recorded their frames

@@ -271,6 +271,42 @@ fn compare(
     .map_err(|f| f.into_py_err(py))
 }
 
+/// A landing to watch, as `touchdown view` writes it: `scenario` (a path or TOML text) with
+/// `overrides` on each of `engines` that its `engines.applicable` lists, a frame every
+/// `frame_interval` s; the trajectory document (JSON) and the page that plays it (HTML).
+#[pyfunction]
+#[pyo3(signature = (scenario, engines, frame_interval, overrides=None))]
+fn view(
+    py: Python<'_>,
+    scenario: &str,
+    engines: Vec<String>,
+    frame_interval: f64,
+    overrides: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(String, String)> {
+    let engines = self::engines(engines)?;
+    if !(frame_interval.is_finite() && frame_interval > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "frame_interval: expected a time between frames > 0 s, got {frame_interval}"
+        )));
+    }
+    let values = override_values(overrides)?;
+    py.detach(|| -> Result<(String, String), Box<Failed>> {
+        let (sc, source) = resolved(scenario, &values)?;
+        let path = Path::new(source);
+        let (runs, _) = touchdown_compare::watch(path, &sc, &engines, frame_interval)
+            .map_err(|e| Box::new(Failed::Compare(e)))?;
+        let overrides = values.iter().map(|(k, v)| (k.as_str(), v));
+        Ok(touchdown_compare::trajectory_files(
+            path,
+            &sc,
+            &runs,
+            overrides,
+            frame_interval,
+        ))
+    })
+    .map_err(|f| f.into_py_err(py))
+}
+
 /// The stability-boundary search of `scenario` (a path or TOML text) with `overrides`, as
 /// `touchdown boundary --format json` does: at each vertical velocity of `vv` (negative down,
 /// as in the scenario files, the scenario's velocity unit), on each of `engines`; the points
@@ -381,6 +417,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(view, m)?)?;
     m.add_function(wrap_pyfunction!(boundary, m)?)?;
     m.add_function(wrap_pyfunction!(run_shard, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;

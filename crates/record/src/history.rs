@@ -1,6 +1,7 @@
 //! `history.csv`: one row per accepted step, the same columns for every engine (SI units, named
 //! in the header).
 
+use crate::summary::EnergyReport;
 use crate::Sample;
 use nalgebra::Vector3;
 use std::fs::File;
@@ -26,6 +27,24 @@ pub const ENERGY_COLUMNS: [&str; 12] = [
     "contact_events_j",
     "residual_j",
 ];
+
+/// The fields of an energy report in the order of [`ENERGY_COLUMNS`].
+fn energy_fields(e: &mut EnergyReport) -> [&mut f64; 12] {
+    [
+        &mut e.kinetic_initial_j,
+        &mut e.kinetic_j,
+        &mut e.potential_change_j,
+        &mut e.footpad_j,
+        &mut e.honeycomb_stored_j,
+        &mut e.honeycomb_dissipated_j,
+        &mut e.viscous_j,
+        &mut e.bearing_friction_j,
+        &mut e.sliding_friction_j,
+        &mut e.mechanisms_j,
+        &mut e.contact_events_j,
+        &mut e.residual_j,
+    ]
+}
 
 /// The columns of the vehicle's state, first in every row.
 const BODY_COLUMNS: [&str; 14] = [
@@ -172,23 +191,9 @@ impl<W: Write> History<W> {
         for sd in &s.stability_distance {
             row.push(num(*sd));
         }
-        let e = &s.energy;
-        // In the order of ENERGY_COLUMNS.
-        for x in [
-            e.kinetic_initial_j,
-            e.kinetic_j,
-            e.potential_change_j,
-            e.footpad_j,
-            e.honeycomb_stored_j,
-            e.honeycomb_dissipated_j,
-            e.viscous_j,
-            e.bearing_friction_j,
-            e.sliding_friction_j,
-            e.mechanisms_j,
-            e.contact_events_j,
-            e.residual_j,
-        ] {
-            row.push(num(x));
+        let mut e = s.energy;
+        for x in energy_fields(&mut e) {
+            row.push(num(*x));
         }
         if let Err(e) = self.writer.write_record(row.iter()) {
             self.error = Some(e);
@@ -363,25 +368,7 @@ pub fn read(path: &Path, mut each: impl FnMut(&Sample)) -> Result<usize, History
             };
         }
         let e: Vec<f64> = energy.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
-        let report = &mut sample.energy;
-        // In the order of ENERGY_COLUMNS.
-        for (field, value) in [
-            &mut report.kinetic_initial_j,
-            &mut report.kinetic_j,
-            &mut report.potential_change_j,
-            &mut report.footpad_j,
-            &mut report.honeycomb_stored_j,
-            &mut report.honeycomb_dissipated_j,
-            &mut report.viscous_j,
-            &mut report.bearing_friction_j,
-            &mut report.sliding_friction_j,
-            &mut report.mechanisms_j,
-            &mut report.contact_events_j,
-            &mut report.residual_j,
-        ]
-        .into_iter()
-        .zip(e)
-        {
+        for (field, value) in energy_fields(&mut sample.energy).into_iter().zip(e) {
             *field = value;
         }
         each(&sample);

@@ -170,8 +170,9 @@
 
   /** Everything the views and plots need from a trajectory document, precomputed. */
   function buildModel(doc) {
-    if (!doc || typeof doc.schema !== "string" || !doc.schema.startsWith("touchdown.trajectory/")) {
-      throw new Error("not a Touchdown trajectory file (its schema field is not touchdown.trajectory/…)");
+    if (!doc || doc.schema !== "touchdown.trajectory/1") {
+      const schema = doc && typeof doc.schema === "string" ? doc.schema : "missing";
+      throw new Error(`not a trajectory this page reads: its schema field is ${schema}, expected touchdown.trajectory/1`);
     }
     if (!Array.isArray(doc.engines) || doc.engines.length === 0) throw new Error("the trajectory has no engine");
     const M = doc.surface.surface_to_gravity;
