@@ -71,7 +71,8 @@
   const HOLE_STROKE = "#8a7d62";
   const OBSTACLE_STROKE = "#8c5a2b";
   const CURB_STROKE = "#4a3b2a";
-  const GRID_STEP_M = 0.25;
+  // Grid lines per scene radius, about (the step is a round length near radius / this).
+  const GRID_LINES_PER_RADIUS = 4;
   const FOV_Y = (35 * Math.PI) / 180;
   const NEAR = 0.02;
   const FAR = 200;
@@ -342,7 +343,7 @@
       e.pads.forEach(take);
       for (const c of e.curbs) take([c.point_m[0], c.point_m[1], 0]);
     }
-    const pad = Math.max(...model.padRadius, 0.02);
+    const pad = Math.max(...model.padRadius);
     const cx = 0.5 * (xMin + xMax), cy = 0.5 * (yMin + yMax);
     const radius = 0.5 * Math.hypot(xMax - xMin, yMax - yMin, zMax) + pad;
     const margin = Math.max(0.25 * radius, 4 * pad);
@@ -373,14 +374,17 @@
     return sites;
   }
 
-  /** The ground grid's lines on the surface plane Z_S = 0: [x0, y0, x1, y1] each. */
+  /** The ground grid on the surface plane Z_S = 0: its step (m, a round length scaled to the
+   * scene, so that a model and a full-scale lander look alike) and its lines, [x0, y0, x1, y1]
+   * each. */
   function buildGrid(ext) {
+    const step = niceCeil(ext.radius / GRID_LINES_PER_RADIUS);
     const lines = [];
-    const i0 = Math.ceil(ext.x0 / GRID_STEP_M), i1 = Math.floor(ext.x1 / GRID_STEP_M);
-    const j0 = Math.ceil(ext.y0 / GRID_STEP_M), j1 = Math.floor(ext.y1 / GRID_STEP_M);
-    for (let i = i0; i <= i1; i++) lines.push(i * GRID_STEP_M, ext.y0, i * GRID_STEP_M, ext.y1);
-    for (let j = j0; j <= j1; j++) lines.push(ext.x0, j * GRID_STEP_M, ext.x1, j * GRID_STEP_M);
-    return Float64Array.from(lines);
+    const i0 = Math.ceil(ext.x0 / step), i1 = Math.floor(ext.x1 / step);
+    const j0 = Math.ceil(ext.y0 / step), j1 = Math.floor(ext.y1 / step);
+    for (let i = i0; i <= i1; i++) lines.push(i * step, ext.y0, i * step, ext.y1);
+    for (let j = j0; j <= j1; j++) lines.push(ext.x0, j * step, ext.x1, j * step);
+    return { step, lines: Float64Array.from(lines) };
   }
 
   /** The stability walls' height: above the highest centre of mass of the landing. */
@@ -392,7 +396,7 @@
         h = Math.max(h, p[i] * model.upS[0] + p[i + 1] * model.upS[1] + p[i + 2] * model.upS[2]);
       }
     }
-    return 1.25 * h + 0.05;
+    return 1.25 * h + 0.05 * model.extent.radius;
   }
 
   /** The force scale's position in [-1, 1] of axial force f (N) on a scale of ±full (N):
@@ -620,7 +624,7 @@
 
   /** The ground: the surface plane Z_S = 0 as a filled rectangle with a grid. */
   function drawGround(view, ctx, model) {
-    const x = model.extent, g = model.grid;
+    const x = model.extent, g = model.grid.lines;
     quad.set([x.x0, x.y0, 0, x.x1, x.y0, 0, x.x1, x.y1, 0, x.x0, x.y1, 0]);
     ctx.beginPath();
     if (polygon(view, ctx, quad, 0, 4)) {
@@ -1109,6 +1113,8 @@
       }
       return [...legsBySize].map(([cm, legs]) => `${legs.length > 1 ? "legs" : "leg"} ${legs.join(", ")}: ${cm} cm`).join("; ");
     };
+    const step = model.grid.step;
+    $("legend-grid").lastChild.textContent = `ground, grid lines every ${step >= 1 ? `${formatTick(step)} m` : `${formatTick(100 * step)} cm`}`;
     const holes = legsWith("hole_m"), obstacles = legsWith("obstacle_m");
     const curbs = model.engines.flatMap((e) => e.curbs.map((c) => c.leg));
     $("legend-hole").hidden = holes.length === 0;
