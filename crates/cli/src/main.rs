@@ -566,14 +566,13 @@ fn run(cli: Cli) -> Result<Verdict> {
             frame_interval,
             report_only,
         } => {
-            let view = view.map(|dir| (dir, frame_interval));
             let passed = compare(
                 &scenarios,
                 &set.set,
                 &engines,
                 format,
                 (out.as_deref(), plot),
-                view.as_ref().map(|(d, f)| (d.as_path(), *f)),
+                view.as_deref().map(|dir| (dir, frame_interval)),
             )?;
             return Ok(verdict(passed, report_only));
         }
@@ -846,9 +845,6 @@ fn compare(
 ) -> Result<bool> {
     let engines = touchdown_compare::engine_set(engines).context("--engines")?;
     let settings = settings(set, serde_json::json!({ "engines": engines }));
-    if let Some((_, interval)) = watch {
-        view::check_interval(interval)?;
-    }
     let mut passed = true;
     for path in scenarios {
         let sc = load(path, set)?.1;

@@ -3,19 +3,11 @@
 //! file").
 
 use crate::{load, out_file, warn, Set};
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use touchdown_compare::EngineRun;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
-
-/// Checks `--frame-interval`.
-pub fn check_interval(frame_interval: f64) -> Result<()> {
-    if !(frame_interval.is_finite() && frame_interval > 0.0) {
-        bail!("--frame-interval: expected a time between frames > 0 s, got {frame_interval}");
-    }
-    Ok(())
-}
 
 /// Writes `DIR/<scenario>.trajectory.json` (the trajectory document of the runs of the scenario
 /// at `path`, resolved into `sc` with the overrides `set`, which recorded their frames every
@@ -45,7 +37,6 @@ pub fn view(
     frame_interval: f64,
     dir: &Path,
 ) -> Result<()> {
-    check_interval(frame_interval)?;
     let sc = load(scenario, set)?.1;
     warn(&sc);
     let (runs, skipped) = touchdown_compare::watch(scenario, &sc, engines, frame_interval)?;

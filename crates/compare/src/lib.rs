@@ -48,6 +48,16 @@ pub enum CompareError {
     /// Fewer than two distinct engines asked for.
     #[error("name at least two engines to compare (got {0:?})")]
     TooFewEngines(Vec<Engine>),
+    /// A setting out of its range, named as the command line names it (`--frame-interval`).
+    #[error("{argument}: expected {expected}, got {got}")]
+    Setting {
+        /// The command line's argument.
+        argument: &'static str,
+        /// What it takes.
+        expected: &'static str,
+        /// The value given.
+        got: f64,
+    },
     /// None of the engines asked for applies to the scenario.
     #[error("none of the engines asked for ({}) applies to {scenario} (its engines.applicable: {})", names(.asked), names(.applicable))]
     NoneApplicable {
@@ -157,6 +167,26 @@ pub fn run_recorded(
     })
 }
 
+/// Checks the time between a trajectory's frames, s.
+fn check_frame_interval(frame_interval: f64) -> Result<(), CompareError> {
+    if frame_interval.is_finite() && frame_interval > 0.0 {
+        return Ok(());
+    }
+    Err(CompareError::Setting {
+        argument: "--frame-interval",
+        expected: "a time between frames > 0 s",
+        got: frame_interval,
+    })
+}
+
+/// `engines` split into those the scenario's `engines.applicable` lists and the others, in the
+/// order given.
+fn split_applicable(sc: &Scenario, engines: &[Engine]) -> (Vec<Engine>, Vec<Engine>) {
+    engines
+        .iter()
+        .partition(|e| sc.applicable_engines.contains(e))
+}
+
 /// Engine names, comma-separated.
 fn names(engines: &[Engine]) -> String {
     engines
@@ -175,12 +205,11 @@ pub fn watch(
     engines: &[Engine],
     frame_interval: f64,
 ) -> Result<(Vec<EngineRun>, Vec<Engine>), CompareError> {
+    check_frame_interval(frame_interval)?;
     let mut asked = engines.to_vec();
     asked.sort();
     asked.dedup();
-    let (run, skipped): (Vec<Engine>, Vec<Engine>) = asked
-        .into_iter()
-        .partition(|e| sc.applicable_engines.contains(e));
+    let (run, skipped) = split_applicable(sc, &asked);
     if run.is_empty() {
         return Err(CompareError::NoneApplicable {
             scenario: path.display().to_string(),
@@ -219,18 +248,17 @@ pub fn trajectory_files<'v>(
 
 /// The trajectory document's body of the runs of `sc` that recorded their frames
 /// ([`run_recorded`]), in the order given.
-pub fn trajectory(sc: &Scenario, runs: &[EngineRun]) -> Trajectory {
+pub fn trajectory<'a>(sc: &Scenario, runs: &'a [EngineRun]) -> Trajectory<'a> {
     Trajectory {
         scene: Scene::new(sc),
         engines: runs
             .iter()
             .filter_map(|r| {
-                let recording = r.recording.clone()?;
                 Some(EngineTrajectory::new(
                     r.engine,
                     engine_version(r),
                     &r.summary,
-                    recording,
+                    r.recording.as_ref()?,
                 ))
             })
             .collect(),
@@ -318,9 +346,10 @@ pub fn compare_recorded(
     engines: &[Engine],
     frame_interval: Option<f64>,
 ) -> Result<ScenarioComparison, CompareError> {
-    let (applicable, not_applicable): (Vec<Engine>, Vec<Engine>) = engines
-        .iter()
-        .partition(|e| sc.applicable_engines.contains(e));
+    if let Some(f) = frame_interval {
+        check_frame_interval(f)?;
+    }
+    let (applicable, not_applicable) = split_applicable(sc, engines);
     let runs = applicable
         .iter()
         .map(|e| run_recorded(*e, path, sc, frame_interval))

@@ -1,7 +1,6 @@
 //! The time series a comparison needs of a landing, the same for every engine: time, vertical
 //! velocity, pitch rate, attitude and primary strokes at every accepted state.
 
-use std::path::Path;
 use touchdown_record::Sample;
 
 /// Window of the vertical-acceleration average, s: the velocity change over 2 ms, like an
@@ -36,13 +35,6 @@ impl Trace {
         self.legs = s.legs.len();
         self.primary_stroke
             .extend(s.legs.iter().map(|l| l.primary_stroke));
-    }
-
-    /// Reads the trace from a `history.csv` ([`touchdown_record::history::read`]).
-    pub fn from_history(path: &Path) -> Result<Trace, String> {
-        let mut trace = Trace::default();
-        touchdown_record::history::read(path, |s| trace.push(s)).map_err(|e| e.to_string())?;
-        Ok(trace)
     }
 
     /// `values` (one per time of this trace) linearly interpolated at time `t`, s, within the

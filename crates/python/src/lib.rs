@@ -7,6 +7,7 @@ use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::json;
+use std::fmt::Display;
 use std::path::Path;
 use touchdown_campaign::{Campaign, CampaignError, Shard};
 use touchdown_compare::CompareError;
@@ -88,8 +89,22 @@ fn compare_error(py: Python<'_>, e: &CompareError) -> PyErr {
     match e {
         CompareError::Scenario(e) => scenario_error(py, e),
         CompareError::Engine(f) => engine_error(py, f),
+        CompareError::Setting {
+            argument,
+            expected,
+            got,
+        } => setting_error(argument, expected, got),
         other => TouchdownError::new_err(other.to_string()),
     }
+}
+
+/// A setting out of its range as a `ValueError` named by its keyword argument (the command
+/// line's `--vh-step` is `vh_step`).
+fn setting_error(argument: &str, expected: impl Display, got: impl Display) -> PyErr {
+    PyValueError::new_err(format!(
+        "{}: expected {expected}, got {got}",
+        argument.trim_start_matches("--").replace('-', "_")
+    ))
 }
 
 /// The exception of a boundary search's error; a setting's is a `ValueError` named by its
@@ -104,10 +119,7 @@ fn validation_error(py: Python<'_>, e: &ValidationError) -> PyErr {
             argument,
             expected,
             got,
-        } => PyValueError::new_err(format!(
-            "{}: expected {expected}, got {got}",
-            argument.trim_start_matches("--").replace('-', "_")
-        )),
+        } => setting_error(argument, expected, got),
         other => TouchdownError::new_err(other.to_string()),
     }
 }
@@ -284,11 +296,6 @@ fn view(
     overrides: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(String, String)> {
     let engines = self::engines(engines)?;
-    if !(frame_interval.is_finite() && frame_interval > 0.0) {
-        return Err(PyValueError::new_err(format!(
-            "frame_interval: expected a time between frames > 0 s, got {frame_interval}"
-        )));
-    }
     let values = override_values(overrides)?;
     py.detach(|| -> Result<(String, String), Box<Failed>> {
         let (sc, source) = resolved(scenario, &values)?;

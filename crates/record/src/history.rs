@@ -345,13 +345,15 @@ pub fn read(path: &Path, mut each: impl FnMut(&Sample)) -> Result<usize, History
             value: record[c].to_string(),
         };
         let num = |c: usize| record[c].parse::<f64>().map_err(|_| bad(c));
-        let b: Vec<f64> = body.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
-        sample.t = b[0];
-        sample.position = Vector3::new(b[1], b[2], b[3]);
-        sample.velocity = Vector3::new(b[4], b[5], b[6]);
-        sample.theta = Vector3::new(b[7], b[8], b[9]);
-        sample.omega = Vector3::new(b[10], b[11], b[12]);
-        sample.pitch_rate = b[13];
+        // In the order of BODY_COLUMNS.
+        let b = |k: usize| num(body[k]);
+        let v = |k: usize| Ok::<_, HistoryReadError>(Vector3::new(b(k)?, b(k + 1)?, b(k + 2)?));
+        sample.t = b(0)?;
+        sample.position = v(1)?;
+        sample.velocity = v(4)?;
+        sample.theta = v(7)?;
+        sample.omega = v(10)?;
+        sample.pitch_rate = b(13)?;
         for (leg, c) in sample.legs.iter_mut().zip(&leg_columns) {
             leg.primary_stroke = num(c[0])?;
             leg.primary_force = num(c[1])?;
@@ -367,9 +369,8 @@ pub fn read(path: &Path, mut each: impl FnMut(&Sample)) -> Result<usize, History
                 num(c)?
             };
         }
-        let e: Vec<f64> = energy.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
-        for (field, value) in energy_fields(&mut sample.energy).into_iter().zip(e) {
-            *field = value;
+        for (field, &c) in energy_fields(&mut sample.energy).into_iter().zip(&energy) {
+            *field = num(c)?;
         }
         each(&sample);
     }

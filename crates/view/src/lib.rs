@@ -17,7 +17,7 @@ pub use trajectory::{Recorder, Recording, Scene, DEFAULT_FRAME_INTERVAL};
 
 /// One engine's landing in a trajectory file.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct EngineTrajectory {
+pub struct EngineTrajectory<'a> {
     /// The engine (`core`, `rapier`, `mujoco`).
     pub name: Engine,
     /// What computed it.
@@ -29,26 +29,21 @@ pub struct EngineTrajectory {
     pub decision_time_s: Option<f64>,
     /// Accepted steps of the landing.
     pub steps: u64,
-    /// Every change of a footpad's contact state.
-    pub events: Vec<trajectory::ContactEvent>,
-    /// The curbs of the footpads that touched.
-    pub curbs: Vec<trajectory::CurbView>,
-    /// The kept states.
-    pub frames: trajectory::Frames,
+    /// Its events, curbs and frames.
+    #[serde(flatten)]
+    pub recording: &'a Recording,
 }
 
-impl EngineTrajectory {
+impl<'a> EngineTrajectory<'a> {
     /// The landing of `summary` recorded into `recording` by the engine `name` at `version`.
-    pub fn new(name: Engine, version: String, summary: &Summary, recording: Recording) -> Self {
+    pub fn new(name: Engine, version: String, summary: &Summary, recording: &'a Recording) -> Self {
         EngineTrajectory {
             name,
             version,
             outcome: summary.outcome,
             decision_time_s: summary.decision_time_s.map(trajectory::time),
             steps: summary.steps,
-            events: recording.events,
-            curbs: recording.curbs,
-            frames: recording.frames,
+            recording,
         }
     }
 }
@@ -56,10 +51,10 @@ impl EngineTrajectory {
 /// The body of a trajectory document (`touchdown.trajectory/1`): the scene, then each engine's
 /// landing.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Trajectory {
+pub struct Trajectory<'a> {
     /// The vehicle and the ground.
     #[serde(flatten)]
     pub scene: Scene,
     /// The engines' landings, in engine order.
-    pub engines: Vec<EngineTrajectory>,
+    pub engines: Vec<EngineTrajectory<'a>>,
 }

@@ -93,7 +93,6 @@ pub struct PadGround {
 impl Scene {
     /// The scene of `sc`.
     pub fn new(sc: &Scenario) -> Scene {
-        let point = |v: &Vector3<f64>| [length(v.x), length(v.y), length(v.z)];
         let t = t_gi(sc.surface.slope);
         Scene {
             scenario_name: sc.file.name.clone(),
@@ -210,17 +209,16 @@ pub struct Frames {
     pub walls: Vec<WallFrames>,
 }
 
-/// What a [`Recorder`] keeps of a landing.
-#[derive(Debug, Clone, PartialEq)]
+/// What a [`Recorder`] keeps of a landing (serialised as the fields of its engine's entry in the
+/// trajectory file).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Recording {
-    /// The kept states.
-    pub frames: Frames,
     /// Every change of a footpad's contact state, in time order.
     pub events: Vec<ContactEvent>,
     /// The curbs of the footpads that touched.
     pub curbs: Vec<CurbView>,
-    /// The states observed (the landing's accepted states, the initial one included).
-    pub states: usize,
+    /// The kept states.
+    pub frames: Frames,
 }
 
 /// Keeps the frames of a landing as it runs (an [`Observer`] of any stepping engine, or fed
@@ -286,10 +284,9 @@ impl Recorder {
             previous_kept: false,
             last_kept: f64::NEG_INFINITY,
             recording: Recording {
-                frames,
                 events: Vec::new(),
                 curbs: Vec::new(),
-                states: 0,
+                frames,
             },
         }
     }
@@ -302,8 +299,8 @@ impl Recorder {
 
     /// Decides whether the state in `current` is kept, and whether the one before it must be.
     fn accept(&mut self) {
-        let first = self.recording.states == 0;
-        self.recording.states += 1;
+        // The first state is always kept.
+        let first = self.recording.frames.t_s.is_empty();
         let mut first_touchdown = false;
         for (i, (now, before)) in self
             .current
@@ -342,7 +339,7 @@ impl Recorder {
 
     /// The recording, the last state kept.
     pub fn finish(mut self) -> Recording {
-        if self.recording.states > 0 && !self.previous_kept {
+        if !self.recording.frames.t_s.is_empty() && !self.previous_kept {
             self.geometry
                 .keep(&mut self.recording.frames, &self.previous);
         }
