@@ -34,14 +34,17 @@ fn allocations() -> u64 {
 }
 
 /// With every integration scheme (the report's, the fourth-order Runge–Kutta method and the
-/// adaptive Dormand–Prince pair, which also rejects steps).
+/// adaptive Dormand–Prince pair, which also rejects steps), and either footpad.
 #[test]
 fn stepping_a_landing_does_not_allocate() {
-    for scheme in ["report", "rk4", "dopri5"] {
+    let runs = ["report", "rk4", "dopri5"]
+        .into_iter()
+        .flat_map(|scheme| ["rigid", "inertial"].map(|footpad| (scheme, footpad)));
+    for (scheme, footpad) in runs {
         let path = touchdown_tests::variant(
             "fig-25-26.toml",
-            &format!("allocation-{scheme}"),
-            &format!("[integrator]\nscheme = \"{scheme}\"\n"),
+            &format!("allocation-{scheme}-{footpad}"),
+            &format!("[integrator]\nscheme = \"{scheme}\"\n[footpad]\ndetached = \"{footpad}\"\n"),
         );
         let sc = touchdown_scenario::Scenario::load(path).unwrap();
         let mut sim = touchdown_core::Simulation::new(&sc).unwrap();
@@ -54,7 +57,7 @@ fn stepping_a_landing_does_not_allocate() {
         let during = allocations() - before;
         assert!(
             steps > 500,
-            "{scheme}: the landing should take many steps, took {steps}"
+            "{scheme}, {footpad}: the landing should take many steps, took {steps}"
         );
         // The counter itself must work: the summary allocates.
         let _ = sim.summary();
@@ -62,6 +65,9 @@ fn stepping_a_landing_does_not_allocate() {
             allocations() > before,
             "the counting allocator is not counting"
         );
-        assert_eq!(during, 0, "{scheme}: {during} allocations in {steps} steps");
+        assert_eq!(
+            during, 0,
+            "{scheme}, {footpad}: {during} allocations in {steps} steps"
+        );
     }
 }

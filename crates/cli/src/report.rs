@@ -97,7 +97,7 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
             "+",
             "gear masses",
             e.footpad_j,
-            "the footpads in contact (core), every gear link (multibody)",
+            "footpads in contact (core), all (core, inertial), gear links (multibody)",
         ),
         (
             "+",

@@ -76,6 +76,7 @@ impl Physics {
     /// the vehicle's energy see the same forces even when a footpad leaves the surface in the
     /// step: honeycomb ½(F_k + F*)·(x_{k+1} − x_k), viscous and bearing friction
     /// ½(P_k + P*)·Δt. A Runge–Kutta scheme books its own quadrature of the stage powers.
+    /// Every gear strokes through the step as its footpad moves, on the surface or off it.
     pub(crate) fn book_strut_work(
         &mut self,
         dt: f64,
@@ -86,7 +87,7 @@ impl Physics {
         let steps = previous.iter().zip(trial).zip(&self.gear);
         for (((a, t), b), relaxed) in steps.zip(&mut self.relaxation) {
             let l = &mut self.ledger;
-            // The strokes at the end of the step, before a leaving gear relaxed.
+            // The strokes at the end of the step, before a leaving rigid footpad's gear relaxed.
             let (dc, ds) = std::mem::take(relaxed);
             let c_end = b.primary_stroke + dc;
             // The force at the end of the step: the trial's (report) or the accepted state's.
@@ -134,14 +135,17 @@ impl Physics {
         -self.mass.mass * self.gravity.dot(&self.vehicle.position)
     }
 
-    /// Kinetic + potential energy of the footpads in contact (the only ones with dynamics), J.
+    /// Kinetic + potential energy of the footpads with dynamics, J: with inertia all of them,
+    /// since the start (`footpad0`, once set); rigid ones only in contact.
     pub(crate) fn footpad_energy(&self) -> f64 {
         let m = self.footpad_mass;
-        self.pads
+        let now: f64 = self
+            .pads
             .iter()
-            .filter(|p| p.state == ContactState::Contact)
+            .filter(|p| self.inertial || p.state == ContactState::Contact)
             .map(|p| 0.5 * m * p.velocity.norm_squared() - m * self.gravity.dot(&p.position))
-            .sum()
+            .sum();
+        now - self.footpad0
     }
 
     /// Elastic energy stored in the gear's honeycombs now, J.

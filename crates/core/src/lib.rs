@@ -25,10 +25,12 @@ pub mod integrator;
 pub mod ledger;
 pub mod loads;
 pub mod mechanisms;
+mod release;
 pub mod rigid_body;
 pub mod simulation;
 pub mod state;
 pub mod stepper;
+mod stiction;
 pub mod surface;
 
 pub use simulation::Simulation;

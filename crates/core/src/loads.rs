@@ -1,5 +1,5 @@
-//! Net loads on the vehicle and its accelerations: each gear in contact evaluated at its
-//! footpad (eqs. 26-65), the gear's force and moment on the vehicle (eqs. 66-68), the
+//! Net loads on the vehicle and its accelerations: each gear evaluated at its footpad
+//! (eqs. 26-65), the gear's force and moment on the vehicle (eqs. 66-68), the
 //! vehicle-level mechanisms' loads added (eqs. 83-84), and the rigid-vehicle accelerations
 //! (eqs. 9-15, slosh eq. 109).
 
@@ -7,6 +7,7 @@ use crate::gear::{self, GearOptions, GearState};
 use crate::ledger::Power;
 use crate::simulation::Physics;
 use crate::state::VehicleState;
+use crate::stiction::Held;
 use crate::surface::{ContactState, Footpad};
 use nalgebra::Vector3;
 use touchdown_frames::{euler_acceleration, GIMBAL_LOCK_COS};
@@ -33,7 +34,9 @@ fn first_contact(pads: &[Footpad]) -> Option<f64> {
 
 impl Physics {
     /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
-    /// written into `out` (eqs. 26-68, 83-84). Footpads not in contact carry no load.
+    /// written into `out` (eqs. 26-68, 83-84). A gear carries its footpad's load in contact and,
+    /// with inertia, off the surface (docs/errata.md, "Eq. (66): only pads in contact —
+    /// interpreted"); a rigid footpad off the surface carries none.
     pub(crate) fn loads(
         &mut self,
         t: f64,
@@ -44,7 +47,8 @@ impl Physics {
     }
 
     /// [`Physics::loads`] with each sliding footpad a fraction `blend` of the way from its
-    /// start of step to where it is now (a Runge–Kutta stage; 1 is now).
+    /// start of step to where it is now (a Runge–Kutta stage; 1 is now); the footpads off the
+    /// surface are where the stage put them.
     pub(crate) fn loads_at(
         &mut self,
         t: f64,
@@ -54,9 +58,15 @@ impl Physics {
     ) -> Result<Loads, RunError> {
         let mut force = Vector3::zeros();
         let mut torque = Vector3::zeros();
+        let mut held = std::mem::take(&mut self.held);
+        held.clear();
+        let friction = self.arrangement == Arrangement::Cantilever
+            && self.laws.primary.bearing.friction_coefficient > 0.0;
         for (i, slot) in out.iter_mut().enumerate() {
             let pad = &self.pads[i];
-            if pad.state != ContactState::Contact {
+            let free = pad.state != ContactState::Contact;
+            if free && !self.inertial {
+                // The report's rigid footpad off the surface: its massless gear carries nothing.
                 let prev = &self.gear[i];
                 *slot = GearState {
                     primary_stroke: prev.primary_stroke,
@@ -65,13 +75,23 @@ impl Physics {
                 };
                 continue;
             }
-            let (position, velocity) = if blend >= 1.0 {
+            let (position, velocity) = if blend >= 1.0 || free {
                 (pad.position, pad.velocity)
             } else {
                 let (p0, v0) = self.pad_start[i];
                 (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
             };
             let bp = self.evaluate_leg(i, v, &position, &velocity, slot)?;
+            if free && friction {
+                // Off the surface the bearing friction is set below, once the vehicle's
+                // acceleration without it is known (crate::stiction).
+                let e = (bp - self.legs[i].b2).normalize();
+                slot.f2p -= slot.fbr;
+                slot.fp -= e * slot.fbr;
+                slot.fbr = 0.0;
+                let bp_dot = v.t_bi.transpose() * (velocity - v.velocity) - v.omega.cross(&bp);
+                held.push(Held { leg: i, bp, bp_dot });
+            }
             torque += bp.cross(&(-slot.fp)); // eq. (66)
             force -= v.t_bi * slot.fp; // eqs. (67)-(68)
         }
@@ -87,6 +107,25 @@ impl Physics {
                 driving: a.driving_power(&(v.t_bi.transpose() * v.velocity), &v.omega),
             };
         }
+        if !held.is_empty() {
+            let acceleration = self.mass.linear_acceleration(&force, &self.gravity);
+            let omega_dot = self.mass.angular_acceleration(&torque, &v.omega);
+            for h in &held {
+                let slot = &mut out[h.leg];
+                let fbr = self
+                    .held_friction(h, slot, v, &acceleration, &omega_dot)
+                    .map_err(|e| {
+                        self.diverged(v, e.to_string(), Law::BearingFriction, Some(h.leg))
+                    })?;
+                let on_pad = (h.bp - self.legs[h.leg].b2).normalize() * fbr;
+                slot.fbr = fbr;
+                slot.f2p += fbr;
+                slot.fp += on_pad;
+                torque += h.bp.cross(&(-on_pad)); // eq. (66)
+                force -= v.t_bi * on_pad; // eqs. (67)-(68)
+            }
+        }
+        self.held = held;
         Ok(Loads {
             force,
             torque,

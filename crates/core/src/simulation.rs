@@ -13,6 +13,7 @@ use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
 use crate::state::VehicleState;
 use crate::stepper::{Advance, Schemes, Scratch};
+use crate::stiction::Held;
 use crate::surface::{ContactState, Footpad};
 use nalgebra::{UnitQuaternion, Vector2, Vector3};
 use touchdown_frames::gravity_inertial;
@@ -23,7 +24,9 @@ use touchdown_record::{
 };
 use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::model::{Integrator, Leg, Mechanism, PadSurface};
-use touchdown_scenario::schema::{Arrangement, AttitudeForm, Engine, ReleaseRule, Scheme};
+use touchdown_scenario::schema::{
+    Arrangement, AttitudeForm, Detached, Engine, ReleaseRule, Scheme,
+};
 use touchdown_scenario::Scenario;
 
 /// A landing simulated by the report-faithful core: its physics and the stepper that advances
@@ -48,6 +51,9 @@ pub(crate) struct Physics {
     pub(crate) surfaces: Vec<PadSurface>,
     /// Footpad mass, kg.
     pub(crate) footpad_mass: f64,
+    /// Whether the footpads have inertia off the surface (`footpad.detached = "inertial"`), or
+    /// ride rigidly with the vehicle on a relaxed massless gear (`"rigid"`, the report's).
+    pub(crate) inertial: bool,
     pub(crate) release: ReleaseRule,
     pub(crate) integrator: Integrator,
     pub(crate) arrangement: Arrangement,
@@ -73,27 +79,35 @@ pub(crate) struct Physics {
     /// Point-1 bending displacement per leg at the last accepted state (lagged: docs/errata.md,
     /// "Eqs. (47)-(48): bending coupling"), m.
     pub(crate) bending_lag: Vec<Vector3<f64>>,
-    /// Per leg, how far the strokes went back when its footpad left in this step and its gear
-    /// relaxed (primary, secondaries), m: not work of the vehicle, so the strut work of the
+    /// Per leg, how far the strokes went back when its rigid footpad left in this step and its
+    /// gear relaxed (primary, secondaries), m: not work of the vehicle, so the strut work of the
     /// step is booked to the strokes before it.
     pub(crate) relaxation: Vec<(f64, [f64; 2])>,
-    /// Per footpad, the accepted states in a row it has been in contact: the adaptive scheme
-    /// locates the leaving of a footpad that has stayed (a footpad that lands and is pulled off
-    /// at once, as a dragged footpad of a massless gear does step after step, is not located:
-    /// locating it would hold the step at dt_min).
+    /// Per rigid footpad, the accepted states in a row it has been in contact: the adaptive
+    /// scheme locates the leaving of a footpad that has stayed (a footpad that lands and is
+    /// pulled off at once, as a dragged footpad of a massless gear does step after step, is not
+    /// located: locating it would hold the step at dt_min).
     pub(crate) contact_steps: Vec<u32>,
     /// Power of the vehicle-level mechanisms on the vehicle at the accepted state, W.
     pub(crate) applied_power: Power,
     pub(crate) ledger: EnergyLedger,
     /// Potential energy at the start, J.
     pub(crate) potential0: f64,
+    /// Kinetic plus potential energy of the footpads with inertia at the start, J.
+    pub(crate) footpad0: f64,
     pub(crate) stability: StabilityTracker,
     pub(crate) extremes: Extremes,
     /// Footpad views for the stability criteria (reused every step).
     pub(crate) pad_views: Vec<PadView>,
     /// Footpad positions and velocities at the start of the step (Runge–Kutta stages
-    /// interpolate the sliding footpads between these and their end of step), m, m/s.
+    /// interpolate the sliding footpads between these and their end of step; the footpads off
+    /// the surface start their stages from them), m, m/s.
     pub(crate) pad_start: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// The footpads off the surface whose bearing friction an evaluation sets last (reused).
+    pub(crate) held: Vec<Held>,
+    /// The time over which that friction brings their stroking to rest, s
+    /// ([`crate::stiction::relaxation`]).
+    pub(crate) held_relaxation: f64,
 }
 
 impl Simulation {
@@ -142,7 +156,6 @@ impl Simulation {
                 position: vehicle.point(&l.bp),
                 velocity: vehicle.point_velocity(&l.bp),
                 bp_attached: l.bp,
-                bp: l.bp,
                 ..Default::default()
             })
             .collect();
@@ -150,6 +163,7 @@ impl Simulation {
         let gravity = gravity_inertial(scenario.vehicle.gravity, scenario.surface.slope);
         let curve = &laws.primary.honeycomb.curve;
         let force_rounding = 1e-9 * curve.force(curve.capacity());
+        let held_relaxation = crate::stiction::relaxation(&laws, scenario.footpad.mass);
         let mut physics = Physics {
             name: scenario.file.name.clone(),
             legs: scenario.legs.clone(),
@@ -158,6 +172,7 @@ impl Simulation {
             gravity,
             surfaces: scenario.surface.pads.clone(),
             footpad_mass: scenario.footpad.mass,
+            inertial: scenario.footpad.detached == Detached::Inertial,
             release: scenario.surface.release,
             integrator: scenario.integrator.clone(),
             arrangement: scenario.arrangement,
@@ -178,12 +193,18 @@ impl Simulation {
             applied_power: Power::default(),
             ledger: EnergyLedger::default(),
             potential0: 0.0,
+            footpad0: 0.0,
             stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
             extremes: Extremes::new(n),
             pad_views: vec![PadView::default(); n],
             pad_start: vec![(Vector3::zeros(), Vector3::zeros()); n],
+            held: Vec::with_capacity(n),
+            held_relaxation,
         };
         physics.potential0 = physics.potential_energy();
+        if physics.inertial {
+            physics.footpad0 = physics.footpad_energy();
+        }
         physics.stability =
             StabilityTracker::new(&scenario.stability, gravity, n, physics.kinetic_energy());
         let it = &scenario.integrator;
@@ -195,6 +216,7 @@ impl Simulation {
         let mut v = physics.vehicle;
         physics.accept(&mut v, &mut stepper.get().scratch().spare)?;
         physics.vehicle = v;
+        physics.update_pad_accelerations();
         let energy = physics.energy();
         physics.update_stability(None, &energy);
         physics.update_extremes();
@@ -338,32 +360,36 @@ impl Physics {
         self.vehicle = *new;
         let pads_before = self.footpad_energy();
         if self.contact_logic()? {
+            // The impacts' loss (and the footpads put on their planes) is a contact event.
             let events = self.footpad_energy() - pads_before;
             self.ledger.events += events;
             self.accept(new, spare)?;
             self.vehicle = *new;
         }
-        // 7. commit hysteresis at the accepted state
-        for (n, p) in self.contact_steps.iter_mut().zip(&self.pads) {
-            *n = if p.state == ContactState::Contact {
-                n.saturating_add(1)
-            } else {
-                0
-            };
+        self.update_pad_accelerations();
+        // 7. commit hysteresis at the accepted state: every gear with inertial footpads (they
+        // stroke on the surface or off it), the gears in contact with rigid ones
+        if !self.inertial {
+            for (n, p) in self.contact_steps.iter_mut().zip(&self.pads) {
+                *n = if p.state == ContactState::Contact {
+                    n.saturating_add(1)
+                } else {
+                    0
+                };
+            }
         }
         for i in 0..self.legs.len() {
-            if self.pads[i].state == ContactState::Contact {
-                let g = &self.gear[i];
-                self.laws
-                    .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
-                self.bending_lag[i] = g.point1_deflection;
-                let pad = &mut self.pads[i];
-                let bp = new.t_bi.transpose() * (pad.position - new.position);
-                pad.bp = bp;
-                if let Some(curbs) = &mut self.mechanisms.curbs {
-                    let xy = Vector2::new(pad.position.x, pad.position.y);
-                    curbs.commit(i, pad.touchdown_xy, xy, self.footpad_radius);
-                }
+            let pad = &self.pads[i];
+            if !self.inertial && pad.state != ContactState::Contact {
+                continue;
+            }
+            let g = &self.gear[i];
+            self.laws
+                .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
+            self.bending_lag[i] = g.point1_deflection;
+            if let (Some(curbs), ContactState::Contact) = (&mut self.mechanisms.curbs, pad.state) {
+                let xy = Vector2::new(pad.position.x, pad.position.y);
+                curbs.commit(i, pad.touchdown_xy, xy, self.footpad_radius);
             }
         }
         self.mechanisms.commit(new, &self.gravity);
@@ -413,13 +439,27 @@ impl Physics {
         );
     }
 
-    /// Inertial position of footpad `i`, m.
+    /// Inertial position of footpad `i`, m: a rigid footpad off the surface where its gear
+    /// holds it.
     fn pad_position(&self, i: usize) -> Vector3<f64> {
         let p = &self.pads[i];
-        if p.state == ContactState::Contact {
+        if self.inertial || p.state == ContactState::Contact {
             p.position
         } else {
             self.vehicle.point(&p.bp_attached)
+        }
+    }
+
+    /// The accelerations of the footpads with inertia off the surface at the accepted state
+    /// (eqs. 16-18), their gears evaluated there.
+    pub(crate) fn update_pad_accelerations(&mut self) {
+        if !self.inertial {
+            return;
+        }
+        for i in 0..self.pads.len() {
+            if self.pads[i].state != ContactState::Contact {
+                self.pads[i].acceleration = self.pad_acceleration(i, &self.vehicle, &self.gear[i]);
+            }
         }
     }
 

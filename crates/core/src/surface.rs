@@ -2,11 +2,14 @@
 //! the text (docs/errata.md, "Contact and release (text before eq. 85, after eq. 100) —
 //! reinterpreted" and "Modelling choices the report leaves open").
 //!
-//! Each footpad n sees its own plane Z = −HOLE_n. States: `Free` (never touched: rigidly
-//! attached to the undeformed gear), `Contact` (on its plane: Z held, X-Y locked if OBST_n > 0
-//! or sliding with Coulomb friction), `Detached` (left the surface: rigidly attached with the
-//! deformed geometry frozen). A footpad not in contact carries no gear force (docs/errata.md,
-//! "Eq. (66): only pads in contact — interpreted").
+//! Each footpad n is a point mass PMASS at the ball joint of its gear (eqs. 16-18) and sees its
+//! own plane Z = −HOLE_n. States: `Free` (never touched), `Contact` (on its plane: Z held by the
+//! surface's reaction, X-Y locked if OBST_n > 0 or sliding with Coulomb friction), `Detached`
+//! (left the surface after contact). Off the surface the report's footpad is attached rigidly to
+//! the vehicle by its massless gear (`footpad.detached = "rigid"`: the undeformed gear before
+//! touchdown, the relaxed one after); a footpad with inertia (`"inertial"`) moves under its
+//! gear's force and its weight alone, integrated with the vehicle by the scheme's own stages
+//! (docs/errata.md, "Footpads with inertia (eqs. 16-19, 85-100) — extended").
 
 use nalgebra::{Vector2, Vector3};
 use serde::Serialize;
@@ -22,7 +25,8 @@ pub enum ContactState {
     Free,
     /// On its surface plane.
     Contact,
-    /// Left the surface after contact; geometry frozen.
+    /// Left the surface after contact: attached by its relaxed gear (rigid), or moving under
+    /// its gear's force and its weight (inertial).
     Detached,
 }
 
@@ -46,13 +50,19 @@ pub struct Footpad {
     pub position: Vector3<f64>,
     /// Inertial velocity, m/s.
     pub velocity: Vector3<f64>,
-    /// Body-frame position BP while attached (the frozen, possibly deformed geometry), m.
+    /// Body-frame position BP while attached rigidly (the report's detached footpad,
+    /// `footpad.detached = "rigid"`: the frozen, possibly deformed geometry), m.
     pub bp_attached: Vector3<f64>,
-    /// Body-frame position at the last accepted state, m (used for the tentative position).
-    pub bp: Vector3<f64>,
+    /// Inertial acceleration off the surface at the accepted state (eqs. 16-18: the gear's
+    /// force over PMASS plus gravity), m/s²; zero in contact.
+    pub acceleration: Vector3<f64>,
     /// (XPI, YPI), inertial X-Y at the first touchdown, m (recorded the first time only:
     /// docs/errata.md, "Modelling choices the report leaves open"; curbs (eq. 86) and the soil's lateral displacement SP (eq. 102) refer to it).
     pub touchdown_xy: Vector2<f64>,
+    /// Held laterally by its obstacle's wall (OBST_n > 0): from its landing until it rises above
+    /// the wall, on the surface or off it (text after fig. 17: "it cannot move laterally until
+    /// it rises above the wall").
+    pub walled: bool,
     /// Sliding footpad at rest, held by static friction (docs/errata.md, "Sliding stop within a
     /// step — implementation of the text before eq. (100)").
     pub stuck: bool,
@@ -184,9 +194,9 @@ fn set_xy(pad: &mut Footpad, p: Vector2<f64>, v: Vector2<f64>) {
 
 /// Puts a footpad into contact at inertial X-Y `xy` on its plane (text before eq. 86;
 /// docs/errata.md, "Modelling choices the report leaves open"):
-/// records (XPI, YPI), keeps the in-plane velocity `v_xy` of the rigid attachment unless the
-/// footpad is locked (OBST > 0), and sets the normal velocity to `v_normal` (m/s): 0 on the
-/// rigid surface, the attachment's on soil, where the footpad penetrates (eq. 103).
+/// records (XPI, YPI), keeps its in-plane velocity `v_xy` unless it is locked (OBST > 0), and
+/// sets its normal velocity to `v_normal` (m/s): 0 on the rigid surface (a plastic impact of its
+/// own mass), its own on soil, where it penetrates (eq. 103).
 pub fn touch_down(
     pad: &mut Footpad,
     surface: &PadSurface,
@@ -206,6 +216,8 @@ pub fn touch_down(
         v_xy
     };
     pad.velocity = Vector3::new(v.x, v.y, v_normal);
+    pad.acceleration = Vector3::zeros();
+    pad.walled = surface.locked();
     pad.stuck = !surface.locked() && v == Vector2::zeros();
     pad.first_contact.get_or_insert(t);
 }

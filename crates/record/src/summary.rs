@@ -16,9 +16,9 @@ pub struct EnergyReport {
     pub kinetic_j: f64,
     /// Change of the vehicle's potential energy since touchdown, J.
     pub potential_change_j: f64,
-    /// Energy of the gear's own masses, J: kinetic + potential of the footpads in contact (core),
-    /// or the change since touchdown of the kinetic plus potential energy of every gear link
-    /// (multibody engines).
+    /// Energy of the gear's own masses, J: kinetic + potential of the footpads in contact (core,
+    /// rigid footpads), its change since touchdown for every footpad (core, footpads with
+    /// inertia) or for every gear link (multibody engines).
     pub footpad_j: f64,
     /// Elastic energy stored in the honeycombs (recoverable), J.
     pub honeycomb_stored_j: f64,

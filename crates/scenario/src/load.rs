@@ -1323,6 +1323,7 @@ fn resolve(
             Some(ls) => Some(c.load_stroke("footpad.crush", ls, 4, &u)?),
             None => None,
         },
+        detached: file.footpad.detached,
     };
     let sf = &file.surface;
     let slope = c.finite("surface.slope", sf.slope)? * u.angle();
@@ -1355,6 +1356,17 @@ fn resolve(
             friction: friction[i],
         })
         .collect();
+    // A footpad with inertia leaves when its surface would have to pull: the report's
+    // stand-ins for the pressing force would make the surface pull or let go of a pressed
+    // footpad (docs/errata.md, "Footpads with inertia").
+    if footpad.detached == schema::Detached::Inertial
+        && sf.release != schema::ReleaseRule::GearForce
+    {
+        return Err(c.err(
+            "surface.release",
+            "expected \"gear_force\" with footpad.detached = \"inertial\": a footpad with mass leaves when its surface would have to pull",
+        ));
+    }
     let surface = model::Surface {
         slope,
         soil: mechanisms::soil(&c, sf, &footpad, &obstacle, &u)?,

@@ -203,6 +203,8 @@ pub struct Footpad {
     pub height: Option<f64>,
     /// Footpad crushing diagram against curbs (fig. 18); required with curbs.
     pub crush: Option<LoadStroke>,
+    /// How the footpad moves off the surface.
+    pub detached: schema::Detached,
 }
 
 /// Surface under one footpad.
@@ -210,7 +212,8 @@ pub struct Footpad {
 pub struct PadSurface {
     /// HOLE_n, m: the local plane is Z = −hole.
     pub hole: f64,
-    /// OBST_n, m: > 0 lateral lock up to this height above the plane; ≤ 0 sliding.
+    /// OBST_n, m: > 0 a wall this high holds the footpad laterally after contact (the
+    /// rigid footpad: while in contact); ≤ 0 sliding.
     pub obstacle: f64,
     /// U_n, sliding friction coefficient.
     pub friction: f64,

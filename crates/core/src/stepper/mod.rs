@@ -113,7 +113,7 @@ impl Schemes {
         let scratch = Scratch::new(legs, vehicle);
         match scheme {
             Scheme::Report => Schemes::Report(report::PredictorCorrector::new(scratch)),
-            Scheme::Rk4 => Schemes::Fixed(runge_kutta::Fixed::rk4(scratch)),
+            Scheme::Rk4 => Schemes::Fixed(runge_kutta::Fixed::rk4(scratch, legs)),
             Scheme::Dopri5 => {
                 Schemes::Adaptive(runge_kutta::Adaptive::dopri5(scratch, legs, dt_max))
             }
@@ -139,22 +139,64 @@ impl Schemes {
     }
 }
 
-/// `dt` (s) shortened so that an airborne footpad lands on its plane (docs/errata.md,
-/// "Eq. (25): VEL and first contacts — interpreted, plus one addition") and so that the end
-/// time is met.
+/// The step as a fraction of the period over 2π of a footpad's fastest mode on its gear, rad:
+/// ω·Δt ≤ 0.5 (docs/errata.md, "Eq. (25): VEL and first contacts"). The report's scheme damps
+/// an undamped mode by 3 % of its amplitude per period there (it is stable to ω·Δt = 2), the
+/// classical Runge–Kutta method by less than 0.1 %.
+pub(crate) const PAD_MODE_STEP: f64 = 0.5;
+
+/// `dt` (s) shortened so that a footpad off the surface lands on its plane (docs/errata.md,
+/// "Eq. (25): VEL and first contacts — interpreted, plus two additions"), that the modes of a
+/// footpad with inertia on its gear are resolved ([`PAD_MODE_STEP`]) and that the end time is
+/// met.
 pub(crate) fn limit_step(physics: &Physics, mut dt: f64) -> f64 {
     let it = &physics.integrator;
     let v = &physics.vehicle;
-    if it.contact_step_limit {
-        for (p, s) in physics.pads.iter().zip(&physics.surfaces) {
-            if p.state != ContactState::Contact {
-                let gap = v.point(&p.bp_attached).z - s.plane();
-                let approach = -v.point_velocity(&p.bp_attached).z;
-                if gap > 0.0 && approach > 0.0 && gap < approach * dt {
-                    dt = (gap / approach).max(it.dt_min);
-                }
+    for (i, (p, s)) in physics.pads.iter().zip(&physics.surfaces).enumerate() {
+        if p.state == ContactState::Contact {
+            continue;
+        }
+        // A footpad with inertia moves on its own; a rigid one with its attachment point.
+        let (height, rate) = if physics.inertial {
+            dt = dt.min(physics.pad_mode_step(i).max(it.dt_min));
+            (p.position.z, p.velocity.z)
+        } else {
+            (
+                v.point(&p.bp_attached).z,
+                v.point_velocity(&p.bp_attached).z,
+            )
+        };
+        if it.contact_step_limit {
+            let gap = height - s.plane();
+            let approach = -rate;
+            if gap > 0.0 && approach > 0.0 && gap < approach * dt {
+                dt = (gap / approach).max(it.dt_min);
             }
         }
     }
     dt.min(it.t_end - physics.t).max(f64::MIN_POSITIVE)
+}
+
+impl Physics {
+    /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
+    /// [`PAD_MODE_STEP`]/ω with ω² = (k_2P + k_31 + k_41)/PMASS, each strut's rate the slope of
+    /// the branch of its law it is on at the accepted state (the sum bounds the largest
+    /// eigenvalue of the footpad's stiffness Σ k_j·û_j·û_jᵀ, each strut's stroke moving at most
+    /// as fast as the footpad), s.
+    pub(crate) fn pad_mode_step(&self, i: usize) -> f64 {
+        let (g, memory) = (&self.gear[i], &self.memory[i]);
+        let secondary = &self.laws.secondary.honeycomb;
+        let k = self.laws.primary.branch(g.primary_stroke, memory.primary).1
+            + secondary
+                .branch(g.secondary_stroke[0], memory.secondary[0])
+                .1
+            + secondary
+                .branch(g.secondary_stroke[1], memory.secondary[1])
+                .1;
+        if k > 0.0 {
+            PAD_MODE_STEP * (self.footpad_mass / k).sqrt()
+        } else {
+            f64::INFINITY
+        }
+    }
 }

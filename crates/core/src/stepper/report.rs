@@ -46,7 +46,7 @@ fn step_size(physics: &Physics) -> f64 {
     let v = &physics.vehicle;
     let mut vel: f64 = 0.0;
     for p in &physics.pads {
-        let rel = if p.state == ContactState::Contact {
+        let rel = if physics.inertial || p.state == ContactState::Contact {
             p.velocity - v.velocity
         } else {
             v.t_bi * v.omega.cross(&p.bp_attached)
@@ -92,7 +92,13 @@ fn predict_correct(
     old: &VehicleState,
 ) -> Result<f64, RunError> {
     let slosh = physics.mechanisms.slosh.is_some();
-    // 3. predictor, c = 0 (eqs. 22-23)
+    // 3. predictor, c = 0 (eqs. 22-23); the footpads off the surface too (eqs. 16-18)
+    let inertial = physics.inertial;
+    for p in physics.pads.iter_mut() {
+        if inertial && p.state != ContactState::Contact {
+            (p.position, p.velocity) = predict(p.position, p.velocity, p.acceleration, dt);
+        }
+    }
     let mut pred = *old;
     (pred.position, pred.velocity) = predict(old.position, old.velocity, old.acceleration, dt);
     let (theta, theta_dot) = predict(old.theta, old.theta_dot, old.theta_ddot, dt);
@@ -105,7 +111,16 @@ fn predict_correct(
     let loads = physics.loads(physics.t + dt, &pred, &mut scratch.trial)?;
     physics.evaluations += 1;
     physics.accelerate(&mut pred, &loads)?;
-    // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
+    // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23), the footpads off the surface
+    // from their start with their accelerations at t_k and at the prediction
+    for i in 0..physics.pads.len() {
+        if inertial && physics.pads[i].state != ContactState::Contact {
+            let trial = physics.pad_acceleration(i, &pred, &scratch.trial[i]);
+            let (p0, v0) = physics.pad_start[i];
+            let pad = &mut physics.pads[i];
+            (pad.position, pad.velocity) = correct(p0, v0, pad.acceleration, trial, dt);
+        }
+    }
     let new = &mut scratch.new;
     *new = *old;
     (new.position, new.velocity) = correct(

@@ -7,8 +7,13 @@ use crate::integrator::{self, Ode, Tableau, DOPRI5, MAX_STAGES, RK4};
 use crate::ledger::{Power, Quadrature, StageWork};
 use crate::simulation::Physics;
 use crate::state::VehicleState;
-use crate::surface::Footpad;
+use crate::surface::{ContactState, Footpad};
+use nalgebra::Vector3;
 use touchdown_record::RunError;
+
+/// The rates of a footpad off the surface at each stage of a step: its velocity (m/s) and its
+/// acceleration (m/s², eqs. 16-18), per leg.
+type PadRates = Vec<[(Vector3<f64>, Vector3<f64>); MAX_STAGES]>;
 
 /// A Runge–Kutta method at a fixed step `integrator.dt_max` (shortened only to land a footpad
 /// or to end), with its own scratch space.
@@ -16,14 +21,16 @@ use touchdown_record::RunError;
 pub(crate) struct Fixed {
     tableau: &'static Tableau,
     scratch: Scratch,
+    pad_rates: PadRates,
 }
 
 impl Fixed {
     /// The classical fourth-order method working in `scratch`.
-    pub(crate) fn rk4(scratch: Scratch) -> Fixed {
+    pub(crate) fn rk4(scratch: Scratch, legs: usize) -> Fixed {
         Fixed {
             tableau: &RK4,
             scratch,
+            pad_rates: vec![[(Vector3::zeros(), Vector3::zeros()); MAX_STAGES]; legs],
         }
     }
 }
@@ -32,7 +39,13 @@ impl Stepper for Fixed {
     fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
         let dt = limit_step(physics, physics.integrator.dt_max);
         let pads = physics.advance_pads(dt, old);
-        let step = runge_kutta(physics, &mut self.scratch, dt, old, self.tableau)?;
+        let step = runge_kutta(
+            physics,
+            (&mut self.scratch, &mut self.pad_rates),
+            dt,
+            old,
+            self.tableau,
+        )?;
         Ok(Advance {
             dt,
             quadrature: step.quadrature,
@@ -50,6 +63,7 @@ impl Stepper for Fixed {
 #[derive(Debug, Clone)]
 pub(crate) struct Adaptive {
     scratch: Scratch,
+    pad_rates: PadRates,
     pads_saved: Vec<Footpad>,
     /// The next step, s.
     next_dt: f64,
@@ -64,6 +78,7 @@ impl Adaptive {
     pub(crate) fn dopri5(scratch: Scratch, legs: usize, dt: f64) -> Adaptive {
         Adaptive {
             scratch,
+            pad_rates: vec![[(Vector3::zeros(), Vector3::zeros()); MAX_STAGES]; legs],
             pads_saved: vec![Footpad::default(); legs],
             next_dt: dt,
             rejected: 0,
@@ -86,7 +101,8 @@ impl Stepper for Adaptive {
             let floor = dt <= dt_min * (1.0 + 1e-9);
             // A stage that takes a law out of its domain (a strut stretched past its bearings
             // by a step too long to see its footpad leave) rejects the step, above dt_min.
-            let step = match runge_kutta(physics, &mut self.scratch, dt, old, &DOPRI5) {
+            let space = (&mut self.scratch, &mut self.pad_rates);
+            let step = match runge_kutta(physics, space, dt, old, &DOPRI5) {
                 Ok(step) => step,
                 Err(_) if !floor => {
                     self.rejected += 1;
@@ -150,12 +166,13 @@ struct Step {
 
 /// One step of the Runge–Kutta method `tab` from the accepted state `old` of `physics` over
 /// `dt` (s), the sliding footpads already advanced; the new state is written into
-/// `scratch.new`. Each stage evaluates the forces at its own state into `scratch.trial`,
+/// `scratch.new`, the footpads off the surface advanced with the vehicle (their stage rates in
+/// `pad_rates`). Each stage evaluates the forces at its own state into `scratch.trial`,
 /// committing nothing. With a first-same-as-last method the last stage is the new state: it
 /// comes back evaluated, its forces in `scratch.trial`.
 fn runge_kutta(
     physics: &mut Physics,
-    scratch: &mut Scratch,
+    (scratch, pad_rates): (&mut Scratch, &mut PadRates),
     dt: f64,
     old: &VehicleState,
     tab: &Tableau,
@@ -164,6 +181,9 @@ fn runge_kutta(
     let y0 = old.ode();
     let mut k = [Ode::zeros(); MAX_STAGES];
     k[0] = old.rate(form);
+    for (rates, p) in pad_rates.iter_mut().zip(&physics.pads) {
+        rates[0] = (p.velocity, p.acceleration);
+    }
     let mut work = StageWork::default();
     work.add(
         tab.b[0] * dt,
@@ -180,17 +200,50 @@ fn runge_kutta(
             }
         }
         v.set_ode(&y, form);
+        for (n, rates) in pad_rates.iter().enumerate() {
+            if moves_freely(physics, n) {
+                (physics.pads[n].position, physics.pads[n].velocity) =
+                    pad_stage(physics.pad_start[n], rates, &tab.a[i], i, dt);
+            }
+        }
         let t = physics.t + tab.c[i] * dt;
         let loads = physics.loads_at(t, &v, tab.c[i], &mut scratch.trial)?;
         physics.evaluations += 1;
         physics.accelerate(&mut v, &loads)?;
         k[i] = v.rate(form);
+        for (n, rates) in pad_rates.iter_mut().enumerate() {
+            if moves_freely(physics, n) {
+                let a = physics.pad_acceleration(n, &v, &scratch.trial[n]);
+                rates[i] = (physics.pads[n].velocity, a);
+            }
+        }
         work.add(tab.b[i] * dt, &scratch.trial, loads.applied_power.applied);
         last_power = loads.applied_power;
     }
     let mut y1 = y0;
     for (b, ki) in tab.b.iter().zip(&k).take(tab.stages) {
         y1.add_scaled(dt * b, ki);
+    }
+    let mut pad_ratio: f64 = 0.0;
+    for (n, rates) in pad_rates.iter().enumerate() {
+        if !moves_freely(physics, n) {
+            continue;
+        }
+        let start = physics.pad_start[n];
+        let end = pad_stage(start, rates, &tab.b, tab.stages, dt);
+        (physics.pads[n].position, physics.pads[n].velocity) = end;
+        if let Some(e) = &tab.e {
+            let origin = (Vector3::zeros(), Vector3::zeros());
+            let error = pad_stage(origin, rates, e, tab.stages, dt);
+            let it = &physics.integrator;
+            let pairs = [(start.0, end.0, error.0), (start.1, end.1, error.1)];
+            for (a, b, e) in pairs {
+                for c in 0..3 {
+                    let scale = it.atol + it.rtol * a[c].abs().max(b[c].abs());
+                    pad_ratio = pad_ratio.max(e[c].abs() / scale);
+                }
+            }
+        }
     }
     let ratio = match &tab.e {
         Some(e) => {
@@ -199,7 +252,7 @@ fn runge_kutta(
                 error.add_scaled(dt * w, ki);
             }
             let it = &physics.integrator;
-            integrator::error_ratio(&y0, &y1, &error, it.rtol, it.atol)
+            integrator::error_ratio(&y0, &y1, &error, it.rtol, it.atol).max(pad_ratio)
         }
         None => 0.0,
     };
@@ -217,4 +270,29 @@ fn runge_kutta(
         quadrature: Quadrature::Stages { work, evaluated },
         ratio,
     })
+}
+
+/// Whether footpad `n` of `physics` is integrated with the vehicle: it has inertia and is off
+/// its surface.
+fn moves_freely(physics: &Physics, n: usize) -> bool {
+    physics.inertial && physics.pads[n].state != ContactState::Contact
+}
+
+/// A footpad's position and velocity (m, m/s) from `start` after `dt` (s) with the weights
+/// `w` of its first `stages` stage rates (a row of the tableau, its solution or its error).
+fn pad_stage(
+    start: (Vector3<f64>, Vector3<f64>),
+    rates: &[(Vector3<f64>, Vector3<f64>); MAX_STAGES],
+    w: &[f64; MAX_STAGES],
+    stages: usize,
+    dt: f64,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let (mut p, mut u) = start;
+    for (w, (rp, ru)) in w.iter().zip(rates).take(stages) {
+        if *w != 0.0 {
+            p += rp * (dt * w);
+            u += ru * (dt * w);
+        }
+    }
+    (p, u)
 }
