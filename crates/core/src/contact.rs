@@ -77,19 +77,7 @@ impl Physics {
             return Ok(false);
         }
         let vel = pad.velocity;
-        let v_normal = if soil { vel.z } else { 0.0 };
-        let mut xy = Vector2::new(pad.position.x, pad.position.y);
-        if let (Some(curbs), true) = (&self.mechanisms.curbs, pad.first_contact.is_some()) {
-            xy = curbs.landing(i, pad.touchdown_xy, xy, self.footpad_radius);
-        }
-        touch_down(
-            &mut self.pads[i],
-            &s,
-            xy,
-            Vector2::new(vel.x, vel.y),
-            v_normal,
-            self.t,
-        );
+        self.put_down(i, &pad.position, &vel);
         // Its gear on the plane after the impact: a rigid surface that would have to pull it
         // there at once takes the impact and lets it go (on soil it penetrates, and leaves by
         // the soil's rule).
@@ -107,6 +95,33 @@ impl Physics {
             };
         }
         Ok(true)
+    }
+
+    /// Puts footpad `i`, reaching its plane at `position` with velocity `velocity` (inertial,
+    /// m and m/s), into contact (text before eq. 86): against a curb's face if it lands again
+    /// inside a curb's crushed zone (`laws::curb::Curbs::landing`: it does not crush the curb
+    /// without work), with its normal velocity lost on the rigid surface and kept on soil,
+    /// where it penetrates (eq. 103).
+    pub(crate) fn put_down(&mut self, i: usize, position: &Vector3<f64>, velocity: &Vector3<f64>) {
+        let pad = self.pads[i];
+        let v_normal = if self.mechanisms.soil.is_some() {
+            velocity.z
+        } else {
+            0.0
+        };
+        let mut xy = Vector2::new(position.x, position.y);
+        if let (Some(curbs), true) = (&self.mechanisms.curbs, pad.first_contact.is_some()) {
+            xy = curbs.landing(i, pad.touchdown_xy, xy, self.footpad_radius);
+        }
+        let v_xy = Vector2::new(velocity.x, velocity.y);
+        touch_down(
+            &mut self.pads[i],
+            &self.surfaces[i],
+            xy,
+            v_xy,
+            v_normal,
+            self.t,
+        );
     }
 
     /// The force that keeps a footpad on its surface under the release rule, with the vehicle

@@ -9,8 +9,8 @@
 use crate::gear::{self, GearState};
 use crate::simulation::Physics;
 use crate::state::VehicleState;
-use crate::surface::{touch_down, ContactState};
-use nalgebra::{Vector2, Vector3};
+use crate::surface::ContactState;
+use nalgebra::Vector3;
 use touchdown_record::{Law, RunError};
 use touchdown_scenario::schema::Arrangement;
 
@@ -23,7 +23,6 @@ impl Physics {
     /// footpad changed state.
     pub(crate) fn rigid_contact(&mut self, i: usize) -> Result<bool, RunError> {
         let v = self.vehicle;
-        let soil = self.mechanisms.soil.is_some();
         let s = self.surfaces[i];
         match self.pads[i].state {
             ContactState::Free | ContactState::Detached => {
@@ -36,21 +35,7 @@ impl Physics {
                     return Ok(false);
                 }
                 let airborne = self.pads[i];
-                let v_normal = if soil { vel.z } else { 0.0 };
-                let mut xy = Vector2::new(tentative.x, tentative.y);
-                if let (Some(curbs), true) =
-                    (&self.mechanisms.curbs, airborne.first_contact.is_some())
-                {
-                    xy = curbs.landing(i, airborne.touchdown_xy, xy, self.footpad_radius);
-                }
-                touch_down(
-                    &mut self.pads[i],
-                    &s,
-                    xy,
-                    Vector2::new(vel.x, vel.y),
-                    v_normal,
-                    self.t,
-                );
+                self.put_down(i, &tentative, &vel);
                 // A (re)contact whose first evaluation would pull the footpad, load its
                 // primary's extension stop (a footpad put on its plane from just above it) or
                 // stretch its strut past its bearings is no contact.
