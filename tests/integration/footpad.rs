@@ -282,3 +282,29 @@ fn every_scheme_lands_the_bending_landing_and_its_asymmetric_variant() {
         }
     }
 }
+
+/// The report's scheme takes a free footpad's axial mode on its primary implicitly: a
+/// footpad hanging on an extension stop a hundred times stiffer does not shorten the step
+/// (the explicit schemes' bound, 0.5/ω of that mode, would be 10 times shorter) and the
+/// balance still closes.
+#[test]
+fn the_report_scheme_takes_the_footpads_stiff_axial_mode_implicitly() {
+    let steps = |extra: &str| {
+        let sc = inertial("table-i-1-2-1-vv7.toml", extra);
+        let summary = Simulation::new(&sc).unwrap().run(&mut ()).unwrap();
+        let e = &summary.energy;
+        assert!(
+            e.residual_j.abs() <= 1e-2 * e.scale(),
+            "{extra}: residual {} J of {} J",
+            e.residual_j,
+            e.scale()
+        );
+        summary.steps
+    };
+    let stiff = "[primary_strut.compression]\nstroke_out_rate = 87000000.0\n";
+    let (default, stiffer) = (steps(""), steps(stiff));
+    assert!(
+        (stiffer as f64) < 1.1 * default as f64,
+        "{stiffer} steps with the stiffer stop against {default}"
+    );
+}

@@ -150,8 +150,8 @@ impl Physics {
         pressing < -tol
     }
 
-    /// The acceleration of footpad `i` off the surface (eqs. 16-18): its gear's force on it
-    /// over its mass, plus gravity, with the vehicle at `v` and the gear in state `g`, m/s²;
+    /// The acceleration of footpad `i` off the surface (eqs. 16-18): its gear's and its curbs'
+    /// forces on it over its mass, plus gravity, with the vehicle at `v` and the gear in state `g`, m/s²;
     /// vertical only while its obstacle's wall holds it ([`Footpad::walled`]: the wall
     /// produces "a force equal and opposite to the strut forces resolved at the footpad").
     pub(crate) fn pad_acceleration(
@@ -160,8 +160,10 @@ impl Physics {
         v: &VehicleState,
         g: &GearState,
     ) -> Vector3<f64> {
-        let a = v.t_bi * g.fp / self.footpad_mass + self.gravity;
-        if self.pads[i].walled {
+        let pad = &self.pads[i];
+        let curbs = Vector3::new(pad.curb_xy.x, pad.curb_xy.y, 0.0);
+        let a = (v.t_bi * g.fp + curbs) / self.footpad_mass + self.gravity;
+        if pad.walled {
             Vector3::new(0.0, 0.0, a.z)
         } else {
             a
@@ -210,7 +212,11 @@ impl Physics {
         let mut w = PadWork::default();
         for i in 0..self.pads.len() {
             self.pad_start[i] = (self.pads[i].position, self.pads[i].velocity);
-            if self.pads[i].state != ContactState::Contact || self.surfaces[i].locked() {
+            if self.pads[i].state != ContactState::Contact {
+                self.pads[i].curb_xy = self.curbs_off_surface(i);
+                continue;
+            }
+            if self.surfaces[i].locked() {
                 continue;
             }
             let f = self.sliding_forces(i, old);
@@ -237,6 +243,26 @@ impl Physics {
                 - m * self.gravity.dot(&(p1 - p0));
         }
         w
+    }
+
+    /// The in-plane force of its curbs on footpad `i` with inertia off the surface, after its
+    /// first contact, with its forces frozen at the accepted state (eqs. 91-96), N: a curb
+    /// stands on the surface beside the footpad's first contact point, and a footpad that flies
+    /// into it crushes it as one that slides into it does. Zero for a rigid footpad, which does
+    /// not move on its own off the surface.
+    fn curbs_off_surface(&mut self, i: usize) -> Vector2<f64> {
+        let pad = &self.pads[i];
+        let Some(curbs) = &self.mechanisms.curbs else {
+            return Vector2::zeros();
+        };
+        if !self.inertial || pad.first_contact.is_none() {
+            return Vector2::zeros();
+        }
+        let xy = Vector2::new(pad.position.x, pad.position.y);
+        let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
+        let f = curbs.force(i, pad.touchdown_xy, xy, v_xy, self.footpad_radius);
+        self.mechanisms.tick(Mechanism::Curbs);
+        f
     }
 
     /// Whether a footpad's contact changes within the step just taken to `v` (the gear's

@@ -345,6 +345,15 @@ impl Physics {
             trial,
             spare,
         } = scratch;
+        // The curbs' work on the footpads with inertia off the surface, their force frozen over
+        // the step (the footpads' energy change is in the footpad energy).
+        let mut curbs_off_surface = 0.0;
+        for (p, (p0, _)) in self.pads.iter().zip(&self.pad_start) {
+            if p.state != ContactState::Contact {
+                curbs_off_surface += p.curb_xy.dot(&(p.position - p0).xy());
+            }
+        }
+        self.ledger.mechanisms -= curbs_off_surface;
         // 6. evaluate (unless the last stage did), contact logic, re-evaluate on a change
         self.t += dt;
         match quadrature {
@@ -387,7 +396,10 @@ impl Physics {
             self.laws
                 .commit(g.primary_stroke, g.secondary_stroke, &mut self.memory[i]);
             self.bending_lag[i] = g.point1_deflection;
-            if let (Some(curbs), ContactState::Contact) = (&mut self.mechanisms.curbs, pad.state) {
+            // A curb is crushed by a footpad on the surface, and by one with inertia off it.
+            let crushing = pad.state == ContactState::Contact
+                || (self.inertial && pad.first_contact.is_some());
+            if let (Some(curbs), true) = (&mut self.mechanisms.curbs, crushing) {
                 let xy = Vector2::new(pad.position.x, pad.position.y);
                 curbs.commit(i, pad.touchdown_xy, xy, self.footpad_radius);
             }

@@ -59,6 +59,9 @@ pub struct Footpad {
     /// (XPI, YPI), inertial X-Y at the first touchdown, m (recorded the first time only:
     /// docs/errata.md, "Modelling choices the report leaves open"; curbs (eq. 86) and the soil's lateral displacement SP (eq. 102) refer to it).
     pub touchdown_xy: Vector2<f64>,
+    /// The in-plane force of its curbs on a footpad with inertia off the surface, frozen over
+    /// a step as on the surface (eq. 96 corrected), N.
+    pub curb_xy: Vector2<f64>,
     /// Held laterally by its obstacle's wall (OBST_n > 0): from its landing until it rises above
     /// the wall, on the surface or off it (text after fig. 17: "it cannot move laterally until
     /// it rises above the wall").

@@ -186,7 +186,12 @@ impl Physics {
     pub(crate) fn pad_mode_step(&self, i: usize) -> f64 {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
         let secondary = &self.laws.secondary.honeycomb;
-        let k = self.laws.primary.branch(g.primary_stroke, memory.primary).1
+        // The report's scheme takes the primary's axial mode implicitly (report::correct_footpad).
+        let primary = match self.integrator.scheme {
+            Scheme::Report => 0.0,
+            _ => self.laws.primary.branch(g.primary_stroke, memory.primary).1,
+        };
+        let k = primary
             + secondary
                 .branch(g.secondary_stroke[0], memory.secondary[0])
                 .1

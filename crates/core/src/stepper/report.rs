@@ -3,10 +3,12 @@
 //! and its step-size rule, eq. (25).
 
 use super::{limit_step, Advance, Scratch, Stepper};
+use crate::gear::GearState;
 use crate::ledger::Quadrature;
 use crate::simulation::Physics;
 use crate::state::VehicleState;
 use crate::surface::ContactState;
+use nalgebra::Vector3;
 use std::ops::{Add, Div, Mul};
 use touchdown_record::RunError;
 
@@ -108,19 +110,34 @@ fn predict_correct(
             predict(old.slosh_q, old.slosh_q_dot, old.slosh_q_ddot, dt);
     }
     // 4. trial evaluation
-    let loads = physics.loads(physics.t + dt, &pred, &mut scratch.trial)?;
+    let mut loads = physics.loads(physics.t + dt, &pred, &mut scratch.trial)?;
     physics.evaluations += 1;
-    physics.accelerate(&mut pred, &loads)?;
-    // 5. corrector: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23), the footpads off the surface
-    // from their start with their accelerations at t_k and at the prediction
+    // 5. corrector. The footpads off the surface first (`correct_footpad`): the change of their
+    // primary's force the implicit correction finds is the trial's, on the footpad, on the
+    // vehicle and in the ledger alike.
     for i in 0..physics.pads.len() {
         if inertial && physics.pads[i].state != ContactState::Contact {
-            let trial = physics.pad_acceleration(i, &pred, &scratch.trial[i]);
-            let (p0, v0) = physics.pad_start[i];
+            let c = correct_footpad(
+                physics,
+                i,
+                &pred,
+                (&scratch.previous[i], &scratch.trial[i]),
+                dt,
+            );
+            let bp = pred.t_bi.transpose() * (physics.pads[i].position - pred.position);
+            let on_pad = c.axis * c.force;
+            let slot = &mut scratch.trial[i];
+            slot.fcp += c.force;
+            slot.f2p += c.force;
+            slot.fp += on_pad;
+            loads.torque += bp.cross(&(-on_pad)); // eq. (66)
+            loads.force -= pred.t_bi * on_pad; // eqs. (67)-(68)
             let pad = &mut physics.pads[i];
-            (pad.position, pad.velocity) = correct(p0, v0, pad.acceleration, trial, dt);
+            (pad.position, pad.velocity) = (c.position, c.velocity);
         }
     }
+    physics.accelerate(&mut pred, &loads)?;
+    // the vehicle: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
     let new = &mut scratch.new;
     *new = *old;
     (new.position, new.velocity) = correct(
@@ -148,4 +165,65 @@ fn predict_correct(
         );
     }
     Ok(loads.applied_power.applied)
+}
+
+/// A footpad's corrected state and the change of its primary's force the correction found.
+struct Corrected {
+    /// Position, m, and velocity, m/s, inertial.
+    position: Vector3<f64>,
+    velocity: Vector3<f64>,
+    /// The primary strut's axis V̂2P, body axes.
+    axis: Vector3<f64>,
+    /// The change of its force FCP over the trial's, N (compression positive).
+    force: f64,
+}
+
+/// The corrector of footpad `i` off the surface over `dt` (s), the vehicle predicted at `pred`
+/// and the footpad's gear at the start of the step and at the prediction in `gear`: the
+/// average-acceleration rule x₁ = x_k + u_k·Δt + (a_k + a₁)·Δt²/4, u₁ = u_k + (a_k + a₁)·Δt/2,
+/// with a₁ = a* + K·(x₁ − x*) linearised about the prediction x* along the primary strut:
+/// K = −(k/PMASS)·ŵŵᵀ, ŵ the strut's axis as the footpad can move (a wall leaves its vertical
+/// part), k the secant of the strut's law over the step bounded by its branch's slope (no
+/// spring in its free play). Stable for any stiffness of that law (docs/errata.md, "Footpads
+/// with inertia", "Numerics").
+fn correct_footpad(
+    physics: &Physics,
+    i: usize,
+    pred: &VehicleState,
+    (start, trial): (&GearState, &GearState),
+    dt: f64,
+) -> Corrected {
+    let pad = &physics.pads[i];
+    let m = physics.footpad_mass;
+    let u0 = physics.pad_start[i].1;
+    let a0 = pad.acceleration;
+    let a_star = physics.pad_acceleration(i, pred, trial);
+    let bp = pred.t_bi.transpose() * (pad.position - pred.position);
+    let axis = (bp - physics.legs[i].b2).normalize();
+    let inertial_axis = pred.t_bi * axis;
+    let w = if pad.walled {
+        Vector3::new(0.0, 0.0, inertial_axis.z)
+    } else {
+        inertial_axis
+    };
+    // The law's secant over the step (regularised within 1e-9 of the strut's length, where a
+    // stroke change is rounding), at most its stiffest slope: no state decides it at rounding
+    // level, and a strut in its free play or on a plateau is no spring.
+    let stiffest = physics.laws.primary.honeycomb.stop.unloading_rate();
+    let dc = trial.primary_stroke - start.primary_stroke;
+    let eps = 1e-9 * physics.legs[i].l2p;
+    let k = ((trial.fcp - start.fcp) * dc / (dc * dc + eps * eps)).clamp(0.0, stiffest);
+    // (I + α·ŵŵᵀ)·δ = (a* − a_k)·Δt²/4 with α = k·Δt²/(4·PMASS), by Sherman–Morrison
+    let alpha = k * dt * dt / (4.0 * m);
+    let d0 = (a_star - a0) * (0.25 * dt * dt);
+    let delta = d0 - w * (alpha * w.dot(&d0) / (1.0 + alpha * w.norm_squared()));
+    // the compression stroke changes by −ŵ·δ: FCP by −k·ŵ·δ
+    let force = -k * w.dot(&delta);
+    let a1 = a_star + w * (force / m);
+    Corrected {
+        position: pad.position + delta,
+        velocity: u0 + (a0 + a1) * (0.5 * dt),
+        axis,
+        force,
+    }
 }
