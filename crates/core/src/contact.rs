@@ -2,7 +2,7 @@
 //! docs/errata.md, "Footpads with inertia (eqs. 16-19, 85-100) — extended"): a footpad with
 //! inertia lands as a plastic impact of its own mass, stays while the surface pushes it and
 //! leaves when the surface would have to pull (the report's rigid detached footpad is in
-//! [`crate::release`]); the frozen in-plane forces on a sliding footpad
+//! `core::release`); the frozen in-plane forces on a sliding footpad
 //! (eqs. 85, 96-99 corrected) and its advance over a step (eq. 97, soil eqs. 101-104, curbs
 //! eqs. 86-95), and the location of landings by the adaptive scheme.
 

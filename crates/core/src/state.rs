@@ -1,5 +1,5 @@
 //! The rigid vehicle's state and its kinematics: position, velocity and acceleration of the
-//! centre of mass (eqs. 10-12), the attitude as Euler angles (eqs. 5-9, [`crate::kinematics`]) or
+//! centre of mass (eqs. 10-12), the attitude as Euler angles (eqs. 5-9, `touchdown_frames`) or
 //! a unit quaternion, the body rates (eqs. 13-15) and the slosh amplitude (eq. 109); and its
 //! packing into the integrated part [`Ode`] a Runge–Kutta stage advances.
 

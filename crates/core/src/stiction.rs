@@ -4,10 +4,14 @@
 //! report's kinetic friction μB·(F1 + F2)·sgn(ċ) applies. Off the surface the stroke is a
 //! degree of freedom of the footpad's own mass: a kinetic law whose sign flips with ċ would make
 //! it chatter about ċ = 0 at the step rate. There the friction is what holds the stroke (the
-//! force that brings the stroking to rest over the footpad's fastest period over 2π, given every
-//! other force on the footpad and the vehicle's acceleration), as long as that is within the
-//! bound μB·(F1 + F2); beyond it, the bound, opposing the stroking.
+//! force that brings the stroking to rest over [`relaxation`], given every other force on the
+//! footpad and the vehicle's acceleration), as long as that is within the bound μB·(F1 + F2);
+//! beyond it, the bound, opposing the stroking.
 
+use crate::gear::GearState;
+use crate::simulation::Physics;
+use crate::state::VehicleState;
+use nalgebra::Vector3;
 use touchdown_laws::GearLaws;
 
 /// The time over which the bearing friction brings a footpad's stroking to rest off the
@@ -20,11 +24,6 @@ pub(crate) fn relaxation(laws: &GearLaws, footpad_mass: f64) -> f64 {
         + 2.0 * s.tension.backoff_rate.max(s.compression.backoff_rate);
     (footpad_mass / k).sqrt()
 }
-
-use crate::gear::GearState;
-use crate::simulation::Physics;
-use crate::state::VehicleState;
-use nalgebra::Vector3;
 
 /// A footpad off the surface whose bearing friction is to be set once the vehicle's
 /// acceleration is known: its leg, its body-frame position BP (m) and velocity relative to the

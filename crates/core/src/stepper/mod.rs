@@ -182,11 +182,11 @@ impl Physics {
     /// [`PAD_MODE_STEP`]/ω with ω² = (k_2P + k_31 + k_41)/PMASS, each strut's rate the slope of
     /// the branch of its law it is on at the accepted state (the sum bounds the largest
     /// eigenvalue of the footpad's stiffness Σ k_j·û_j·û_jᵀ, each strut's stroke moving at most
-    /// as fast as the footpad), s.
+    /// as fast as the footpad), s. The report's scheme leaves k_2P out: it takes that axial mode
+    /// implicitly ([`report`]'s footpad corrector).
     pub(crate) fn pad_mode_step(&self, i: usize) -> f64 {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
         let secondary = &self.laws.secondary.honeycomb;
-        // The report's scheme takes the primary's axial mode implicitly (report::correct_footpad).
         let primary = match self.integrator.scheme {
             Scheme::Report => 0.0,
             _ => self.laws.primary.branch(g.primary_stroke, memory.primary).1,
