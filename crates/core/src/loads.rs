@@ -85,12 +85,12 @@ impl Physics {
             if free && friction {
                 // Off the surface the bearing friction is set below, once the vehicle's
                 // acceleration without it is known (crate::stiction).
-                let e = (bp - self.legs[i].b2).normalize();
-                slot.f2p -= slot.fbr;
-                slot.fp -= e * slot.fbr;
-                slot.fbr = 0.0;
                 let bp_dot = v.t_bi.transpose() * (velocity - v.velocity) - v.omega.cross(&bp);
-                held.push(Held { leg: i, bp, bp_dot });
+                let h = Held::new(i, bp, bp_dot, &self.legs[i].b2);
+                slot.f2p -= slot.fbr;
+                slot.fp -= h.axis * slot.fbr;
+                slot.fbr = 0.0;
+                held.push(h);
             }
             torque += bp.cross(&(-slot.fp)); // eq. (66)
             force -= v.t_bi * slot.fp; // eqs. (67)-(68)
@@ -117,7 +117,7 @@ impl Physics {
                     .map_err(|e| {
                         self.diverged(v, e.to_string(), Law::BearingFriction, Some(h.leg))
                     })?;
-                let on_pad = (h.bp - self.legs[h.leg].b2).normalize() * fbr;
+                let on_pad = h.axis * fbr;
                 slot.fbr = fbr;
                 slot.f2p += fbr;
                 slot.fp += on_pad;

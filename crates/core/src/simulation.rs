@@ -347,13 +347,15 @@ impl Physics {
         } = scratch;
         // The curbs' work on the footpads with inertia off the surface, their force frozen over
         // the step (the footpads' energy change is in the footpad energy).
-        let mut curbs_off_surface = 0.0;
-        for (p, (p0, _)) in self.pads.iter().zip(&self.pad_start) {
-            if p.state != ContactState::Contact {
-                curbs_off_surface += p.curb_xy.dot(&(p.position - p0).xy());
+        if self.inertial && self.mechanisms.curbs.is_some() {
+            let mut curbs_off_surface = 0.0;
+            for (p, (p0, _)) in self.pads.iter().zip(&self.pad_start) {
+                if p.state != ContactState::Contact {
+                    curbs_off_surface += p.curb_xy.dot(&(p.position - p0).xy());
+                }
             }
+            self.ledger.mechanisms -= curbs_off_surface;
         }
-        self.ledger.mechanisms -= curbs_off_surface;
         // 6. evaluate (unless the last stage did), contact logic, re-evaluate on a change
         self.t += dt;
         match quadrature {

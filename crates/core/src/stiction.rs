@@ -27,12 +27,35 @@ pub(crate) fn relaxation(laws: &GearLaws, footpad_mass: f64) -> f64 {
 
 /// A footpad off the surface whose bearing friction is to be set once the vehicle's
 /// acceleration is known: its leg, its body-frame position BP (m) and velocity relative to the
-/// body (m/s).
+/// body (m/s), and its primary strut's axis V̂2P and length |BP − B2| (m).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Held {
     pub(crate) leg: usize,
     pub(crate) bp: Vector3<f64>,
     pub(crate) bp_dot: Vector3<f64>,
+    pub(crate) axis: Vector3<f64>,
+    pub(crate) length: f64,
+}
+
+impl Held {
+    /// Footpad `leg` at BP `bp` moving at `bp_dot` relative to the body (body axes, m and m/s),
+    /// its primary's trunnion at `b2` (m).
+    pub(crate) fn new(
+        leg: usize,
+        bp: Vector3<f64>,
+        bp_dot: Vector3<f64>,
+        b2: &Vector3<f64>,
+    ) -> Held {
+        let strut = bp - b2;
+        let length = strut.norm();
+        Held {
+            leg,
+            bp,
+            bp_dot,
+            axis: strut / length,
+            length,
+        }
+    }
 }
 
 impl Physics {
@@ -55,11 +78,8 @@ impl Physics {
         if bound == 0.0 {
             return Ok(0.0);
         }
-        let leg = &self.legs[h.leg];
         let (bp, bp_dot, w) = (h.bp, h.bp_dot, v.omega);
-        let axis = bp - leg.b2;
-        let len = axis.norm();
-        let e = axis / len;
+        let (e, len) = (h.axis, h.length);
         let c_dot = -e.dot(&bp_dot);
         let across = bp_dot - e * e.dot(&bp_dot);
         // The footpad's inertial acceleration per unit of FBR along T_BI·ê, and without it.
