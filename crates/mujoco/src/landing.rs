@@ -526,6 +526,9 @@ fn settings(sc: &Scenario, mujoco_version: &str) -> serde_json::Map<String, serd
         "obstacle_lock_friction".into(),
         crate::mjcf::LOCK_FRICTION.into(),
     );
+    for (name, value) in touchdown_multibody::CONTACT_FLAG_SETTINGS {
+        m.insert(name.into(), value.into());
+    }
     m.insert(
         "outer_cylinder_mass_kg".into(),
         (l.outer_cylinder_mass_ratio * sc.footpad.mass).into(),

@@ -26,13 +26,57 @@ use touchdown_record::{
 use touchdown_scenario::model::{Leg, Mechanism, PadSurface, Stability};
 use touchdown_scenario::{Scenario, ScenarioError};
 
+/// How long a footpad stays in contact after its last pushing normal impulse, s: longer than
+/// the engines' contact rebounds between steps (a few steps of 2e-5 s), shorter than the
+/// footpad's modes on its gear (3.6-9.3 ms on the 1/6-scale model). See
+/// [`PadContact::update`].
+pub const CONTACT_HOLD_S: f64 = 1.0e-3;
+
+/// How far above its plane a footpad may hop and still count as in contact, m: the engines'
+/// footpads rebound off their compliant contacts by 0.01-1 mm while their gear presses them
+/// (docs/engines.md, "The contact flag"). See [`PadContact::update`].
+pub const CONTACT_CLEARANCE_M: f64 = 1.0e-3;
+
+/// The contact flag's rule as the summaries' `engine_settings` state it: names (with units)
+/// and values of [`CONTACT_HOLD_S`] and [`CONTACT_CLEARANCE_M`].
+pub const CONTACT_FLAG_SETTINGS: [(&str, f64); 2] = [
+    ("contact_hold_s", CONTACT_HOLD_S),
+    ("contact_clearance_m", CONTACT_CLEARANCE_M),
+];
+
 /// Contact state of one footpad.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PadContact {
-    /// Bearing on its surface now.
+    /// Bearing on its surface now, by the rule of [`PadContact::update`].
     pub in_contact: bool,
     /// Time of the first contact, s.
     pub first_contact: Option<f64>,
+    /// Time of the last step with a pushing normal impulse, s.
+    last_push: Option<f64>,
+}
+
+impl PadContact {
+    /// Updates the flag at the end of a step `dt` s long ending at time `t` (s), on which the
+    /// footpad received a pushing normal impulse (`pushed`) and stands `clearance` (m) above its
+    /// plane. A footpad is in contact from its first step with a pushing impulse until it has
+    /// received none for [`CONTACT_HOLD_S`] and stands more than [`CONTACT_CLEARANCE_M`] above
+    /// its plane: a footpad that rebounds off its compliant contact between steps, or hops a
+    /// fraction of a millimetre while its gear presses it, stays down; one that its gear
+    /// lifts clear leaves. (The step's half-length absorbs the rounding of `t`.)
+    pub fn update(&mut self, pushed: bool, t: f64, dt: f64, clearance: f64) {
+        if pushed {
+            self.in_contact = true;
+            self.last_push = Some(t);
+            if self.first_contact.is_none() {
+                self.first_contact = Some(t);
+            }
+        } else if let Some(last) = self.last_push {
+            let quiet = t - last >= CONTACT_HOLD_S - 0.5 * dt;
+            if quiet && clearance > CONTACT_CLEARANCE_M {
+                self.in_contact = false;
+            }
+        }
+    }
 }
 
 /// The vehicle's state as the bookkeeping reads it (inertial frame = the surface frame).
@@ -267,7 +311,7 @@ impl GearBook {
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<EnergyReport, Fault> {
         for i in 0..self.legs.len() {
-            self.book_contact(i, now.t);
+            self.book_contact(i, now.t, dt);
         }
         self.book_struts();
         self.book_applied(before, now.vehicle, dt);
@@ -317,8 +361,8 @@ impl GearBook {
     /// Books footpad `i`'s contact over the step ending at time `t` (s), as `pad_steps[i]`
     /// holds it: the normal part of its work (and a locked footpad's lateral part) into the
     /// contact-event account, sliding friction into the sliding account; its penetration; whether
-    /// it bears on its surface (touching, with a pushing normal impulse).
-    fn book_contact(&mut self, i: usize, t: f64) {
+    /// it is in contact ([`PadContact::update`]); the step was `dt` s long.
+    fn book_contact(&mut self, i: usize, t: f64, dt: f64) {
         let PadStep {
             impulse,
             work,
@@ -334,10 +378,11 @@ impl GearBook {
             self.ledger.sliding -= lateral_work;
         }
         self.max_penetration = self.max_penetration.max(depth);
+        let clearance = self.kin[i].footpad.z - self.surfaces[i].plane();
         let c = &mut self.contacts[i];
-        c.in_contact = touching && impulse.z > 0.0;
-        if c.in_contact && c.first_contact.is_none() {
-            c.first_contact = Some(t);
+        let first = c.first_contact.is_none();
+        c.update(touching && impulse.z > 0.0, t, dt, clearance);
+        if first && c.first_contact.is_some() {
             self.touchdown_xy[i] = self.kin[i].footpad.xy();
         }
     }
@@ -604,5 +649,63 @@ impl GearBook {
         out.stability_distance
             .copy_from_slice(self.stability.distances());
         out.energy = energy;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DT: f64 = 2.0e-5;
+
+    /// Steps `contact` from `t0` (s) for `n` steps of `DT` with the same `pushed` and
+    /// `clearance` (m); returns the time reached.
+    fn steps(contact: &mut PadContact, t0: f64, n: usize, pushed: bool, clearance: f64) -> f64 {
+        let mut t = t0;
+        for _ in 0..n {
+            t += DT;
+            contact.update(pushed, t, DT, clearance);
+        }
+        t
+    }
+
+    #[test]
+    fn a_rebound_between_steps_keeps_the_footpad_in_contact() {
+        let mut c = PadContact::default();
+        let mut t = 0.0;
+        for _ in 0..100 {
+            t = steps(&mut c, t, 1, true, 0.0);
+            t = steps(&mut c, t, 1, false, 5.0e-5);
+            assert!(c.in_contact);
+        }
+        assert_eq!(c.first_contact, Some(DT));
+    }
+
+    #[test]
+    fn a_footpad_lifted_clear_leaves_after_the_hold() {
+        let mut c = PadContact::default();
+        let t = steps(&mut c, 0.0, 10, true, 0.0);
+        // Lifted 2 mm: in contact through the hold, out after it.
+        let hold = (CONTACT_HOLD_S / DT).round() as usize;
+        let t = steps(&mut c, t, hold - 1, false, 2.0e-3);
+        assert!(c.in_contact);
+        steps(&mut c, t, 1, false, 2.0e-3);
+        assert!(!c.in_contact);
+    }
+
+    #[test]
+    fn a_footpad_hovering_within_the_clearance_stays_in_contact() {
+        let mut c = PadContact::default();
+        let t = steps(&mut c, 0.0, 10, true, 0.0);
+        steps(&mut c, t, 1000, false, 0.5 * CONTACT_CLEARANCE_M);
+        assert!(c.in_contact);
+    }
+
+    #[test]
+    fn a_footpad_that_never_pushed_is_not_in_contact() {
+        let mut c = PadContact::default();
+        steps(&mut c, 0.0, 10, false, 0.0);
+        assert!(!c.in_contact);
+        assert_eq!(c.first_contact, None);
     }
 }

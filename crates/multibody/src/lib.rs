@@ -14,5 +14,7 @@ pub mod capabilities;
 pub mod strut;
 
 pub use applied::VehicleLoads;
-pub use book::{BodyEnergy, Fault, GearBook, PadContact, PadStep, Reading, VehicleState};
+pub use book::{
+    BodyEnergy, Fault, GearBook, PadContact, PadStep, Reading, VehicleState, CONTACT_FLAG_SETTINGS,
+};
 pub use strut::{check_explicit_timestep, strut_forces, StrutForces, StrutKinematics};

@@ -369,6 +369,9 @@ fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde
         "massless two-force members".into(),
     );
     m.insert("obstacle_lock_friction".into(), LOCK_FRICTION.into());
+    for (name, value) in touchdown_multibody::CONTACT_FLAG_SETTINGS {
+        m.insert(name.into(), value.into());
+    }
     m.insert(
         "outer_cylinder_mass_kg".into(),
         masses.outer_cylinder.into(),
