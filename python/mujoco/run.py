@@ -14,7 +14,7 @@ model with the pinned `mujoco` package and steps it:
     advance    (Rust) book the last step, commit the honeycombs, evaluate the laws, write
                ctrl and the stroke joint's dry friction (bearing friction + plateau),
                and the engine and RCS loads on the vehicle (qfrc_applied),
-               the curbs' force on the footpads (xfrc_applied)
+               the curbs' and obstacle walls' force on the footpads (xfrc_applied)
     mj_step2   forces, constraints, integration
 
 Options:

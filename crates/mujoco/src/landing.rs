@@ -11,8 +11,8 @@
 //! 3. evaluate the laws at state n with the committed memories, check for divergence, update the
 //!    stability criteria, the extremes and the history;
 //! 4. unless the run has ended, write the forces for the step n → n+1: the engine and RCS loads
-//!    on the vehicle (`qfrc_applied`, if the scene has them), the curbs' force on the footpads
-//!    (`xfrc_applied`, if the scene has curbs), the explicit primary
+//!    on the vehicle (`qfrc_applied`, if the scene has them), the curbs' and obstacle walls'
+//!    force on the footpads (`xfrc_applied`, if the scene has either), the explicit primary
 //!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
 //!    joint's dry friction `frictionloss`: the bearing bound plus, while the honeycomb crushes
 //!    on a plateau, the crush load (a bound that stops the stroke but never drives it; it is
@@ -119,7 +119,8 @@ pub struct MjArrays<'a> {
     /// `qfrc_applied` (nv), written: the engine and RCS loads on the vehicle's free joint
     /// (force N, world axes; torque N·m, body axes); the gear's entries stay 0.
     pub qfrc_applied: &'a mut [f64],
-    /// `xfrc_applied` (nbody × 6), written: the curbs' force on each footpad body at its centre
+    /// `xfrc_applied` (nbody × 6), written: the curbs' and obstacle walls' force on each footpad
+    /// body at its centre
     /// of mass BP (force N, then torque N·m, world axes); the other bodies' entries stay 0.
     pub xfrc_applied: &'a mut [f64],
 }
@@ -421,11 +422,12 @@ impl MujocoLanding {
             mj.qfrc_applied[..3].copy_from_slice(a.force.as_slice());
             mj.qfrc_applied[3..6].copy_from_slice(torque.as_slice());
         }
-        if self.book.curbs.is_some() {
-            // eqs. (94)-(95): the curbs' force on each footpad body, at BP (its centre of mass).
-            for (g, f) in self.index.iter().zip(&self.book.curb_forces) {
+        if self.book.loads_footpads() {
+            // eqs. (94)-(95) and the obstacle walls: the force on each footpad body, at BP (its
+            // centre of mass).
+            for (i, g) in self.index.iter().enumerate() {
                 let k = 6 * g.footpad as usize;
-                mj.xfrc_applied[k..k + 3].copy_from_slice(f.as_slice());
+                mj.xfrc_applied[k..k + 3].copy_from_slice(self.book.pad_force(i).as_slice());
             }
         }
     }

@@ -7,7 +7,8 @@
 //!
 //! An engine, with `book: GearBook`, at touchdown: reads its kinematics into `book.kin` and calls
 //! [`GearBook::start_landing`]. Then each step: applies `book.forces` to its joints,
-//! `book.applied` to its vehicle and `book.curb_forces` to its footpads (its own way); calls
+//! `book.applied` to its vehicle and, if [`GearBook::loads_footpads`], [`GearBook::pad_force`]
+//! to its footpads (its own way); calls
 //! [`GearBook::begin_step`]; steps; reads the new kinematics into `book.kin` and each footpad's
 //! contact over the step into `book.pad_steps`; and calls [`GearBook::finish_step`], which books
 //! the step in one order for every engine: the contacts, the struts' work and the honeycomb
@@ -16,7 +17,8 @@
 //! the landing goes on).
 
 use crate::applied::VehicleLoads;
-use crate::strut::{strut_forces, StrutForces, StrutKinematics};
+use crate::strut::{stiffest_rate, strut_forces, StrutForces, StrutKinematics};
+use crate::wall::ObstacleWall;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{Curbs, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
@@ -199,7 +201,11 @@ pub struct GearBook {
     /// The curbs with their footpad crushing and its committed memory (nothing without them).
     pub curbs: Option<Curbs>,
     /// The curbs' force on each footpad over the current step, N, inertial axes (z = 0).
-    pub curb_forces: Vec<Vector3<f64>>,
+    curb_forces: Vec<Vector3<f64>>,
+    /// Each locked footpad's obstacle wall (none where OBST ≤ 0).
+    walls: Vec<Option<ObstacleWall>>,
+    /// The walls' force on each footpad over the current step, N, inertial axes (z = 0).
+    wall_forces: Vec<Vector3<f64>>,
     /// Work exchanged with each mechanism.
     pub ledger: EnergyLedger,
     /// Deepest footpad penetration into its plane so far, m.
@@ -230,10 +236,18 @@ impl GearBook {
     pub fn new(sc: &Scenario) -> Result<GearBook, ScenarioError> {
         let n = sc.legs.len();
         let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
+        let laws = GearLaws::from_scenario(sc)?;
+        let primary_rate = stiffest_rate(&laws.primary.honeycomb);
+        let walls = (sc.surface.pads.iter())
+            .map(|p| {
+                p.locked()
+                    .then(|| ObstacleWall::new(p.obstacle, sc.footpad.mass, primary_rate))
+            })
+            .collect();
         Ok(GearBook {
             legs: sc.legs.clone(),
             surfaces: sc.surface.pads.clone(),
-            laws: GearLaws::from_scenario(sc)?,
+            laws,
             memory: vec![GearMemory::default(); n],
             kin: vec![StrutKinematics::default(); n],
             previous: vec![StrutKinematics::default(); n],
@@ -243,6 +257,8 @@ impl GearBook {
             applied: VehicleLoads::new(sc)?,
             curbs: touchdown_laws::scene::curbs_from_scenario(sc)?,
             curb_forces: vec![Vector3::zeros(); n],
+            walls,
+            wall_forces: vec![Vector3::zeros(); n],
             ledger: EnergyLedger::default(),
             max_penetration: 0.0,
             stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
@@ -262,6 +278,18 @@ impl GearBook {
     /// Gravity in the inertial frame, m/s².
     pub fn gravity(&self) -> Vector3<f64> {
         self.gravity
+    }
+
+    /// Whether the book applies forces to the footpads ([`GearBook::pad_force`]): curbs or
+    /// obstacle walls.
+    pub fn loads_footpads(&self) -> bool {
+        self.curbs.is_some() || self.walls.iter().any(Option::is_some)
+    }
+
+    /// The force on footpad `i` over the coming step (at BP, its centre of mass), N, inertial
+    /// axes: its curbs' (eqs. 94-95) and its obstacle wall's (`crate::wall`).
+    pub fn pad_force(&self, i: usize) -> Vector3<f64> {
+        self.curb_forces[i] + self.wall_forces[i]
     }
 
     /// Whether the landing has ended at time `t` (s): a decision, if the scenario terminates on
@@ -379,9 +407,13 @@ impl GearBook {
         }
         self.max_penetration = self.max_penetration.max(depth);
         let clearance = self.kin[i].footpad.z - self.surfaces[i].plane();
+        let pushed = touching && impulse.z > 0.0;
+        if let Some(wall) = &mut self.walls[i] {
+            wall.update(pushed, self.kin[i].footpad.xy(), clearance);
+        }
         let c = &mut self.contacts[i];
         let first = c.first_contact.is_none();
-        c.update(touching && impulse.z > 0.0, t, dt, clearance);
+        c.update(pushed, t, dt, clearance);
         if first && c.first_contact.is_some() {
             self.touchdown_xy[i] = self.kin[i].footpad.xy();
         }
@@ -402,8 +434,9 @@ impl GearBook {
 
     /// Evaluates the loads applied over the coming step at time `t` (s) with the vehicle in
     /// state `v`: the engine and RCS loads on the vehicle, committing the nozzle crush there,
-    /// and the curbs' force on each footpad that has touched down (eqs. 91-95, the footpad's
-    /// velocity at BP `pad_velocity(i)`, m/s, inertial), committing the footpad crush there.
+    /// each obstacle wall's force on its footpad (`crate::wall`), and the curbs' force on each
+    /// footpad that has touched down (eqs. 91-95), committing the footpad crush there (the
+    /// footpad's velocity at BP `pad_velocity(i)`, m/s, inertial).
     /// Each is evaluated with the memory of the state before and committed after, as the core
     /// does at an accepted state.
     fn evaluate_applied(
@@ -420,6 +453,11 @@ impl GearBook {
                 .reduce(f64::min)
         };
         self.applied.evaluate(t, v, first_contact)?;
+        for (i, wall) in self.walls.iter().enumerate() {
+            if let Some(w) = wall {
+                self.wall_forces[i] = w.force(self.kin[i].footpad.xy(), &pad_velocity(i));
+            }
+        }
         let Some(curbs) = &mut self.curbs else {
             return Ok(());
         };
@@ -455,13 +493,17 @@ impl GearBook {
         let applied = self.applied.step_work(before, after, dt);
         self.ledger.mechanisms -= applied.applied;
         self.ledger.driving_input += applied.driving.max(0.0);
-        if self.curbs.is_some() {
-            let steps = self.previous.iter().zip(&self.kin).zip(&self.curb_forces);
-            let work: f64 = steps
+        let work = |forces: &[Vector3<f64>]| -> f64 {
+            let steps = self.previous.iter().zip(&self.kin).zip(forces);
+            steps
                 .map(|((a, b), f)| f.dot(&(b.footpad - a.footpad)))
-                .sum();
-            self.ledger.mechanisms -= work;
+                .sum()
+        };
+        if self.curbs.is_some() {
+            self.ledger.mechanisms -= work(&self.curb_forces);
         }
+        // The walls' work is the contact's, as a locked footpad's lateral impulses are.
+        self.ledger.events += work(&self.wall_forces);
     }
 
     /// The divergence checks after a step: the run budget (`integrator.max_steps`) spent after

@@ -6,12 +6,14 @@
 //! | [`capabilities`] | what the multibody engines model of the scene's optional mechanisms |
 //! | [`strut`] | the strut laws at one state of a multibody gear (eqs. 49-63): explicit forces, the plateau and bearing-friction bounds, their work over a step, the explicit-step check |
 //! | [`applied`] | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
+//! | [`wall`] | the obstacle wall that holds a locked footpad laterally from its landing until it rises above the wall (fig. 17) |
 //! | [`book`] | the gear bookkeeping: kinematics before and after a step, hysteresis committed once per step, contact work, the curbs' force on the footpads (eqs. 86-95) with their crush committed once per step, energy ledger, stability criteria, extremes, summary and history samples |
 
 pub mod applied;
 pub mod book;
 pub mod capabilities;
 pub mod strut;
+pub mod wall;
 
 pub use applied::VehicleLoads;
 pub use book::{

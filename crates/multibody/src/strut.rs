@@ -11,6 +11,7 @@
 //! - secondary struts: massless two-force members between their trunnions on the vehicle and
 //!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
 
+use crate::wall::WALL_STIFFNESS_RATIO;
 use nalgebra::Vector3;
 use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
 use touchdown_record::Law;
@@ -159,6 +160,14 @@ pub fn strut_forces(
     })
 }
 
+/// A honeycomb's stiffest rate, N/m: its backoff (rebound) rate, its stroke-out stop's rate or
+/// its onset ramp's, whichever is largest (eqs. 49-52).
+pub fn stiffest_rate(h: &Honeycomb) -> f64 {
+    h.backoff_rate
+        .max(h.curve.stroke_out_rate())
+        .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
+}
+
 /// ω·Δt above which a multibody engine refuses an explicit strut law (symplectic Euler is
 /// stable below 2).
 pub const MAX_OMEGA_DT: f64 = 1.0;
@@ -166,7 +175,8 @@ pub const MAX_OMEGA_DT: f64 = 1.0;
 /// Checks a multibody engine's fixed time step `dt` (s) against the run budget
 /// (`integrator.max_steps` steps to `integrator.t_end`) and the stiffest explicit strut
 /// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
-/// link's rotation about its trunnion (links as in `sc.links`). The error, on the scenario field
+/// link's rotation about its trunnion (links as in `sc.links`), and the obstacle walls' on
+/// PMASS (`crate::wall`). The error, on the scenario field
 /// `field` that set the step, says which mode is too stiff and the largest step allowed.
 pub fn check_explicit_timestep(
     sc: &Scenario,
@@ -174,14 +184,9 @@ pub fn check_explicit_timestep(
     dt: f64,
     field: &str,
 ) -> Result<(), ScenarioError> {
-    let stiffest = |h: &Honeycomb| {
-        h.backoff_rate
-            .max(h.curve.stroke_out_rate())
-            .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
-    };
-    let k_primary = stiffest(&laws.primary.honeycomb);
+    let k_primary = stiffest_rate(&laws.primary.honeycomb);
     let sec = &laws.secondary.honeycomb;
-    let k_secondary = stiffest(&sec.tension).max(stiffest(&sec.compression));
+    let k_secondary = stiffest_rate(&sec.tension).max(stiffest_rate(&sec.compression));
     let leg = &sc.legs[0];
     let pmass = sc.footpad.mass;
     let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
@@ -189,6 +194,7 @@ pub fn check_explicit_timestep(
     // Rotation about the trunnion seen at point 1: I_B2 / L21².
     let i_b2 = m_outer * l_outer * l_outer / 3.0 + pmass * leg.l2p * leg.l2p;
     let m_point1 = i_b2 / (leg.l21 * leg.l21);
+    let walled = sc.surface.pads.iter().any(|p| p.locked());
     let modes = [
         (
             "primary strut on the footpad mass",
@@ -197,6 +203,14 @@ pub fn check_explicit_timestep(
         (
             "secondary struts on the gear's rotation about its trunnion",
             (k_secondary / m_point1).sqrt(),
+        ),
+        (
+            "obstacle wall on the footpad mass",
+            if walled {
+                (WALL_STIFFNESS_RATIO * k_primary / pmass).sqrt()
+            } else {
+                0.0
+            },
         ),
     ];
     let steps = sc.integrator.t_end / dt;

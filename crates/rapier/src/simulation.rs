@@ -306,11 +306,12 @@ impl Landing for RapierSimulation {
             rb.add_force(to_rapier(&a.force), true);
             rb.add_torque(to_rapier(&a.torque), true);
         }
-        if self.book.curbs.is_some() {
-            // eqs. (94)-(95): the curbs' force on each footpad (at BP, its centre of mass).
-            for (g, f) in self.assembly.gears.iter().zip(&self.book.curb_forces) {
+        if self.book.loads_footpads() {
+            // eqs. (94)-(95) and the obstacle walls: the force on each footpad (at BP, its
+            // centre of mass).
+            for (i, g) in self.assembly.gears.iter().enumerate() {
                 let rb = &mut self.assembly.world.bodies[g.footpad];
-                rb.add_force(to_rapier(f), true);
+                rb.add_force(to_rapier(&self.book.pad_force(i)), true);
             }
         }
         self.book.begin_step();
