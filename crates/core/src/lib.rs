@@ -31,6 +31,7 @@ pub mod simulation;
 pub mod state;
 pub mod stepper;
 mod stiction;
+mod summation;
 pub mod surface;
 
 pub use simulation::Simulation;

@@ -56,8 +56,8 @@ impl Physics {
         blend: f64,
         out: &mut [GearState],
     ) -> Result<Loads, RunError> {
-        let mut force = Vector3::zeros();
-        let mut torque = Vector3::zeros();
+        // Each leg's load, summed below in the order of crate::summation.
+        let (mut leg_force, mut leg_torque) = std::mem::take(&mut self.leg_loads);
         let mut held = std::mem::take(&mut self.held);
         held.clear();
         let friction = self.arrangement == Arrangement::Cantilever
@@ -73,6 +73,8 @@ impl Physics {
                     secondary_stroke: prev.secondary_stroke,
                     ..GearState::default()
                 };
+                leg_force[i] = Vector3::zeros();
+                leg_torque[i] = Vector3::zeros();
                 continue;
             }
             let (position, velocity) = if blend >= 1.0 || free {
@@ -92,16 +94,20 @@ impl Physics {
                 slot.fbr = 0.0;
                 held.push(h);
             }
-            torque += bp.cross(&(-slot.fp)); // eq. (66)
-            force -= v.t_bi * slot.fp; // eqs. (67)-(68)
+            leg_torque[i] = bp.cross(&(-slot.fp)); // eq. (66)
+            leg_force[i] = -(v.t_bi * slot.fp); // eqs. (67)-(68)
         }
+        let mut force = self.sum_order.sum(&leg_force);
+        let mut torque = self.sum_order.sum(&leg_torque);
         // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms, if any.
         let mut applied_power = Power::default();
+        let mut applied = None;
         let pads = &self.pads;
         if let Some(a) = self.mechanisms.vehicle_loads(t, || first_contact(pads), v) {
             let applied_force = v.t_bi * a.force;
             force += applied_force; // eq. (83)
             torque += a.torque; // eq. (84)
+            applied = Some((applied_force, a.torque));
             applied_power = Power {
                 applied: applied_force.dot(&v.velocity) + a.torque.dot(&v.omega),
                 driving: a.driving_power(&(v.t_bi.transpose() * v.velocity), &v.omega),
@@ -121,10 +127,17 @@ impl Physics {
                 slot.fbr = fbr;
                 slot.f2p += fbr;
                 slot.fp += on_pad;
-                torque += h.bp.cross(&(-on_pad)); // eq. (66)
-                force -= v.t_bi * on_pad; // eqs. (67)-(68)
+                leg_torque[h.leg] += h.bp.cross(&(-on_pad)); // eq. (66)
+                leg_force[h.leg] -= v.t_bi * on_pad; // eqs. (67)-(68)
+            }
+            force = self.sum_order.sum(&leg_force);
+            torque = self.sum_order.sum(&leg_torque);
+            if let Some((applied_force, applied_torque)) = applied {
+                force += applied_force; // eq. (83)
+                torque += applied_torque; // eq. (84)
             }
         }
+        self.leg_loads = (leg_force, leg_torque);
         self.held = held;
         Ok(Loads {
             force,

@@ -14,6 +14,7 @@ use crate::rigid_body::MassProperties;
 use crate::state::VehicleState;
 use crate::stepper::{Advance, Schemes, Scratch};
 use crate::stiction::Held;
+use crate::summation::SumOrder;
 use crate::surface::{ContactState, Footpad};
 use nalgebra::{UnitQuaternion, Vector2, Vector3};
 use touchdown_frames::gravity_inertial;
@@ -105,6 +106,11 @@ pub(crate) struct Physics {
     pub(crate) pad_start: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// The footpads off the surface whose bearing friction an evaluation sets last (reused).
     pub(crate) held: Vec<Held>,
+    /// The order in which the legs' loads are summed ([`crate::summation`]).
+    pub(crate) sum_order: SumOrder,
+    /// Each leg's force on the vehicle (inertial axes, N) and torque about its centre of mass
+    /// (body axes, N·m) at the last evaluation (reused).
+    pub(crate) leg_loads: (Vec<Vector3<f64>>, Vec<Vector3<f64>>),
     /// The time over which that friction brings their stroking to rest, s
     /// ([`crate::stiction::relaxation`]).
     pub(crate) held_relaxation: f64,
@@ -200,6 +206,8 @@ impl Simulation {
             pad_start: vec![(Vector3::zeros(), Vector3::zeros()); n],
             held: Vec::with_capacity(n),
             held_relaxation,
+            sum_order: SumOrder::new(&scenario.legs),
+            leg_loads: (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]),
         };
         physics.potential0 = physics.potential_energy();
         if physics.inertial {

@@ -5,6 +5,7 @@
 use super::{limit_step, Advance, Scratch, Stepper};
 use crate::gear::GearState;
 use crate::ledger::Quadrature;
+use crate::loads::Loads;
 use crate::simulation::Physics;
 use crate::state::VehicleState;
 use crate::surface::ContactState;
@@ -112,29 +113,11 @@ fn predict_correct(
     // 4. trial evaluation
     let mut loads = physics.loads(physics.t + dt, &pred, &mut scratch.trial)?;
     physics.evaluations += 1;
-    // 5. corrector. The footpads off the surface first (`correct_footpad`): the change of their
-    // primary's force the implicit correction finds is the trial's, on the footpad, on the
-    // vehicle and in the ledger alike.
-    for i in 0..physics.pads.len() {
-        if inertial && physics.pads[i].state != ContactState::Contact {
-            let c = correct_footpad(
-                physics,
-                i,
-                &pred,
-                (&scratch.previous[i], &scratch.trial[i]),
-                dt,
-            );
-            let bp = pred.t_bi.transpose() * (physics.pads[i].position - pred.position);
-            let on_pad = c.axis * c.force;
-            let slot = &mut scratch.trial[i];
-            slot.fcp += c.force;
-            slot.f2p += c.force;
-            slot.fp += on_pad;
-            loads.torque += bp.cross(&(-on_pad)); // eq. (66)
-            loads.force -= pred.t_bi * on_pad; // eqs. (67)-(68)
-            let pad = &mut physics.pads[i];
-            (pad.position, pad.velocity) = (c.position, c.velocity);
-        }
+    // 5. corrector. The footpads off the surface first (`correct_footpads`): the change of
+    // their primary's force the implicit correction finds is the trial's, on the footpad, on
+    // the vehicle and in the ledger alike.
+    if inertial {
+        correct_footpads(physics, &pred, scratch, &mut loads, dt);
     }
     physics.accelerate(&mut pred, &loads)?;
     // the vehicle: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
@@ -176,6 +159,46 @@ struct Corrected {
     axis: Vector3<f64>,
     /// The change of its force FCP over the trial's, N (compression positive).
     force: f64,
+}
+
+/// Step 5 of the report's scheme for the footpads off the surface: each corrected by
+/// [`correct_footpad`], the change of its primary's force put into the trial's forces
+/// (`scratch.trial`) and into `loads` on the vehicle, summed in the legs' order
+/// (crate::summation), in the evaluation's per-leg buffers.
+fn correct_footpads(
+    physics: &mut Physics,
+    pred: &VehicleState,
+    scratch: &mut Scratch,
+    loads: &mut Loads,
+    dt: f64,
+) {
+    let (mut leg_force, mut leg_torque) = std::mem::take(&mut physics.leg_loads);
+    leg_force.fill(Vector3::zeros());
+    leg_torque.fill(Vector3::zeros());
+    for i in 0..physics.pads.len() {
+        if physics.pads[i].state != ContactState::Contact {
+            let c = correct_footpad(
+                physics,
+                i,
+                pred,
+                (&scratch.previous[i], &scratch.trial[i]),
+                dt,
+            );
+            let bp = pred.t_bi.transpose() * (physics.pads[i].position - pred.position);
+            let on_pad = c.axis * c.force;
+            let slot = &mut scratch.trial[i];
+            slot.fcp += c.force;
+            slot.f2p += c.force;
+            slot.fp += on_pad;
+            leg_torque[i] = bp.cross(&(-on_pad)); // eq. (66)
+            leg_force[i] = -(pred.t_bi * on_pad); // eqs. (67)-(68)
+            let pad = &mut physics.pads[i];
+            (pad.position, pad.velocity) = (c.position, c.velocity);
+        }
+    }
+    loads.force += physics.sum_order.sum(&leg_force);
+    loads.torque += physics.sum_order.sum(&leg_torque);
+    physics.leg_loads = (leg_force, leg_torque);
 }
 
 /// The corrector of footpad `i` off the surface over `dt` (s), the vehicle predicted at `pred`
