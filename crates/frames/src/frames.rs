@@ -19,9 +19,25 @@ pub fn rot_y(a: f64) -> Matrix3<f64> {
     Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
 }
 
-/// Rotation about Z by `a` rad (active).
+/// Rotation about Z by `a` rad (active), whole quarter turns taken exactly: `a` is reduced by
+/// its nearest multiple k·π/2 and the rest turned by k quarters with exact sign changes, and a
+/// rest within rounding of zero (4 ulp of `a`) counts as zero. So a leg at 180° lies on the
+/// mirror plane of the leg at 0° bit for bit (sin π is 1.2e-16 in floating point), and the
+/// report's 1-2-1 and 2-2 gears are their own mirror images exactly (docs/errata.md,
+/// "Decisions at rounding level").
 pub fn rot_z(a: f64) -> Matrix3<f64> {
-    let (s, c) = a.sin_cos();
+    let quarters = (a / std::f64::consts::FRAC_PI_2).round();
+    let mut rest = a - quarters * std::f64::consts::FRAC_PI_2;
+    if rest.abs() <= 4.0 * f64::EPSILON * a.abs() {
+        rest = 0.0;
+    }
+    let (s0, c0) = rest.sin_cos();
+    let (s, c) = match quarters.rem_euclid(4.0) as u8 {
+        0 => (s0, c0),
+        1 => (c0, -s0),
+        2 => (-s0, -c0),
+        _ => (-c0, s0),
+    };
     Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
 }
 
@@ -63,6 +79,29 @@ pub fn gravity_inertial(g: f64, alpha: f64) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quarter_turns_about_z_are_exact() {
+        let x = Vector3::new(0.5, 0.0, 0.1);
+        for (deg, expected) in [
+            (90.0, Vector3::new(0.0, 0.5, 0.1)),
+            (180.0, Vector3::new(-0.5, 0.0, 0.1)),
+            (270.0, Vector3::new(0.0, -0.5, 0.1)),
+            (-90.0, Vector3::new(0.0, -0.5, 0.1)),
+            (360.0, x),
+        ] {
+            assert_eq!(rot_z(f64::to_radians(deg)) * x, expected, "{deg}°");
+        }
+        // Other angles as sin and cos give them, to rounding.
+        for a in [0.3, 1.9, -2.5, 4.0, 100.0] {
+            let (s, c) = f64::sin_cos(a);
+            let r = rot_z(a);
+            assert!(
+                (r[(0, 0)] - c).abs() < 1e-14 && (r[(1, 0)] - s).abs() < 1e-14,
+                "{a}"
+            );
+        }
+    }
 
     #[test]
     fn t_bi_matches_the_printed_go_terms() {
