@@ -97,22 +97,23 @@ impl Physics {
             leg_torque[i] = bp.cross(&(-slot.fp)); // eq. (66)
             leg_force[i] = -(v.t_bi * slot.fp); // eqs. (67)-(68)
         }
-        let mut force = self.sum_order.sum(&leg_force);
-        let mut torque = self.sum_order.sum(&leg_torque);
         // eqs. (72)-(74), (80)-(82), (115)-(117): the scene's vehicle-level mechanisms, if any.
+        let (mut applied_force, mut applied_torque) = (Vector3::zeros(), Vector3::zeros());
         let mut applied_power = Power::default();
-        let mut applied = None;
         let pads = &self.pads;
         if let Some(a) = self.mechanisms.vehicle_loads(t, || first_contact(pads), v) {
-            let applied_force = v.t_bi * a.force;
-            force += applied_force; // eq. (83)
-            torque += a.torque; // eq. (84)
-            applied = Some((applied_force, a.torque));
+            (applied_force, applied_torque) = (v.t_bi * a.force, a.torque);
             applied_power = Power {
                 applied: applied_force.dot(&v.velocity) + a.torque.dot(&v.omega),
                 driving: a.driving_power(&(v.t_bi.transpose() * v.velocity), &v.omega),
             };
         }
+        // eqs. (83)-(84): the legs' loads in the order of crate::summation, and the mechanisms'.
+        let order = &self.sum_order;
+        let total = |f: &[Vector3<f64>], q: &[Vector3<f64>]| {
+            (order.sum(f) + applied_force, order.sum(q) + applied_torque)
+        };
+        let (mut force, mut torque) = total(&leg_force, &leg_torque);
         if !held.is_empty() {
             let acceleration = self.mass.linear_acceleration(&force, &self.gravity);
             let omega_dot = self.mass.angular_acceleration(&torque, &v.omega);
@@ -130,12 +131,7 @@ impl Physics {
                 leg_torque[h.leg] += h.bp.cross(&(-on_pad)); // eq. (66)
                 leg_force[h.leg] -= v.t_bi * on_pad; // eqs. (67)-(68)
             }
-            force = self.sum_order.sum(&leg_force);
-            torque = self.sum_order.sum(&leg_torque);
-            if let Some((applied_force, applied_torque)) = applied {
-                force += applied_force; // eq. (83)
-                torque += applied_torque; // eq. (84)
-            }
+            (force, torque) = total(&leg_force, &leg_torque);
         }
         self.leg_loads = (leg_force, leg_torque);
         self.held = held;

@@ -106,14 +106,14 @@ pub(crate) struct Physics {
     pub(crate) pad_start: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// The footpads off the surface whose bearing friction an evaluation sets last (reused).
     pub(crate) held: Vec<Held>,
+    /// The time over which that friction brings their stroking to rest, s
+    /// ([`crate::stiction::relaxation`]).
+    pub(crate) held_relaxation: f64,
     /// The order in which the legs' loads are summed ([`crate::summation`]).
     pub(crate) sum_order: SumOrder,
     /// Each leg's force on the vehicle (inertial axes, N) and torque about its centre of mass
     /// (body axes, N·m) at the last evaluation (reused).
     pub(crate) leg_loads: (Vec<Vector3<f64>>, Vec<Vector3<f64>>),
-    /// The time over which that friction brings their stroking to rest, s
-    /// ([`crate::stiction::relaxation`]).
-    pub(crate) held_relaxation: f64,
 }
 
 impl Simulation {

@@ -11,7 +11,7 @@
 //! - secondary struts: massless two-force members between their trunnions on the vehicle and
 //!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
 
-use crate::wall::WALL_STIFFNESS_RATIO;
+use crate::wall::ObstacleWall;
 use nalgebra::Vector3;
 use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
 use touchdown_record::Law;
@@ -207,7 +207,7 @@ pub fn check_explicit_timestep(
         (
             "obstacle wall on the footpad mass",
             if walled {
-                (WALL_STIFFNESS_RATIO * k_primary / pmass).sqrt()
+                ObstacleWall::new(0.0, pmass, k_primary).omega(pmass)
             } else {
                 0.0
             },

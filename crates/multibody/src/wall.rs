@@ -16,7 +16,7 @@
 use nalgebra::{Vector2, Vector3};
 
 /// The wall's stiffness as a multiple of the primary strut's stiffest rate.
-pub const WALL_STIFFNESS_RATIO: f64 = 4.0;
+const WALL_STIFFNESS_RATIO: f64 = 4.0;
 
 /// One footpad's obstacle wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,11 +72,6 @@ impl ObstacleWall {
             None => Vector3::zeros(),
         }
     }
-
-    /// Whether the wall holds the footpad.
-    pub fn holds(&self) -> bool {
-        self.anchor.is_some()
-    }
 }
 
 #[cfg(test)]
@@ -92,7 +87,7 @@ mod tests {
         let mut w = wall();
         let v = Vector3::zeros();
         w.update(false, Vector2::new(1.0, 2.0), 0.0);
-        assert!(!w.holds(), "not before it lands");
+        assert!(w.anchor.is_none(), "not before it lands");
         w.update(true, Vector2::new(1.0, 2.0), 0.0);
         // Lifted 0.2 m and pulled 1 mm aside: the wall pulls it back.
         w.update(false, Vector2::new(1.001, 2.0), 0.2);
@@ -105,7 +100,7 @@ mod tests {
         w.update(false, Vector2::new(1.5, 2.0), 0.31);
         assert_eq!(w.force(Vector2::new(1.5, 2.0), &v), Vector3::zeros());
         w.update(false, Vector2::new(1.5, 2.0), 0.1);
-        assert!(!w.holds());
+        assert!(w.anchor.is_none());
         w.update(true, Vector2::new(1.5, 2.0), 0.0);
         assert_eq!(w.force(Vector2::new(1.5, 2.0), &v), Vector3::zeros());
     }
