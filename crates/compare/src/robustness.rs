@@ -245,7 +245,10 @@ pub fn implausible(sc: &Scenario, s: &Summary) -> Option<String> {
     if let Some(x) = numbers.iter().chain(&strokes).find(|x| !x.is_finite()) {
         return Some(format!("a non-finite output ({x})"));
     }
-    let (scale, bound) = (e.scale(), sc.integrator.energy_tolerance);
+    let (scale, bound) = (
+        e.scale().max(sc.energy_floor_j()),
+        sc.integrator.energy_tolerance,
+    );
     if s.energy_residual_j.abs() > bound * scale {
         return Some(format!(
             "energy residual {:.3e} J beyond {bound} (integrator.energy_tolerance) of the energy scale {scale:.3e} J",

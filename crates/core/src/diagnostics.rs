@@ -84,6 +84,7 @@ impl Physics {
             .check_balance(
                 e,
                 self.integrator.energy_tolerance,
+                self.energy_floor_j,
                 "step too large for the stiffest mode?",
             )
             .map_err(|imbalance| {

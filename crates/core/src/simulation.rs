@@ -57,6 +57,8 @@ pub(crate) struct Physics {
     pub(crate) inertial: bool,
     pub(crate) release: ReleaseRule,
     pub(crate) integrator: Integrator,
+    /// The energy guard's least scale, J (`Scenario::energy_floor_j`).
+    pub(crate) energy_floor_j: f64,
     pub(crate) arrangement: Arrangement,
     /// Footpad radius, m.
     pub(crate) footpad_radius: f64,
@@ -181,6 +183,7 @@ impl Simulation {
             inertial: scenario.footpad.detached == Detached::Inertial,
             release: scenario.surface.release,
             integrator: scenario.integrator.clone(),
+            energy_floor_j: scenario.energy_floor_j(),
             arrangement: scenario.arrangement,
             footpad_radius: scenario.footpad.radius,
             mechanisms,

@@ -225,6 +225,8 @@ pub struct GearBook {
     /// The divergence guard's tolerance, a fraction of the energy put in
     /// (`integrator.energy_tolerance`).
     energy_tolerance: f64,
+    /// The guard's least scale, J (`Scenario::energy_floor_j`).
+    energy_floor_j: f64,
     /// The run budget, accepted steps (`integrator.max_steps`).
     max_steps: u64,
     /// End of the run, s (`integrator.t_end`).
@@ -270,6 +272,7 @@ impl GearBook {
             pad_radius: sc.footpad.radius,
             curb_evaluations: 0,
             energy_tolerance: sc.integrator.energy_tolerance,
+            energy_floor_j: sc.energy_floor_j(),
             max_steps: sc.integrator.max_steps,
             t_end: sc.integrator.t_end,
         })
@@ -542,6 +545,7 @@ impl GearBook {
             .check_balance(
                 e,
                 self.energy_tolerance,
+                self.energy_floor_j,
                 "time step too large for the stiffest strut law, or contact too soft?",
             )
             .map_err(|imbalance| Fault {

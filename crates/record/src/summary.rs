@@ -116,14 +116,16 @@ impl EnergyLedger {
 
     /// The divergence guard on the balance: the imbalance if the residual of `e` (this ledger's
     /// report) exceeds `tolerance` of the energy scale ([`EnergyReport::scale`]: the energy put
-    /// in). `hint` names the likely cause for this engine.
+    /// in), or of `floor_j` (J, the scenario's resolution, `Scenario::energy_floor_j`) while the
+    /// energy put in is smaller. `hint` names the likely cause for this engine.
     pub fn check_balance(
         &self,
         e: &EnergyReport,
         tolerance: f64,
+        floor_j: f64,
         hint: &'static str,
     ) -> Result<(), Imbalance> {
-        let scale = e.scale();
+        let scale = e.scale().max(floor_j);
         if e.residual_j.abs() <= tolerance * scale.max(f64::MIN_POSITIVE) {
             return Ok(());
         }
@@ -469,11 +471,11 @@ mod tests {
         let e = l.report(100.0, 10.0, -5.0, 0.0, 3.0);
         assert_eq!(e.residual_j, 0.0);
         assert_eq!(e.honeycomb_dissipated_j, 77.0);
-        assert!(l.check_balance(&e, 0.01, "hint").is_ok());
+        assert!(l.check_balance(&e, 0.01, 0.0, "hint").is_ok());
         let drifting = l.report(100.0, 13.0, -5.0, 0.0, 3.0);
         assert_eq!(drifting.residual_j, 3.0);
         let imbalance = l
-            .check_balance(&drifting, 0.01, "step too large")
+            .check_balance(&drifting, 0.01, 0.0, "step too large")
             .unwrap_err();
         assert_eq!(imbalance.residual_j, 3.0);
         let message = imbalance.to_string();
@@ -492,7 +494,10 @@ mod tests {
         let e = l.report(135.0, 112.0, 10.0, 1.49e6 + 500.0, 0.0);
         assert!((e.residual_j - 487.0).abs() < 1e-6, "{}", e.residual_j);
         assert_eq!(e.scale(), 135.0);
-        assert!(l.check_balance(&e, 0.02, "hint").is_err());
+        assert!(l.check_balance(&e, 0.02, 0.0, "hint").is_err());
+        // A floor below the energy put in changes nothing; one above it is the yardstick.
+        assert!(l.check_balance(&e, 0.02, 100.0, "hint").is_err());
+        assert!(l.check_balance(&e, 0.02, 1e5, "hint").is_ok());
         // The energy put in: potential released and the driving mechanisms' positive work.
         let driven = EnergyLedger {
             driving_input: 40.0,

@@ -63,6 +63,15 @@ impl Scenario {
     pub fn warnings(&self) -> &[Warning] {
         &self.warnings
     }
+
+    /// The least energy scale the energy guard judges a residual against, J: the work of the
+    /// whole lander's weight, (M + n·PMASS)·g, over DIST, the relative motion eq. (25) resolves
+    /// in one step (docs/errata.md, "Energy guard"). Below it a residual is the schemes'
+    /// resolution, not a divergence.
+    pub fn energy_floor_j(&self) -> f64 {
+        let mass = self.vehicle.mass + self.legs.len() as f64 * self.footpad.mass;
+        mass * self.vehicle.gravity * self.integrator.dist
+    }
 }
 
 /// Rigid vehicle (excluding the effective footpad masses).
