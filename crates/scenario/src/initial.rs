@@ -17,14 +17,16 @@ pub struct InitialState {
     pub velocity: Vector3<f64>,
     /// Body rates, rad/s.
     pub omega: Vector3<f64>,
-    /// Index of the leg whose footpad touches first.
-    pub first_leg: usize,
 }
 
 /// Initial state of a scenario, eq. (19) corrected for holes (docs/errata.md, "Eq. (19): initial position with holes — corrected"): the footpad
 /// k that is lowest relative to its own plane, k = argmin_n [(T_BI·BP_n)_z + HOLE_n], touches
-/// its plane at inertial X = Y = 0, so R_cm = (0, 0, −HOLE_k) − T_BI·BP_k. An attitude given
-/// relative to the horizontal is composed with the slope: T_BI = T_GI·T_BG (docs/errata.md, "Eq. (19): initial position with holes — corrected"). A
+/// its plane, with the centre of mass above the inertial origin: R_cm = (0, 0, −HOLE_k −
+/// (T_BI·BP_k)_z) (the report puts footpad k at X = Y = 0; a placement by the centre of mass
+/// does not depend on which of two equally low footpads is k, so a landing and its mirror image
+/// or renumbering start from positions that are exact images: docs/errata.md, "Decisions at
+/// rounding level"). An attitude given relative to the horizontal is composed with the slope:
+/// T_BI = T_GI·T_BG (docs/errata.md, "Eq. (19): initial position with holes — corrected"). A
 /// `touchdown.clearance` lifts the whole vehicle by that height along the surface normal.
 pub fn initial_state(s: &crate::Scenario) -> InitialState {
     let td = &s.touchdown;
@@ -35,17 +37,16 @@ pub fn initial_state(s: &crate::Scenario) -> InitialState {
     };
     let theta = euler_from_t_bi(&t_bi0);
     let t = t_bi(&theta);
-    let height = |i: usize| (t * s.legs[i].bp).z + s.surface.pads[i].hole;
-    let first_leg = (0..s.legs.len()).fold(0, |k, i| if height(i) < height(k) { i } else { k });
-    let position = Vector3::new(0.0, 0.0, s.surface.pads[first_leg].plane() + td.clearance)
-        - t * s.legs[first_leg].bp; // eq. (19)
+    // eq. (19): the height of the centre of mass that puts the lowest footpad on its plane
+    let height = (0..s.legs.len())
+        .map(|i| s.surface.pads[i].plane() - (t * s.legs[i].bp).z)
+        .fold(f64::NEG_INFINITY, f64::max);
     InitialState {
         t_bi: t,
         theta,
-        position,
+        position: Vector3::new(0.0, 0.0, height + td.clearance),
         velocity: t_gi(alpha) * td.velocity_g,
         omega: td.body_rates,
-        first_leg,
     }
 }
 
@@ -63,17 +64,9 @@ mod tests {
         let init = initial_state(&s);
         let gap =
             |i: usize| (init.position + init.t_bi * s.legs[i].bp).z - s.surface.pads[i].plane();
-        assert!(
-            gap(init.first_leg).abs() < 1e-12,
-            "the first pad sits on its own plane"
-        );
-        assert_eq!(
-            (init.position + init.t_bi * s.legs[init.first_leg].bp).xy(),
-            nalgebra::Vector2::zeros()
-        );
-        for i in 0..s.legs.len() {
-            assert!(gap(i) >= -1e-12, "pad {} starts below its plane", i + 1);
-        }
+        let lowest = (0..s.legs.len()).map(gap).fold(f64::INFINITY, f64::min);
+        assert!(lowest.abs() < 1e-12, "the lowest pad sits on its own plane");
+        assert_eq!(init.position.xy(), nalgebra::Vector2::zeros());
         // Attitude relative to the horizontal: the body Z axis is tilted 5° from Z_G, and the
         // velocity is given in the gravity frame.
         let z_b_in_g = t_ig(s.surface.slope) * init.t_bi * Vector3::z();
