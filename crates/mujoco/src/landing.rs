@@ -173,7 +173,7 @@ fn check(what: &str, leg: usize, id: i32, len: i32) -> Result<usize, MujocoError
 /// for the stiffest strut law.
 fn book_for(sc: &Scenario) -> Result<GearBook, ScenarioError> {
     sc.require_engine(Engine::Mujoco, crate::unsupported)?;
-    let book = GearBook::new(sc)?;
+    let book = GearBook::new(sc, sc.mujoco.timestep)?;
     check_explicit_timestep(
         sc,
         &book.laws,

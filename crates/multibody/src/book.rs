@@ -234,8 +234,9 @@ pub struct GearBook {
 }
 
 impl GearBook {
-    /// The bookkeeping of `sc`'s gear at touchdown, nothing booked yet.
-    pub fn new(sc: &Scenario) -> Result<GearBook, ScenarioError> {
+    /// The bookkeeping of `sc`'s gear at touchdown, nothing booked yet, for an engine stepping
+    /// `dt` (s).
+    pub fn new(sc: &Scenario, dt: f64) -> Result<GearBook, ScenarioError> {
         let n = sc.legs.len();
         let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         let laws = GearLaws::from_scenario(sc)?;
@@ -243,7 +244,7 @@ impl GearBook {
         let walls = (sc.surface.pads.iter())
             .map(|p| {
                 p.locked()
-                    .then(|| ObstacleWall::new(p.obstacle, sc.footpad.mass, primary_rate))
+                    .then(|| ObstacleWall::new(p.obstacle, sc.footpad.mass, primary_rate, dt))
             })
             .collect();
         Ok(GearBook {

@@ -207,7 +207,7 @@ pub fn check_explicit_timestep(
         (
             "obstacle wall on the footpad mass",
             if walled {
-                ObstacleWall::new(0.0, pmass, k_primary).omega(pmass)
+                ObstacleWall::new(0.0, pmass, k_primary, dt).omega(pmass)
             } else {
                 0.0
             },

@@ -9,14 +9,19 @@
 //! The wall is a lateral spring-damper between the footpad and the point where it landed,
 //! applied as an explicit force like the curbs': stiffness four times the primary strut's
 //! stiffest rate (so the footpad's mode on the wall is twice as fast as its stiffest mode on
-//! its strut, and the wall is rigid beside the gear), critically damped on the footpad mass
-//! PMASS. Its work is booked with the contact's (the contact-event account), as a locked
+//! its strut, and the wall is rigid beside the gear), but no stiffer than the engine's step
+//! resolves (ω·Δt ≤ 0.5 on PMASS, half of what the engines allow a strut law: on a gear too
+//! stiff for that the wall is as stiff as the step allows, and never the mode that refuses a
+//! step), critically damped on the footpad mass PMASS. Its work is booked with the contact's (the contact-event account), as a locked
 //! footpad's lateral impulses are.
 
 use nalgebra::{Vector2, Vector3};
 
 /// The wall's stiffness as a multiple of the primary strut's stiffest rate.
 const WALL_STIFFNESS_RATIO: f64 = 4.0;
+
+/// The largest ω·Δt of the wall's mode on the footpad mass.
+const WALL_OMEGA_DT: f64 = 0.5;
 
 /// One footpad's obstacle wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,9 +38,10 @@ pub struct ObstacleWall {
 
 impl ObstacleWall {
     /// The wall of a footpad of mass `mass` (kg) on a gear whose primary strut's stiffest rate
-    /// is `primary_rate` (N/m), `height` (m) high.
-    pub fn new(height: f64, mass: f64, primary_rate: f64) -> ObstacleWall {
-        let stiffness = WALL_STIFFNESS_RATIO * primary_rate;
+    /// is `primary_rate` (N/m), `height` (m) high, in an engine stepping `dt` (s).
+    pub fn new(height: f64, mass: f64, primary_rate: f64, dt: f64) -> ObstacleWall {
+        let resolved = mass * (WALL_OMEGA_DT / dt).powi(2);
+        let stiffness = (WALL_STIFFNESS_RATIO * primary_rate).min(resolved);
         ObstacleWall {
             height,
             stiffness,
@@ -79,7 +85,16 @@ mod tests {
     use super::*;
 
     fn wall() -> ObstacleWall {
-        ObstacleWall::new(0.3, 0.2, 1.0e6)
+        ObstacleWall::new(0.3, 0.2, 1.0e6, 2.0e-5)
+    }
+
+    #[test]
+    fn the_wall_is_no_stiffer_than_the_step_resolves() {
+        // 4 × 1e6 N/m on 0.2 kg: ω = 4472 rad/s, 0.09 of a 20 µs step; ×100 it would be 0.89.
+        let (m, dt) = (0.2, 2.0e-5);
+        assert!((ObstacleWall::new(0.3, m, 1.0e6, dt).omega(m) - (4.0e6 / m).sqrt()).abs() < 1e-9);
+        let stiff = ObstacleWall::new(0.3, m, 1.0e8, dt).omega(m) * dt;
+        assert!((stiff - WALL_OMEGA_DT).abs() < 1e-12, "{stiff}");
     }
 
     #[test]

@@ -49,7 +49,7 @@ impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RunError> {
         scenario.require_engine(Engine::Rapier, crate::unsupported)?;
-        let book = GearBook::new(scenario)?;
+        let book = GearBook::new(scenario, scenario.rapier.timestep)?;
         let assembly = assembly::build(scenario)?;
         check_explicit_timestep(
             scenario,
