@@ -99,10 +99,11 @@ fn quaternion_attitude_matches_euler_angles_away_from_the_singularity() {
 /// A vehicle tumbling in free flight about its body y axis (a principal axis) at 5 rad/s passes
 /// θy = 90° at 0.31 s. The Euler angles stop there with a diagnostic naming the singularity; the
 /// quaternion goes through, keeps the kinetic energy, and ends at the analytic attitude
-/// T_BI = R_y(ω·t).
+/// T_BI = R_y(ω·t). The footpads ride rigidly, so that the lander is one rigid body.
 #[test]
 fn quaternion_attitude_goes_through_theta_y_90_degrees() {
-    let tumble = "[touchdown]\nclearance = 10.0\nvertical_velocity = 0.0\n\
+    let tumble =
+        "[footpad]\ndetached = \"rigid\"\n[touchdown]\nclearance = 10.0\nvertical_velocity = 0.0\n\
                   horizontal_velocity = [0.0, 0.0]\nattitude = [0.0, 0.0, 0.0]\n\
                   body_rates = [0.0, 286.4788975654116, 0.0]\n\
                   [stability]\nterminate_on_decision = false\n\

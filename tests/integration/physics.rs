@@ -85,6 +85,8 @@ fn tumbling() -> Scenario {
 [vehicle]
 gravity = 0.0
 inertia = { xx = 1.397, yy = 1.297, zz = 0.994, xy = 0.05, xz = 0.02, yz = -0.03 }
+[footpad]
+detached = "rigid"
 [touchdown]
 attitude = [0.0, 0.0, 0.0]
 attitude_reference = "horizontal"
@@ -104,7 +106,9 @@ terminate_on_decision = false
 
 /// A torque-free tumbling body (no gravity, flying away from the surface, products of inertia
 /// non-zero) keeps its kinetic energy and its inertial angular momentum: checks eqs. (5)-(15)
-/// and the predictor-corrector together.
+/// and the predictor-corrector together. The footpads ride rigidly (`detached = "rigid"`), so
+/// that the lander is the one rigid body the invariants are of; footpads with inertia would
+/// swing on their gears and share them.
 #[test]
 fn torque_free_tumbling_conserves_energy_and_angular_momentum() {
     let sc = tumbling();
@@ -332,6 +336,11 @@ impl Observer<Simulation> for NormalForce {
     }
 }
 
+/// Bundled landings the report's massless footpad does not complete: on `curb-slide` the energy
+/// guard stops it at 0.23 s, a secondary on its bottoming stop (docs/errata.md, "Footpads with
+/// inertia").
+const RIGID_STOPS: &[&str] = &["curb-slide.toml"];
+
 /// No rigid surface pulls (docs/errata.md, "Contact and release", "Footpads with inertia"): on
 /// every bundled landing on a rigid surface, with the massless footpad and with the footpad
 /// with inertia, at every accepted state, the surface's reaction on a footpad in contact (its
@@ -362,8 +371,14 @@ fn a_footpad_never_pulls_on_its_surface() {
                 massless: detached == Detached::Rigid,
                 least: None,
             };
-            sim.run(&mut watch)
-                .unwrap_or_else(|e| panic!("{name}, {detached:?}: {e}"));
+            let run = sim.run(&mut watch);
+            if detached == Detached::Rigid && RIGID_STOPS.contains(&name.as_str()) {
+                // Checked up to its stop, which must still come.
+                let e = run.expect_err(&format!("{name} now runs: take it off RIGID_STOPS"));
+                assert!(e.to_string().contains("in energy balance"), "{name}: {e}");
+            } else {
+                run.unwrap_or_else(|e| panic!("{name}, {detached:?}: {e}"));
+            }
             let crush = sc.primary.compression.stages.last().unwrap().0;
             if let Some((f, t, leg)) = watch.least {
                 assert!(

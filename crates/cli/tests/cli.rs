@@ -288,7 +288,7 @@ fn boundary_prints_csv_and_json() {
         "steep.toml",
         "fig-25-26.toml",
         "steep",
-        "[surface]\nkind = \"rigid\"\nslope = 15.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
+        "[surface]\nkind = \"rigid\"\nslope = 26.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
     );
     let args = |fmt: &'static str| {
         [
@@ -596,12 +596,15 @@ fn boundary_plot_overlays_the_engines() {
 /// error (2), unless the user asks for the report only.
 #[test]
 fn a_failing_verdict_exits_3_unless_only_the_report_is_asked_for() {
-    // The slow 2-2 landing: the core and rapier part on its secondary strokes (a FAIL).
+    // The slow 2-2 landing with the report's massless footpad: the core and rapier part on its
+    // secondary strokes (a FAIL).
     let args = [
         "compare",
         "scenarios/table-i-2-2-vv4.toml",
         "--engines",
         "core,rapier",
+        "--set",
+        "footpad.detached=rigid",
     ];
     let out = touchdown(&args);
     assert_eq!(

@@ -104,16 +104,20 @@ fn cheap_cases_complete_or_stop_with_a_named_cause_on_the_multibody_engines() {
 fn the_largest_stable_step_is_bracketed_by_a_named_failure() {
     let case = CATALOGUE.iter().find(|c| c.name == "onset-x1000").unwrap();
     let (path, sc) = case.scenario(&scenarios()).unwrap();
-    // The report's scheme is stopped by the energy guard on this case at twice its default
-    // step, naming the stiffest law engaged.
+    // The report's scheme lands this case at its default step and is stopped at some
+    // multiple of it by a named law, with the time and the state (docs/robustness.md).
     let s = robustness::largest_stable_step(case.name, &path, &sc, Method::Report);
     let dt = s.largest_stable_step_s.expect("a stable step");
-    assert!(dt <= s.default_step_s, "{s:?}");
+    assert!(dt >= s.default_step_s, "{s:?}");
     let (above, why) = s.first_unstable.expect("an unstable step above it");
     assert!((above / dt - 2.0).abs() < 1e-9, "{dt} {above}");
+    let law = why
+        .split("simulation stopped at t =")
+        .nth(1)
+        .and_then(|rest| rest.split_once(" s in "))
+        .map(|(_, law)| law);
     assert!(
-        why.contains("simulation stopped at t =")
-            && why.contains("the stiffest strut law engaged now: leg"),
+        law.is_some_and(|l| !l.is_empty()) && why.contains("; state: R ="),
         "{why}"
     );
 }

@@ -342,8 +342,8 @@ pub struct Footpad {
     /// honeycomb format (onset, plateaus, backoff, stroke-out). Required with curbs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crush: Option<LoadStroke>,
-    /// How a footpad moves off the surface (default `rigid`, the report's; docs/errata.md,
-    /// "Footpads with inertia").
+    /// How a footpad moves off the surface (default `inertial`; `rigid` is the report's;
+    /// docs/errata.md, "Footpads with inertia").
     #[serde(default)]
     pub detached: Detached,
 }
@@ -356,12 +356,12 @@ pub enum Detached {
     /// The report's footpad (text after eq. 100): attached rigidly to the vehicle by its
     /// massless gear, whose struts relax to zero force when it leaves the surface
     /// (`surface.release` says when).
-    #[default]
     Rigid,
     /// A point mass PMASS in every phase (eqs. 16-18): off the surface it moves under its
     /// gear's force and its weight, its struts keep their strokes and loads, it leaves when the
     /// surface would have to pull and lands again as a plastic impact of its own mass; its
     /// obstacle's wall holds it laterally until it rises above the wall.
+    #[default]
     Inertial,
 }
 

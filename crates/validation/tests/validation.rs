@@ -200,7 +200,7 @@ fn held_out_rows_never_enter_the_calibration() {
 }
 
 /// The search end to end on a real case that overturns (the figure 25-26 configuration on a
-/// 15° slope, Vv = 12 ft/s): the landings just either side of the boundary it reports, and of
+/// 26° slope, Vv = 12 ft/s): the landings just either side of the boundary it reports, and of
 /// every transition, are stable and unstable.
 #[test]
 fn boundary_search_brackets_a_real_overturn() {
@@ -209,7 +209,7 @@ fn boundary_search_brackets_a_real_overturn() {
     std::fs::write(
         &tmp,
         format!(
-            "schema_version = 1\nextends = {:?}\nname = \"steep\"\n[surface]\nkind = \"rigid\"\nslope = 15.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
+            "schema_version = 1\nextends = {:?}\nname = \"steep\"\n[surface]\nkind = \"rigid\"\nslope = 26.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
             base.display().to_string()
         ),
     )
@@ -330,5 +330,7 @@ fn a_calibration_says_what_its_rows_cannot_determine() {
             .collect()
     };
     assert_eq!(determined(&[3, 7]), vec![true, true]);
-    assert_eq!(determined(&[3, 4]), vec![true, false]);
+    // Rows 3 and 4 say nothing of the secondary. (Nor, with the footpad with inertia, do they
+    // fix FP1: the two rows pull it apart and the fit ends near its upper bound.)
+    assert!(!determined(&[3, 4])[1]);
 }
