@@ -15,6 +15,7 @@ import pytest
 from PIL import Image
 from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import Select
 
 ROOT = Path(__file__).resolve().parents[2]
 TOUCHDOWN = ROOT / "target" / "debug" / "touchdown"
@@ -148,7 +149,11 @@ def test_the_slider_moves_time_and_the_picture(page, landing):
 
 def test_play_pause_and_a_click_on_a_plot(page):
     t0, t1 = page.execute_script("return touchdownView.timeRange()")
+    # The slowest speed, so that the playback (a 0.09 s landing: 1.8 s at 0.05×) is still
+    # running when the second click comes, however slow the machine is to deliver it.
+    Select(page.find_element(By.ID, "speed")).select_by_value("0.05")
     page.find_element(By.ID, "play").click()
+    assert page.execute_script("return touchdownView.playing()") is True
     time.sleep(0.5)
     page.find_element(By.ID, "play").click()
     assert page.execute_script("return touchdownView.playing()") is False
