@@ -1364,7 +1364,7 @@ fn resolve(
     {
         return Err(c.err(
             "surface.release",
-            "expected \"gear_force\" with footpad.detached = \"inertial\": a footpad with mass leaves when its surface would have to pull",
+            "expected \"gear_force\" with footpad.detached = \"inertial\" (the default): a footpad with mass leaves when its surface would have to pull; the report's stand-ins \"strut_force\" and \"honeycomb_force\" go with its massless footpad, footpad.detached = \"rigid\"",
         ));
     }
     let surface = model::Surface {
