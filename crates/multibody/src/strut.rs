@@ -11,7 +11,6 @@
 //! - secondary struts: massless two-force members between their trunnions on the vehicle and
 //!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
 
-use crate::wall::ObstacleWall;
 use nalgebra::Vector3;
 use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
 use touchdown_record::Law;
@@ -175,9 +174,10 @@ pub const MAX_OMEGA_DT: f64 = 1.0;
 /// Checks a multibody engine's fixed time step `dt` (s) against the run budget
 /// (`integrator.max_steps` steps to `integrator.t_end`) and the stiffest explicit strut
 /// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
-/// link's rotation about its trunnion (links as in `sc.links`), and the obstacle walls' on
-/// PMASS (`crate::wall`). The error, on the scenario field
-/// `field` that set the step, says which mode is too stiff and the largest step allowed.
+/// link's rotation about its trunnion (links as in `sc.links`). (The obstacle walls are built no
+/// stiffer than the step resolves, `crate::wall`, so they never refuse it.) The error, on the
+/// scenario field `field` that set the step, says which mode is too stiff and the largest step
+/// allowed.
 pub fn check_explicit_timestep(
     sc: &Scenario,
     laws: &GearLaws,
@@ -194,7 +194,6 @@ pub fn check_explicit_timestep(
     // Rotation about the trunnion seen at point 1: I_B2 / L21².
     let i_b2 = m_outer * l_outer * l_outer / 3.0 + pmass * leg.l2p * leg.l2p;
     let m_point1 = i_b2 / (leg.l21 * leg.l21);
-    let walled = sc.surface.pads.iter().any(|p| p.locked());
     let modes = [
         (
             "primary strut on the footpad mass",
@@ -203,14 +202,6 @@ pub fn check_explicit_timestep(
         (
             "secondary struts on the gear's rotation about its trunnion",
             (k_secondary / m_point1).sqrt(),
-        ),
-        (
-            "obstacle wall on the footpad mass",
-            if walled {
-                ObstacleWall::new(0.0, pmass, k_primary, dt).omega(pmass)
-            } else {
-                0.0
-            },
         ),
     ];
     let steps = sc.integrator.t_end / dt;

@@ -12,8 +12,8 @@
 //! its strut, and the wall is rigid beside the gear), but no stiffer than the engine's step
 //! resolves (ω·Δt ≤ 0.5 on PMASS, half of what the engines allow a strut law: on a gear too
 //! stiff for that the wall is as stiff as the step allows, and never the mode that refuses a
-//! step), critically damped on the footpad mass PMASS. Its work is booked with the contact's (the contact-event account), as a locked
-//! footpad's lateral impulses are.
+//! step), critically damped on the footpad mass PMASS. Its work is booked with the contact's
+//! (the contact-event account), as a locked footpad's lateral impulses are.
 
 use nalgebra::{Vector2, Vector3};
 
@@ -50,12 +50,6 @@ impl ObstacleWall {
         }
     }
 
-    /// The wall's angular frequency on the footpad mass `mass` (kg), rad/s: the mode an
-    /// explicit step must resolve.
-    pub fn omega(&self, mass: f64) -> f64 {
-        (self.stiffness / mass).sqrt()
-    }
-
     /// Updates the wall after a step at whose end the footpad stands at `xy` (m) and
     /// `clearance` (m) above its plane, having received a pushing normal impulse over the step
     /// (`pushed`): a landing footpad is held where it landed; one above the wall is free.
@@ -84,6 +78,11 @@ impl ObstacleWall {
 mod tests {
     use super::*;
 
+    /// The wall's angular frequency on the footpad mass `mass` (kg), rad/s.
+    fn omega(w: &ObstacleWall, mass: f64) -> f64 {
+        (w.stiffness / mass).sqrt()
+    }
+
     fn wall() -> ObstacleWall {
         ObstacleWall::new(0.3, 0.2, 1.0e6, 2.0e-5)
     }
@@ -92,8 +91,10 @@ mod tests {
     fn the_wall_is_no_stiffer_than_the_step_resolves() {
         // 4 × 1e6 N/m on 0.2 kg: ω = 4472 rad/s, 0.09 of a 20 µs step; ×100 it would be 0.89.
         let (m, dt) = (0.2, 2.0e-5);
-        assert!((ObstacleWall::new(0.3, m, 1.0e6, dt).omega(m) - (4.0e6 / m).sqrt()).abs() < 1e-9);
-        let stiff = ObstacleWall::new(0.3, m, 1.0e8, dt).omega(m) * dt;
+        assert!(
+            (omega(&ObstacleWall::new(0.3, m, 1.0e6, dt), m) - (4.0e6 / m).sqrt()).abs() < 1e-9
+        );
+        let stiff = omega(&ObstacleWall::new(0.3, m, 1.0e8, dt), m) * dt;
         assert!((stiff - WALL_OMEGA_DT).abs() < 1e-12, "{stiff}");
     }
 
@@ -124,7 +125,7 @@ mod tests {
     fn the_wall_is_critically_damped_on_the_footpad() {
         let w = wall();
         let (k, m) = (4.0e6, 0.2);
-        assert!((w.omega(m) - (k / m).sqrt()).abs() < 1e-9);
+        assert!((omega(&w, m) - (k / m).sqrt()).abs() < 1e-9);
         let mut w = w;
         w.update(true, Vector2::zeros(), 0.0);
         let f = w.force(Vector2::zeros(), &Vector3::new(1.0, 0.0, 5.0));
