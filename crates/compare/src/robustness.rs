@@ -246,7 +246,7 @@ pub fn implausible(sc: &Scenario, s: &Summary) -> Option<String> {
         return Some(format!("a non-finite output ({x})"));
     }
     let (scale, bound) = (
-        e.scale().max(sc.energy_floor_j()),
+        e.guard_scale(sc.energy_floor_j()),
         sc.integrator.energy_tolerance,
     );
     if s.energy_residual_j.abs() > bound * scale {

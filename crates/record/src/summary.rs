@@ -78,6 +78,13 @@ impl EnergyReport {
     pub fn scale(&self) -> f64 {
         self.kinetic_initial_j + (-self.potential_change_j).max(0.0) + self.driving_input_j
     }
+
+    /// What the energy guard judges the residual against, J: the energy scale, or `floor_j`
+    /// (J, the scenario's resolution, `Scenario::energy_floor_j`) while the energy put in is
+    /// smaller (docs/errata.md, "Energy guard").
+    pub fn guard_scale(&self, floor_j: f64) -> f64 {
+        self.scale().max(floor_j)
+    }
 }
 
 impl EnergyLedger {
@@ -115,9 +122,8 @@ impl EnergyLedger {
     }
 
     /// The divergence guard on the balance: the imbalance if the residual of `e` (this ledger's
-    /// report) exceeds `tolerance` of the energy scale ([`EnergyReport::scale`]: the energy put
-    /// in), or of `floor_j` (J, the scenario's resolution, `Scenario::energy_floor_j`) while the
-    /// energy put in is smaller. `hint` names the likely cause for this engine.
+    /// report) exceeds `tolerance` of its guard scale ([`EnergyReport::guard_scale`] with the
+    /// floor `floor_j`, J). `hint` names the likely cause for this engine.
     pub fn check_balance(
         &self,
         e: &EnergyReport,
@@ -125,7 +131,7 @@ impl EnergyLedger {
         floor_j: f64,
         hint: &'static str,
     ) -> Result<(), Imbalance> {
-        let scale = e.scale().max(floor_j);
+        let scale = e.guard_scale(floor_j);
         if e.residual_j.abs() <= tolerance * scale.max(f64::MIN_POSITIVE) {
             return Ok(());
         }
