@@ -26,6 +26,22 @@ pub fn python() -> PathBuf {
     python
 }
 
+/// A landing of the scenario file `path` on the MuJoCo engine, end to end through the Python
+/// runner, its output written under a temporary folder named by `tag` and removed after.
+pub fn mujoco(path: &std::path::Path, tag: &str) -> touchdown_record::Summary {
+    let out = std::env::temp_dir().join(format!(
+        "touchdown-mujoco-{}-{tag}-{}",
+        std::process::id(),
+        path.file_stem().unwrap().to_string_lossy()
+    ));
+    let launch = touchdown_mujoco::Launch::locate().unwrap_or_else(|e| panic!("{e}"));
+    let summary = launch
+        .run(path, &out, false)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let _ = std::fs::remove_dir_all(&out);
+    summary
+}
+
 /// A scenario file under `scenarios/`.
 pub fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)

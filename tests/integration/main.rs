@@ -4,6 +4,7 @@
 //!   producing its own specific error (file, field, what was expected);
 //! * `footpad`: footpads with inertia stay above their planes, are only pushed, land as
 //!   impacts of their own mass, leave with their gears loaded and are held by their walls;
+//! * `decisions`: no stability decision cuts a maximum, on any engine;
 //! * `physics`: checks of the core against analytic results (vertical drop energy balance,
 //!   torque-free tumbling, a lander at rest carrying its weight, energy closure on Table I);
 //! * `allocation`: the core's step loop does not allocate;
@@ -28,6 +29,7 @@
 
 mod allocation;
 mod campaign;
+mod decisions;
 mod docs;
 mod footpad;
 mod fuzz;

@@ -300,27 +300,45 @@ fn crush_work(sc: &Scenario, curbs: &Curbs, memory: &CrushMemory, x_now: f64, wh
 /// Footpads sliding into curbs (eqs. 86-95) crush as the footpad table says: the energy the run
 /// books for the curbs equals the table's crushing work at each curb's largest crush (on its
 /// plateau or its stroke-out stop) less the elastic energy the curb gave back pushing its
-/// footpad. A footpad that leaves the surface while it crushes a curb takes no more push from
-/// it: the curb's elastic energy at that moment is not given back (docs/errata.md, "Contact
-/// and release").
+/// footpad. A footpad with inertia is pushed by its curbs on the surface and off it alike (a
+/// curb stands on the surface beside the footpad's first contact point), so a curb's elastic
+/// energy is held until it is given back. (A massless footpad that leaves the surface takes no
+/// more push: the curb's elastic energy at that moment is not given back, docs/errata.md,
+/// "Contact and release"; that case is `rigid_footpads_leaving_curbs_keep_their_energy`.)
 #[test]
 fn footpads_sliding_into_curbs_crush_as_their_table_says() {
-    let sc = Scenario::load(variant("curb-slide.toml", "core-curbs", FRICTIONLESS_CURBS))
+    curbs_crush_as_their_table_says(Detached::Inertial);
+}
+
+/// [`footpads_sliding_into_curbs_crush_as_their_table_says`] with the report's massless
+/// footpad.
+#[test]
+fn rigid_footpads_leaving_curbs_keep_their_energy() {
+    curbs_crush_as_their_table_says(Detached::Rigid);
+}
+
+fn curbs_crush_as_their_table_says(detached: Detached) {
+    let mut sc = Scenario::load(variant("curb-slide.toml", "core-curbs", FRICTIONLESS_CURBS))
         .unwrap_or_else(|e| panic!("{e}"));
+    sc.footpad.detached = detached;
     let mut sim = Simulation::new(&sc).expect("core builds");
     let r = sc.footpad.radius;
-    // Per curb: its elastic energy at the last state its footpad was in contact, and what
-    // leaving kept of it, J.
+    // Per curb: its elastic energy at the last state its footpad pushed on it, and what a
+    // massless footpad's leaving kept of it, J.
     let n = sim.mechanisms().curbs.as_ref().unwrap().list.len();
     let (mut held, mut kept) = (vec![0.0; n], 0.0);
-    let in_contact = |sim: &Simulation, leg: usize| {
-        sim.footpads()[leg].state == touchdown_core::surface::ContactState::Contact
+    let pushed = |sim: &Simulation, leg: usize| {
+        let pad = &sim.footpads()[leg];
+        match detached {
+            Detached::Inertial => pad.first_contact.is_some(),
+            Detached::Rigid => pad.state == touchdown_core::surface::ContactState::Contact,
+        }
     };
     loop {
         let curbs = sim.mechanisms().curbs.as_ref().unwrap();
         for (k, ((leg, curb), memory)) in curbs.list.iter().zip(&curbs.memory).enumerate() {
             let pad = &sim.footpads()[*leg];
-            if in_contact(&sim, *leg) {
+            if pushed(&sim, *leg) {
                 let xy = nalgebra::Vector2::new(pad.position.x, pad.position.y);
                 held[k] = curbs
                     .crush
@@ -343,11 +361,14 @@ fn footpads_sliding_into_curbs_crush_as_their_table_says() {
             - curbs.crush.stored_energy(x_max, *memory);
     }
     // The footpad equations freeze the curb force over a step (eq. 97), so the booked work
-    // lags the table's area by the force's change over a step on the stiff onset.
+    // lags the table's area by the force's change over a step on the stiff onset, at every
+    // loading and unloading: 2.8 % at 0.104 s, 11.5 % at the end of the 1.5 s run, over which
+    // the rocking vehicle's footpads strike their curbs again and again (an open defect of the
+    // explicit curb force, docs/errata.md, "Stability decisions and maxima").
     let booked = sim.summary().energy.mechanisms_j;
     assert!(
         (booked / expected - 1.0).abs() < 0.15,
-        "booked {booked} J vs table {expected} J"
+        "{detached:?}: booked {booked} J vs table {expected} J"
     );
 }
 
@@ -355,7 +376,10 @@ fn footpads_sliding_into_curbs_crush_as_their_table_says() {
 /// the scenario's EI changes the secondary strokes by far more than that (0.45 mm with the
 /// footpad with inertia) and keeps the energy balance. The limit is taken with lossless end
 /// stops: a footpad hanging on a stop of restitution 0.5 amplifies any small difference, the
-/// bending of EI = 1e11 lbf·ft² as well as a rounding one (docs/errata.md, "End stops").
+/// bending of EI = 1e11 lbf·ft² as well as a rounding one (docs/errata.md, "End stops"); and
+/// over the landing up to its stable conditions, as when runs ended there: the vehicle's
+/// rocking after them grows any difference as it grows rounding (2.8e-6 m at 1.5 s;
+/// `tests/integration/symmetry.rs`).
 #[test]
 fn bending_tends_to_the_rigid_strut_and_eases_the_secondaries() {
     let lossless = [
@@ -363,14 +387,15 @@ fn bending_tends_to_the_rigid_strut_and_eases_the_secondaries() {
         ("secondary_strut.tension.stop_restitution", 1.0),
         ("secondary_strut.compression.stop_restitution", 1.0),
     ];
-    let rigid = run(&load("table-i-2-2-vv8.toml", &lossless)).summary();
+    let landing = run(&load("table-i-2-2-vv8.toml", &lossless))
+        .summary()
+        .stable_conditions_time_s
+        .expect("the lossless landing meets the stable conditions");
+    let to_them = [&lossless[..], &[("integrator.t_end", landing)]].concat();
+    let rigid = run(&load("table-i-2-2-vv8.toml", &to_them)).summary();
     let stiff = run(&load(
         "bending-2-2-vv8.toml",
-        &[
-            &lossless[..],
-            &[("primary_strut.bending.stiffness", 1.0e11)],
-        ]
-        .concat(),
+        &[&to_them[..], &[("primary_strut.bending.stiffness", 1.0e11)]].concat(),
     ))
     .summary();
     let bent = run(&load("bending-2-2-vv8.toml", &[])).summary();

@@ -5,29 +5,13 @@
 //! outcomes and with the other multibody (the rapier rebuild) on the strokes. A missing venv
 //! fails with the command that creates it.
 
-use std::path::Path;
 use std::process::Command;
 use touchdown_mujoco::landing::{GearIndex, MjArrays, ModelSizes};
-use touchdown_mujoco::{Launch, MujocoError, MujocoLanding};
-use touchdown_record::{Outcome, Summary};
+use touchdown_mujoco::{MujocoError, MujocoLanding};
+use touchdown_record::Outcome;
 use touchdown_scenario::schema::Detached;
 use touchdown_scenario::{Scenario, ScenarioError};
-use touchdown_tests::{analytic_drop_stroke, python, root, scenario, validation_landings};
-
-/// A landing on the MuJoCo engine, end to end through the Python runner.
-fn mujoco(path: &Path) -> Summary {
-    let out = std::env::temp_dir().join(format!(
-        "touchdown-mujoco-{}-{}",
-        std::process::id(),
-        path.file_stem().unwrap().to_string_lossy()
-    ));
-    let launch = Launch::locate().unwrap_or_else(|e| panic!("{e}"));
-    let summary = launch
-        .run(path, &out, false)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let _ = std::fs::remove_dir_all(&out);
-    summary
-}
+use touchdown_tests::{analytic_drop_stroke, mujoco, python, root, scenario, validation_landings};
 
 #[test]
 fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
@@ -130,7 +114,7 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
     let path = scenario("flat-drop.toml");
     let sc = Scenario::load(&path).unwrap();
     let expected = analytic_drop_stroke(&sc);
-    let s = mujoco(&path);
+    let s = mujoco(&path, "engine");
     assert_eq!(s.engine, "mujoco");
     for (i, c) in s.max_primary_stroke_m.iter().enumerate() {
         assert!(
@@ -154,14 +138,14 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
     for name in validation_landings() {
         let path = scenario(&name);
         let sc = Scenario::load(&path).unwrap();
-        // The core's footpad with inertia, held by the same wall as the multibody engines'
-        // (docs/errata.md, "Footpads with inertia"): the same model as theirs. (The default
-        // massless footpad parts from them by up to 26 %: docs/engines.md.)
-        let mut same_footpad = sc.clone();
-        same_footpad.footpad.detached = Detached::Inertial;
-        let core = touchdown_core::run(&same_footpad).unwrap();
+        // The core's footpad with inertia (the default), held by the same wall as the
+        // multibody engines' (docs/errata.md, "Footpads with inertia"): the same model as
+        // theirs. (The report's massless footpad parts from them by up to 26 %:
+        // docs/engines.md.)
+        assert_eq!(sc.footpad.detached, Detached::Inertial, "{name}");
+        let core = touchdown_core::run(&sc).unwrap();
         let rapier = touchdown_rapier::run(&sc).unwrap();
-        let mj = mujoco(&path);
+        let mj = mujoco(&path, "engine");
         let e = &mj.energy;
         assert!(
             e.residual_j.abs() < 0.01 * e.kinetic_initial_j,

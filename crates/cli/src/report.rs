@@ -40,10 +40,16 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
         let _ = writeln!(o, "mechanisms: {}", list.join(", "));
     }
     let outcome = match (s.outcome, s.decision_time_s) {
-        (Outcome::Stable, Some(t)) => format!("STABLE (declared at t = {t:.4} s)"),
+        (Outcome::Stable, Some(t)) => format!(
+            "STABLE (the stable conditions held at t = {t:.4} s; maxima over the whole run)"
+        ),
         (Outcome::Unstable, Some(t)) => format!(
-            "UNSTABLE (centre of mass crossed a stability wall at t = {t:.4} s, overturning velocity {:.3} m/s)",
-            s.overturn_velocity_m_s.unwrap_or(f64::NAN)
+            "UNSTABLE (centre of mass crossed a stability wall at t = {t:.4} s, overturning velocity {:.3} m/s{}; maxima up to the crossing)",
+            s.overturn_velocity_m_s.unwrap_or(f64::NAN),
+            match s.stable_conditions_time_s {
+                Some(c) => format!(", after the stable conditions held at t = {c:.4} s"),
+                None => String::new(),
+            }
         ),
         _ => "UNDECIDED (no stability decision before the end time)".to_string(),
     };

@@ -1227,8 +1227,10 @@ fn view_writes_the_same_page_twice_and_refuses_bad_arguments() {
     assert_eq!(names, ["core", "rapier", "mujoco"]);
     for e in engines {
         let frames = e["frames"]["t_s"].as_array().unwrap().len();
+        // A thousand frames a second of landing (the steps decimated): the stable landing
+        // runs its 1.5 s.
         assert!(
-            frames > 50 && frames < 400,
+            frames > 1000 && frames < 1600,
             "{}: {frames} frames",
             e["name"]
         );

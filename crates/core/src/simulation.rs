@@ -438,6 +438,7 @@ impl Physics {
         self.update_extremes();
         self.extremes
             .update_acceleration(&old.velocity, &self.vehicle.velocity, dt, &self.gravity);
+        self.extremes.follow(&self.stability);
         Ok(())
     }
 
@@ -513,7 +514,7 @@ impl Landing for Simulation {
         self.stepper.get().step(&mut self.physics)
     }
 
-    /// Whether the run has ended (end time, or a decision with termination on).
+    /// Whether the run has ended (end time, or an unstable decision with termination on).
     fn finished(&self) -> bool {
         self.physics.t >= self.physics.integrator.t_end * (1.0 - 1e-12)
             || self.physics.stability.terminates()

@@ -272,8 +272,8 @@ impl MujocoLanding {
         self.t
     }
 
-    /// Whether the run has ended (a decision, if the scenario terminates on one, or the end
-    /// time).
+    /// Whether the run has ended (an unstable decision, if the scenario terminates on one, or
+    /// the end time).
     pub fn finished(&self) -> bool {
         self.book.finished(self.t)
     }

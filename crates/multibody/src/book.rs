@@ -296,8 +296,8 @@ impl GearBook {
         self.curb_forces[i] + self.wall_forces[i]
     }
 
-    /// Whether the landing has ended at time `t` (s): a decision, if the scenario terminates on
-    /// one, or the end time.
+    /// Whether the landing has ended at time `t` (s): an unstable decision, if the scenario
+    /// terminates on one, or the end time.
     pub fn finished(&self, t: f64) -> bool {
         t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
     }
@@ -356,6 +356,7 @@ impl GearBook {
             dt,
             &self.gravity,
         );
+        self.extremes.follow(&self.stability);
         Ok(energy)
     }
 

@@ -30,8 +30,8 @@ pub trait Landing: Sized {
     /// One accepted step.
     fn step(&mut self) -> Result<(), Self::Error>;
 
-    /// Whether the run has ended (a decision, if the scenario terminates on one, or the end
-    /// time).
+    /// Whether the run has ended (an unstable decision, if the scenario terminates on one, or
+    /// the end time; a stable landing runs to its end time).
     fn finished(&self) -> bool;
 
     /// Writes the current state into `out` (a sample made for as many legs).
@@ -40,7 +40,7 @@ pub trait Landing: Sized {
     /// The summary at the current state.
     fn summary(&self) -> Summary;
 
-    /// Runs to a decision (if the scenario terminates on one) or to the end time, with
+    /// Runs to an unstable decision (if the scenario terminates on one) or to the end time, with
     /// `observer` called at the start and after every step.
     fn run(&mut self, observer: &mut impl Observer<Self>) -> Result<Summary, Self::Error> {
         observer.observe(self);

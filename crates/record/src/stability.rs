@@ -81,6 +81,8 @@ pub struct StabilityTracker {
     /// Vehicle kinetic energy at first contact, J.
     ke0: f64,
     outcome: Option<(Outcome, f64)>,
+    /// When the four stable conditions first held, s.
+    stable_conditions: Option<f64>,
     overturn_velocity: Option<f64>,
 }
 
@@ -107,12 +109,13 @@ impl StabilityTracker {
             min_any: f64::INFINITY,
             ke0,
             outcome: None,
+            stable_conditions: None,
             overturn_velocity: None,
         }
     }
 
-    /// Updates the distances and, until a decision is made, the unstable crossing and the four
-    /// stable conditions, at time `t` (s) with the centre of mass at `cm` (m) moving at
+    /// Updates the distances and, until the landing overturns, their minimum and the unstable
+    /// crossing, and until a decision is made the four stable conditions, at time `t` (s) with the centre of mass at `cm` (m) moving at
     /// `velocity` (m/s; `previous_velocity` at the previous accepted state, to interpolate the
     /// velocity at a crossing), the engine's energy report at this state `energy` (its kinetic
     /// energy, and its honeycomb stored energy unless the criteria count the kinetic energy
@@ -127,6 +130,7 @@ impl StabilityTracker {
         pads: &[PadView],
     ) {
         let n = pads.len();
+        let failed = self.overturned();
         let mut min_now = f64::INFINITY;
         let mut min_wall = usize::MAX;
         let mut crossing: Option<(usize, f64)> = None;
@@ -141,7 +145,9 @@ impl StabilityTracker {
                 Some((sd, normal)) => {
                     self.sd[i] = sd;
                     self.normal[i] = normal;
-                    self.min_any = self.min_any.min(sd);
+                    if !failed {
+                        self.min_any = self.min_any.min(sd);
+                    }
                     if counted && sd < min_now {
                         min_now = sd;
                         min_wall = i;
@@ -159,12 +165,16 @@ impl StabilityTracker {
                 None => self.sd[i] = f64::NAN,
             }
         }
+        if failed {
+            // The landing has failed: what follows is the overturn, not the landing, and
+            // measures nothing of it (docs/errata.md, "Stability decisions and maxima").
+            return;
+        }
         if min_now < self.min_sd {
             self.min_sd = min_now;
         }
-        if self.outcome.is_some() {
-            return;
-        }
+        // A crossing decides the landing unstable even after the stable conditions held: they
+        // are a prediction, the crossing is the event.
         if let Some((wall, f)) = crossing {
             let v_cross = match previous_velocity {
                 Some(o) => o + (velocity - o) * f,
@@ -174,7 +184,7 @@ impl StabilityTracker {
             self.outcome = Some((Outcome::Unstable, t));
             return;
         }
-        if min_wall == usize::MAX {
+        if min_wall == usize::MAX || self.outcome.is_some() {
             return;
         }
         let j = (min_wall + 1) % n;
@@ -189,7 +199,19 @@ impl StabilityTracker {
                 >= self.criteria.min_separation_velocity - SEPARATION_VELOCITY_ROUNDING; // 4
         if stable {
             self.outcome = Some((Outcome::Stable, t));
+            self.stable_conditions = Some(t);
         }
+    }
+
+    /// Whether the centre of mass has crossed a counted wall: the landing has failed.
+    pub fn overturned(&self) -> bool {
+        matches!(self.outcome, Some((Outcome::Unstable, _)))
+    }
+
+    /// When the four stable conditions first held, s, even if a later crossing decided the
+    /// landing unstable; `None` if they never held. The report ends its runs here.
+    pub fn stable_conditions_time(&self) -> Option<f64> {
+        self.stable_conditions
     }
 
     /// Current stability distance per wall (wall i joins footpads i and i+1), m; NaN where the
@@ -224,9 +246,13 @@ impl StabilityTracker {
         self.overturn_velocity
     }
 
-    /// Whether the run should end now: a decision was made and the criteria end runs on one.
+    /// Whether the run should end now: the landing overturned and the criteria end runs on a
+    /// decision. A stable decision never ends a run: the gear can still stroke and the
+    /// footpads still strike after the four conditions hold, and a crossing can still follow,
+    /// so a stable landing runs to its end time (docs/errata.md, "Stability decisions and
+    /// maxima").
     pub fn terminates(&self) -> bool {
-        self.criteria.terminate_on_decision && self.outcome.is_some()
+        self.criteria.terminate_on_decision && self.overturned()
     }
 }
 
@@ -355,6 +381,58 @@ mod tests {
         t.update(0.2, &cm, &v, None, &e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.2)));
         assert!((t.min_distance() - (0.5f64).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_crossing_after_the_stable_conditions_decides_unstable_and_closes_the_measurements() {
+        let mut t = tracker();
+        let v = Vector3::zeros();
+        let inside = Vector3::new(0.0, 0.0, 1.0);
+        t.update(0.1, &inside, &v, None, &e(5.0, 0.0), &pads(true));
+        assert_eq!(t.decision(), Some((Outcome::Stable, 0.1)));
+        assert!(!t.terminates(), "a stable decision ends no run");
+        let mut x = crate::summary::Extremes::new(4);
+        x.follow(&t);
+        x.update_pitch_rate(0.1, 0.5);
+        // The vehicle later tips over wall 0 (pads 0-1).
+        let out = Vector3::new(0.6, 0.6, 1.0);
+        let toward = Vector3::new(1.0, 1.0, 0.0);
+        t.update(0.2, &out, &toward, Some(&v), &e(5.0, 0.0), &pads(true));
+        assert_eq!(t.decision(), Some((Outcome::Unstable, 0.2)));
+        assert_eq!(t.stable_conditions_time(), Some(0.1));
+        assert!(t.terminates());
+        let at_crossing = t.min_distance();
+        x.update_pitch_rate(0.2, 0.7);
+        x.follow(&t);
+        // Past the crossing nothing more is measured.
+        let further = Vector3::new(2.0, 2.0, 1.0);
+        t.update(
+            0.3,
+            &further,
+            &toward,
+            Some(&toward),
+            &e(5.0, 0.0),
+            &pads(true),
+        );
+        x.update_pitch_rate(0.3, 3.0);
+        assert_eq!(t.min_distance(), at_crossing);
+        assert_eq!(t.decision(), Some((Outcome::Unstable, 0.2)));
+        let s = crate::summary::Summary::new(
+            "test",
+            "test",
+            Default::default(),
+            crate::summary::Progress {
+                t: 0.3,
+                steps: 3,
+                force_evaluations: 3,
+                first_contact_s: vec![Some(0.0); 4],
+            },
+            &t,
+            &x,
+            EnergyReport::default(),
+        );
+        assert_eq!(s.peak_pitch_rate_rad_s, 0.7);
+        assert_eq!(s.stable_conditions_time_s, Some(0.1));
     }
 
     #[test]

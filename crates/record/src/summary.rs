@@ -184,6 +184,8 @@ pub struct Extremes {
     specific_force: f64,
     pitch_rate: f64,
     pitch_rate_time: f64,
+    /// Closed: the landing overturned, later states measure the overturn, not the landing.
+    closed: bool,
 }
 
 impl Extremes {
@@ -194,7 +196,16 @@ impl Extremes {
             specific_force: 0.0,
             pitch_rate: 0.0,
             pitch_rate_time: 0.0,
+            closed: false,
         }
+    }
+
+    /// Closes the extremes once `stability` has decided the landing unstable: the state at
+    /// the crossing is the last one measured, whether or not the run goes on
+    /// (docs/errata.md, "Stability decisions and maxima").
+    #[inline]
+    pub fn follow(&mut self, stability: &StabilityTracker) {
+        self.closed |= stability.overturned();
     }
 
     /// Updates leg `i` with its primary compression stroke (m) and force (N, compression
@@ -208,6 +219,9 @@ impl Extremes {
         primary_force: f64,
         secondary_force: [f64; 2],
     ) {
+        if self.closed {
+            return;
+        }
         let leg = &mut self.legs[i];
         leg.primary = leg.primary.max(primary);
         leg.primary_force = leg.primary_force.max(primary_force);
@@ -231,7 +245,7 @@ impl Extremes {
         dt: f64,
         gravity: &Vector3<f64>,
     ) {
-        if dt > 0.0 {
+        if dt > 0.0 && !self.closed {
             let a = ((after - before) / dt - gravity).norm();
             self.specific_force = self.specific_force.max(a);
         }
@@ -241,7 +255,7 @@ impl Extremes {
     /// the cross-slope axis normal to the plane of a planar landing) at time `t`, s.
     #[inline]
     pub fn update_pitch_rate(&mut self, t: f64, q: f64) {
-        if q.abs() > self.pitch_rate.abs() {
+        if !self.closed && q.abs() > self.pitch_rate.abs() {
             self.pitch_rate = q;
             self.pitch_rate_time = t;
         }
@@ -266,9 +280,16 @@ pub struct Summary {
     pub engine_settings: serde_json::Map<String, serde_json::Value>,
     /// Stability outcome.
     pub outcome: Outcome,
-    /// Time of the stability decision, s (left out of the JSON if undecided).
+    /// Time of the stability decision, s (left out of the JSON if undecided): when the four
+    /// stable conditions first held, or when the centre of mass crossed a wall.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub decision_time_s: Option<f64>,
+    /// When the four stable conditions of eqs. (105)-(107) first held, s, where the report
+    /// ends its runs; the run goes on to its end time so that no maximum is cut short, and a
+    /// later crossing still decides the landing unstable (left out of the JSON if they never
+    /// held).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stable_conditions_time_s: Option<f64>,
     /// Time the run ended, s.
     pub t_end_s: f64,
     /// Accepted integration steps.
@@ -399,6 +420,7 @@ impl Summary {
             engine_settings,
             outcome,
             decision_time_s: decision,
+            stable_conditions_time_s: stability.stable_conditions_time(),
             t_end_s: progress.t,
             steps: progress.steps,
             force_evaluations: progress.force_evaluations,

@@ -516,7 +516,7 @@ pub struct Stability {
     pub min_separation_velocity: f64,
     /// Walls counted for the unstable declaration.
     pub walls: WallRule,
-    /// End the run on a decision.
+    /// End the run at an unstable decision (a stable landing runs to its end time).
     pub terminate_on_decision: bool,
 }
 

@@ -778,7 +778,8 @@ pub struct Stability {
     /// Walls counted for the unstable declaration.
     #[serde(default = "default_walls")]
     pub walls: WallRule,
-    /// End the run as soon as the landing is declared stable or unstable.
+    /// End the run when the centre of mass crosses a wall (the landing is unstable). A stable
+    /// landing always runs to its end time, so that no maximum is cut short.
     #[serde(default = "yes")]
     pub terminate_on_decision: bool,
 }

@@ -215,9 +215,11 @@ pub struct Measured {
     pub pitch_rate_at_strike_rad_s: f64,
     /// Pitch rate at maximum stroking, rad/s.
     pub pitch_rate_after_rad_s: f64,
-    /// When every strut with a significant stroke has come within 1 % of its largest, s.
+    /// When every strut with a significant stroke has come within 1 % of its largest over the
+    /// impact phase (up to the first return of a footpad that was down at touchdown), s.
     pub maximum_stroking_s: f64,
-    /// Largest primary stroke beyond the first stage's end, ft (negative: short of it).
+    /// Largest primary stroke beyond the first stage's end over the impact phase, ft (negative:
+    /// short of it).
     pub second_stage_depth_ft: f64,
     /// Stability outcome.
     pub outcome: Outcome,
@@ -251,16 +253,23 @@ pub fn measure(sc: &Scenario, series: &Series, summary: &touchdown_core::Summary
         .reduce(f64::min)
         .unwrap_or(f64::NAN);
     let strike = s.t.iter().position(|t| *t >= strike_t);
+    // The stroking facts describe the report's analytical curve, which after the downhill
+    // impact turns about the forward footpads and overturns: they are measured over the same
+    // phase of ours, up to the first return to the surface of a footpad that was down at
+    // touchdown and left it (the rocking back onto the uphill legs the report's curve never
+    // has; the whole run if there is none).
+    let phase = impact_phase(s);
     // Maximum stroking: the time every strut with significant stroke (over a tenth of the
     // largest) has come within 1 % of its largest stroke (ignoring slow creep afterwards).
     let largest = s
         .primary_stroke
         .iter()
         .chain(&s.secondary_compression)
-        .flatten()
+        .flat_map(|x| &x[..phase])
         .copied()
         .fold(0.0, f64::max);
     let reached = |x: &Vec<f64>| {
+        let x = &x[..phase];
         let top = x.iter().copied().fold(0.0, f64::max);
         if top < 0.1 * largest {
             return 0.0;
@@ -282,9 +291,10 @@ pub fn measure(sc: &Scenario, series: &Series, summary: &touchdown_core::Summary
             .unwrap_or(n - 1);
     let before = strike.map(|k| s.pitch_rate[k]).unwrap_or(f64::NAN);
     let after = s.pitch_rate[stroking_k];
-    let depth_ft = (summary
-        .max_primary_stroke_m
+    let depth_ft = (s
+        .primary_stroke
         .iter()
+        .flat_map(|x| &x[..phase])
         .copied()
         .fold(0.0, f64::max)
         - stage_one_end)
@@ -298,6 +308,23 @@ pub fn measure(sc: &Scenario, series: &Series, summary: &touchdown_core::Summary
         second_stage_depth_ft: depth_ft,
         outcome: summary.outcome,
     }
+}
+
+/// The number of recorded states of the landing's impact phase: up to (not including) the
+/// first state at which a footpad that was on the surface at touchdown and left it is on it
+/// again; all of them if none returns.
+fn impact_phase(s: &Series) -> usize {
+    let Some(&first) = s.contacts.first() else {
+        return 0;
+    };
+    let mut left = 0u32;
+    for (k, &mask) in s.contacts.iter().enumerate() {
+        if mask & left != 0 {
+            return k;
+        }
+        left |= first & !mask;
+    }
+    s.contacts.len()
 }
 
 /// Runs the figure 25-26 landing, with `overrides` (field path, value in file units: a fit's
