@@ -80,9 +80,10 @@ pub struct StabilityTracker {
     min_any: f64,
     /// Vehicle kinetic energy at first contact, J.
     ke0: f64,
-    outcome: Option<(Outcome, f64)>,
     /// When the four stable conditions first held, s.
     stable_conditions: Option<f64>,
+    /// When the centre of mass crossed a counted wall, s.
+    crossing: Option<f64>,
     overturn_velocity: Option<f64>,
 }
 
@@ -108,18 +109,19 @@ impl StabilityTracker {
             min_sd: f64::INFINITY,
             min_any: f64::INFINITY,
             ke0,
-            outcome: None,
             stable_conditions: None,
+            crossing: None,
             overturn_velocity: None,
         }
     }
 
     /// Updates the distances and, until the landing overturns, their minimum and the unstable
-    /// crossing, and until a decision is made the four stable conditions, at time `t` (s) with the centre of mass at `cm` (m) moving at
-    /// `velocity` (m/s; `previous_velocity` at the previous accepted state, to interpolate the
-    /// velocity at a crossing), the engine's energy report at this state `energy` (its kinetic
-    /// energy, and its honeycomb stored energy unless the criteria count the kinetic energy
-    /// alone, enter condition 1) and the footpads `pads`. Allocates nothing.
+    /// crossing, and until they first hold the four stable conditions, at time `t` (s) with the
+    /// centre of mass at `cm` (m) moving at `velocity` (m/s; `previous_velocity` at the previous
+    /// accepted state, to interpolate the velocity at a crossing), the engine's energy report at
+    /// this state `energy` (its kinetic energy, and its honeycomb stored energy unless the
+    /// criteria count the kinetic energy alone, enter condition 1) and the footpads `pads`.
+    /// Allocates nothing.
     pub fn update(
         &mut self,
         t: f64,
@@ -181,10 +183,10 @@ impl StabilityTracker {
                 None => *velocity,
             };
             self.overturn_velocity = Some(overturn_velocity(&v_cross, &self.normal[wall]));
-            self.outcome = Some((Outcome::Unstable, t));
+            self.crossing = Some(t);
             return;
         }
-        if min_wall == usize::MAX || self.outcome.is_some() {
+        if min_wall == usize::MAX || self.stable_conditions.is_some() {
             return;
         }
         let j = (min_wall + 1) % n;
@@ -198,14 +200,13 @@ impl StabilityTracker {
             && -velocity.dot(&self.normal[min_wall])
                 >= self.criteria.min_separation_velocity - SEPARATION_VELOCITY_ROUNDING; // 4
         if stable {
-            self.outcome = Some((Outcome::Stable, t));
             self.stable_conditions = Some(t);
         }
     }
 
     /// Whether the centre of mass has crossed a counted wall: the landing has failed.
     pub fn overturned(&self) -> bool {
-        matches!(self.outcome, Some((Outcome::Unstable, _)))
+        self.crossing.is_some()
     }
 
     /// When the four stable conditions first held, s, even if a later crossing decided the
@@ -236,9 +237,14 @@ impl StabilityTracker {
         self.ke0
     }
 
-    /// The decision and its time, s, if one was made.
+    /// The decision and its time, s, if one was made: the crossing, or else the instant the
+    /// stable conditions first held.
     pub fn decision(&self) -> Option<(Outcome, f64)> {
-        self.outcome
+        match (self.crossing, self.stable_conditions) {
+            (Some(t), _) => Some((Outcome::Unstable, t)),
+            (None, Some(t)) => Some((Outcome::Stable, t)),
+            (None, None) => None,
+        }
     }
 
     /// Overturning velocity at the wall crossing, m/s (unstable landings only).
