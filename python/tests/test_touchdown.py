@@ -26,6 +26,25 @@ def test_a_landing_returns_its_summary_and_history_as_arrays():
     assert np.isclose(history["leg1_primary_stroke_m"].max(), summary["max_primary_stroke_m"][0], rtol=1e-8)
 
 
+def test_a_strut_past_its_capacity_is_named_in_the_summary_and_the_history():
+    # The stroke-out drop bottoms its four primaries on their end stops; every strut of the
+    # Table I landing stays within its capacity.
+    landing = touchdown.run(ROOT / "scenarios" / "stroke-out.toml")
+    summary, history = landing["summary"], landing["history"]
+    past = summary["past_capacity"]
+    assert [p["strut"] for p in past] == [f"leg{i}.primary" for i in range(1, 5)]
+    capacity = summary["strut_capacity"]["primary"]
+    for p in past:
+        assert p["capacity_m"] == capacity["stroke_m"] and p["stroke_of_capacity"] > 1.0
+        assert np.isclose(p["peak_stop_force_n"], capacity["stop_rate_n_m"] * p["past_capacity_m"], rtol=1e-12)
+    # The history's stop force peaks at the summary's, and is zero within the capacity.
+    stop = history["leg1_primary_stop_force_n"]
+    assert np.isclose(stop.max(), past[0]["peak_stop_force_n"], rtol=1e-6)
+    within = history["leg1_primary_stroke_m"] <= capacity["stroke_m"]
+    assert within.any() and (stop[within] == 0.0).all()
+    assert touchdown.run(SCENARIO, history=False)["summary"]["past_capacity"] == []
+
+
 def test_the_summary_is_the_command_lines():
     cli = subprocess.run([TOUCHDOWN, "run", SCENARIO, "--format", "json"], capture_output=True, check=True)
     import json

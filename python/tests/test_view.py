@@ -126,9 +126,23 @@ def test_the_page_opens_from_disk_with_everything_inside(page, landing):
     assert [r.text.split()[0] for r in rows] == [e["name"] for e in doc["engines"]]
     for row, engine in zip(rows, doc["engines"]):
         assert engine["outcome"] in row.text
+        assert ("past capacity" in row.text) == bool(engine["past_capacity"]), row.text
     resources = page.execute_script("return performance.getEntriesByType('resource').map(r => r.name)")
     assert [r for r in resources if not r.startswith(("data:", "file:"))] == []
     assert len(page.find_elements(By.CSS_SELECTOR, "#plots .uplot")) == 3
+
+
+def test_a_strut_past_its_capacity_is_named_beside_the_outcome(browser, tmp_path):
+    # The stroke-out drop bottoms its four primaries: the outcome never reads simply stable.
+    page_path, doc, _ = view("stroke-out", "core", tmp_path)
+    past = doc["engines"][0]["past_capacity"]
+    assert sorted(p["strut"] for p in past) == [f"leg{i}.primary" for i in range(1, 5)]
+    view_still.open_page(browser, page_path)
+    row = browser.find_element(By.CSS_SELECTOR, "#engines-now tbody tr")
+    assert "4 struts past capacity" in row.text, row.text
+    note = row.find_element(By.CSS_SELECTOR, ".past-capacity").get_attribute("title")
+    assert note.count("\n") == 3 and "leg1.primary" in note and "kN" in note, note
+    assert console_problems(browser, page_path) == []
 
 
 def test_the_slider_moves_time_and_the_picture(page, landing):

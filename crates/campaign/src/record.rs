@@ -8,7 +8,6 @@ use crate::distribution::Value;
 use crate::spec::Campaign;
 use serde::{Deserialize, Serialize};
 use touchdown_record::{Outcome, RunError, Summary};
-use touchdown_scenario::Scenario;
 
 /// What a column holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -153,7 +152,7 @@ impl Failure {
 
 /// The struts of one leg, as named in records: the primary, then each secondary (3-1, 4-1) in
 /// compression and in tension.
-const SECONDARIES: [&str; 2] = ["3_1", "4_1"];
+use touchdown_record::capacity::SECONDARY_NAMES as SECONDARIES;
 
 /// The columns of a campaign's records, in order.
 pub fn columns(campaign: &Campaign) -> Vec<Column> {
@@ -211,13 +210,12 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
 pub type Row = Vec<Cell>;
 
 /// The record of landing `landing` that ran with the values `applied` and ended with `result`:
-/// the summary of a landing that completed, with the scenario it ran (for the struts'
-/// capacities), or why it did not.
+/// the summary of a landing that completed, or why it did not.
 pub fn row(
     campaign: &Campaign,
     landing: u64,
     applied: &[Value],
-    result: Result<(&Summary, &Scenario), &RunError>,
+    result: Result<&Summary, &RunError>,
 ) -> Row {
     let legs = campaign.base_scenario.legs.len();
     let mut r: Row = Vec::with_capacity(16 + applied.len() + legs * 15);
@@ -225,8 +223,9 @@ pub fn row(
     r.extend(applied.iter().map(Cell::from));
     let measured = result.ok();
     let (status, failure, stroke_outs) = match result {
-        Ok((s, sc)) => {
-            let outs = stroke_outs(s, sc);
+        Ok(s) => {
+            // The struts past their capacity, named `leg2.primary`, `leg1.secondary_3_1.tension`.
+            let outs: Vec<&str> = s.past_capacity.iter().map(|p| p.strut.as_str()).collect();
             let status = match s.outcome {
                 Outcome::Stable => Status::Stable,
                 Outcome::Unstable => Status::Unstable,
@@ -247,7 +246,7 @@ pub fn row(
     r.push(Cell::Text(failure.name().into()));
     r.push(Cell::Text(stroke_outs.join(",")));
     match measured {
-        Some((s, sc)) => {
+        Some(s) => {
             r.push(s.decision_time_s.into());
             r.push(Some(s.t_end_s).into());
             r.push(s.overturn_velocity_m_s.into());
@@ -256,7 +255,7 @@ pub fn row(
             r.push(Some(s.peak_pitch_rate_rad_s).into());
             r.push(Some(s.energy_residual_j).into());
             r.push(Some(s.energy.scale()).into());
-            let caps = capacities(sc);
+            let caps = &s.strut_capacity;
             for leg in 0..legs {
                 let strut = |stroke: f64, cap: f64, force: f64, r: &mut Row| {
                     r.push(Some(stroke).into());
@@ -265,20 +264,20 @@ pub fn row(
                 };
                 strut(
                     s.max_primary_stroke_m[leg],
-                    caps.primary,
+                    caps.primary.stroke_m,
                     s.peak_primary_force_n[leg],
                     &mut r,
                 );
                 for j in 0..2 {
                     strut(
                         s.max_secondary_compression_m[leg][j],
-                        caps.compression,
+                        caps.secondary_compression.stroke_m,
                         s.peak_secondary_compression_force_n[leg][j],
                         &mut r,
                     );
                     strut(
                         s.max_secondary_tension_m[leg][j],
-                        caps.tension,
+                        caps.secondary_tension.stroke_m,
                         s.peak_secondary_tension_force_n[leg][j],
                         &mut r,
                     );
@@ -322,40 +321,4 @@ fn law_name(law: touchdown_record::Law) -> String {
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
-}
-
-/// The struts' capacities (the end of the last crush stage), m.
-struct Capacities {
-    primary: f64,
-    compression: f64,
-    tension: f64,
-}
-
-fn capacities(sc: &Scenario) -> Capacities {
-    Capacities {
-        primary: sc.primary.compression.capacity(),
-        compression: sc.secondary.compression.capacity(),
-        tension: sc.secondary.tension.capacity(),
-    }
-}
-
-/// The struts that reached the end of their last crush stage, named `leg2.primary`,
-/// `leg1.secondary_3_1.tension`.
-pub fn stroke_outs(s: &Summary, sc: &Scenario) -> Vec<String> {
-    let caps = capacities(sc);
-    let mut out = Vec::new();
-    for (i, p) in s.max_primary_stroke_m.iter().enumerate() {
-        if *p >= caps.primary {
-            out.push(format!("leg{}.primary", i + 1));
-        }
-        for (j, name) in SECONDARIES.iter().enumerate() {
-            if s.max_secondary_compression_m[i][j] >= caps.compression {
-                out.push(format!("leg{}.secondary_{name}.compression", i + 1));
-            }
-            if s.max_secondary_tension_m[i][j] >= caps.tension {
-                out.push(format!("leg{}.secondary_{name}.tension", i + 1));
-            }
-        }
-    }
-    out
 }

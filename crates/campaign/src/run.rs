@@ -120,7 +120,7 @@ pub fn land(
             campaign,
             landing,
             &applied,
-            r.as_ref().map(|s| (s, &sc)).map_err(|f| &f.error),
+            r.as_ref().map_err(|f| &f.error),
         )),
     }
 }

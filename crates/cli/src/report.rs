@@ -39,19 +39,24 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
             .collect();
         let _ = writeln!(o, "mechanisms: {}", list.join(", "));
     }
+    let bottomed = match s.past_capacity.len() {
+        0 => String::new(),
+        1 => " WITH 1 STRUT PAST ITS CAPACITY".to_string(),
+        n => format!(" WITH {n} STRUTS PAST THEIR CAPACITY"),
+    };
     let outcome = match (s.outcome, s.decision_time_s) {
         (Outcome::Stable, Some(t)) => format!(
-            "STABLE (the stable conditions held at t = {t:.4} s; maxima over the whole run)"
+            "STABLE{bottomed} (the stable conditions held at t = {t:.4} s; maxima over the whole run)"
         ),
         (Outcome::Unstable, Some(t)) => format!(
-            "UNSTABLE (centre of mass crossed a stability wall at t = {t:.4} s, overturning velocity {:.3} m/s{}; maxima up to the crossing)",
+            "UNSTABLE{bottomed} (centre of mass crossed a stability wall at t = {t:.4} s, overturning velocity {:.3} m/s{}; maxima up to the crossing)",
             s.overturn_velocity_m_s.unwrap_or(f64::NAN),
             match s.stable_conditions_time_s {
                 Some(c) => format!(", after the stable conditions held at t = {c:.4} s"),
                 None => String::new(),
             }
         ),
-        _ => "UNDECIDED (no stability decision before the end time)".to_string(),
+        _ => format!("UNDECIDED{bottomed} (no stability decision before the end time)"),
     };
     let _ = writeln!(o, "outcome:  {outcome}");
     let _ = writeln!(
@@ -63,6 +68,7 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     if lname != "m" {
         strokes(&mut o, s, lu, lname);
     }
+    past_capacity(&mut o, s);
     let _ = writeln!(
         o,
         "\npeak pitch rate:            {:+.4} rad/s at t = {:.4} s",
@@ -155,6 +161,40 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
         "touchdown kinetic, potential released, thrust and RCS input (the residual's scale)",
     );
     o
+}
+
+/// The struts past their capacity, or that every strut stayed within it.
+fn past_capacity(o: &mut String, s: &Summary) {
+    if s.past_capacity.is_empty() {
+        let _ = writeln!(o, "\nevery strut stayed within its capacity");
+        return;
+    }
+    let _ = writeln!(
+        o,
+        "\nstruts past their capacity, onto their end stops (the stop's law is an estimate: docs/errata.md, \"End stops\")"
+    );
+    let rows = s.past_capacity.iter().map(|p| {
+        vec![
+            p.strut.clone(),
+            format!("{:.4}", p.max_stroke_m),
+            format!("{:.4}", p.capacity_m),
+            format!("{:.1}", 1e3 * p.past_capacity_m),
+            format!("{:.1}", 100.0 * p.stroke_of_capacity),
+            format!("{:.0}", p.peak_stop_force_n),
+        ]
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &[
+            "strut",
+            "max stroke m",
+            "capacity m",
+            "past mm",
+            "% of capacity",
+            "peak stop force N",
+        ],
+        &[1, 2, 3, 4, 5],
+        rows,
+    ));
 }
 
 /// The table of maximum strokes per leg, in `unit` (`scale` metres each).

@@ -21,7 +21,7 @@ use touchdown_frames::gravity_inertial;
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
     EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, RunError, Sample,
-    StabilityTracker, Summary,
+    StabilityTracker, StrutCapacities, Summary,
 };
 use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::model::{Integrator, Leg, Mechanism, PadSurface};
@@ -136,6 +136,7 @@ impl Simulation {
         };
         let mechanisms = Mechanisms::new(scenario, slosh)?;
         let laws = GearLaws::from_scenario(scenario)?;
+        let capacities = StrutCapacities::new(laws.capacities());
         let init = initial_state(scenario);
         let n = scenario.legs.len();
         let mut vehicle = VehicleState {
@@ -204,7 +205,7 @@ impl Simulation {
             potential0: 0.0,
             footpad0: 0.0,
             stability: StabilityTracker::new(&scenario.stability, gravity, n, 0.0),
-            extremes: Extremes::new(n),
+            extremes: Extremes::new(n, capacities),
             pad_views: vec![PadView::default(); n],
             pad_start: vec![(Vector3::zeros(), Vector3::zeros()); n],
             held: Vec::with_capacity(n),
@@ -531,11 +532,17 @@ impl Landing for Simulation {
         out.theta = v.theta;
         out.omega = v.omega;
         out.pitch_rate = v.omega_inertial().x;
-        for ((slot, g), pad) in out.legs.iter_mut().zip(&p.gear).zip(&p.pads) {
+        for (((slot, g), pad), memory) in (out.legs.iter_mut().zip(&p.gear))
+            .zip(&p.pads)
+            .zip(&p.memory)
+        {
             slot.primary_stroke = g.primary_stroke;
             slot.primary_force = g.f2p;
             slot.secondary_stroke = g.secondary_stroke;
             slot.secondary_force = g.f_secondary();
+            slot.stop_force = p
+                .laws
+                .stop_forces(g.primary_stroke, g.secondary_stroke, memory);
             slot.pad_position = pad.position;
             slot.contact = pad.state.code();
         }

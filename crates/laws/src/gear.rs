@@ -36,6 +36,18 @@ impl PrimaryStrutLaw {
         }
     }
 
+    /// The force of the end stop the compression stroke `c` (m) is on, N (compression
+    /// positive): the bottoming stop beyond the last crush load, or the extension stop pulling
+    /// (negative); zero between them.
+    #[inline]
+    pub fn stop_force(&self, c: f64, memory: PrimaryMemory) -> f64 {
+        if c >= 0.0 {
+            self.honeycomb.stop_force(c, memory.compression)
+        } else {
+            self.stroke_force(c, memory)
+        }
+    }
+
     /// The branch compression stroke `c` (m) lies on and its rate, N/m: the extension stop
     /// below 0 (loading or unloading), the honeycomb's above.
     pub fn branch(&self, c: f64, memory: PrimaryMemory) -> (Branch, f64) {
@@ -237,6 +249,18 @@ impl std::fmt::Display for StrutLoad {
 }
 
 impl GearLaws {
+    /// Each honeycomb's capacity and its stop's loading rate, (m, N/m): the primary in
+    /// compression, the secondaries in compression, the secondaries in tension (behind a
+    /// trunnion spring, those of the modified diagram, in the stroke the engines report).
+    pub fn capacities(&self) -> [(f64, f64); 3] {
+        [
+            &self.primary.honeycomb,
+            &self.secondary.honeycomb.compression,
+            &self.secondary.honeycomb.tension,
+        ]
+        .map(|h| (h.curve.capacity(), h.stop.rate))
+    }
+
     /// Commits an accepted state into the memory (honeycomb x_max per side): primary
     /// compression stroke `c` and secondary strokes `s` (tension positive), m.
     #[inline]
@@ -245,6 +269,20 @@ impl GearLaws {
         for (s, m) in s.into_iter().zip(&mut memory.secondary) {
             self.secondary.honeycomb.commit(s, m);
         }
+    }
+
+    /// The forces of the end stops the primary compression stroke `c` and the secondary strokes
+    /// `s` (m, tension positive) are on, N: the primary's (compression positive, the extension
+    /// stop negative) and the secondaries' (tension positive), zero for a strut within its
+    /// stroke range.
+    #[inline]
+    pub fn stop_forces(&self, c: f64, s: [f64; 2], memory: &GearMemory) -> [f64; 3] {
+        let sec = |j: usize| {
+            self.secondary
+                .honeycomb
+                .stop_force(s[j], memory.secondary[j])
+        };
+        [self.primary.stop_force(c, memory.primary), sec(0), sec(1)]
     }
 
     /// The three struts of leg `leg` (from 0) at primary compression stroke `c` and secondary

@@ -350,6 +350,15 @@ impl Honeycomb {
         }
     }
 
+    /// The force of the bottoming stop alone at stroke `x` (m), beyond the last crush load, N
+    /// (≥ 0; zero within the capacity), given the committed memory.
+    #[inline]
+    pub fn stop_force(&self, x: f64, memory: CrushMemory) -> f64 {
+        let cap = self.curve.capacity();
+        self.stop
+            .force(x - cap, (memory.max_stroke - cap).max(x - cap))
+    }
+
     /// Where the elastic rebound along K_B starts, (stroke m, force N): (x_max, F_v(x_max)),
     /// x_max capped at the capacity (a bottomed strut unloads its stop back to the capacity
     /// first).
@@ -450,6 +459,17 @@ impl DoubleActingHoneycomb {
             self.tension.commit(s, &mut memory.tension)
         } else {
             self.compression.commit(-s, &mut memory.compression)
+        }
+    }
+
+    /// The force of the stop the stroke `s` (m, tension positive) is on, beyond its side's last
+    /// crush load, N (tension positive; zero within both capacities).
+    #[inline]
+    pub fn stop_force(&self, s: f64, memory: DoubleActingMemory) -> f64 {
+        if s >= 0.0 {
+            self.tension.stop_force(s, memory.tension)
+        } else {
+            -self.compression.stop_force(-s, memory.compression)
         }
     }
 
@@ -634,6 +654,14 @@ mod tests {
             // Reloading climbs the unloading curve back to the deepest point, then the stop.
             assert!((h.force(0.21, m) - 103_000.0).abs() < 1e-6);
             assert!((h.force(0.211, m) - 113_000.0).abs() < 1e-6);
+            // The stop alone is the force beyond the last crush load, on every branch.
+            for x in [0.15, 0.2, 0.205, 0.21, 0.211] {
+                let beyond = if x > 0.2 { h.force(x, m) - 3000.0 } else { 0.0 };
+                assert!(
+                    (h.stop_force(x, m) - beyond).abs() < 1e-6,
+                    "e = {e}, x = {x}"
+                );
+            }
         }
         assert!(Stop::new(1e7, 1.2).is_err() && Stop::new(1e7, -0.1).is_err());
         assert!(Stop::new(1e7, f64::NAN).is_err());

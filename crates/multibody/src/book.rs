@@ -23,7 +23,7 @@ use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{Curbs, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
     Divergence, EnergyLedger, EnergyReport, Extremes, Law, PadView, Progress, Sample,
-    StabilityTracker, StateAtStop, Summary,
+    StabilityTracker, StateAtStop, StrutCapacities, Summary,
 };
 use touchdown_scenario::model::{Leg, Mechanism, PadSurface, Stability};
 use touchdown_scenario::{Scenario, ScenarioError};
@@ -240,6 +240,7 @@ impl GearBook {
         let n = sc.legs.len();
         let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         let laws = GearLaws::from_scenario(sc)?;
+        let capacities = StrutCapacities::new(laws.capacities());
         let primary_rate = stiffest_rate(&laws.primary.honeycomb);
         let walls = (sc.surface.pads.iter())
             .map(|p| {
@@ -265,7 +266,7 @@ impl GearBook {
             ledger: EnergyLedger::default(),
             max_penetration: 0.0,
             stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
-            extremes: Extremes::new(n),
+            extremes: Extremes::new(n, capacities),
             criteria: sc.stability.clone(),
             gravity,
             pad_views: vec![PadView::default(); n],
@@ -687,6 +688,7 @@ impl GearBook {
             slot.primary_force = f.primary(k.c_dot);
             slot.secondary_stroke = k.s;
             slot.secondary_force = f.secondary();
+            slot.stop_force = self.laws.stop_forces(k.c, k.s, &self.memory[i]);
             slot.pad_position = k.footpad;
             slot.contact = match (c.in_contact, c.first_contact) {
                 (true, _) => 1,

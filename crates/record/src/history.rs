@@ -65,13 +65,16 @@ const BODY_COLUMNS: [&str; 14] = [
 ];
 
 /// The columns of each leg N, `legN_` and one of these.
-const LEG_COLUMNS: [&str; 10] = [
+const LEG_COLUMNS: [&str; 13] = [
     "primary_stroke_m",
     "primary_force_n",
     "sec31_stroke_m",
     "sec31_force_n",
     "sec41_stroke_m",
     "sec41_force_n",
+    "primary_stop_force_n",
+    "sec31_stop_force_n",
+    "sec41_stop_force_n",
     "pad_x_m",
     "pad_y_m",
     "pad_z_m",
@@ -180,6 +183,9 @@ impl<W: Write> History<W> {
                 g.secondary_force[0],
                 g.secondary_stroke[1],
                 g.secondary_force[1],
+                g.stop_force[0],
+                g.stop_force[1],
+                g.stop_force[2],
                 g.pad_position.x,
                 g.pad_position.y,
                 g.pad_position.z,
@@ -359,8 +365,9 @@ pub fn read(path: &Path, mut each: impl FnMut(&Sample)) -> Result<usize, History
             leg.primary_force = num(c[1])?;
             leg.secondary_stroke = [num(c[2])?, num(c[4])?];
             leg.secondary_force = [num(c[3])?, num(c[5])?];
-            leg.pad_position = Vector3::new(num(c[6])?, num(c[7])?, num(c[8])?);
-            leg.contact = record[c[9]].parse::<u8>().map_err(|_| bad(c[9]))?;
+            leg.stop_force = [num(c[6])?, num(c[7])?, num(c[8])?];
+            leg.pad_position = Vector3::new(num(c[9])?, num(c[10])?, num(c[11])?);
+            leg.contact = record[c[12]].parse::<u8>().map_err(|_| bad(c[12]))?;
         }
         for (sd, &c) in sample.stability_distance.iter_mut().zip(&walls) {
             *sd = if record[c].is_empty() {
@@ -396,6 +403,7 @@ mod read_tests {
             s.pitch_rate = -0.5 * k as f64;
             s.legs[1].primary_stroke = 0.002 * k as f64;
             s.legs[1].secondary_force = [12.5, -3.0];
+            s.legs[1].stop_force = [3.0e4, 0.0, -2.5e3];
             s.legs[2].pad_position = Vector3::new(1.0, 2.0, -0.25);
             s.legs[2].contact = (k % 3) as u8;
             s.stability_distance = vec![0.5, f64::NAN, 0.25];

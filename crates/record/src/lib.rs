@@ -4,6 +4,7 @@
 //! | module | content |
 //! |---|---|
 //! | [`stability`] | stability distance, overturning velocity and the stable-landing conditions, eqs. (105)-(107) |
+//! | [`capacity`] | the struts' capacities, and the struts a landing stroked past them onto their end stops |
 //! | [`summary`] | the landing summary, the energy report and the running extremes behind them |
 //! | [`sample`] | one row of the time history |
 //! | [`history`] | the time-history file `history.csv` |
@@ -14,6 +15,7 @@
 //! accepted step, fills a [`sample::Sample`] when asked, and builds its [`summary::Summary`] with
 //! [`summary::Summary::new`].
 
+pub mod capacity;
 pub mod document;
 pub mod history;
 pub mod landing;
@@ -22,6 +24,7 @@ pub mod sample;
 pub mod stability;
 pub mod summary;
 
+pub use capacity::{Capacity, PastCapacity, StrutCapacities};
 pub use document::{Document, ScenarioId};
 pub use history::History;
 pub use landing::{Landing, Observer};

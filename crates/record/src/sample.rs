@@ -14,6 +14,10 @@ pub struct LegSample {
     pub secondary_stroke: [f64; 2],
     /// Secondary axial forces F31, F41, N (tension positive).
     pub secondary_force: [f64; 2],
+    /// The end stops' forces of the primary, 3-1 and 4-1 struts, N, in their struts' signs:
+    /// what a strut past its capacity (or a primary past its full extension) carries beyond
+    /// its last crush load; zero within the stroke range.
+    pub stop_force: [f64; 3],
     /// Footpad position (ball joint), inertial, m.
     pub pad_position: Vector3<f64>,
     /// Contact state: 0 never touched, 1 in contact, 2 left the surface.

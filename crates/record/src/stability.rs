@@ -397,7 +397,7 @@ mod tests {
         t.update(0.1, &inside, &v, None, &e(5.0, 0.0), &pads(true));
         assert_eq!(t.decision(), Some((Outcome::Stable, 0.1)));
         assert!(!t.terminates(), "a stable decision ends no run");
-        let mut x = crate::summary::Extremes::new(4);
+        let mut x = crate::summary::Extremes::new(4, Default::default());
         x.follow(&t);
         x.update_pitch_rate(0.1, 0.5);
         // The vehicle later tips over wall 0 (pads 0-1).

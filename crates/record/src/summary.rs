@@ -1,5 +1,6 @@
 //! The landing summary every engine reports (same fields, same signs, SI units).
 
+use crate::capacity::{PastCapacity, StrutCapacities};
 use crate::stability::{Outcome, StabilityTracker};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
@@ -186,17 +187,20 @@ pub struct Extremes {
     pitch_rate_time: f64,
     /// Closed: the landing overturned, later states measure the overturn, not the landing.
     closed: bool,
+    /// The struts' capacities, to name those the strokes went past.
+    capacities: StrutCapacities,
 }
 
 impl Extremes {
-    /// Extremes of `legs` legs, all zero.
-    pub fn new(legs: usize) -> Extremes {
+    /// Extremes of `legs` legs whose struts have the capacities `capacities`, all zero.
+    pub fn new(legs: usize, capacities: StrutCapacities) -> Extremes {
         Extremes {
             legs: vec![LegExtremes::default(); legs],
             specific_force: 0.0,
             pitch_rate: 0.0,
             pitch_rate_time: 0.0,
             closed: false,
+            capacities,
         }
     }
 
@@ -315,6 +319,12 @@ pub struct Summary {
     pub peak_pitch_rate_rad_s: f64,
     /// Time of that peak, s.
     pub peak_pitch_rate_time_s: f64,
+    /// The struts' capacities and their stops' rates, the same on every leg.
+    pub strut_capacity: StrutCapacities,
+    /// The struts whose largest stroke went past their capacity onto their end stop, how far
+    /// and with what stop force (an empty list when every strut stayed within its capacity):
+    /// the stop's law is an estimate, so an outcome that depends on it is flagged.
+    pub past_capacity: Vec<PastCapacity>,
     /// Minimum over time of the smallest stability distance, m.
     pub min_stability_distance_m: f64,
     /// Overturning velocity at the wall crossing, m/s (left out of the JSON unless unstable).
@@ -414,6 +424,12 @@ impl Summary {
             Some((o, t)) => (o, Some(t)),
             None => (Outcome::Undecided, None),
         };
+        let max_primary = extremes.per_leg(|l| l.primary);
+        let max_compression = extremes.per_leg(|l| l.sec_compression);
+        let max_tension = extremes.per_leg(|l| l.sec_tension);
+        let past_capacity = extremes
+            .capacities
+            .past(&max_primary, &max_compression, &max_tension);
         Summary {
             engine: engine.to_string(),
             scenario: scenario.to_string(),
@@ -424,15 +440,17 @@ impl Summary {
             t_end_s: progress.t,
             steps: progress.steps,
             force_evaluations: progress.force_evaluations,
-            max_primary_stroke_m: extremes.per_leg(|l| l.primary),
-            max_secondary_compression_m: extremes.per_leg(|l| l.sec_compression),
-            max_secondary_tension_m: extremes.per_leg(|l| l.sec_tension),
+            max_primary_stroke_m: max_primary,
+            max_secondary_compression_m: max_compression,
+            max_secondary_tension_m: max_tension,
             peak_primary_force_n: extremes.per_leg(|l| l.primary_force),
             peak_secondary_compression_force_n: extremes.per_leg(|l| l.sec_compression_force),
             peak_secondary_tension_force_n: extremes.per_leg(|l| l.sec_tension_force),
             peak_specific_force_m_s2: extremes.specific_force,
             peak_pitch_rate_rad_s: extremes.pitch_rate,
             peak_pitch_rate_time_s: extremes.pitch_rate_time,
+            strut_capacity: extremes.capacities,
+            past_capacity,
             min_stability_distance_m: stability.min_distance(),
             overturn_velocity_m_s: stability.overturn_velocity(),
             first_contact_s: progress.first_contact_s,
@@ -449,7 +467,7 @@ mod tests {
 
     #[test]
     fn extremes_keep_maxima_and_the_signed_peak_rate() {
-        let mut x = Extremes::new(2);
+        let mut x = Extremes::new(2, StrutCapacities::default());
         x.update_leg(1, 0.1, [0.02, -0.03], 900.0, [-40.0, 25.0]);
         x.update_leg(1, 0.05, [-0.01, 0.04], 700.0, [10.0, -5.0]);
         assert_eq!(x.per_leg(|l| l.primary), vec![0.0, 0.1]);
@@ -467,7 +485,7 @@ mod tests {
     #[test]
     fn the_specific_force_is_zero_in_free_fall_and_reads_the_gear_load() {
         let g = Vector3::new(0.0, 0.0, -9.81);
-        let mut x = Extremes::new(1);
+        let mut x = Extremes::new(1, StrutCapacities::default());
         // Free fall: the velocity changes by g·dt, the accelerometer reads nothing.
         x.update_acceleration(&Vector3::zeros(), &(g * 0.01), 0.01, &g);
         assert!(x.specific_force < 1e-12, "{}", x.specific_force);

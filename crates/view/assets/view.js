@@ -249,6 +249,7 @@
       version: e.version,
       outcome: e.outcome,
       decisionTime: e.decision_time_s,
+      pastCapacity: e.past_capacity || [],
       steps: e.steps,
       events: e.events || [],
       contactEvents: contactEvents(e.events || [], nLegs),
@@ -1043,6 +1044,18 @@
       name.title = `${e.name} ${e.version}: ${e.steps} steps, ${e.n} frames`;
       const outcome = row.insertCell();
       outcome.textContent = e.outcome + (e.decisionTime !== undefined ? ` at ${e.decisionTime.toFixed(3)} s` : "");
+      if (e.pastCapacity.length > 0) {
+        // A strut past its capacity is on its end stop, an estimated law: never simply stable.
+        const past = document.createElement("div");
+        past.className = "past-capacity";
+        const n = e.pastCapacity.length;
+        past.textContent = `${n} strut${n > 1 ? "s" : ""} past capacity`;
+        past.title = e.pastCapacity
+          .map((p) => `${p.strut}: ${(100 * p.stroke_of_capacity).toFixed(1)} % of its capacity, ` +
+            `${(1e3 * p.past_capacity_m).toFixed(1)} mm past, stop ${(p.peak_stop_force_n / 1e3).toFixed(1)} kN`)
+          .join("\n");
+        outcome.append(past);
+      }
       e.sdCell = row.insertCell();
       const pads = row.insertCell();
       const box = document.createElement("div");

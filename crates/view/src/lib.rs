@@ -11,7 +11,7 @@ pub mod page;
 pub mod trajectory;
 
 use serde::Serialize;
-use touchdown_record::{Outcome, Summary};
+use touchdown_record::{Outcome, PastCapacity, Summary};
 use touchdown_scenario::schema::Engine;
 pub use trajectory::{Recorder, Recording, Scene, DEFAULT_FRAME_INTERVAL};
 
@@ -29,6 +29,9 @@ pub struct EngineTrajectory<'a> {
     pub decision_time_s: Option<f64>,
     /// Accepted steps of the landing.
     pub steps: u64,
+    /// The struts that went past their capacity onto their end stops (empty when none did),
+    /// as the run's summary names them.
+    pub past_capacity: Vec<PastCapacity>,
     /// Its events, curbs and frames.
     #[serde(flatten)]
     pub recording: &'a Recording,
@@ -43,6 +46,7 @@ impl<'a> EngineTrajectory<'a> {
             outcome: summary.outcome,
             decision_time_s: summary.decision_time_s.map(trajectory::time),
             steps: summary.steps,
+            past_capacity: summary.past_capacity.clone(),
             recording,
         }
     }
