@@ -162,11 +162,14 @@ VELOCITY_UNITS = {"m/s": 1.0, "ft/s": 0.3048, "in/s": 0.0254}
 
 
 def read_boundary_points(path: Path, unit: str) -> list[dict]:
-    """The points of `touchdown boundary --format json` (JSON Lines, one per engine and vertical
-    velocity, SI; docs/schemas/boundary.schema.json), as dicts with "engine", "vv" (descent
-    speed, positive down), "vh" (the boundary, or None), "stable_at", "unstable_at" (or None),
-    "transitions" ([{"up": stable -> unstable as Vh grows, "stable_at", "unstable_at", "vh",
-    "resolved"}]), "undecided_at" (list), "landings", "undecided"; velocities in `unit`."""
+    """The points of `touchdown boundary --format json` (JSON Lines, one per engine, end-stop
+    restitution and vertical velocity, SI; docs/schemas/boundary.schema.json), as dicts with
+    "engine" (with " e = E" appended when the search set the end stops' restitution), "vv"
+    (descent speed, positive down), "vh" (the boundary, or None), "stable_at", "unstable_at" (or
+    None), "transitions" ([{"up": stable -> unstable as Vh grows, "stable_at", "unstable_at",
+    "vh", "resolved"}]), "capacity" (the first Vh past a strut's capacity, or None), "scanned"
+    (whether the search scanned finer around the changes),
+    "undecided_at" (list), "landings", "undecided"; velocities in `unit`."""
     per = VELOCITY_UNITS.get(unit)
     if per is None:
         raise SystemExit(f"plot_compare: unknown velocity unit {unit!r} (expected one of {sorted(VELOCITY_UNITS)})")
@@ -179,9 +182,13 @@ def read_boundary_points(path: Path, unit: str) -> list[dict]:
         if not line.strip():
             continue
         p = json.loads(line)
+        capacity = p.get("capacity")
+        e = p.get("stop_restitution")
         points.append(
             {
-                "engine": p["engine"],
+                "engine": p["engine"] if e is None else f"{p['engine']} e = {e:g}",
+                "capacity": None if capacity is None else v(capacity.get("vh_m_s", capacity["past_at_vh_m_s"])),
+                "scanned": any(k.startswith("scan_step") for k in p.get("settings", {})),
                 "vv": -p["vv_m_s"] / per,
                 "vh": v(p.get("vh_m_s")),
                 "stable_at": v(p.get("stable_at_vh_m_s")),
@@ -367,7 +374,7 @@ def traces(args: argparse.Namespace) -> None:
     engine_handles = []
     stroke_handles = []
     for engine, c in runs.items():
-        colour = COLOURS.get(engine, "black")
+        colour = COLOURS.get(engine.split(" ")[0], "black")
         lw = widths.get(engine, 1.0)
         acc.plot(c["acc_t"], c["acc"], color=colour, lw=lw)
         pitch.plot(c["t"], c["pitch_rate"], color=colour, lw=lw)
@@ -487,7 +494,8 @@ def boundary_title(first_line: str, points: list[dict], unit: str) -> str:
     title = (
         f"{first_line}\n"
         f"varied: descent speed Vv = {speeds_text([p['vv'] for p in points])} {unit}, and at each the "
-        f"horizontal speed Vh (grid, then bisection)\n"
+        f"horizontal speed Vh (grid, {'a finer scan around its changes, ' if any(p['scanned'] for p in points) else ''}"
+        f"then bisection)\n"
         f"held: attitude, surface, vehicle and every other input of the scenario · "
         f"engine{'s' if len(engines) != 1 else ''}: {names}"
     )
@@ -512,7 +520,7 @@ def draw_boundary(ax, points: list[dict], unit: str) -> tuple[list, list]:
     for index, (engine, pts) in enumerate(by_engine.items()):
         ms, lw = sizes[min(index, len(sizes) - 1)]
         pts = sorted(pts, key=lambda p: p["vv"])
-        colour = COLOURS.get(engine, "black")
+        colour = COLOURS.get(engine.split(" ")[0], "black")
         found = [p for p in pts if p["vh"] is not None]
         landings = sum(p["landings"] or 0 for p in pts)
         undecided = sum(p["undecided"] or 0 for p in pts)
@@ -567,6 +575,12 @@ def draw_boundary(ax, points: list[dict], unit: str) -> tuple[list, list]:
                                if t["up"]
                                else "transition unstable → stable (stable again above it)"),
                     )
+            if p["capacity"] is not None:
+                ax.plot([p["capacity"]], [y], "D", color=colour, mfc="none", mew=1.4, ms=8, zorder=5)
+                xmax = max(xmax, p["capacity"])
+                kind("capacity", Line2D([], [], ls="none", color=NEUTRAL, marker="D", mfc="none", mew=1.4,
+                                        ms=8, label="first Vh at which a strut goes past its capacity\n"
+                                                    "(onto its end stop, an estimated law)"))
             if p["undecided_at"]:
                 ax.plot(p["undecided_at"], [y] * len(p["undecided_at"]), "x", color=colour, ms=7,
                         mew=1.5, ls="none", zorder=5)
@@ -580,7 +594,7 @@ def draw_boundary(ax, points: list[dict], unit: str) -> tuple[list, list]:
     if vvs:
         pad = max(0.5, 0.1 * (max(vvs) - min(vvs)))
         ax.set_ylim(min(vvs) - pad, max(vvs) + pad)
-    order = ["bracket", "unresolved", "up", "down", "stable", "unstable", "undecided"]
+    order = ["bracket", "unresolved", "up", "down", "capacity", "stable", "unstable", "undecided"]
     kind_handles = [kinds[k] for k in order if k in kinds]
     return engine_handles, kind_handles
 

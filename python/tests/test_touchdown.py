@@ -223,8 +223,17 @@ def test_a_boundary_is_the_command_lines_and_overrides_move_it():
     assert py == cli_points
     assert [p["engine"] for p in py] == ["core", "core"]
     assert [p["vv_m_s"] for p in py] == [-8.0 * 0.3048, -10.0 * 0.3048]
+    # Every point says where a strut first goes past its capacity and how far the landing is safe.
+    for p in py:
+        assert p["safe"]["safe_to_vh_m_s"] <= p.get("vh_m_s", p["stable_at_vh_m_s"])
+    # Once per end-stop law, each point naming its law.
+    laws = touchdown.boundary(SCENARIO, vv=[-8.0], vh_step=4.0, vh_max=16.0, stop_restitution=[0.5, 1.0])
+    assert [p["stop_restitution"] for p in laws] == [0.5, 1.0]
+    assert laws[0]["settings"]["stop_restitution"] == [0.5, 1.0]
     with pytest.raises(ValueError, match="vh_step"):
         touchdown.boundary(SCENARIO, vv=[-8.0], vh_step=0.0)
+    with pytest.raises(ValueError, match="stop_restitution"):
+        touchdown.boundary(SCENARIO, vv=[-8.0], stop_restitution=[1.5])
     with pytest.raises(ValueError, match="negative down"):
         touchdown.boundary(SCENARIO, vv=[8.0])
     with pytest.raises(touchdown.ScenarioInvalid) as e:

@@ -116,17 +116,22 @@ def boundary(
     tol: float = 0.05,
     engines: Sequence[str] = ("core",),
     overrides: Optional[Mapping[str, Any]] = None,
+    scan_step: Optional[float] = None,
+    stop_restitution: Sequence[float] = (),
 ) -> list:
     """The report's stability-boundary search of `scenario` (a path, or TOML text) with
     `overrides`, as `touchdown boundary --format json` does: at each vertical velocity of `vv`
     (negative down, as the scenario files write `touchdown.vertical_velocity`), the horizontal
-    speeds on the grid `vh_start`, `vh_start + vh_step`, ... up to `vh_max`, every change of
-    outcome bisected to `tol`; the settings in the scenario's length unit per second, the
-    horizontal direction the scenario's. One dict per engine and vertical velocity, the
-    command's JSON Lines document (docs/schemas/boundary.schema.json): in SI, `vv_m_s`,
-    `vh_m_s` (the boundary, absent if none), `stable_at_vh_m_s`, `unstable_at_vh_m_s`,
-    `transitions`, `undecided_at_vh_m_s`, `landings`, `undecided`, with the scenario and the
-    settings."""
+    speeds on the grid `vh_start`, `vh_start + vh_step`, ... up to `vh_max`, scanned every
+    `scan_step` around the changes the grid finds (None: 0.25 when below `vh_step`; 0: the grid
+    only), every change of outcome and the first speed past a strut's capacity bisected to
+    `tol`, once per end-stop restitution of `stop_restitution` (empty: the scenario's own); the
+    settings in the scenario's length unit per second, the horizontal direction the scenario's.
+    One dict per engine, restitution and vertical velocity, the command's JSON Lines document
+    (docs/schemas/boundary.schema.json): in SI, `vv_m_s`, `vh_m_s` (the boundary, absent if
+    none), `stable_at_vh_m_s`, `unstable_at_vh_m_s`, `transitions` (each end with its
+    `stable_stops` / `unstable_stops`), `band`, `capacity`, `safe`, `undecided_at_vh_m_s`,
+    `landings`, `undecided`, with the scenario and the settings."""
     lines = _native.boundary(
         str(scenario),
         [float(v) for v in vv],
@@ -136,5 +141,7 @@ def boundary(
         float(tol),
         list(engines),
         dict(overrides or {}),
+        None if scan_step is None else float(scan_step),
+        [float(e) for e in stop_restitution],
     )
     return [json.loads(line) for line in lines]

@@ -155,12 +155,13 @@ fn base_boundary(
         vh_step: (h1 - h0) / 16.0,
         vh_max: h1,
         tolerance: (h1 - h0) / 400.0,
+        scan_step: None,
     };
     let vvs: Vec<f64> = (0..=6).map(|k| v0 + (v1 - v0) * k as f64 / 6.0).collect();
     let engine = campaign.engine;
     let base = touchdown_scenario::ScenarioBase::load(&campaign.scenario_path)?;
     eprintln!("the engine's boundary of the base configuration, for the plot ...");
-    let points = search_engines(&base, &[], &vvs, settings, &[engine], &|| (), &|_| ())?;
+    let points = search_engines(&base, &[], &vvs, settings, &[engine], &[], &|| (), &|_| ())?;
     let line: Vec<serde_json::Value> = points
         .iter()
         .filter_map(|p| {

@@ -282,10 +282,11 @@ enum Command {
         out: PathBuf,
     },
     /// The report's stability-boundary search: for each vertical velocity, every horizontal
-    /// speed at which the landing changes between stable and unstable, found on a grid of Vh
-    /// and bisected; undecided landings are listed, never counted as either (settings in the
-    /// scenario's length unit per second, the horizontal direction the scenario's; JSON and CSV
-    /// in SI).
+    /// speed at which the landing changes between stable and unstable (a band where it
+    /// alternates), the first at which a strut goes past its capacity, and the safe envelope,
+    /// found on a grid of Vh, scanned finer around the changes and bisected; undecided
+    /// landings are listed, never counted as either (settings in the scenario's length unit
+    /// per second, the horizontal direction the scenario's; JSON and CSV in SI).
     Boundary {
         /// Scenario file (TOML).
         scenario: PathBuf,
@@ -308,6 +309,16 @@ enum Command {
         /// Bisection tolerance on the horizontal speed.
         #[arg(long, default_value_t = 0.05)]
         tol: f64,
+        /// Step of the finer scan from a grid step below the first change the grid finds to a
+        /// grid step above the last, so that an outcome alternating faster than the grid is
+        /// seen (default 0.25 when below --vh-step; 0: the grid only).
+        #[arg(long, value_name = "STEP")]
+        scan_step: Option<f64>,
+        /// Search once per end-stop coefficient of restitution in this comma-separated list,
+        /// set on every load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and report
+        /// the spread: how much of the boundary the estimated stop law decides.
+        #[arg(long, value_delimiter = ',', value_name = "E,...")]
+        stop_restitution: Vec<f64>,
         /// Engines that search, comma-separated; each searches the same configuration and the
         /// output has one row per engine and descent speed.
         #[arg(
@@ -658,6 +669,8 @@ fn run(cli: Cli) -> Result<Verdict> {
             vh_step,
             vh_max,
             tol,
+            scan_step,
+            stop_restitution,
             engines,
             format,
             out,
@@ -668,6 +681,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                 vh_step,
                 vh_max,
                 tolerance: tol,
+                scan_step: touchdown_validation::boundary::scan_step(scan_step, vh_step),
             };
             let format = match format {
                 TableFormat::Text => validation::BoundaryFormat::Text,
@@ -679,7 +693,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                 &set.set,
                 &vv,
                 settings,
-                &engines,
+                (&engines, &stop_restitution),
                 format,
                 (out.as_deref(), plot),
             )

@@ -7,7 +7,7 @@ use touchdown_record::{Document, ScenarioId};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
 use touchdown_validation::boundary::{
-    self, BoundaryPoint, Direction, EnginePoint, Settings, Transition,
+    self, BoundaryPoint, Direction, EnginePoint, Limit, Settings, Stops, Transition,
 };
 use touchdown_validation::cross_validation::{self, CrossValidation};
 use touchdown_validation::reference::{self, Paths, Protocol};
@@ -544,7 +544,7 @@ pub fn boundary(
     set: &[crate::Set],
     vv: &str,
     settings: Settings,
-    engines: &[Engine],
+    (engines, restitutions): (&[Engine], &[f64]),
     format: BoundaryFormat,
     (out, plot): (Option<&Path>, bool),
 ) -> Result<()> {
@@ -558,7 +558,7 @@ pub fn boundary(
     let vunit = format!("{}/s", sc.file.units.length_label());
     let velocity = sc.file.units.velocity();
     let id = ScenarioId::new(scenario.display(), &sc);
-    let options = boundary::options(&vvs, settings, &vunit, engines);
+    let options = boundary::options(&vvs, settings, &vunit, engines, restitutions);
     let settings_json = crate::settings(set, options);
     // JSON Lines: each point as soon as it and those before it are found.
     let stream = |p: &EnginePoint| {
@@ -577,6 +577,7 @@ pub fn boundary(
         &speeds,
         settings,
         engines,
+        restitutions,
         &|| bar.inc(1),
         &stream,
     )?;
@@ -627,7 +628,19 @@ fn list(vhs: &[f64]) -> String {
     v.join(", ")
 }
 
-/// One line of the text table for a transition besides the reported boundary.
+/// The end stops a landing engaged, in words.
+fn stops(s: Stops) -> String {
+    match s.struts_past_capacity {
+        0 => "within capacity".into(),
+        n => format!(
+            "{n} strut{} past capacity, stop {:.1} kN",
+            if n > 1 { "s" } else { "" },
+            s.peak_stop_force_n / 1e3
+        ),
+    }
+}
+
+/// One line of the text table for a transition, with the stops at its ends.
 fn transition_line(t: &Transition) -> String {
     let arrow = match t.direction {
         Direction::StableToUnstable => "stable → unstable",
@@ -638,8 +651,11 @@ fn transition_line(t: &Transition) -> String {
         None => "unresolved".into(),
     };
     let mut bracket = format!(
-        "stable at {:.3}, unstable at {:.3}",
-        t.stable_at, t.unstable_at
+        "stable at {:.3}: {}; unstable at {:.3}: {}",
+        t.stable_at,
+        stops(t.stable_stops),
+        t.unstable_at,
+        stops(t.unstable_stops)
     );
     if !t.undecided_at.is_empty() {
         let _ = write!(bracket, "; undecided at {}", list(&t.undecided_at));
@@ -647,39 +663,87 @@ fn transition_line(t: &Transition) -> String {
     format!("           transition   {arrow}   {at:<16} ({bracket})")
 }
 
+fn limit(l: Option<Limit>) -> &'static str {
+    match l {
+        None => "—",
+        Some(Limit::Overturn) => "overturn",
+        Some(Limit::Undecided) => "undecided",
+        Some(Limit::Capacity) => "capacity",
+        Some(Limit::OverturnAndCapacity) => "overturn_and_capacity",
+    }
+}
+
+fn restitution(e: Option<f64>) -> String {
+    e.map_or_else(|| "file".into(), |e| format!("{e}"))
+}
+
 fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
     let mut o = String::new();
+    let scan = match s.scan_step {
+        Some(step) => format!(", scanned every {step} around its changes"),
+        None => String::new(),
+    };
     let _ = writeln!(
         o,
-        "stability boundary: horizontal velocity at which the landing turns unstable, at each \
-         vertical velocity Vv (negative down)\n({unit}; Vh grid {} to {} step {}, tolerance {})",
+        "stability boundary: where the landing turns unstable, where a strut first goes past its \
+         capacity, and the safe envelope (stable and within every capacity), at each vertical \
+         velocity Vv (negative down)\n({unit}; Vh grid {} to {} step {}{scan}, tolerance {})",
         s.vh_start, s.vh_max, s.vh_step, s.tolerance
     );
     let _ = writeln!(
         o,
-        "  engine           Vv   boundary Vh   stable at   unstable at   landings   undecided"
+        "  engine   stop e         Vv   boundary Vh   stable at   unstable at   past capacity   safe to             safe until   landings   undecided"
     );
-    for EnginePoint { engine, point: p } in points {
+    for EnginePoint {
+        engine,
+        stop_restitution,
+        point: p,
+    } in points
+    {
         let boundary = match (p.vh, reported(p)) {
             (None, Some(_)) => "unresolved".into(),
             (vh, _) => opt(vh),
         };
+        let past = match p.capacity {
+            None => "never".into(),
+            Some(c) => {
+                c.vh.map_or_else(|| format!("≤ {:.3}", c.past_at), |v| format!("{v:.3}"))
+            }
+        };
         let _ = writeln!(
             o,
-            "  {:<6}   {:>10.3}   {:>11}   {:>9}   {:>11}   {:>8}   {:>9}",
+            "  {:<6}   {:>6}   {:>8.3}   {:>11}   {:>9}   {:>11}   {:>13}   {:>7}   {:>21}   {:>8}   {:>9}",
             engine.name(),
+            restitution(*stop_restitution),
             -p.vv,
             boundary,
             opt(p.stable_at),
             opt(p.unstable_at),
+            past,
+            opt(p.safe.safe_to),
+            limit(p.safe.limit),
             p.landings,
             p.undecided
         );
-        let own = reported(p);
-        for (i, t) in p.transitions.iter().enumerate() {
-            if Some(i) != own {
-                let _ = writeln!(o, "{}", transition_line(t));
-            }
+        if let Some(b) = p.band {
+            let _ = writeln!(
+                o,
+                "           band         {:.3} to {:.3}: the outcome changes {} times (no single boundary)",
+                b.from, b.to, b.changes
+            );
+        }
+        for t in &p.transitions {
+            let _ = writeln!(o, "{}", transition_line(t));
+        }
+        if let Some(c) = p.capacity {
+            let _ = writeln!(
+                o,
+                "           capacity     first past at {:.3}: {}{}",
+                c.past_at,
+                stops(c.stops),
+                c.within_at
+                    .map_or_else(String::new, |w| format!(" (within at {w:.3})"))
+            );
         }
         if !p.undecided_at.is_empty() {
             let _ = writeln!(o, "           undecided    at Vh {}", list(&p.undecided_at));
@@ -689,20 +753,87 @@ fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
         o,
         "(boundary Vh: the lowest stable → unstable transition, — if none, unresolved if an \
          undecided landing lies inside its bracket;\n without one, stable at is the largest Vh \
-         found stable if none was unstable and unstable at the smallest Vh found unstable)"
+         found stable if none was unstable and unstable at the smallest Vh found unstable;\n \
+         past capacity: the first Vh at which a strut goes past its capacity onto its end stop, \
+         whose law is an estimate; safe to: the largest Vh below the first landing that is not \
+         stable and within capacity, and what ends it)"
     );
+    o.push_str(&spread_text(points));
     o
 }
 
-/// One row per transition (engine, vv_m_s, direction, stable_at_vh_m_s, unstable_at_vh_m_s,
-/// vh_m_s, resolved, undecided: the landings undecided at that descent speed), SI, the
-/// vertical velocity negative down; a descent speed without a transition has one row with
-/// direction `none`, its `stable_at_vh_m_s` / `unstable_at_vh_m_s` and empty `vh_m_s` and
-/// `resolved`. `velocity` is the scenario's velocity unit in m/s.
+/// With several end-stop laws searched: the boundary at each, per engine and Vv, and its
+/// spread (largest less smallest), which the stop law alone decides. A search that found no
+/// overturn up to the largest Vh tried gives a lower bound, `> Vh`, and so does the spread.
+fn spread_text(points: &[EnginePoint]) -> String {
+    let mut laws: Vec<f64> = points.iter().filter_map(|p| p.stop_restitution).collect();
+    laws.sort_by(f64::total_cmp);
+    laws.dedup();
+    if laws.len() < 2 {
+        return String::new();
+    }
+    let mut o = String::new();
+    let _ = write!(
+        o,
+        "\nboundary Vh by end-stop restitution e (every diagram; > Vh: stable up to the largest Vh tried)\n  engine         Vv"
+    );
+    for e in &laws {
+        let _ = write!(o, "   {:>8}", format!("e = {e}"));
+    }
+    let _ = writeln!(o, "     spread");
+    let mut rows: Vec<(Engine, f64)> = Vec::new();
+    for p in points {
+        if !rows.contains(&(p.engine, p.point.vv)) {
+            rows.push((p.engine, p.point.vv));
+        }
+    }
+    for (engine, vv) in rows {
+        let _ = write!(o, "  {:<6}   {:>8.3}", engine.name(), -vv);
+        // Each law's boundary, or a lower bound when it never overturned.
+        let mut values: Vec<Option<(f64, bool)>> = Vec::new();
+        for e in &laws {
+            let p = (points.iter())
+                .find(|p| p.engine == engine && p.point.vv == vv && p.stop_restitution == Some(*e))
+                .map(|p| &p.point);
+            let value = p.and_then(|p| match (p.vh, p.unstable_at, p.stable_at) {
+                (Some(vh), _, _) => Some((vh, false)),
+                (None, None, Some(stable)) => Some((stable, true)),
+                _ => None,
+            });
+            let shown = match value {
+                Some((v, false)) => format!("{v:.3}"),
+                Some((v, true)) => format!("> {v:.3}"),
+                None => "—".into(),
+            };
+            let _ = write!(o, "   {shown:>8}");
+            values.push(value);
+        }
+        let spread = if values.iter().all(Option::is_some) {
+            let found: Vec<(f64, bool)> = values.into_iter().flatten().collect();
+            let lo = found.iter().map(|v| v.0).fold(f64::INFINITY, f64::min);
+            let hi = found.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
+            let bound = found.iter().any(|v| v.1 && v.0 > lo);
+            format!("{}{:.3}", if bound { "> " } else { "" }, hi - lo)
+        } else {
+            "—".into()
+        };
+        let _ = writeln!(o, "   {spread:>8}");
+    }
+    o
+}
+
+/// One row per transition (engine, stop_restitution, vv_m_s, direction, stable_at_vh_m_s,
+/// unstable_at_vh_m_s, vh_m_s, resolved, undecided: the landings undecided at that descent
+/// speed, past_capacity_vh_m_s: the first Vh past a capacity, safe_to_vh_m_s and safe_until:
+/// the safe envelope and what ends it), SI, the vertical velocity negative down; a descent
+/// speed without a transition has one row with direction `none`, its `stable_at_vh_m_s` /
+/// `unstable_at_vh_m_s` and empty `vh_m_s` and `resolved`. `velocity` is the scenario's
+/// velocity unit in m/s.
 fn boundary_csv(points: &[EnginePoint], velocity: f64) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "engine",
+        "stop_restitution",
         "vv_m_s",
         "direction",
         "stable_at_vh_m_s",
@@ -710,13 +841,18 @@ fn boundary_csv(points: &[EnginePoint], velocity: f64) -> Result<String> {
         "vh_m_s",
         "resolved",
         "undecided",
+        "past_capacity_vh_m_s",
+        "safe_to_vh_m_s",
+        "safe_until",
     ])?;
     let f = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
     for point in points {
         let p = point.si(velocity);
+        let past = p.capacity.map(|c| c.vh_m_s.unwrap_or(c.past_at_vh_m_s));
         let row = |direction: &str, stable_at, unstable_at, vh, resolved: String| {
             [
                 p.engine.to_string(),
+                f(p.stop_restitution),
                 format!("{}", p.vv_m_s),
                 direction.to_string(),
                 f(stable_at),
@@ -724,6 +860,11 @@ fn boundary_csv(points: &[EnginePoint], velocity: f64) -> Result<String> {
                 f(vh),
                 resolved,
                 p.undecided.to_string(),
+                f(past),
+                f(p.safe.safe_to_vh_m_s),
+                p.safe
+                    .limit
+                    .map_or_else(String::new, |l| limit(Some(l)).into()),
             ]
         };
         if p.transitions.is_empty() {
@@ -764,6 +905,11 @@ mod boundary_tests {
             } else {
                 vec![s.max(u) - 1.0]
             },
+            stable_stops: Stops::default(),
+            unstable_stops: Stops {
+                struts_past_capacity: 2,
+                peak_stop_force_n: 38_000.0,
+            },
         }
     }
 
@@ -778,6 +924,25 @@ mod boundary_tests {
                 transition(Direction::UnstableToStable, 14.01, 13.99, Some(14.0)),
                 transition(Direction::StableToUnstable, 18.0, 22.0, None),
             ],
+            band: Some(boundary::Band {
+                from: 9.99,
+                to: 22.0,
+                changes: 3,
+            }),
+            capacity: Some(boundary::CapacityEdge {
+                within_at: Some(9.0),
+                past_at: 9.05,
+                vh: Some(9.025),
+                stops: Stops {
+                    struts_past_capacity: 1,
+                    peak_stop_force_n: 500.0,
+                },
+            }),
+            safe: boundary::SafeEdge {
+                safe_to: Some(9.0),
+                unsafe_at: Some(9.05),
+                limit: Some(Limit::Capacity),
+            },
             undecided_at: vec![17.0, 21.0],
             landings: 40,
             undecided: 2,
@@ -788,6 +953,13 @@ mod boundary_tests {
             stable_at: Some(30.0),
             unstable_at: None,
             transitions: vec![],
+            band: None,
+            capacity: None,
+            safe: boundary::SafeEdge {
+                safe_to: Some(30.0),
+                unsafe_at: None,
+                limit: None,
+            },
             undecided_at: vec![],
             landings: 16,
             undecided: 0,
@@ -796,6 +968,7 @@ mod boundary_tests {
             .into_iter()
             .map(|point| EnginePoint {
                 engine: Engine::Core,
+                stop_restitution: None,
                 point,
             })
             .collect()
@@ -809,40 +982,106 @@ mod boundary_tests {
         assert_eq!(
             lines,
             [
-                "engine,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided",
-                "core,-4,stable_to_unstable,4.995,5.005,5,true,2",
-                "core,-4,unstable_to_stable,7.005,6.995,7,true,2",
-                "core,-4,stable_to_unstable,9,11,,false,2",
-                "core,-5,none,15,,,,0",
+                "engine,stop_restitution,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided,past_capacity_vh_m_s,safe_to_vh_m_s,safe_until",
+                "core,,-4,stable_to_unstable,4.995,5.005,5,true,2,4.5125,4.5,capacity",
+                "core,,-4,unstable_to_stable,7.005,6.995,7,true,2,4.5125,4.5,capacity",
+                "core,,-4,stable_to_unstable,9,11,,false,2,4.5125,4.5,capacity",
+                "core,,-5,none,15,,,,0,,15,",
             ]
         );
     }
 
     #[test]
-    fn boundary_text_lists_every_transition_and_the_undecided_landings() {
+    fn boundary_text_lists_every_transition_the_band_the_capacity_and_the_undecided() {
         let s = Settings {
             vh_start: 0.0,
             vh_step: 2.0,
             vh_max: 30.0,
             tolerance: 0.05,
+            scan_step: Some(0.25),
         };
         let text = boundary_text(&points(), "ft/s", s);
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].contains("negative down"), "{text}");
         assert!(lines[1].contains("ft/s") && lines[1].contains("tolerance 0.05"));
-        assert!(
-            lines[3].starts_with("  core         -8.000        10.000"),
+        assert!(lines[1].contains("scanned every 0.25"), "{text}");
+        // The row: boundary 10, first past capacity 9.025, safe to 9 ended by the capacity.
+        let row: Vec<&str> = lines[3].split_whitespace().collect();
+        assert_eq!(
+            row,
+            [
+                "core", "file", "-8.000", "10.000", "9.990", "10.010", "9.025", "9.000",
+                "capacity", "40", "2"
+            ],
             "{text}"
         );
-        assert!(lines[4].contains("unstable → stable") && lines[4].contains("at Vh 14.000"));
-        assert!(lines[5].contains("stable → unstable") && lines[5].contains("unresolved"));
-        assert!(lines[5].contains("undecided at 21.000"), "{text}");
-        assert!(lines[6].contains("undecided") && lines[6].ends_with("17.000, 21.000"));
+        assert!(lines[4].contains("band") && lines[4].contains("9.990 to 22.000"));
+        assert!(lines[4].contains("changes 3 times"), "{text}");
+        // Every transition, each end with its stops.
+        assert!(lines[5].contains("stable → unstable") && lines[5].contains("at Vh 10.000"));
         assert!(
-            lines[7].starts_with("  core        -10.000             —"),
+            lines[5].contains("stable at 9.990: within capacity"),
             "{text}"
         );
-        assert_eq!(lines.len(), 10, "{text}");
+        assert!(
+            lines[5].contains("2 struts past capacity, stop 38.0 kN"),
+            "{text}"
+        );
+        assert!(lines[6].contains("unstable → stable") && lines[6].contains("at Vh 14.000"));
+        assert!(lines[7].contains("unresolved") && lines[7].contains("undecided at 21.000"));
+        assert!(lines[8].contains("capacity") && lines[8].contains("first past at 9.050"));
+        assert!(lines[8].contains("1 strut past capacity, stop 0.5 kN (within at 9.000)"));
+        assert!(lines[9].contains("undecided") && lines[9].ends_with("17.000, 21.000"));
+        let row: Vec<&str> = lines[10].split_whitespace().collect();
+        assert_eq!(
+            row,
+            [
+                "core", "file", "-10.000", "—", "30.000", "—", "never", "30.000", "—", "16", "0"
+            ],
+            "{text}"
+        );
+        // No spread table with one stop law.
+        assert!(!text.contains("by end-stop restitution"), "{text}");
+    }
+
+    #[test]
+    fn the_spread_over_stop_laws_is_the_largest_less_the_smallest_boundary() {
+        let mut points = Vec::new();
+        for (e, vh) in [(0.5, Some(10.0)), (1.0, Some(7.5)), (0.1, Some(12.25))] {
+            let mut p = points_at(e);
+            p.point.vh = vh;
+            points.push(p);
+        }
+        let text = spread_text(&points);
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[1].contains("restitution"), "{text}");
+        assert!(
+            lines[2].contains("e = 0.1") && lines[2].ends_with("spread"),
+            "{text}"
+        );
+        let row: Vec<&str> = lines[3].split_whitespace().collect();
+        assert_eq!(
+            row,
+            ["core", "-8.000", "12.250", "10.000", "7.500", "4.750"]
+        );
+        assert_eq!(lines.len(), 4, "one row per engine and Vv: {text}");
+        // A law that never overturns up to the largest Vh tried bounds the spread from below.
+        points[0].point.vh = None;
+        points[0].point.unstable_at = None;
+        points[0].point.stable_at = Some(30.0);
+        let text = spread_text(&points);
+        let row: Vec<&str> = text.lines().nth(3).unwrap().split_whitespace().collect();
+        assert_eq!(
+            row,
+            ["core", "-8.000", "12.250", ">", "30.000", "7.500", ">", "22.500"],
+            "{text}"
+        );
+    }
+
+    fn points_at(e: f64) -> EnginePoint {
+        let mut p = points().remove(0);
+        p.stop_restitution = Some(e);
+        p
     }
 
     #[test]

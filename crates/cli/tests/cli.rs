@@ -317,18 +317,21 @@ fn boundary_prints_csv_and_json() {
     assert_eq!(
         lines.next(),
         Some(
-            "engine,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided"
+            "engine,stop_restitution,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided,past_capacity_vh_m_s,safe_to_vh_m_s,safe_until"
         )
     );
     // One row per transition; the first is the boundary (the lowest stable -> unstable), in SI.
     let row: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(row[0], "core");
-    assert_eq!(row[1].parse::<f64>().unwrap(), -12.0 * 0.3048);
-    assert_eq!(row[2], "stable_to_unstable");
-    let vh: f64 = row[5].parse().expect("a boundary was found");
+    assert_eq!((row[0], row[1]), ("core", ""));
+    assert_eq!(row[2].parse::<f64>().unwrap(), -12.0 * 0.3048);
+    assert_eq!(row[3], "stable_to_unstable");
+    let vh: f64 = row[6].parse().expect("a boundary was found");
     assert!(vh > 0.0 && vh < 12.0 * 0.3048);
-    assert_eq!(row[6], "true");
-    let (lo, hi): (f64, f64) = (row[3].parse().unwrap(), row[4].parse().unwrap());
+    assert_eq!(row[7], "true");
+    // The safe envelope ends at or below the overturn.
+    let safe: f64 = row[10].parse().expect("a safe envelope");
+    assert!(safe <= vh, "{row:?}");
+    let (lo, hi): (f64, f64) = (row[4].parse().unwrap(), row[5].parse().unwrap());
     assert!(lo < vh && vh < hi && hi - lo <= 0.1 * 0.3048 + 1e-12);
     // JSON Lines: one document per point, with the scenario and the settings as given.
     let json = touchdown(&args("json").iter().map(String::as_str).collect::<Vec<_>>());
@@ -380,6 +383,34 @@ fn boundary_prints_csv_and_json() {
             .lines()
             .any(|l| l.starts_with("  core") && l.contains(&format!("{:.3}", vh / 0.3048))),
         "{table}"
+    );
+    // The safe envelope is in every document; the search over end-stop laws reports each and
+    // their spread.
+    assert!(v["safe"].is_object(), "{v}");
+    let mut spread: Vec<String> = args("text").to_vec();
+    spread.extend(["--stop-restitution".to_string(), "0.2,1".to_string()]);
+    let spread = touchdown(&spread.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(
+        spread.status.success(),
+        "{}",
+        String::from_utf8_lossy(&spread.stderr)
+    );
+    let spread = String::from_utf8(spread.stdout).unwrap();
+    assert!(spread.contains("by end-stop restitution"), "{spread}");
+    let last = spread.lines().last().unwrap();
+    assert!(
+        last.starts_with("  core") && last.split_whitespace().count() == 5,
+        "{spread}"
+    );
+    // A restitution outside [0, 1] is refused, naming the argument.
+    let mut bad_e: Vec<String> = args("text").to_vec();
+    bad_e.extend(["--stop-restitution".to_string(), "1.5".to_string()]);
+    let bad = touchdown(&bad_e.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(!bad.status.success());
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        e.contains("--stop-restitution") && e.contains("[0, 1]"),
+        "{e}"
     );
     // A bad range is a clear error.
     let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv", "12:4:1"]);
@@ -572,7 +603,10 @@ fn boundary_plot_overlays_the_engines() {
         .iter()
         .all(|p| p["transitions"].is_array() && p["undecided_at_vh_m_s"].is_array()));
     let csv = String::from_utf8(out.stdout).unwrap();
-    assert!(csv.starts_with("engine,vv_m_s,direction,"), "{csv}");
+    assert!(
+        csv.starts_with("engine,stop_restitution,vv_m_s,direction,"),
+        "{csv}"
+    );
     // Refused: an engine the scenario leaves out.
     let f = extending(
         "boundary-applicable",

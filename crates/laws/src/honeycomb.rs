@@ -279,9 +279,22 @@ impl Stop {
         }
     }
 
-    /// The unloading rate at the deepest point, n·K_so, N/m (infinite for a plastic stop).
+    /// The unloading rate at the deepest point, n·K_so, N/m. A plastic stop (e = 0) has none:
+    /// below its deepest point it carries nothing, and leaving that point is a release of its
+    /// load, not a stiffness (the limit of a curve that carries e²·K_so·d_max²/2 and falls to
+    /// zero within d_max/n of the deepest point, both vanishing as e → 0; docs/errata.md,
+    /// "End stops").
     pub fn unloading_rate(&self) -> f64 {
-        self.rate * self.exponent()
+        if self.restitution == 0.0 {
+            0.0
+        } else {
+            self.rate * self.exponent()
+        }
+    }
+
+    /// The stiffest the stop gets, loading or unloading, N/m: max(K_so, n·K_so).
+    pub fn stiffest_rate(&self) -> f64 {
+        self.rate.max(self.unloading_rate())
     }
 }
 
@@ -665,6 +678,32 @@ mod tests {
         }
         assert!(Stop::new(1e7, 1.2).is_err() && Stop::new(1e7, -0.1).is_err());
         assert!(Stop::new(1e7, f64::NAN).is_err());
+    }
+
+    /// The plastic stop's force, stored energy and rates are the limits of those of small
+    /// restitutions: below the deepest point the force and the energy returned vanish as e → 0,
+    /// and the steep start of the unloading curve narrows to nothing.
+    #[test]
+    fn a_plastic_stop_is_the_limit_of_small_restitutions() {
+        let stop = |e: f64| Stop::new(1e7, e).unwrap();
+        let (d_max, d) = (0.01, 0.0099);
+        // The force 1 % below the deepest point, K_so·d_max·0.99^(2/e² − 1): 1.35e4 N at
+        // e = 0.1, 1e-82 N at 0.01, nothing at 0.
+        assert!((stop(0.1).force(d, d_max) - 1e5 * 0.99f64.powi(199)).abs() < 1.0);
+        assert!(stop(1e-2).force(d, d_max) < 1e-80);
+        assert_eq!(stop(0.0).force(d, d_max), 0.0);
+        // Loading is the same line whatever e.
+        assert_eq!(stop(0.0).force(0.011, d_max), stop(0.5).force(0.011, d_max));
+        // What unloading returns: f0·d + e²·f·d/2, to f0·d.
+        let (f0, f) = (3000.0, 1e5);
+        assert_eq!(stop(0.0).stored_energy(f0, d_max, f), f0 * d_max);
+        assert!((stop(1e-3).stored_energy(f0, d_max, f) - f0 * d_max).abs() < 1e-3);
+        // No unloading stiffness at e = 0; the stiffest rate is the loading rate there and the
+        // unloading one, n·K_so, above.
+        assert_eq!(stop(0.0).unloading_rate(), 0.0);
+        assert_eq!(stop(0.0).stiffest_rate(), 1e7);
+        assert!((stop(0.5).stiffest_rate() - 7e7).abs() < 1e-3);
+        assert_eq!(stop(1.0).stiffest_rate(), 1e7);
     }
 
     #[test]

@@ -171,19 +171,45 @@ pub fn stiffest_rate(h: &Honeycomb) -> f64 {
 /// stable below 2).
 pub const MAX_OMEGA_DT: f64 = 1.0;
 
+/// The smallest end-stop coefficient of restitution the multibody engines model. Below it the
+/// unloading curve starts n = 2/e² − 1 ≥ 199 times as steep as the stop's loading rate, which
+/// their explicit step does not resolve: at e = 0 and 0.02 both stop on the energy guard (2 %
+/// of the energy put in) on `fig-25-26` and `near-boundary-overturn`, at 0.05 they end within
+/// 0.1 % of it, at 0.1 within 1.2 % (docs/errata.md, "End stops"). The core models every e in
+/// [0, 1].
+pub const MIN_STOP_RESTITUTION: f64 = 0.1;
+
 /// Checks a multibody engine's fixed time step `dt` (s) against the run budget
 /// (`integrator.max_steps` steps to `integrator.t_end`) and the stiffest explicit strut
 /// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
 /// link's rotation about its trunnion (links as in `sc.links`). (The obstacle walls are built no
 /// stiffer than the step resolves, `crate::wall`, so they never refuse it.) The error, on the
 /// scenario field `field` that set the step, says which mode is too stiff and the largest step
-/// allowed.
+/// allowed. An end stop less elastic than [`MIN_STOP_RESTITUTION`] is refused on its field.
 pub fn check_explicit_timestep(
     sc: &Scenario,
     laws: &GearLaws,
     dt: f64,
     field: &str,
 ) -> Result<(), ScenarioError> {
+    let stops = [
+        ("primary_strut.compression", &sc.primary.compression),
+        ("secondary_strut.compression", &sc.secondary.compression),
+        ("secondary_strut.tension", &sc.secondary.tension),
+    ];
+    for (diagram, ls) in stops {
+        if ls.stop_restitution < MIN_STOP_RESTITUTION {
+            let field = format!("{diagram}.stop_restitution");
+            return Err(ScenarioError::field(
+                sc.file_of(&field),
+                field.as_str(),
+                format!(
+                    "{} is below {MIN_STOP_RESTITUTION}, the least elastic end stop the multibody engines model: their explicit step does not resolve the start of its unloading curve (2/e² − 1 times as steep as the stop's loading rate) and the energy balance fails; expected a coefficient of restitution in [{MIN_STOP_RESTITUTION}, 1] on this engine (the core models [0, 1])",
+                    ls.stop_restitution
+                ),
+            ));
+        }
+    }
     let k_primary = stiffest_rate(&laws.primary.honeycomb);
     let sec = &laws.secondary.honeycomb;
     let k_secondary = stiffest_rate(&sec.tension).max(stiffest_rate(&sec.compression));

@@ -316,10 +316,12 @@ fn view(
 
 /// The stability-boundary search of `scenario` (a path or TOML text) with `overrides`, as
 /// `touchdown boundary --format json` does: at each vertical velocity of `vv` (negative down,
-/// as in the scenario files, the scenario's velocity unit), on each of `engines`; the points
-/// as the command's JSON Lines.
+/// as in the scenario files, the scenario's velocity unit), on each of `engines`, scanned
+/// every `scan_step` around the changes (`None`: the command's default; 0: the grid only), once
+/// per end-stop restitution of `stop_restitution` (empty: the scenario's own); the points as
+/// the command's JSON Lines.
 #[pyfunction]
-#[pyo3(signature = (scenario, vv, vh_start, vh_step, vh_max, tol, engines, overrides=None))]
+#[pyo3(signature = (scenario, vv, vh_start, vh_step, vh_max, tol, engines, overrides=None, scan_step=None, stop_restitution=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 fn boundary(
     py: Python<'_>,
@@ -331,6 +333,8 @@ fn boundary(
     tol: f64,
     engines: Vec<String>,
     overrides: Option<&Bound<'_, PyDict>>,
+    scan_step: Option<f64>,
+    stop_restitution: Vec<f64>,
 ) -> PyResult<Vec<String>> {
     let engines = self::engines(engines)?;
     let values = override_values(overrides)?;
@@ -339,6 +343,7 @@ fn boundary(
         vh_step,
         vh_max,
         tolerance: tol,
+        scan_step: touchdown_validation::boundary::scan_step(scan_step, vh_step),
     };
     py.detach(|| -> Result<Vec<String>, Box<Failed>> {
         let speeds = descent_speeds(&vv, "vv").map_err(|e| Box::new(Failed::Boundary(e)))?;
@@ -352,13 +357,17 @@ fn boundary(
             &speeds,
             settings,
             &engines,
+            &stop_restitution,
             &|| (),
             &|_| (),
         )
         .map_err(|e| Box::new(Failed::Boundary(e)))?;
         let unit = format!("{}/s", sc.file.units.length_label());
         let id = touchdown_record::ScenarioId::new(source, &sc);
-        let settings = self::settings(&values, options(&vv, settings, &unit, &engines));
+        let settings = self::settings(
+            &values,
+            options(&vv, settings, &unit, &engines, &stop_restitution),
+        );
         let velocity = sc.file.units.velocity();
         Ok(points
             .iter()

@@ -1,16 +1,26 @@
 //! The report's automatic stability-boundary search (section "Stability criteria"): for each
 //! vertical velocity Vv, the horizontal velocities Vh at which the landing changes between
-//! stable and unstable.
+//! stable and unstable, where a strut first goes past its capacity, and how far the landing is
+//! safe (stable and within every strut's capacity).
 //!
 //! At each Vv the search lands on the whole grid `vh_start + i·vh_step` (i = 0, 1, … up to
-//! `vh_max`), then bisects every change of outcome between two neighbouring grid points, in
-//! either direction, to the tolerance. Undecided landings are never counted as stable or
-//! unstable: they are listed; a change of outcome across undecided grid points, or a bisection
-//! whose midpoint ends undecided, is reported as an unresolved bracket. The reported boundary
-//! is the lowest stable → unstable transition, so it does not depend on the grid step once the
-//! grid resolves every transition.
+//! `vh_max`). Around each change of outcome the grid finds, a finer scan (`scan_step`) lands
+//! every point from one grid step below it to one grid step above it, so that an outcome
+//! alternating faster than the grid near a change is seen. Every
+//! change of outcome between neighbouring landed points is then bisected to the tolerance, in
+//! either direction, and so is the first Vh past capacity. Undecided landings are never counted
+//! as stable or unstable: they are listed; a change of outcome across undecided points, or a
+//! bisection whose midpoint ends undecided, is reported as an unresolved bracket.
 //!
-//! Each landing ends early on the stability decision. Vertical velocities, grid points and
+//! What the search reports at each Vv: every transition, each end with the end stops it
+//! engaged (how many struts past their capacity, the largest stop force); the boundary, the
+//! lowest stable → unstable transition; the band over which the outcome alternates when there
+//! are several transitions (its ends and how many changes), never collapsed to one number; the
+//! first Vh past capacity; and the safe envelope, up to the first landing that overturned,
+//! ended undecided or went past a capacity (docs/validation.md, "Stability boundary").
+//!
+//! A stable landing runs to its end time, an unstable one to its wall crossing
+//! (docs/errata.md, "Stability decisions and maxima"). Vertical velocities, grid points and
 //! transitions run in parallel; every result is ordered by Vh, never by completion.
 //!
 //! All velocities here are in the scenario's velocity unit (its length unit per second).
@@ -44,6 +54,24 @@ pub struct Settings {
     /// Bisection stops when a bracket is no wider than this (`--tol`), scenario velocity unit;
     /// finite, > 0 and at least max(|vh_start|, |vh_max|, 1) / [`MAX_RELATIVE_RESOLUTION`].
     pub tolerance: f64,
+    /// Step of the finer scan around the changes of outcome the grid finds (`--scan-step`),
+    /// scenario velocity unit: finite, > 0 and below `vh_step`; `None` scans nothing but the
+    /// grid.
+    pub scan_step: Option<f64>,
+}
+
+/// The scan step when none is asked for, scenario velocity unit.
+pub const DEFAULT_SCAN_STEP: f64 = 0.25;
+
+/// The scan step of a search whose grid step is `vh_step`, given the one asked for (`asked`,
+/// scenario velocity unit): [`DEFAULT_SCAN_STEP`] when none is asked and it is below the grid
+/// step (none otherwise), none when 0 is asked, else the one asked.
+pub fn scan_step(asked: Option<f64>, vh_step: f64) -> Option<f64> {
+    match asked {
+        None => (DEFAULT_SCAN_STEP < vh_step).then_some(DEFAULT_SCAN_STEP),
+        Some(0.0) => None,
+        Some(s) => Some(s),
+    }
 }
 
 fn refuse(argument: &'static str, expected: String, got: f64) -> ValidationError {
@@ -70,6 +98,7 @@ impl Settings {
             vh_step,
             vh_max,
             tolerance,
+            scan_step,
         } = self;
         if !vh_start.is_finite() {
             return Err(refuse("--vh-start", "a finite speed".into(), vh_start));
@@ -82,6 +111,27 @@ impl Settings {
         }
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err(refuse("--tol", "a finite tolerance > 0".into(), tolerance));
+        }
+        if let Some(scan) = scan_step {
+            if !(scan.is_finite() && scan > 0.0 && scan < vh_step) {
+                return Err(refuse(
+                    "--scan-step",
+                    format!("a finite step > 0 and below --vh-step ({})", Short(vh_step)),
+                    scan,
+                ));
+            }
+            // The scan covers at most the whole grid: as many points as a grid of its step.
+            if (vh_max - vh_start) / scan > MAX_GRID_POINTS as f64 {
+                return Err(refuse(
+                    "--scan-step",
+                    format!(
+                        "a step giving at most {MAX_GRID_POINTS} points from --vh-start {} to --vh-max {}",
+                        Short(vh_start),
+                        Short(vh_max)
+                    ),
+                    scan,
+                ));
+            }
         }
         if vh_max < vh_start {
             return Err(refuse(
@@ -155,6 +205,66 @@ pub enum Direction {
     UnstableToStable,
 }
 
+/// The end stops one landing engaged.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Stops {
+    /// Struts that went past their capacity onto their end stops.
+    pub struts_past_capacity: usize,
+    /// The largest force among their stops beyond the last crush load, N (0 if none).
+    pub peak_stop_force_n: f64,
+}
+
+impl Stops {
+    /// The stops of a landing's summary.
+    pub fn of(summary: &touchdown_record::Summary) -> Stops {
+        Stops {
+            struts_past_capacity: summary.past_capacity.len(),
+            peak_stop_force_n: (summary.past_capacity.iter())
+                .map(|p| p.peak_stop_force_n)
+                .fold(0.0, f64::max),
+        }
+    }
+
+    /// Whether a strut went past its capacity.
+    pub fn engaged(&self) -> bool {
+        self.struts_past_capacity > 0
+    }
+}
+
+/// What the search needs of one landing: its outcome and the end stops it engaged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Landed {
+    /// The stability outcome.
+    pub outcome: Outcome,
+    /// The end stops engaged.
+    pub stops: Stops,
+}
+
+impl Landed {
+    /// The landing of a summary.
+    pub fn of(summary: &touchdown_record::Summary) -> Landed {
+        Landed {
+            outcome: summary.outcome,
+            stops: Stops::of(summary),
+        }
+    }
+
+    /// Stable and within every strut's capacity.
+    fn safe(&self) -> bool {
+        self.outcome == Outcome::Stable && !self.stops.engaged()
+    }
+}
+
+/// A landing that engaged no stop.
+impl From<Outcome> for Landed {
+    fn from(outcome: Outcome) -> Landed {
+        Landed {
+            outcome,
+            stops: Stops::default(),
+        }
+    }
+}
+
 /// One change of outcome between two neighbouring decided landings at one Vv (written in SI
 /// as a [`TransitionSi`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -169,13 +279,17 @@ pub struct Transition {
     /// The transition's Vh, middle of the final bracket (no wider than the tolerance),
     /// scenario velocity unit; `None` if unresolved.
     pub vh: Option<f64>,
-    /// Whether the bracket was narrowed to the tolerance. False when undecided grid points lie
+    /// Whether the bracket was narrowed to the tolerance. False when undecided points lie
     /// between its ends (it was never bisected) or a bisection midpoint ended undecided (the
     /// bracket is the one at that moment).
     pub resolved: bool,
-    /// The undecided landings inside the bracket, scenario velocity unit, ascending: the grid
+    /// The undecided landings inside the bracket, scenario velocity unit, ascending: the
     /// points between its ends, or the bisection midpoint that stopped it; empty if resolved.
     pub undecided_at: Vec<f64>,
+    /// The end stops engaged by the landing at the stable end.
+    pub stable_stops: Stops,
+    /// The end stops engaged by the landing at the unstable end.
+    pub unstable_stops: Stops,
 }
 
 impl Transition {
@@ -183,6 +297,65 @@ impl Transition {
     pub fn lower(&self) -> f64 {
         self.stable_at.min(self.unstable_at)
     }
+
+    /// The bracket's upper end, scenario velocity unit.
+    pub fn upper(&self) -> f64 {
+        self.stable_at.max(self.unstable_at)
+    }
+}
+
+/// Where the outcome alternates: from the lower end of the lowest transition's bracket to the
+/// upper end of the highest one, when there are two or more transitions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Band {
+    /// The band's lower end, scenario velocity unit.
+    pub from: f64,
+    /// The band's upper end, scenario velocity unit.
+    pub to: f64,
+    /// How many times the outcome changes within it (the number of transitions).
+    pub changes: usize,
+}
+
+/// The first Vh at which a strut goes past its capacity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CapacityEdge {
+    /// The bracket's end within every capacity, scenario velocity unit (`None` when the first
+    /// landing searched already went past one).
+    pub within_at: Option<f64>,
+    /// The bracket's end past a capacity, scenario velocity unit.
+    pub past_at: f64,
+    /// The middle of the final bracket (no wider than the tolerance), scenario velocity unit;
+    /// `None` when the first landing searched went past.
+    pub vh: Option<f64>,
+    /// The stops engaged at `past_at`.
+    pub stops: Stops,
+}
+
+/// What ends the safe envelope.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Limit {
+    /// The landing overturned.
+    Overturn,
+    /// The landing ended undecided.
+    Undecided,
+    /// A strut went past its capacity (the landing stable).
+    Capacity,
+    /// The landing overturned with a strut past its capacity.
+    OverturnAndCapacity,
+}
+
+/// The safe envelope: every landing searched up to `safe_to` was stable and within every
+/// strut's capacity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SafeEdge {
+    /// The largest Vh below the first unsafe landing, scenario velocity unit (`None` when the
+    /// first landing searched is unsafe).
+    pub safe_to: Option<f64>,
+    /// The first unsafe landing's Vh, scenario velocity unit (`None` when all were safe).
+    pub unsafe_at: Option<f64>,
+    /// Why that landing is unsafe (`None` when all were safe).
+    pub limit: Option<Limit>,
 }
 
 /// The boundary at one vertical velocity (written in SI as a [`PointSi`]).
@@ -194,37 +367,46 @@ pub struct BoundaryPoint {
     /// unit; `None` if there is none or it is unresolved.
     pub vh: Option<f64>,
     /// The stable end of the lowest stable → unstable transition's bracket; without one, the
-    /// largest grid Vh found stable if none was found unstable, else `None`. Scenario velocity
+    /// largest Vh found stable if none was found unstable, else `None`. Scenario velocity
     /// unit.
     pub stable_at: Option<f64>,
     /// The unstable end of the lowest stable → unstable transition's bracket; without one, the
-    /// smallest grid Vh found unstable (`None` if none). Scenario velocity unit.
+    /// smallest Vh found unstable (`None` if none). Scenario velocity unit.
     pub unstable_at: Option<f64>,
     /// Every transition, in either direction, ascending in Vh.
     pub transitions: Vec<Transition>,
-    /// The Vh of every landing that ended undecided (grid points and bisection midpoints),
-    /// scenario velocity unit, ascending.
+    /// Where the outcome alternates, when there are two or more transitions.
+    pub band: Option<Band>,
+    /// The first Vh past a strut's capacity (`None` if no landing went past one).
+    pub capacity: Option<CapacityEdge>,
+    /// The safe envelope.
+    pub safe: SafeEdge,
+    /// The Vh of every landing that ended undecided (grid, scan and bisection), scenario
+    /// velocity unit, ascending.
     pub undecided_at: Vec<f64>,
-    /// Landings run (grid and bisection).
+    /// Landings run (grid, scan and bisection).
     pub landings: usize,
     /// Landings that ended undecided (the length of `undecided_at`).
     pub undecided: usize,
 }
 
 /// Searches the transitions at each vertical velocity `vvs` (scenario velocity unit, positive
-/// down). `landing(vv, vh)` runs one landing to its outcome; `tick` is called after each
-/// landing (for a progress bar). The outcome need not be monotonic in Vh: every change between
-/// neighbouring grid points is found (changes closer together than the step can hide between
-/// two grid points with the same outcome). Refuses bad settings (see [`Settings::validate`])
-/// before any landing; of several failed landings, the error is that of the lowest Vv and Vh.
-pub fn search<F>(
+/// down). `landing(vv, vh)` runs one landing to its outcome (a [`Landed`], or an [`Outcome`]
+/// for a landing that engages no stop); `tick` is called after each landing (for a progress
+/// bar). The outcome need not be monotonic in Vh: every change between neighbouring landed
+/// points is found (changes closer together than the scan step, or than the grid step where
+/// nothing changes, can hide between two points with the same outcome). Refuses bad settings
+/// (see [`Settings::validate`]) before any landing; of several failed landings, the error is
+/// that of the lowest Vv and Vh.
+pub fn search<F, L>(
     vvs: &[f64],
     settings: Settings,
     landing: F,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<BoundaryPoint>, ValidationError>
 where
-    F: Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync,
+    F: Fn(f64, f64) -> Result<L, ValidationError> + Sync,
+    L: Into<Landed>,
 {
     search_streaming(vvs, settings, landing, tick, &|_| ())
 }
@@ -232,7 +414,7 @@ where
 /// [`search`], handing each point to `found` as soon as it and every point before it (in the
 /// order of `vvs`) are found: the points stream in the order of the result, whatever the
 /// threads, so that a stream of them is deterministic.
-pub fn search_streaming<F>(
+pub fn search_streaming<F, L>(
     vvs: &[f64],
     settings: Settings,
     landing: F,
@@ -240,16 +422,17 @@ pub fn search_streaming<F>(
     found: &(dyn Fn(&BoundaryPoint) + Sync),
 ) -> Result<Vec<BoundaryPoint>, ValidationError>
 where
-    F: Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync,
+    F: Fn(f64, f64) -> Result<L, ValidationError> + Sync,
+    L: Into<Landed>,
 {
     let grid = settings.grid()?;
     if let Some(&vv) = vvs.iter().find(|v| !v.is_finite()) {
         return Err(refuse("--vv", "finite descent speeds".into(), vv));
     }
-    let run = |vv: f64, vh: f64| -> Result<Outcome, ValidationError> {
-        let o = landing(vv, vh)?;
+    let run = |vv: f64, vh: f64| -> Result<Landed, ValidationError> {
+        let l = landing(vv, vh)?.into();
         tick();
-        Ok(o)
+        Ok(l)
     };
     // The points found out of order wait here until those before them are found.
     let waiting = std::sync::Mutex::new((0usize, std::collections::BTreeMap::new()));
@@ -257,7 +440,7 @@ where
         .par_iter()
         .enumerate()
         .map(|(i, &vv)| {
-            let point = at_descent_speed(vv, &grid, settings.tolerance, &|vh| run(vv, vh))?;
+            let point = at_descent_speed(vv, &grid, &settings, &|vh| run(vv, vh))?;
             let mut w = waiting.lock().unwrap_or_else(|e| e.into_inner());
             w.1.insert(i, point.clone());
             loop {
@@ -277,42 +460,83 @@ fn in_order<T>(results: Vec<Result<T, ValidationError>>) -> Result<Vec<T>, Valid
     results.into_iter().collect()
 }
 
-/// The search at one descent speed `vv` over `grid`.
+/// One landing of the search: its Vh (scenario velocity unit) and what it says.
+type Point = (f64, Landed);
+
+/// Lands every Vh of `vhs`, in parallel, in order.
+fn land_all(vhs: &[f64], land: &Land) -> Result<Vec<Point>, ValidationError> {
+    in_order(vhs.par_iter().map(|&vh| Ok((vh, land(vh)?))).collect())
+}
+
+/// One landing at a horizontal speed, scenario velocity unit.
+type Land<'a> = dyn Fn(f64) -> Result<Landed, ValidationError> + Sync + 'a;
+
+/// The scan points between `from` and `to` (scenario velocity unit) every `step`, computed
+/// from `from` (not accumulated), leaving out those within 1e-9 of a step of a point of
+/// `landed` (ascending).
+fn scan_points(from: f64, to: f64, step: f64, landed: &[Point]) -> Vec<f64> {
+    let n = ((to - from) / step + 1e-9).floor() as usize;
+    (0..=n)
+        .map(|i| from + i as f64 * step)
+        .filter(|vh| !landed.iter().any(|(x, _)| (x - vh).abs() <= 1e-9 * step))
+        .collect()
+}
+
+/// The search at one descent speed `vv`: the `grid`, a scan at `settings.scan_step` around
+/// its changes, the bisections.
 fn at_descent_speed(
     vv: f64,
     grid: &[f64],
-    tolerance: f64,
-    land: &(dyn Fn(f64) -> Result<Outcome, ValidationError> + Sync),
+    settings: &Settings,
+    land: &Land,
 ) -> Result<BoundaryPoint, ValidationError> {
-    let outcomes = in_order(grid.par_iter().map(|&vh| land(vh)).collect())?;
-    let mut undecided_at: Vec<f64> = grid
-        .iter()
-        .zip(&outcomes)
-        .filter(|(_, &o)| o == Outcome::Undecided)
-        .map(|(&vh, _)| vh)
-        .collect();
-    let decided: Vec<usize> = (0..grid.len())
-        .filter(|&i| outcomes[i] != Outcome::Undecided)
+    let mut landed = land_all(grid, land)?;
+    // Around each change of outcome the grid sees, scan finer from a grid step below it to a
+    // grid step above it, where an outcome alternating faster than the grid would hide.
+    if let Some(step) = settings.scan_step {
+        let mut scan: Vec<f64> = Vec::new();
+        for i in 1..landed.len() {
+            if landed[i - 1].1.outcome != landed[i].1.outcome {
+                let from = (landed[i - 1].0 - settings.vh_step).max(grid[0]);
+                let to = (landed[i].0 + settings.vh_step).min(grid[grid.len() - 1]);
+                for vh in scan_points(from, to, step, &landed) {
+                    if !scan.iter().any(|x| (x - vh).abs() <= 1e-9 * step) {
+                        scan.push(vh);
+                    }
+                }
+            }
+        }
+        scan.sort_by(f64::total_cmp);
+        landed.extend(land_all(&scan, land)?);
+        landed.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    let mut landings = landed.len();
+    let decided: Vec<usize> = (0..landed.len())
+        .filter(|&i| landed[i].1.outcome != Outcome::Undecided)
         .collect();
     let mut transitions = Vec::new();
     let mut to_bisect = Vec::new();
     for w in decided.windows(2) {
         let (i, j) = (w[0], w[1]);
-        if outcomes[i] == outcomes[j] {
+        let ((vi, li), (vj, lj)) = (landed[i], landed[j]);
+        if li.outcome == lj.outcome {
             continue;
         }
-        let (direction, stable_at, unstable_at) = if outcomes[i] == Outcome::Stable {
-            (Direction::StableToUnstable, grid[i], grid[j])
-        } else {
-            (Direction::UnstableToStable, grid[j], grid[i])
-        };
+        let (direction, (stable_at, stable), (unstable_at, unstable)) =
+            if li.outcome == Outcome::Stable {
+                (Direction::StableToUnstable, (vi, li), (vj, lj))
+            } else {
+                (Direction::UnstableToStable, (vj, lj), (vi, li))
+            };
         let t = Transition {
             direction,
             stable_at,
             unstable_at,
             vh: None,
             resolved: false,
-            undecided_at: grid[i + 1..j].to_vec(),
+            undecided_at: landed[i + 1..j].iter().map(|p| p.0).collect(),
+            stable_stops: stable.stops,
+            unstable_stops: unstable.stops,
         };
         if j == i + 1 {
             to_bisect.push(t);
@@ -323,28 +547,57 @@ fn at_descent_speed(
     let bisected = in_order(
         to_bisect
             .into_par_iter()
-            .map(|t| bisect(t, tolerance, land))
+            .map(|t| bisect(t, settings.tolerance, land))
             .collect(),
     )?;
-    let mut landings = grid.len();
-    for (t, n) in bisected {
-        landings += n;
-        undecided_at.extend_from_slice(&t.undecided_at);
+    let mut midpoints = Vec::new();
+    for (t, points) in bisected {
+        midpoints.extend(points);
         transitions.push(t);
     }
     transitions.sort_by(|a, b| a.lower().total_cmp(&b.lower()));
-    undecided_at.sort_by(f64::total_cmp);
+    // The first landing past a capacity, bisected against the landing below it.
+    let capacity = match landed.iter().position(|p| p.1.stops.engaged()) {
+        None => None,
+        Some(0) => Some(CapacityEdge {
+            within_at: None,
+            past_at: landed[0].0,
+            vh: None,
+            stops: landed[0].1.stops,
+        }),
+        Some(k) => {
+            let (edge, points) =
+                bisect_capacity(landed[k - 1].0, landed[k], settings.tolerance, land)?;
+            midpoints.extend(points);
+            Some(edge)
+        }
+    };
+    landings += midpoints.len();
+    landed.extend(midpoints);
+    landed.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let undecided_at: Vec<f64> = (landed.iter())
+        .filter(|p| p.1.outcome == Outcome::Undecided)
+        .map(|p| p.0)
+        .collect();
     let (vh, stable_at, unstable_at) = match transitions
         .iter()
         .find(|t| t.direction == Direction::StableToUnstable)
     {
         Some(t) => (t.vh, Some(t.stable_at), Some(t.unstable_at)),
         None => {
-            let at = |o: Outcome| grid.iter().zip(&outcomes).filter(move |(_, &x)| x == o);
-            let unstable = at(Outcome::Unstable).map(|(&vh, _)| vh).next();
-            let stable = at(Outcome::Stable).map(|(&vh, _)| vh).next_back();
+            let at = |o: Outcome| landed.iter().filter(move |p| p.1.outcome == o);
+            let unstable = at(Outcome::Unstable).map(|p| p.0).next();
+            let stable = at(Outcome::Stable).map(|p| p.0).next_back();
             (None, stable.filter(|_| unstable.is_none()), unstable)
         }
+    };
+    let band = match (transitions.first(), transitions.last()) {
+        (Some(a), Some(b)) if transitions.len() > 1 => Some(Band {
+            from: a.lower(),
+            to: b.upper(),
+            changes: transitions.len(),
+        }),
+        _ => None,
     };
     Ok(BoundaryPoint {
         vv,
@@ -352,48 +605,107 @@ fn at_descent_speed(
         stable_at,
         unstable_at,
         transitions,
+        band,
+        capacity,
+        safe: safe_edge(&landed),
         undecided: undecided_at.len(),
         undecided_at,
         landings,
     })
 }
 
-/// Bisects the bracket of `t` (no undecided grid point inside) until it is no wider than
+/// The safe envelope of the landings `landed` (ascending in Vh).
+fn safe_edge(landed: &[Point]) -> SafeEdge {
+    match landed.iter().position(|p| !p.1.safe()) {
+        None => SafeEdge {
+            safe_to: landed.last().map(|p| p.0),
+            unsafe_at: None,
+            limit: None,
+        },
+        Some(k) => {
+            let l = landed[k].1;
+            let limit = match (l.outcome, l.stops.engaged()) {
+                (Outcome::Undecided, _) => Limit::Undecided,
+                (Outcome::Unstable, false) => Limit::Overturn,
+                (Outcome::Unstable, true) => Limit::OverturnAndCapacity,
+                (Outcome::Stable, _) => Limit::Capacity,
+            };
+            SafeEdge {
+                safe_to: k.checked_sub(1).map(|j| landed[j].0),
+                unsafe_at: Some(landed[k].0),
+                limit: Some(limit),
+            }
+        }
+    }
+}
+
+/// Bisects the bracket of `t` (no undecided point inside) until it is no wider than
 /// `tolerance` or a midpoint ends undecided; returns it with the landings it ran.
 fn bisect(
     mut t: Transition,
     tolerance: f64,
-    land: &(dyn Fn(f64) -> Result<Outcome, ValidationError> + Sync),
-) -> Result<(Transition, usize), ValidationError> {
-    let mut landings = 0;
+    land: &Land,
+) -> Result<(Transition, Vec<Point>), ValidationError> {
+    let mut points = Vec::new();
     while (t.unstable_at - t.stable_at).abs() > tolerance {
         let mid = 0.5 * (t.stable_at + t.unstable_at);
-        landings += 1;
-        match land(mid)? {
-            Outcome::Stable => t.stable_at = mid,
-            Outcome::Unstable => t.unstable_at = mid,
+        let l = land(mid)?;
+        points.push((mid, l));
+        match l.outcome {
+            Outcome::Stable => (t.stable_at, t.stable_stops) = (mid, l.stops),
+            Outcome::Unstable => (t.unstable_at, t.unstable_stops) = (mid, l.stops),
             Outcome::Undecided => {
                 t.undecided_at = vec![mid];
-                return Ok((t, landings));
+                return Ok((t, points));
             }
         }
     }
     t.resolved = true;
     t.vh = Some(0.5 * (t.stable_at + t.unstable_at));
-    Ok((t, landings))
+    Ok((t, points))
+}
+
+/// Bisects between `within` (a Vh whose landing stayed within every capacity) and the landing
+/// `past` (one that went past a capacity) until the bracket is no wider than `tolerance`, on
+/// the capacity alone (whatever the outcome); returns the edge with the landings it ran.
+fn bisect_capacity(
+    mut within: f64,
+    (mut past, first): Point,
+    tolerance: f64,
+    land: &Land,
+) -> Result<(CapacityEdge, Vec<Point>), ValidationError> {
+    let mut stops = first.stops;
+    let mut points = Vec::new();
+    while (past - within).abs() > tolerance {
+        let mid = 0.5 * (within + past);
+        let l = land(mid)?;
+        points.push((mid, l));
+        if l.stops.engaged() {
+            (past, stops) = (mid, l.stops);
+        } else {
+            within = mid;
+        }
+    }
+    let edge = CapacityEdge {
+        within_at: Some(within),
+        past_at: past,
+        vh: Some(0.5 * (within + past)),
+        stops,
+    };
+    Ok((edge, points))
 }
 
 /// A landing closure for [`search`] on the scenario `base` with `overrides` (field path and
 /// value in the file's units, [`ScenarioBase::with`]): its vertical velocity set to −vv and
 /// its horizontal velocity to vh along the scenario's own horizontal direction (file units),
 /// landed by `land` (one engine's run of the changed scenario, to its outcome).
-pub fn scenario_landing<'a, L>(
+pub fn scenario_landing<'a, L, T>(
     base: &'a ScenarioBase,
     overrides: &'a [(&'a str, toml::Value)],
     land: L,
-) -> Result<impl Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync + 'a, ValidationError>
+) -> Result<impl Fn(f64, f64) -> Result<T, ValidationError> + Sync + 'a, ValidationError>
 where
-    L: Fn(&Scenario) -> Result<Outcome, RunError> + Sync + 'a,
+    L: Fn(&Scenario) -> Result<T, RunError> + Sync + 'a,
 {
     let sc = base.with(overrides)?;
     let [hx, hy] = sc.file.touchdown.horizontal_velocity;
@@ -431,24 +743,45 @@ where
 pub struct EnginePoint {
     /// The engine that searched.
     pub engine: Engine,
+    /// The end stops' coefficient of restitution the search set on every load-stroke diagram
+    /// (`None`: the scenario's own).
+    pub stop_restitution: Option<f64>,
     /// What it found.
     pub point: BoundaryPoint,
 }
 
+/// The fields of every load-stroke diagram's end-stop restitution.
+pub const STOP_RESTITUTION_FIELDS: [&str; 3] = [
+    "primary_strut.compression.stop_restitution",
+    "secondary_strut.compression.stop_restitution",
+    "secondary_strut.tension.stop_restitution",
+];
+
 /// The boundary search of the scenario `base` with `overrides` ([`scenario_landing`]) on each
 /// of `engines` (in engine order, each once; every one must apply to the scenario), at the
-/// descent speeds `vvs`: one point per engine and descent speed, engine by engine, each also
-/// handed to `found` as soon as it and those before it are found.
+/// descent speeds `vvs`, once with the scenario's own end stops if `restitutions` is empty,
+/// else once per coefficient of restitution in it, set on every load-stroke diagram
+/// ([`STOP_RESTITUTION_FIELDS`]): one point per engine, restitution and descent speed, in
+/// that order, each also handed to `found` as soon as it and those before it are found.
+#[allow(clippy::too_many_arguments)]
 pub fn search_engines(
     base: &ScenarioBase,
     overrides: &[(&str, toml::Value)],
     vvs: &[f64],
     settings: Settings,
     engines: &[Engine],
+    restitutions: &[f64],
     tick: &(dyn Fn() + Sync),
     found: &(dyn Fn(&EnginePoint) + Sync),
 ) -> Result<Vec<EnginePoint>, ValidationError> {
     settings.validate()?;
+    if let Some(&e) = restitutions.iter().find(|e| !(0.0..=1.0).contains(*e)) {
+        return Err(refuse(
+            "--stop-restitution",
+            "coefficients of restitution in [0, 1]".into(),
+            e,
+        ));
+    }
     let mut engines = engines.to_vec();
     engines.sort();
     engines.dedup();
@@ -457,28 +790,44 @@ pub fn search_engines(
     for &e in &engines {
         touchdown_registry::require(e, &sc)?;
     }
+    let laws: Vec<Option<f64>> = if restitutions.is_empty() {
+        vec![None]
+    } else {
+        restitutions.iter().copied().map(Some).collect()
+    };
     let mut points = Vec::new();
     for &engine in &engines {
-        let landing = scenario_landing(base, overrides, move |sc: &Scenario| {
-            touchdown_registry::land(engine, path, sc, &mut (), None)
-                .map(|s| s.outcome)
-                .map_err(|f| f.error)
-        })?;
-        let point = |p: &BoundaryPoint| {
-            found(&EnginePoint {
-                engine,
-                point: p.clone(),
-            })
-        };
-        let found =
-            search_streaming(vvs, settings, landing, tick, &point).map_err(|e| match e {
-                ValidationError::Run { scenario, source } => ValidationError::Run {
-                    scenario: format!("{engine} engine on {scenario}"),
-                    source,
-                },
-                other => other,
+        for &stop_restitution in &laws {
+            let mut values = overrides.to_vec();
+            if let Some(e) = stop_restitution {
+                values.extend(STOP_RESTITUTION_FIELDS.map(|f| (f, toml::Value::Float(e))));
+            }
+            let landing = scenario_landing(base, &values, move |sc: &Scenario| {
+                touchdown_registry::land(engine, path, sc, &mut (), None)
+                    .map(|s| Landed::of(&s))
+                    .map_err(|f| f.error)
             })?;
-        points.extend(found.into_iter().map(|point| EnginePoint { engine, point }));
+            let point = |p: &BoundaryPoint| {
+                found(&EnginePoint {
+                    engine,
+                    stop_restitution,
+                    point: p.clone(),
+                })
+            };
+            let found =
+                search_streaming(vvs, settings, landing, tick, &point).map_err(|e| match e {
+                    ValidationError::Run { scenario, source } => ValidationError::Run {
+                        scenario: format!("{engine} engine on {scenario}"),
+                        source,
+                    },
+                    other => other,
+                })?;
+            points.extend(found.into_iter().map(|point| EnginePoint {
+                engine,
+                stop_restitution,
+                point,
+            }));
+        }
     }
     Ok(points)
 }
@@ -499,6 +848,52 @@ pub struct TransitionSi {
     pub resolved: bool,
     /// The undecided landings inside the bracket, m/s, ascending.
     pub undecided_at_vh_m_s: Vec<f64>,
+    /// The end stops engaged at the stable end.
+    pub stable_stops: Stops,
+    /// The end stops engaged at the unstable end.
+    pub unstable_stops: Stops,
+}
+
+/// A band of alternating outcomes in SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BandSi {
+    /// Its lower end, m/s.
+    pub from_vh_m_s: f64,
+    /// Its upper end, m/s.
+    pub to_vh_m_s: f64,
+    /// How many times the outcome changes within it.
+    pub changes: usize,
+}
+
+/// The first Vh past a capacity in SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CapacityEdgeSi {
+    /// The bracket's end within every capacity, m/s (left out when the first landing went
+    /// past).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub within_at_vh_m_s: Option<f64>,
+    /// The bracket's end past a capacity, m/s.
+    pub past_at_vh_m_s: f64,
+    /// The middle of the bracket, m/s (left out when the first landing went past).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vh_m_s: Option<f64>,
+    /// The stops engaged at the past end.
+    pub stops: Stops,
+}
+
+/// The safe envelope in SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SafeEdgeSi {
+    /// The largest Vh below the first unsafe landing, m/s (left out when the first landing
+    /// was unsafe).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub safe_to_vh_m_s: Option<f64>,
+    /// The first unsafe landing's Vh, m/s (left out when every landing was safe).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unsafe_at_vh_m_s: Option<f64>,
+    /// Why it is unsafe (left out when every landing was safe).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit: Option<Limit>,
 }
 
 /// One engine's boundary at one descent speed in SI, its vertical velocity signed as in the
@@ -509,6 +904,9 @@ pub struct TransitionSi {
 pub struct PointSi {
     /// The engine that searched.
     pub engine: &'static str,
+    /// The end stops' restitution set on every diagram (left out: the scenario's own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stop_restitution: Option<f64>,
     /// The vertical velocity, m/s, negative down (`touchdown.vertical_velocity`).
     pub vv_m_s: f64,
     /// The boundary's horizontal speed, m/s (left out if none or unresolved).
@@ -522,6 +920,14 @@ pub struct PointSi {
     pub unstable_at_vh_m_s: Option<f64>,
     /// Every transition, ascending in Vh.
     pub transitions: Vec<TransitionSi>,
+    /// Where the outcome alternates (left out with fewer than two transitions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub band: Option<BandSi>,
+    /// The first Vh past a capacity (left out if no landing went past one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub capacity: Option<CapacityEdgeSi>,
+    /// The safe envelope.
+    pub safe: SafeEdgeSi,
     /// The Vh of every undecided landing, m/s, ascending.
     pub undecided_at_vh_m_s: Vec<f64>,
     /// Landings run.
@@ -538,6 +944,7 @@ impl EnginePoint {
         let all = |v: &[f64]| v.iter().map(|x| si(*x)).collect();
         PointSi {
             engine: self.engine.name(),
+            stop_restitution: self.stop_restitution,
             vv_m_s: -si(p.vv),
             vh_m_s: p.vh.map(si),
             stable_at_vh_m_s: p.stable_at.map(si),
@@ -552,8 +959,26 @@ impl EnginePoint {
                     vh_m_s: t.vh.map(si),
                     resolved: t.resolved,
                     undecided_at_vh_m_s: all(&t.undecided_at),
+                    stable_stops: t.stable_stops,
+                    unstable_stops: t.unstable_stops,
                 })
                 .collect(),
+            band: p.band.map(|b| BandSi {
+                from_vh_m_s: si(b.from),
+                to_vh_m_s: si(b.to),
+                changes: b.changes,
+            }),
+            capacity: p.capacity.map(|c| CapacityEdgeSi {
+                within_at_vh_m_s: c.within_at.map(si),
+                past_at_vh_m_s: si(c.past_at),
+                vh_m_s: c.vh.map(si),
+                stops: c.stops,
+            }),
+            safe: SafeEdgeSi {
+                safe_to_vh_m_s: p.safe.safe_to.map(si),
+                unsafe_at_vh_m_s: p.safe.unsafe_at.map(si),
+                limit: p.safe.limit,
+            },
             undecided_at_vh_m_s: all(&p.undecided_at),
             landings: p.landings,
             undecided: p.undecided,
@@ -581,9 +1006,16 @@ pub fn descent_speeds(vvs: &[f64], argument: &'static str) -> Result<Vec<f64>, V
 }
 
 /// The options of a boundary search as its documents record them: the vertical velocities
-/// `vvs` (negative down), the grid and the tolerance as given, in the scenario's velocity unit
-/// `unit` (`ft/s`, written into each name as `_ft_s`), and the engines.
-pub fn options(vvs: &[f64], s: Settings, unit: &str, engines: &[Engine]) -> serde_json::Value {
+/// `vvs` (negative down), the grid, the tolerance and the scan step as given, in the
+/// scenario's velocity unit `unit` (`ft/s`, written into each name as `_ft_s`), the engines
+/// and the end stops' restitutions searched (`stop_restitution`, when given).
+pub fn options(
+    vvs: &[f64],
+    s: Settings,
+    unit: &str,
+    engines: &[Engine],
+    restitutions: &[f64],
+) -> serde_json::Value {
     let suffix = unit.replace('/', "_");
     let mut o = serde_json::Map::new();
     let mut put = |name: &str, value: serde_json::Value| {
@@ -594,7 +1026,13 @@ pub fn options(vvs: &[f64], s: Settings, unit: &str, engines: &[Engine]) -> serd
     put("vh_step", serde_json::json!(s.vh_step));
     put("vh_max", serde_json::json!(s.vh_max));
     put("tolerance", serde_json::json!(s.tolerance));
+    if let Some(scan) = s.scan_step {
+        put("scan_step", serde_json::json!(scan));
+    }
     o.insert("engines".into(), serde_json::json!(engines));
+    if !restitutions.is_empty() {
+        o.insert("stop_restitution".into(), serde_json::json!(restitutions));
+    }
     serde_json::Value::Object(o)
 }
 
@@ -621,6 +1059,7 @@ mod tests {
             vh_step,
             vh_max,
             tolerance,
+            scan_step: None,
         }
     }
 
@@ -763,6 +1202,8 @@ mod tests {
                 vh: None,
                 resolved: false,
                 undecided_at: vec![4.0, 5.0, 6.0],
+                stable_stops: Stops::default(),
+                unstable_stops: Stops::default(),
             }]
         );
         assert_eq!(
@@ -827,6 +1268,8 @@ mod tests {
                 vh: None,
                 resolved: false,
                 undecided_at: vec![5.75],
+                stable_stops: Stops::default(),
+                unstable_stops: Stops::default(),
             }]
         );
         assert_eq!(
@@ -836,6 +1279,102 @@ mod tests {
         assert_eq!(
             (p.landings, p.undecided, &p.undecided_at[..]),
             (13, 1, &[5.75][..])
+        );
+    }
+
+    /// Stable up to 11.3, unstable on (11.3, 11.6), stable again up to 12.2, unstable above:
+    /// an island narrower than the grid step, next to the change the grid sees.
+    fn island(_: f64, vh: f64) -> Result<Outcome, ValidationError> {
+        Ok(if (vh > 11.3 && vh < 11.6) || vh > 12.2 {
+            Outcome::Unstable
+        } else {
+            Outcome::Stable
+        })
+    }
+
+    #[test]
+    fn the_scan_finds_an_island_the_grid_steps_over_and_reports_a_band() {
+        let tol = 1e-3;
+        let grid_only = &search(&[1.0], settings(1.0, 20.0, tol), island, &|| {}).unwrap()[0];
+        assert_eq!(grid_only.transitions.len(), 1, "the grid sees one change");
+        assert_eq!(grid_only.band, None);
+        let scanned = Settings {
+            scan_step: Some(0.25),
+            ..settings(1.0, 20.0, tol)
+        };
+        let p = &search(&[1.0], scanned, island, &|| {}).unwrap()[0];
+        let exact = [
+            (Direction::StableToUnstable, 11.3),
+            (Direction::UnstableToStable, 11.6),
+            (Direction::StableToUnstable, 12.2),
+        ];
+        assert_eq!(p.transitions.len(), 3, "{p:?}");
+        for (t, (direction, vh)) in p.transitions.iter().zip(exact) {
+            assert_eq!(t.direction, direction);
+            assert!((t.vh.unwrap() - vh).abs() <= 0.5 * tol + 1e-12, "{t:?}");
+        }
+        // The boundary is still the lowest stable -> unstable transition, inside its band.
+        assert!((p.vh.unwrap() - 11.3).abs() <= 0.5 * tol + 1e-12);
+        let band = p.band.unwrap();
+        assert_eq!(band.changes, 3);
+        assert!(band.from <= 11.3 && band.from > 11.3 - tol);
+        assert!(band.to >= 12.2 && band.to < 12.2 + tol);
+        // Every landing counted: 21 grid points, the scan of [11, 14] every 0.25 less its
+        // grid points (9), and the bisections.
+        assert!(p.landings > 30, "{}", p.landings);
+    }
+
+    /// Past a strut's capacity above 7.4 (one strut, stop force 1 kN per unit of Vh beyond),
+    /// two struts above 10; unstable above 12.2.
+    fn bottoming(_: f64, vh: f64) -> Result<Landed, ValidationError> {
+        let struts = (vh > 7.4) as usize + (vh > 10.0) as usize;
+        Ok(Landed {
+            outcome: if vh > 12.2 {
+                Outcome::Unstable
+            } else {
+                Outcome::Stable
+            },
+            stops: Stops {
+                struts_past_capacity: struts,
+                peak_stop_force_n: if struts > 0 { 1e3 * (vh - 7.4) } else { 0.0 },
+            },
+        })
+    }
+
+    #[test]
+    fn the_first_speed_past_capacity_and_the_safe_envelope_are_found_with_their_stops() {
+        let tol = 1e-3;
+        let p = &search(&[1.0], settings(1.0, 20.0, tol), bottoming, &|| {}).unwrap()[0];
+        let c = p.capacity.unwrap();
+        assert!((c.vh.unwrap() - 7.4).abs() <= 0.5 * tol + 1e-12, "{c:?}");
+        assert!(c.within_at.unwrap() <= 7.4 && c.past_at > 7.4);
+        assert_eq!(c.stops.struts_past_capacity, 1);
+        assert!(c.stops.peak_stop_force_n > 0.0 && c.stops.peak_stop_force_n <= 1e3 * tol);
+        // Safe up to the capacity, not to the overturn.
+        assert_eq!(p.safe.limit, Some(Limit::Capacity));
+        assert_eq!(p.safe.safe_to, c.within_at);
+        assert_eq!(p.safe.unsafe_at, Some(c.past_at));
+        // The overturn's ends say which stops they engaged.
+        let t = &p.transitions[0];
+        assert!((t.vh.unwrap() - 12.2).abs() <= 0.5 * tol + 1e-12);
+        assert_eq!(t.stable_stops.struts_past_capacity, 2);
+        assert_eq!(t.unstable_stops.struts_past_capacity, 2);
+        assert!((t.unstable_stops.peak_stop_force_n - 1e3 * (t.unstable_at - 7.4)).abs() < 1e-9);
+        // Past capacity from the first landing: no bracket; never past: no edge.
+        let early = |vv: f64, vh: f64| bottoming(vv, vh + 8.0);
+        let p = &search(&[1.0], settings(1.0, 20.0, tol), early, &|| {}).unwrap()[0];
+        let c = p.capacity.unwrap();
+        assert_eq!((c.within_at, c.past_at, c.vh), (None, 0.0, None));
+        assert_eq!((p.safe.safe_to, p.safe.unsafe_at), (None, Some(0.0)));
+        let p = &search(&[1.0], settings(1.0, 5.0, tol), bottoming, &|| {}).unwrap()[0];
+        assert_eq!(p.capacity, None);
+        assert_eq!(
+            p.safe,
+            SafeEdge {
+                safe_to: Some(5.0),
+                unsafe_at: None,
+                limit: None
+            }
         );
     }
 
@@ -858,6 +1397,20 @@ mod tests {
             (settings(1.0, f64::NAN, 0.1), "--vh-max"),
             (settings(1e-3, 100.0, 0.1), "--vh-step"), // 100,001 points
             (settings(1e-300, 1e300, 1e292), "--vh-step"),
+            (
+                Settings {
+                    scan_step: Some(1.0),
+                    ..settings(1.0, 10.0, 0.1)
+                },
+                "--scan-step",
+            ),
+            (
+                Settings {
+                    scan_step: Some(0.0),
+                    ..settings(1.0, 10.0, 0.1)
+                },
+                "--scan-step",
+            ),
         ];
         for (s, argument) in cases {
             let e = search(&[1.0], s, panics, &|| {}).unwrap_err();
@@ -894,6 +1447,7 @@ mod tests {
             vh_step: 0.7,
             vh_max: 3.0,
             tolerance: 0.1,
+            scan_step: None,
         }
         .grid()
         .unwrap();

@@ -5,7 +5,7 @@
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use touchdown_core::Outcome;
-use touchdown_validation::boundary::{self, Settings};
+use touchdown_validation::boundary::{self, Landed, Settings};
 use touchdown_validation::reference::{self, Protocol, TableI};
 use touchdown_validation::table::{self, Role};
 use touchdown_validation::{calibrate, reference::Paths};
@@ -223,6 +223,7 @@ fn boundary_search_brackets_a_real_overturn() {
         vh_step: 2.0,
         vh_max: 12.0,
         tolerance: 0.05,
+        scan_step: None,
     };
     let points = boundary::search(&[12.0], settings, &landing, &|| {}).unwrap();
     let p = &points[0];
@@ -237,6 +238,63 @@ fn boundary_search_brackets_a_real_overturn() {
         assert_eq!(landing(12.0, t.unstable_at).unwrap(), Outcome::Unstable);
     }
     let _ = std::fs::remove_file(&tmp);
+}
+
+/// The search (a 2 ft/s grid, scanned every 0.25 ft/s around its changes, bisected to
+/// 0.05 ft/s) finds every change of outcome that single landings every 0.25 ft/s find on the
+/// figure 25-26 configuration at Vv = -8 and -10 ft/s (core): each transition of the plain scan
+/// holds one of the search's, in the same direction; and the first speed past a strut's
+/// capacity lies within the plain scan's bracket of it.
+#[test]
+fn the_search_finds_every_transition_of_a_quarter_foot_per_second_scan() {
+    let base =
+        touchdown_scenario::ScenarioBase::load(root().join("scenarios/fig-25-26.toml")).unwrap();
+    let landing = boundary::scenario_landing(&base, &[], |sc| {
+        touchdown_core::run(sc).map(|s| Landed::of(&s))
+    })
+    .unwrap();
+    let vvs = [8.0, 10.0];
+    let plain = Settings {
+        vh_start: 0.0,
+        vh_step: 0.25,
+        vh_max: 36.0,
+        tolerance: 0.25,
+        scan_step: None,
+    };
+    let search = Settings {
+        vh_step: 2.0,
+        tolerance: 0.05,
+        scan_step: Some(0.25),
+        ..plain
+    };
+    let scanned = boundary::search(&vvs, plain, &landing, &|| {}).unwrap();
+    let found = boundary::search(&vvs, search, &landing, &|| {}).unwrap();
+    for (p, f) in scanned.iter().zip(&found) {
+        assert!(!p.transitions.is_empty(), "Vv {}: the scan overturns", p.vv);
+        for t in &p.transitions {
+            assert!(
+                f.transitions.iter().any(|u| u.direction == t.direction
+                    && u.lower() >= t.lower() - 1e-9
+                    && u.upper() <= t.upper() + 1e-9),
+                "Vv {}: the scan's {t:?} is not found: {:?}",
+                p.vv,
+                f.transitions
+            );
+        }
+        assert!(
+            f.landings < p.landings,
+            "the search is cheaper than the scan"
+        );
+        if let Some(c) = p.capacity {
+            let edge = f.capacity.expect("the search finds the capacity edge too");
+            let vh = edge.vh.unwrap_or(edge.past_at);
+            assert!(
+                c.within_at.unwrap_or(f64::NEG_INFINITY) <= vh && vh <= c.past_at,
+                "Vv {}: {edge:?} outside the scan's {c:?}",
+                p.vv
+            );
+        }
+    }
 }
 
 /// The figure 25-26 scenario lands at the velocities `touchdown estimate` chose from the text's

@@ -232,7 +232,7 @@ fn correct_footpad(
     // The law's secant over the step (regularised within 1e-9 of the strut's length, where a
     // stroke change is rounding), at most its stiffest slope: no state decides it at rounding
     // level, and a strut in its free play or on a plateau is no spring.
-    let stiffest = physics.laws.primary.honeycomb.stop.unloading_rate();
+    let stiffest = physics.laws.primary.honeycomb.stop.stiffest_rate();
     let dc = trial.primary_stroke - start.primary_stroke;
     let eps = 1e-9 * physics.legs[i].l2p;
     let k = ((trial.fcp - start.fcp) * dc / (dc * dc + eps * eps)).clamp(0.0, stiffest);
