@@ -7,6 +7,7 @@
 use crate::distribution::Value;
 use crate::spec::Campaign;
 use serde::{Deserialize, Serialize};
+use touchdown_record::capacity::SECONDARY_NAMES;
 use touchdown_record::{Outcome, RunError, Summary};
 
 /// What a column holds.
@@ -150,10 +151,6 @@ impl Failure {
     }
 }
 
-/// The struts of one leg, as named in records: the primary, then each secondary (3-1, 4-1) in
-/// compression and in tension.
-use touchdown_record::capacity::SECONDARY_NAMES as SECONDARIES;
-
 /// The columns of a campaign's records, in order.
 pub fn columns(campaign: &Campaign) -> Vec<Column> {
     let col = |name: String, kind| Column { name, kind };
@@ -185,7 +182,8 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
         for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
             c.push(col(format!("leg{leg}.primary.{name}"), Kind::Float));
         }
-        for s in SECONDARIES {
+        // Each leg's primary, then each secondary (3-1, 4-1) in compression and in tension.
+        for s in SECONDARY_NAMES {
             for side in ["compression", "tension"] {
                 for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
                     c.push(col(

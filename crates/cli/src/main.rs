@@ -315,8 +315,8 @@ enum Command {
         #[arg(long, value_name = "STEP")]
         scan_step: Option<f64>,
         /// Search once per end-stop coefficient of restitution in this comma-separated list,
-        /// set on every load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and report
-        /// the spread: how much of the boundary the estimated stop law decides.
+        /// set on every strut's load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and
+        /// report the spread: how much of the boundary the estimated stop law decides.
         #[arg(long, value_delimiter = ',', value_name = "E,...")]
         stop_restitution: Vec<f64>,
         /// Engines that search, comma-separated; each searches the same configuration and the

@@ -192,12 +192,7 @@ pub fn check_explicit_timestep(
     dt: f64,
     field: &str,
 ) -> Result<(), ScenarioError> {
-    let stops = [
-        ("primary_strut.compression", &sc.primary.compression),
-        ("secondary_strut.compression", &sc.secondary.compression),
-        ("secondary_strut.tension", &sc.secondary.tension),
-    ];
-    for (diagram, ls) in stops {
+    for (diagram, ls) in sc.strut_diagrams() {
         if ls.stop_restitution < MIN_STOP_RESTITUTION {
             let field = format!("{diagram}.stop_restitution");
             return Err(ScenarioError::field(

@@ -72,6 +72,16 @@ impl Scenario {
         let mass = self.vehicle.mass + self.legs.len() as f64 * self.footpad.mass;
         mass * self.vehicle.gravity * self.integrator.dist
     }
+
+    /// The struts' load-stroke diagrams with their field paths: the primary in compression,
+    /// the secondaries in compression and in tension.
+    pub fn strut_diagrams(&self) -> [(&'static str, &LoadStroke); 3] {
+        [
+            ("primary_strut.compression", &self.primary.compression),
+            ("secondary_strut.compression", &self.secondary.compression),
+            ("secondary_strut.tension", &self.secondary.tension),
+        ]
+    }
 }
 
 /// Rigid vehicle (excluding the effective footpad masses).

@@ -510,7 +510,6 @@ fn at_descent_speed(
         landed.extend(land_all(&scan, land)?);
         landed.sort_by(|a, b| a.0.total_cmp(&b.0));
     }
-    let mut landings = landed.len();
     let decided: Vec<usize> = (0..landed.len())
         .filter(|&i| landed[i].1.outcome != Outcome::Undecided)
         .collect();
@@ -572,7 +571,6 @@ fn at_descent_speed(
             Some(edge)
         }
     };
-    landings += midpoints.len();
     landed.extend(midpoints);
     landed.sort_by(|a, b| a.0.total_cmp(&b.0));
     let undecided_at: Vec<f64> = (landed.iter())
@@ -610,7 +608,7 @@ fn at_descent_speed(
         safe: safe_edge(&landed),
         undecided: undecided_at.len(),
         undecided_at,
-        landings,
+        landings: landed.len(),
     })
 }
 
@@ -743,25 +741,19 @@ where
 pub struct EnginePoint {
     /// The engine that searched.
     pub engine: Engine,
-    /// The end stops' coefficient of restitution the search set on every load-stroke diagram
+    /// The end stops' coefficient of restitution the search set on every strut's load-stroke
+    /// diagram
     /// (`None`: the scenario's own).
     pub stop_restitution: Option<f64>,
     /// What it found.
     pub point: BoundaryPoint,
 }
 
-/// The fields of every load-stroke diagram's end-stop restitution.
-pub const STOP_RESTITUTION_FIELDS: [&str; 3] = [
-    "primary_strut.compression.stop_restitution",
-    "secondary_strut.compression.stop_restitution",
-    "secondary_strut.tension.stop_restitution",
-];
-
 /// The boundary search of the scenario `base` with `overrides` ([`scenario_landing`]) on each
 /// of `engines` (in engine order, each once; every one must apply to the scenario), at the
 /// descent speeds `vvs`, once with the scenario's own end stops if `restitutions` is empty,
-/// else once per coefficient of restitution in it, set on every load-stroke diagram
-/// ([`STOP_RESTITUTION_FIELDS`]): one point per engine, restitution and descent speed, in
+/// else once per coefficient of restitution in it, set on every strut's load-stroke diagram
+/// (`Scenario::strut_diagrams`): one point per engine, restitution and descent speed, in
 /// that order, each also handed to `found` as soon as it and those before it are found.
 #[allow(clippy::too_many_arguments)]
 pub fn search_engines(
@@ -795,12 +787,18 @@ pub fn search_engines(
     } else {
         restitutions.iter().copied().map(Some).collect()
     };
+    let stop_fields = sc
+        .strut_diagrams()
+        .map(|(diagram, _)| format!("{diagram}.stop_restitution"));
     let mut points = Vec::new();
     for &engine in &engines {
         for &stop_restitution in &laws {
             let mut values = overrides.to_vec();
             if let Some(e) = stop_restitution {
-                values.extend(STOP_RESTITUTION_FIELDS.map(|f| (f, toml::Value::Float(e))));
+                let fields = stop_fields
+                    .iter()
+                    .map(|f| (f.as_str(), toml::Value::Float(e)));
+                values.extend(fields);
             }
             let landing = scenario_landing(base, &values, move |sc: &Scenario| {
                 touchdown_registry::land(engine, path, sc, &mut (), None)
