@@ -1,5 +1,5 @@
 """The trajectory viewer on a long landing: a 2-second landing of the robotic lander on its 5°
-slope, run to its end time on the three engines (about 10,000 core steps and 100,000 steps of
+slope, run to its end time on the three engines (about 12,000 core steps and 76,000 steps of
 each multibody engine), written by `touchdown view` and opened in headless Chromium
 (docs/performance.md, "The trajectory viewer").
 

@@ -17,6 +17,8 @@
 //!   the two mechanisms that part them;
 //! * `mujoco`: every scenario exports to MJCF that the pinned MuJoCo loads, in the touchdown
 //!   state;
+//! * `similarity`: Froude twins (`[similarity]`) land as their model does on every engine,
+//!   within its step convergence;
 //! * `symmetry`: every landing against its mirror image and its legs renumbered;
 //! * `campaign`: campaigns give the same bytes on any threads and shards, extend without
 //!   change, apply what they draw, meet a closed-form probability, refuse bad files and merges,
@@ -41,5 +43,6 @@ mod physics;
 mod plots;
 mod rapier;
 mod scenario_errors;
+mod similarity;
 mod symmetry;
 mod trajectory;

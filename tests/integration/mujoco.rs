@@ -22,7 +22,7 @@ fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "toml") {
             let sc = Scenario::load(&path).unwrap();
-            let xml = touchdown_mujoco::export(&sc);
+            let xml = touchdown_mujoco::export(&sc).unwrap();
             let file = dir.join(path.file_stem().unwrap()).with_extension("xml");
             std::fs::write(&file, xml).unwrap();
             cases.push((file, sc));
@@ -91,7 +91,8 @@ fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
             };
             assert_eq!(r["footpad_condim"][i], want, "{name}: leg {} condim", i + 1);
         }
-        assert_eq!(r["timestep_s"], sc.mujoco.timestep, "{name}");
+        let step = touchdown_registry::time_step(touchdown_registry::Engine::Mujoco, sc).unwrap();
+        assert_eq!(r["timestep_s"], step, "{name}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -99,8 +100,8 @@ fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
 #[test]
 fn the_export_is_deterministic_and_names_its_scenario() {
     let sc = Scenario::load(scenario("fig-25-26.toml")).unwrap();
-    let a = touchdown_mujoco::export(&sc);
-    let b = touchdown_mujoco::export(&Scenario::load(scenario("fig-25-26.toml")).unwrap());
+    let a = touchdown_mujoco::export(&sc).unwrap();
+    let b = touchdown_mujoco::export(&Scenario::load(scenario("fig-25-26.toml")).unwrap()).unwrap();
     assert_eq!(a, b);
     let hash = sc.sha256();
     assert_eq!(hash.len(), 64);
@@ -192,8 +193,8 @@ fn a_time_step_too_large_for_the_stiffest_law_is_refused_by_the_mujoco_engine() 
     let sc = Scenario::load(scenario("flat-drop.toml"))
         .unwrap()
         .with_mujoco(|m| {
-            m.timestep = 1e-3;
-            m.contact_timeconst = 2e-3;
+            m.timestep = Some(1e-3);
+            m.contact_timeconst = Some(2e-3);
         })
         .unwrap();
     match MujocoLanding::new(&sc, Vec::new(), ModelSizes::default(), "test", None) {

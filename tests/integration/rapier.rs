@@ -107,7 +107,7 @@ fn a_footpad_pressed_into_its_contact_books_the_work_of_its_sinking() {
             i.energy_tolerance = 1.0;
         })
         .unwrap()
-        .with_rapier(|r| r.timestep = dt)
+        .with_rapier(|r| r.timestep = Some(dt))
         .unwrap();
         let mut sim = RapierSimulation::new(&sc).unwrap();
         sim.run(&mut ()).unwrap();
@@ -125,7 +125,9 @@ fn a_footpad_pressed_into_its_contact_books_the_work_of_its_sinking() {
 
 #[test]
 fn a_time_step_too_large_for_the_stiffest_law_is_refused() {
-    let sc = flat_drop().with_rapier(|r| r.timestep = 1e-3).unwrap();
+    let sc = flat_drop()
+        .with_rapier(|r| r.timestep = Some(1e-3))
+        .unwrap();
     match RapierSimulation::new(&sc) {
         Err(RunError::Refused(ScenarioError::Field { field, message, .. })) => {
             assert_eq!(field, "engines.rapier.timestep");
@@ -138,7 +140,9 @@ fn a_time_step_too_large_for_the_stiffest_law_is_refused() {
 
 #[test]
 fn a_time_step_beyond_the_run_budget_is_refused_before_the_run() {
-    let sc = flat_drop().with_rapier(|r| r.timestep = 1e-300).unwrap();
+    let sc = flat_drop()
+        .with_rapier(|r| r.timestep = Some(1e-300))
+        .unwrap();
     match RapierSimulation::new(&sc) {
         Err(RunError::Refused(ScenarioError::Field { field, message, .. })) => {
             assert_eq!(field, "engines.rapier.timestep");
@@ -151,10 +155,12 @@ fn a_time_step_beyond_the_run_budget_is_refused_before_the_run() {
 
 #[test]
 fn engine_settings_are_checked_like_file_fields() {
-    let e = flat_drop().with_rapier(|r| r.timestep = 0.0).unwrap_err();
+    let e = flat_drop()
+        .with_rapier(|r| r.timestep = Some(0.0))
+        .unwrap_err();
     assert!(e.to_string().contains("engines.rapier.timestep"), "{e}");
     let e = flat_drop()
-        .with_rapier(|r| r.contact_frequency = -1.0)
+        .with_rapier(|r| r.contact_frequency = Some(-1.0))
         .unwrap_err();
     assert!(
         e.to_string().contains("engines.rapier.contact_frequency"),

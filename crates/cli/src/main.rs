@@ -624,7 +624,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             let sc = load(&scenario, &set.set)?.1;
             warn(&sc);
             touchdown_registry::require(Engine::Mujoco, &sc)?;
-            let xml = touchdown_mujoco::export(&sc);
+            let xml = touchdown_mujoco::export(&sc)?;
             let path = out_file(&out, "", &scenario, "xml")?;
             std::fs::write(&path, xml)
                 .with_context(|| format!("cannot write {}", path.display()))?;
@@ -795,8 +795,14 @@ fn run_landing(
             Engine::Core => anyhow::bail!(
                 "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"
             ),
-            Engine::Rapier => sc.with_rapier(|r| r.timestep = t),
-            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = t),
+            Engine::Rapier => {
+                let seconds = sc.units.time();
+                sc.with_rapier(|r| r.timestep = Some(t / seconds))
+            }
+            Engine::Mujoco => {
+                let seconds = sc.units.time();
+                sc.with_mujoco(|m| m.timestep = Some(t / seconds))
+            }
         };
         sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
     }

@@ -98,7 +98,7 @@ impl Method {
         sc: &Scenario,
         value: f64,
     ) -> Result<Scenario, touchdown_scenario::ScenarioError> {
-        let time = sc.file.units.time();
+        let time = sc.units.time();
         let sc = sc.clone();
         match self {
             Method::Report => sc.with_integrator(|it| {
@@ -117,8 +117,8 @@ impl Method {
                 it.rtol = value;
                 it.atol = value * DOPRI5_ATOL_PER_RTOL;
             }),
-            Method::Rapier => sc.with_rapier(|r| r.timestep = value / time),
-            Method::Mujoco => sc.with_mujoco(|m| m.timestep = value / time),
+            Method::Rapier => sc.with_rapier(|r| r.timestep = Some(value / time)),
+            Method::Mujoco => sc.with_mujoco(|m| m.timestep = Some(value / time)),
         }
     }
 }
@@ -228,7 +228,7 @@ pub fn reference_level(
     level: usize,
 ) -> Result<Scenario, touchdown_scenario::ScenarioError> {
     let rtol = 1.0e-9 / 10f64.powi(level as i32);
-    let time = sc.file.units.time();
+    let time = sc.units.time();
     sc.clone().with_integrator(|it| {
         it.scheme = Scheme::Dopri5;
         it.rtol = rtol;

@@ -11,7 +11,7 @@ use crate::{CompareError, Engine};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use touchdown_record::{Outcome, Summary};
-use touchdown_registry::{land, RunError};
+use touchdown_registry::{land, time_step, RunError};
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// A change to one field of a base scenario (file units).
@@ -361,8 +361,9 @@ pub struct StepSearch {
     pub case: &'static str,
     /// The method ([`Method::Report`]: dt_max, with DIST scaled alike; the others: the step).
     pub method: Method,
-    /// The scenario's own step, s.
-    pub default_step_s: f64,
+    /// The scenario's own step, s (stated or derived); absent if the method refuses the case.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub default_step_s: Option<f64>,
     /// The largest step that completed, s.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub largest_stable_step_s: Option<f64>,
@@ -435,24 +436,24 @@ pub fn largest_stable_step(
     sc: &Scenario,
     method: Method,
 ) -> StepSearch {
-    let default = match method {
-        Method::Rapier => sc.rapier.timestep,
-        Method::Mujoco => sc.mujoco.timestep,
-        _ => sc.integrator.dt_max,
-    };
     let mut search = StepSearch {
         case,
         method,
-        default_step_s: default,
+        default_step_s: None,
         largest_stable_step_s: None,
         first_unstable: None,
         refused: None,
     };
     // A method the case's own fields rule out is not a step's failure: no step would do.
-    if let Err(e) = at_step(sc, method, default) {
-        search.refused = Some(e.to_string());
-        return search;
-    }
+    let default =
+        match time_step(method.engine(), sc).and_then(|dt| at_step(sc, method, dt).map(|_| dt)) {
+            Ok(dt) => dt,
+            Err(e) => {
+                search.refused = Some(e.to_string());
+                return search;
+            }
+        };
+    search.default_step_s = Some(default);
     let mut dt = default;
     match completes(case, path, sc, method, dt) {
         Ok(()) => {
@@ -594,7 +595,9 @@ pub fn text(r: &Robustness, cases: &[Case]) -> String {
                 "{:<22} {:<12} default {:>9} {:>12}  first unstable: {}",
                 st.case,
                 st.method.name(),
-                format!("{:.3} µs", st.default_step_s * 1e6),
+                st.default_step_s
+                    .map(|dt| format!("{:.3} µs", dt * 1e6))
+                    .unwrap_or_default(),
                 st.largest_stable_step_s
                     .map(|dt| format!("{:.3} µs", dt * 1e6))
                     .unwrap_or_else(|| "none".into()),

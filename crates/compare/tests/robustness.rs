@@ -108,7 +108,7 @@ fn the_largest_stable_step_is_bracketed_by_a_named_failure() {
     // multiple of it by a named law, with the time and the state (docs/robustness.md).
     let s = robustness::largest_stable_step(case.name, &path, &sc, Method::Report);
     let dt = s.largest_stable_step_s.expect("a stable step");
-    assert!(dt >= s.default_step_s, "{s:?}");
+    assert!(dt >= s.default_step_s.expect("a default step"), "{s:?}");
     let (above, why) = s.first_unstable.expect("an unstable step above it");
     assert!((above / dt - 2.0).abs() < 1e-9, "{dt} {above}");
     let law = why
@@ -177,7 +177,7 @@ fn footpads_sinking_into_a_soft_contact_fail_the_checks() {
     let path = scenarios().join("flat-drop.toml");
     let sc = touchdown_scenario::Scenario::load(&path)
         .unwrap()
-        .with_rapier(|r| r.contact_frequency = 100.0)
+        .with_rapier(|r| r.contact_frequency = Some(100.0))
         .unwrap();
     let run = robustness::classify("soft-contact", &path, &sc, Engine::Rapier);
     assert_eq!(run.verdict, Verdict::Failed, "{run:?}");

@@ -161,10 +161,11 @@ pub unsafe extern "C" fn touchdown_mujoco_open(
         let mut sc = Scenario::load(Path::new(path))?;
         sc.require_engine(Engine::Mujoco, crate::unsupported)?;
         if timestep > 0.0 {
-            sc = sc.with_mujoco(|m| m.timestep = timestep)?;
+            let seconds = sc.units.time();
+            sc = sc.with_mujoco(|m| m.timestep = Some(timestep / seconds))?;
         }
         r.xml = Some(
-            CString::new(crate::export(&sc))
+            CString::new(crate::export(&sc)?)
                 .map_err(|_| MujocoError::Binding("model text contains NUL".into()))?,
         );
         r.scenario = Some(sc);

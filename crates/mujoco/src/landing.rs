@@ -21,8 +21,7 @@
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
-    check_explicit_timestep, BodyEnergy, Fault, GearBook, PadStep, Reading, StrutKinematics,
-    VehicleState,
+    BodyEnergy, Fault, GearBook, MujocoSettings, PadStep, Reading, StrutKinematics, VehicleState,
 };
 use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;
@@ -170,17 +169,11 @@ fn check(what: &str, leg: usize, id: i32, len: i32) -> Result<usize, MujocoError
 
 /// The gear book of a MuJoCo landing of `sc`, or why the engine refuses the scenario: not
 /// applicable, a mechanism it does not model, laws that do not build, or a time step too large
-/// for the stiffest strut law.
-fn book_for(sc: &Scenario) -> Result<GearBook, ScenarioError> {
+/// for the stiffest strut law; with the settings it runs with.
+fn book_for(sc: &Scenario) -> Result<(GearBook, MujocoSettings), ScenarioError> {
     sc.require_engine(Engine::Mujoco, crate::unsupported)?;
-    let book = GearBook::new(sc, sc.mujoco.timestep)?;
-    check_explicit_timestep(
-        sc,
-        &book.laws,
-        sc.mujoco.timestep,
-        "engines.mujoco.timestep",
-    )?;
-    Ok(book)
+    let settings = MujocoSettings::new(sc)?;
+    Ok((GearBook::new(sc, settings.timestep)?, settings))
 }
 
 /// Refuses `sc` as a MuJoCo landing would, in this process: the command line asks before it
@@ -201,7 +194,7 @@ impl MujocoLanding {
         mujoco_version: &str,
         history: Option<History>,
     ) -> Result<MujocoLanding, MujocoError> {
-        let book = book_for(sc)?;
+        let (book, mj) = book_for(sc)?;
         let n = sc.legs.len();
         if index.len() != n {
             return Err(MujocoError::Binding(format!(
@@ -240,8 +233,8 @@ impl MujocoLanding {
             mass: sc.vehicle.mass,
             inertia: sc.vehicle.inertia,
             contact_radius: sc.legs.iter().map(|l| sc.links.contact_radius(l)).collect(),
-            dt: sc.mujoco.timestep,
-            settings: settings(sc, mujoco_version),
+            dt: mj.timestep,
+            settings: settings(sc, &mj, mujoco_version),
             started: false,
             t: 0.0,
             steps: 0,
@@ -506,8 +499,11 @@ impl MujocoLanding {
 }
 
 /// The engine's settings as used, for the summary (names carry their units).
-fn settings(sc: &Scenario, mujoco_version: &str) -> serde_json::Map<String, serde_json::Value> {
-    let mj = &sc.mujoco;
+fn settings(
+    sc: &Scenario,
+    mj: &MujocoSettings,
+    mujoco_version: &str,
+) -> serde_json::Map<String, serde_json::Value> {
     let l = &sc.links;
     let leg = &sc.legs[0];
     let mut m = serde_json::Map::new();
@@ -520,6 +516,7 @@ fn settings(sc: &Scenario, mujoco_version: &str) -> serde_json::Map<String, serd
         "contact_damping_ratio".into(),
         mj.contact_damping_ratio.into(),
     );
+    m.insert("contact_width_m".into(), mj.contact_width.into());
     m.insert(
         "secondary_struts".into(),
         "massless two-force members (spatial tendons)".into(),

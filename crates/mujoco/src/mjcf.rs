@@ -32,17 +32,18 @@
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::fmt::Write;
 use touchdown_frames::gravity_inertial;
+use touchdown_multibody::MujocoSettings;
 use touchdown_scenario::initial::initial_state;
-use touchdown_scenario::Scenario;
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Contact friction that stands for an obstacle lock (OBST > 0): the footpad sticks laterally
 /// while it bears on its plane and the lateral load stays below 100 times the normal load.
 pub const LOCK_FRICTION: f64 = 100.0;
 
-/// `solimp` of the footpad contacts: impedance 0.99 at zero penetration rising to 0.999 over
-/// 0.1 mm (dimensionless, dimensionless, m), i.e. nearly a hard contact, so that footpads do not
-/// sink.
-pub const CONTACT_SOLIMP: [f64; 3] = [0.99, 0.999, 1.0e-4];
+/// `solimp[0..2]` of the footpad contacts: impedance 0.99 at zero penetration rising to 0.999
+/// over the contact width (`solimp[2]`, `MujocoSettings::contact_width`), i.e. nearly a hard
+/// contact, so that footpads do not sink.
+pub const CONTACT_IMPEDANCE: [f64; 2] = [0.99, 0.999];
 
 /// Version of this generator, written into every exported file.
 pub const GENERATOR: &str = concat!("touchdown-mujoco ", env!("CARGO_PKG_VERSION"));
@@ -70,15 +71,17 @@ fn hinge_axes(axis: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     (e1, axis.cross(&e1))
 }
 
-/// The MJCF document of `sc`'s lander, standalone (loads in MuJoCo and opens in its viewer).
-pub fn export(sc: &Scenario) -> String {
-    let mj = &sc.mujoco;
+/// The MJCF document of `sc`'s lander, standalone (loads in MuJoCo and opens in its viewer),
+/// or why its settings are refused ([`MujocoSettings::new`]).
+pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
+    let mj = MujocoSettings::new(sc)?;
     let init = initial_state(sc);
     let gravity = gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
     let pmass = sc.footpad.mass;
     let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
     let solref = nums(&[mj.contact_timeconst, mj.contact_damping_ratio]);
-    let solimp = nums(&CONTACT_SOLIMP);
+    let [i0, i1] = CONTACT_IMPEDANCE;
+    let solimp = nums(&[i0, i1, mj.contact_width]);
     let quat = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(init.t_bi));
     let j: &Matrix3<f64> = &sc.vehicle.inertia;
 
@@ -228,7 +231,7 @@ pub fn export(sc: &Scenario) -> String {
         nums(&qpos),
         nums(&qvel)
     );
-    x
+    Ok(x)
 }
 
 /// `condim` and `friction` attributes of a footpad contact: frictionless (condim 1) when the

@@ -17,7 +17,8 @@
 //! the landing goes on).
 
 use crate::applied::VehicleLoads;
-use crate::strut::{stiffest_rate, strut_forces, StrutForces, StrutKinematics};
+use crate::step::stiffest_rate;
+use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use crate::wall::ObstacleWall;
 use nalgebra::{Matrix3, Vector2, Vector3};
 use touchdown_laws::{Curbs, GearLaws, GearMemory, StrutLoad};

@@ -12,10 +12,9 @@
 //!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
 
 use nalgebra::Vector3;
-use touchdown_laws::{side_load, GearLaws, GearMemory, Honeycomb, LawError};
+use touchdown_laws::{side_load, GearLaws, GearMemory, LawError};
 use touchdown_record::Law;
 use touchdown_scenario::model::Leg;
-use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Geometry and rates of one gear at one state (inertial axes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -157,101 +156,6 @@ pub fn strut_forces(
         secondary_honeycomb: sec.honeycomb,
         secondary_viscous: sec.viscous,
     })
-}
-
-/// A honeycomb's stiffest rate, N/m: its backoff (rebound) rate, its stroke-out stop's rate or
-/// its onset ramp's, whichever is largest (eqs. 49-52).
-pub fn stiffest_rate(h: &Honeycomb) -> f64 {
-    h.backoff_rate
-        .max(h.curve.stroke_out_rate())
-        .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
-}
-
-/// ω·Δt above which a multibody engine refuses an explicit strut law (symplectic Euler is
-/// stable below 2).
-pub const MAX_OMEGA_DT: f64 = 1.0;
-
-/// The smallest end-stop coefficient of restitution the multibody engines model. Below it the
-/// unloading curve starts n = 2/e² − 1 ≥ 199 times as steep as the stop's loading rate, which
-/// their explicit step does not resolve: at e = 0 and 0.02 both stop on the energy guard (2 %
-/// of the energy put in) on `fig-25-26` and `near-boundary-overturn`, at 0.05 they end within
-/// 0.1 % of it, at 0.1 within 1.2 % (docs/errata.md, "End stops"). The core models every e in
-/// [0, 1].
-pub const MIN_STOP_RESTITUTION: f64 = 0.1;
-
-/// Checks a multibody engine's fixed time step `dt` (s) against the run budget
-/// (`integrator.max_steps` steps to `integrator.t_end`) and the stiffest explicit strut
-/// law: the primary's rates on the footpad mass PMASS, the secondaries' rates on the outer
-/// link's rotation about its trunnion (links as in `sc.links`). (The obstacle walls are built no
-/// stiffer than the step resolves, `crate::wall`, so they never refuse it.) The error, on the
-/// scenario field `field` that set the step, says which mode is too stiff and the largest step
-/// allowed. An end stop less elastic than [`MIN_STOP_RESTITUTION`] is refused on its field.
-pub fn check_explicit_timestep(
-    sc: &Scenario,
-    laws: &GearLaws,
-    dt: f64,
-    field: &str,
-) -> Result<(), ScenarioError> {
-    for (diagram, ls) in sc.strut_diagrams() {
-        if ls.stop_restitution < MIN_STOP_RESTITUTION {
-            let field = format!("{diagram}.stop_restitution");
-            return Err(ScenarioError::field(
-                sc.file_of(&field),
-                field.as_str(),
-                format!(
-                    "{} is below {MIN_STOP_RESTITUTION}, the least elastic end stop the multibody engines model: their explicit step does not resolve the start of its unloading curve (2/e² − 1 times as steep as the stop's loading rate) and the energy balance fails; expected a coefficient of restitution in [{MIN_STOP_RESTITUTION}, 1] on this engine (the core models [0, 1])",
-                    ls.stop_restitution
-                ),
-            ));
-        }
-    }
-    let k_primary = stiffest_rate(&laws.primary.honeycomb);
-    let sec = &laws.secondary.honeycomb;
-    let k_secondary = stiffest_rate(&sec.tension).max(stiffest_rate(&sec.compression));
-    let leg = &sc.legs[0];
-    let pmass = sc.footpad.mass;
-    let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
-    let l_outer = sc.links.outer_cylinder_length(leg, &sc.primary);
-    // Rotation about the trunnion seen at point 1: I_B2 / L21².
-    let i_b2 = m_outer * l_outer * l_outer / 3.0 + pmass * leg.l2p * leg.l2p;
-    let m_point1 = i_b2 / (leg.l21 * leg.l21);
-    let modes = [
-        (
-            "primary strut on the footpad mass",
-            (k_primary / pmass).sqrt(),
-        ),
-        (
-            "secondary struts on the gear's rotation about its trunnion",
-            (k_secondary / m_point1).sqrt(),
-        ),
-    ];
-    let steps = sc.integrator.t_end / dt;
-    if steps.is_nan() || steps > sc.integrator.max_steps as f64 {
-        return Err(ScenarioError::field(
-            sc.file_of(field),
-            field,
-            format!(
-                "time step {dt:.3e} s needs {steps:.3e} steps to reach integrator.t_end = {:.3e} s; expected at most integrator.max_steps = {} steps (the run budget), i.e. a time step ≥ {:.3e} s",
-                sc.integrator.t_end,
-                sc.integrator.max_steps,
-                sc.integrator.t_end / sc.integrator.max_steps as f64
-            ),
-        ));
-    }
-    for (what, omega) in modes {
-        if omega * dt > MAX_OMEGA_DT {
-            return Err(ScenarioError::field(
-                sc.file_of(field),
-                field,
-                format!(
-                    "time step {dt:.3e} s is too large for the stiffest explicit strut law ({what}: ω = {omega:.4e} rad/s, ω·Δt = {:.3}); expected ω·Δt ≤ {MAX_OMEGA_DT}, i.e. a time step ≤ {:.3e} s",
-                    omega * dt,
-                    MAX_OMEGA_DT / omega
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

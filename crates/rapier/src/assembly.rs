@@ -15,6 +15,7 @@
 use nalgebra::{Matrix3, Vector3};
 use rapier3d_f64::prelude::*;
 use touchdown_frames::gravity_inertial;
+use touchdown_multibody::RapierSettings;
 use touchdown_record::RunError;
 use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::schema::Engine;
@@ -172,10 +173,14 @@ pub struct Assembly {
     pub masses: LinkMasses,
 }
 
+/// rapier's cap on the speed at which a contact's penetration is corrected, m/s (its default
+/// with a length unit of 1 m).
+const MAX_CORRECTIVE_VELOCITY: f64 = 3.0;
+
 /// Builds the multibody, ground planes and solver settings of a scenario at its touchdown
 /// state (eq. 19 as corrected, shared with the core through `touchdown_scenario::initial`).
-pub fn build(sc: &Scenario) -> Result<Assembly, RunError> {
-    let rs = &sc.rapier;
+/// `rs` are the settings it runs with ([`RapierSettings::new`]).
+pub fn build(sc: &Scenario, rs: &RapierSettings) -> Result<Assembly, RunError> {
     let init = initial_state(sc);
     let r_bi = init.t_bi;
     let rotation = Rotation::from_mat3(&matrix(&r_bi));
@@ -197,7 +202,11 @@ pub fn build(sc: &Scenario) -> Result<Assembly, RunError> {
     p.num_solver_iterations = 1;
     p.contact_softness = SpringCoefficients::new(rs.contact_frequency, rs.contact_damping_ratio);
     p.static_contact_softness = p.contact_softness;
-    p.length_unit = 1.0;
+    // Lengths of rapier's tolerances (prediction distance, slop) in units of the vehicle's
+    // strut, so that they scale with it; its cap on the contacts' corrective velocity stays 3
+    // m/s (a velocity: the same on a Froude twin; it does not bind on the bundled landings).
+    p.length_unit = rs.length_unit;
+    p.normalized_max_corrective_velocity = MAX_CORRECTIVE_VELOCITY / rs.length_unit;
 
     let vehicle = world.bodies.insert(
         RigidBodyBuilder::dynamic()

@@ -17,9 +17,7 @@ use crate::assembly::{
 use crate::struts;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_multibody::{
-    check_explicit_timestep, BodyEnergy, GearBook, PadStep, Reading, VehicleState,
-};
+use touchdown_multibody::{BodyEnergy, GearBook, PadStep, RapierSettings, Reading, VehicleState};
 use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -49,15 +47,10 @@ impl RapierSimulation {
     /// Builds the multibody of a scenario at its touchdown state.
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RunError> {
         scenario.require_engine(Engine::Rapier, crate::unsupported)?;
-        let book = GearBook::new(scenario, scenario.rapier.timestep)?;
-        let assembly = assembly::build(scenario)?;
-        check_explicit_timestep(
-            scenario,
-            &book.laws,
-            scenario.rapier.timestep,
-            "engines.rapier.timestep",
-        )?;
-        let settings = settings(scenario, &assembly.masses);
+        let rs = RapierSettings::new(scenario)?;
+        let book = GearBook::new(scenario, rs.timestep)?;
+        let assembly = assembly::build(scenario, &rs)?;
+        let settings = settings(&rs, &assembly.masses);
         let mut sim = RapierSimulation {
             name: scenario.file.name.clone(),
             book,
@@ -354,8 +347,7 @@ impl Landing for RapierSimulation {
 }
 
 /// The engine's settings as used, for the summary (names carry their units).
-fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde_json::Value> {
-    let r = &sc.rapier;
+fn settings(r: &RapierSettings, masses: &LinkMasses) -> serde_json::Map<String, serde_json::Value> {
     let mut m = serde_json::Map::new();
     m.insert("rapier3d_f64".into(), "0.36.1".into());
     m.insert("timestep_s".into(), r.timestep.into());
@@ -365,6 +357,7 @@ fn settings(sc: &Scenario, masses: &LinkMasses) -> serde_json::Map<String, serde
         "contact_damping_ratio".into(),
         r.contact_damping_ratio.into(),
     );
+    m.insert("length_unit_m".into(), r.length_unit.into());
     m.insert(
         "secondary_struts".into(),
         "massless two-force members".into(),

@@ -25,6 +25,17 @@ pub fn require(engine: Engine, sc: &Scenario) -> Result<(), ScenarioError> {
     sc.require_engine(engine, |m| unsupported(engine, m))
 }
 
+/// The step `engine` lands `sc` with, s: the multibody engines' fixed step, stated or derived
+/// from the scenario's scale (docs/engines.md, "Step and contact from the scenario's scale"),
+/// or why they refuse it; the core's largest step `integrator.dt_max` (its step adapts below).
+pub fn time_step(engine: Engine, sc: &Scenario) -> Result<f64, ScenarioError> {
+    match engine {
+        Engine::Core => Ok(sc.integrator.dt_max),
+        Engine::Rapier => touchdown_multibody::RapierSettings::new(sc).map(|s| s.timestep),
+        Engine::Mujoco => touchdown_multibody::MujocoSettings::new(sc).map(|s| s.timestep),
+    }
+}
+
 /// A landing that did not complete on an engine, with the scenario file it was read from.
 #[derive(Debug, thiserror::Error)]
 #[error("{engine} engine on {scenario}: {error}")]

@@ -644,12 +644,14 @@ fn resolve_rapier(
     u: &Units,
 ) -> Result<model::Rapier, ScenarioError> {
     Ok(model::Rapier {
-        timestep: c.positive_si("engines.rapier.timestep", r.timestep, u.time())?,
-        contact_frequency: c.positive_si(
-            "engines.rapier.contact_frequency",
-            r.contact_frequency,
-            1.0 / u.time(),
-        )?,
+        timestep: r
+            .timestep
+            .map(|v| c.positive_si("engines.rapier.timestep", v, u.time()))
+            .transpose()?,
+        contact_frequency: r
+            .contact_frequency
+            .map(|v| c.positive_si("engines.rapier.contact_frequency", v, 1.0 / u.time()))
+            .transpose()?,
         contact_damping_ratio: c.non_negative_si(
             "engines.rapier.contact_damping_ratio",
             r.contact_damping_ratio,
@@ -664,29 +666,37 @@ fn resolve_mujoco(
     m: &schema::Mujoco,
     u: &Units,
 ) -> Result<model::Mujoco, ScenarioError> {
-    let timestep = c.positive_si("engines.mujoco.timestep", m.timestep, u.time())?;
-    let contact_timeconst = c.positive("engines.mujoco.contact_timeconst", m.contact_timeconst)?;
-    if contact_timeconst * u.time() < 2.0 * timestep {
-        return Err(c.err(
-            "engines.mujoco.contact_timeconst",
-            format!(
-                "expected at least twice engines.mujoco.timestep, {} in the file's time unit (MuJoCo would silently raise it)",
-                short(2.0 * m.timestep)
-            ),
-        ));
+    let timestep = m
+        .timestep
+        .map(|v| c.positive_si("engines.mujoco.timestep", v, u.time()))
+        .transpose()?;
+    let contact_timeconst = m
+        .contact_timeconst
+        .map(|v| c.positive_si("engines.mujoco.contact_timeconst", v, u.time()))
+        .transpose()?;
+    if let (Some(step), Some(timeconst)) = (timestep, contact_timeconst) {
+        if timeconst < 2.0 * step {
+            return Err(c.err(
+                "engines.mujoco.contact_timeconst",
+                format!(
+                    "expected at least twice engines.mujoco.timestep, {} in the file's time unit (MuJoCo would silently raise it)",
+                    short(2.0 * step / u.time())
+                ),
+            ));
+        }
     }
     Ok(model::Mujoco {
         timestep,
-        contact_timeconst: c.si(
-            "engines.mujoco.contact_timeconst",
-            contact_timeconst,
-            u.time(),
-        )?,
+        contact_timeconst,
         contact_damping_ratio: c.non_negative_si(
             "engines.mujoco.contact_damping_ratio",
             m.contact_damping_ratio,
             1.0,
         )?,
+        contact_width: m
+            .contact_width
+            .map(|v| c.positive_si("engines.mujoco.contact_width", v, u.length()))
+            .transpose()?,
     })
 }
 
@@ -748,7 +758,7 @@ impl Scenario {
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.rapier);
         let c = Check::new(&self.layers);
-        let rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.file.units)?;
+        let rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.units)?;
         let warnings = c.into_warnings();
         self.rapier = rapier;
         self.replace_warnings("engines.rapier.", warnings);
@@ -764,7 +774,7 @@ impl Scenario {
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.integrator);
         let c = Check::new(&self.layers);
-        let integrator = resolve_integrator(&c, &self.file.integrator, &self.file.units)?;
+        let integrator = resolve_integrator(&c, &self.file.integrator, &self.units)?;
         let warnings = c.into_warnings();
         self.integrator = integrator;
         self.replace_warnings("integrator.", warnings);
@@ -779,7 +789,7 @@ impl Scenario {
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.mujoco);
         let c = Check::new(&self.layers);
-        let mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.file.units)?;
+        let mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.units)?;
         let warnings = c.into_warnings();
         self.mujoco = mujoco;
         self.replace_warnings("engines.mujoco.", warnings);
@@ -1250,7 +1260,14 @@ fn resolve(
             format!("expected {SCHEMA_VERSION}, got {}", file.schema_version),
         ));
     }
-    let u = file.units;
+    let u = match &file.similarity {
+        None => file.units,
+        Some(s) => file.units.similar(
+            c.positive_si("similarity.length", s.length, 1.0)?,
+            c.positive_si("similarity.mass", s.mass, 1.0)?,
+            c.positive_si("similarity.time", s.time, 1.0)?,
+        ),
+    };
     let vehicle = model::Vehicle {
         mass: c.positive_si("vehicle.mass", file.vehicle.mass, u.mass())?,
         inertia: inertia(&c, &file.vehicle.inertia, &u)?,
@@ -1430,6 +1447,7 @@ fn resolve(
     Ok(Scenario {
         source: source.to_string(),
         layers,
+        units: u,
         file,
         vehicle,
         arrangement,

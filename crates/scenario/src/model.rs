@@ -4,6 +4,7 @@ use crate::error::Warning;
 use crate::schema::{
     self, Arrangement, AttitudeReference, CountedEnergy, ReleaseRule, ScenarioFile, WallRule,
 };
+use crate::units::Units;
 use nalgebra::{Matrix3, Vector3};
 
 /// A validated scenario in SI units (m, kg, N, s, rad).
@@ -13,6 +14,9 @@ pub struct Scenario {
     pub source: String,
     /// The merged file with every default written out (in the file's units), for `--out`.
     pub file: ScenarioFile,
+    /// The units the file's numbers were read in: its `[units]` with its `[similarity]`
+    /// applied (one file unit in SI; `file.units` without the similarity names the units).
+    pub units: Units,
     /// Rigid vehicle.
     pub vehicle: Vehicle,
     /// Gear arrangement (fig. 4).
@@ -533,10 +537,11 @@ pub struct Stability {
 /// Settings of the rapier multibody rebuild, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rapier {
-    /// Fixed time step, s.
-    pub timestep: f64,
-    /// Contact natural frequency, Hz.
-    pub contact_frequency: f64,
+    /// Fixed time step, s; `None`: derived from the scenario's scale
+    /// (`touchdown_multibody::RapierSettings`).
+    pub timestep: Option<f64>,
+    /// Contact natural frequency, Hz; `None`: derived.
+    pub contact_frequency: Option<f64>,
     /// Contact damping ratio.
     pub contact_damping_ratio: f64,
 }
@@ -544,12 +549,15 @@ pub struct Rapier {
 /// Settings of the MuJoCo export, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Mujoco {
-    /// Fixed time step, s.
-    pub timestep: f64,
-    /// Contact time constant (solref[0]), s.
-    pub contact_timeconst: f64,
+    /// Fixed time step, s; `None`: derived from the scenario's scale
+    /// (`touchdown_multibody::MujocoSettings`).
+    pub timestep: Option<f64>,
+    /// Contact time constant (solref[0]), s; `None`: derived.
+    pub contact_timeconst: Option<f64>,
     /// Contact damping ratio (solref[1]).
     pub contact_damping_ratio: f64,
+    /// Width of the contact impedance ramp (solimp[2]), m; `None`: derived.
+    pub contact_width: Option<f64>,
 }
 
 /// The gear links the multibody engines add.

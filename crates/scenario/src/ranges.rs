@@ -187,6 +187,9 @@ pub const RANGES: &[Range] = &[
     row("integrator.rtol", "", C(1e-14), C(0.1), "a relative tolerance above the rounding of f64 (2.2e-16)"),
     usual(row("integrator.atol", "", C(1e-18), C(1.0), "an absolute tolerance on m, m/s, rad, rad/s; `touchdown compare` goes to 1e-16"), 1e-14, 1.0),
     // Stability criteria.
+    row("similarity.length", "", C(1e-3), C(1e3), "a similar vehicle from a thousandth to a thousand times as large"),
+    row("similarity.mass", "", C(1e-9), C(1e9), "a similar vehicle's mass ratio, a length ratio cubed at most"),
+    row("similarity.time", "", C(1e-3), C(1e3), "a similar vehicle's time ratio, the square root of length over gravity ratios"),
     row("stability.kinetic_energy_fraction", "", C(1e-6), C(1.0), "a fraction of the touchdown kinetic energy; below 1e-6 no landing would ever end stable"),
     row("stability.min_separation_velocity", "m/s", C(0.0), C(1e3), "a speed up to 1 km/s"),
     // The descent engine.
@@ -221,6 +224,7 @@ pub const RANGES: &[Range] = &[
     row("engines.rapier.contact_damping_ratio", "", C(0.0), C(100.0), "a damping ratio"),
     usual(row("engines.mujoco.timestep", "s", O(0.0), C(0.1), "a positive step; the engine refuses one that cannot reach t_end within its run budget"), 1e-9, 0.1),
     usual(row("engines.mujoco.contact_timeconst", "s", O(0.0), C(1.0), "a contact time constant, at least twice the step"), 2e-9, 1.0),
+    row("engines.mujoco.contact_width", "m", O(0.0), C(1.0), "a penetration up to a metre"),
     row("engines.mujoco.contact_damping_ratio", "", C(0.0), C(100.0), "a damping ratio"),
     row("engines.links.outer_cylinder_mass_ratio", "", C(1e-4), C(100.0), "a link mass as a fraction of the footpad's"),
     row("engines.links.link_radius_ratio", "", C(1e-4), C(1.0), "a link radius as a fraction of the strut's length"),

@@ -29,6 +29,10 @@ pub struct ScenarioFile {
     pub description: String,
     /// Unit system of every dimensional value in the file.
     pub units: Units,
+    /// A dynamically similar vehicle: every dimensional value of the file, defaults included,
+    /// read at these ratios of length, mass and time; absent: the file's vehicle itself.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub similarity: Option<Similarity>,
     /// The rigid vehicle.
     pub vehicle: Vehicle,
     /// Landing-gear arrangement and geometry.
@@ -61,6 +65,23 @@ pub struct ScenarioFile {
     /// Settings of the engines other than the core (ignored by the core).
     #[serde(default)]
     pub engines: Engines,
+}
+
+/// Ratios of a dynamically similar vehicle to the one the file describes (docs/scenario-format.md,
+/// "Similarity"); each dimensionless. Every dimension follows from the three: a force scales
+/// as mass·length/time², a stiffness as mass/time², a velocity as length/time, an angle not at
+/// all. A Froude twin, `length` times as large under gravity g/k, has `time` = √(length·k):
+/// the 1/6-scale drop-test model (Earth gravity) at full scale on the Moon is `length = 6`,
+/// `time = 6`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Similarity {
+    /// Length of the similar vehicle per length of the file's; dimensionless.
+    pub length: f64,
+    /// Mass of the similar vehicle per mass of the file's; dimensionless.
+    pub mass: f64,
+    /// Time of the similar vehicle per time of the file's; dimensionless.
+    pub time: f64,
 }
 
 /// The idealised rigid vehicle (report M, I, g).
@@ -872,13 +893,6 @@ impl Default for Engines {
     }
 }
 
-/// Default fixed time step of the multibody engines, s.
-fn default_rapier_timestep() -> f64 {
-    2.0e-5
-}
-fn default_contact_frequency() -> f64 {
-    5000.0
-}
 fn one() -> f64 {
     1.0
 }
@@ -889,20 +903,23 @@ fn default_link_radius_ratio() -> f64 {
     0.03
 }
 
-/// The rapier multibody rebuild (docs/engines.md): solver settings and the masses it adds to the
-/// report's massless gear. Every default is in seconds or dimensionless.
+/// The rapier multibody rebuild (docs/engines.md): solver settings. A setting left out is
+/// derived from the scenario's own scales (docs/engines.md, "Step and contact from the
+/// scenario's scale"), so that no default depends on the vehicle's size.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rapier {
     /// Fixed time step; time. The strut laws are applied explicitly once per step, so keep
-    /// ω·timestep well below 2 for the stiffest strut mode (checked at start-up).
-    #[serde(default = "default_rapier_timestep")]
-    pub timestep: f64,
+    /// ω·timestep well below 2 for the stiffest strut mode (checked at start-up). Absent: 0.16
+    /// over the stiffest gear mode's angular frequency.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timestep: Option<f64>,
     /// Natural frequency of the footpad contact constraint (rapier's contact softness, used for
     /// both its moving-body and fixed-body settings); 1/time (Hz). High, so that the footpads do
-    /// not sink: the contact must be much stiffer than the stiffest strut law.
-    #[serde(default = "default_contact_frequency")]
-    pub contact_frequency: f64,
+    /// not sink: the contact must be much stiffer than the stiffest strut law. Absent: four times
+    /// the stiffest gear mode's frequency.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_frequency: Option<f64>,
     /// Damping ratio of the footpad contact constraint; dimensionless.
     #[serde(default = "one")]
     pub contact_damping_ratio: f64,
@@ -911,8 +928,8 @@ pub struct Rapier {
 impl Default for Rapier {
     fn default() -> Self {
         Rapier {
-            timestep: default_rapier_timestep(),
-            contact_frequency: default_contact_frequency(),
+            timestep: None,
+            contact_frequency: None,
             contact_damping_ratio: one(),
         }
     }
@@ -942,33 +959,37 @@ impl Default for GearLinks {
     }
 }
 
-fn default_mujoco_contact_timeconst() -> f64 {
-    4.0e-5
-}
-
-/// The MuJoCo export (docs/engines.md). Every default is in seconds or dimensionless.
+/// The MuJoCo export (docs/engines.md). A setting left out is derived from the scenario's own
+/// scales (docs/engines.md, "Step and contact from the scenario's scale").
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Mujoco {
     /// Fixed time step (`option/timestep`); time. The strut laws are applied explicitly once
-    /// per step, as in the rapier rebuild.
-    #[serde(default = "default_rapier_timestep")]
-    pub timestep: f64,
+    /// per step, as in the rapier rebuild. Absent: 0.16 over the stiffest gear mode's angular
+    /// frequency.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timestep: Option<f64>,
     /// Time constant of the footpad contacts (`solref[0]`, on both geoms of every pair); time.
     /// Small, so that footpads do not sink; MuJoCo needs it at least twice the time step.
-    #[serde(default = "default_mujoco_contact_timeconst")]
-    pub contact_timeconst: f64,
+    /// Absent: twice the time step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_timeconst: Option<f64>,
     /// Damping ratio of the footpad contacts (`solref[1]`); dimensionless.
     #[serde(default = "one")]
     pub contact_damping_ratio: f64,
+    /// Penetration over which the footpad contacts' impedance rises from 0.99 to 0.999
+    /// (`solimp[2]`); length. Absent: a tenth of the contact sphere's radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_width: Option<f64>,
 }
 
 impl Default for Mujoco {
     fn default() -> Self {
         Mujoco {
-            timestep: default_rapier_timestep(),
-            contact_timeconst: default_mujoco_contact_timeconst(),
+            timestep: None,
+            contact_timeconst: None,
             contact_damping_ratio: one(),
+            contact_width: None,
         }
     }
 }

@@ -493,10 +493,10 @@ fn unusual_values_are_accepted_with_a_warning() {
     );
     // A changed setting re-checks its table's warnings.
     let sc = Scenario::load(&flat).unwrap();
-    let sc = sc.with_rapier(|r| r.timestep = 1e-300).unwrap();
+    let sc = sc.with_rapier(|r| r.timestep = Some(1e-300)).unwrap();
     assert_eq!(sc.warnings().len(), 1);
     assert_eq!(sc.warnings()[0].field, "engines.rapier.timestep");
-    let sc = sc.with_rapier(|r| r.timestep = 2e-5).unwrap();
+    let sc = sc.with_rapier(|r| r.timestep = Some(2e-5)).unwrap();
     assert!(sc.warnings().is_empty());
     assert!(sc.with_integrator(|i| i.t_end = 1e300).is_err());
 }
@@ -562,6 +562,17 @@ fn every_numeric_field_has_a_range_checked_on_load() {
     let explicit = dir.join("explicit.toml");
     std::fs::write(&explicit, text).unwrap();
     files.push(explicit);
+    // A similar vehicle (`[similarity]`): the figure 25-26 landing at full scale on the Moon.
+    let similar = dir.join("similar.toml");
+    std::fs::write(
+        &similar,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = \"similar\"\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
+            root().join("scenarios/fig-25-26.toml").display().to_string()
+        ),
+    )
+    .unwrap();
+    files.push(similar);
     let mut leaves = BTreeSet::new();
     RANGE_CHECKED.with(|c| c.borrow_mut().clear());
     for path in &files {

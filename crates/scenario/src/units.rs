@@ -59,7 +59,7 @@ pub enum TimeUnit {
 }
 
 /// The unit system of one scenario file (`[units]`, every field required).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Units {
     /// "m", "ft" or "in".
@@ -72,6 +72,28 @@ pub struct Units {
     pub angle: AngleUnit,
     /// "s".
     pub time: TimeUnit,
+    /// The file's `[similarity]` ratios of length, mass and time (not written in `[units]`):
+    /// one each unless the loader reads a similar vehicle ([`Units::similar`]).
+    #[serde(skip)]
+    ratios: Ratios,
+}
+
+/// Ratios of length, mass and time of a dynamically similar vehicle; dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Ratios {
+    length: f64,
+    mass: f64,
+    time: f64,
+}
+
+impl Default for Ratios {
+    fn default() -> Self {
+        Ratios {
+            length: 1.0,
+            mass: 1.0,
+            time: 1.0,
+        }
+    }
 }
 
 /// Metres per foot (exact).
@@ -82,27 +104,45 @@ pub const POUND_FORCE: f64 = 4.448_221_615_260_5;
 pub const SLUG: f64 = POUND_FORCE / FOOT;
 
 impl Units {
+    /// These units with every length, mass and time multiplied by `length`, `mass` and `time`
+    /// (dimensionless ratios): read in them, a file describes the dynamically similar vehicle
+    /// (`[similarity]`, docs/scenario-format.md). Every other dimension follows from the three:
+    /// a force scales as mass·length/time², a stiffness as mass/time², an angle not at all.
+    pub fn similar(self, length: f64, mass: f64, time: f64) -> Units {
+        Units {
+            ratios: Ratios {
+                length: self.ratios.length * length,
+                mass: self.ratios.mass * mass,
+                time: self.ratios.time * time,
+            },
+            ..self
+        }
+    }
     /// SI value of one length unit, m.
     pub fn length(&self) -> f64 {
-        match self.length {
-            LengthUnit::Metre => 1.0,
-            LengthUnit::Foot => FOOT,
-            LengthUnit::Inch => 0.0254,
-        }
+        self.ratios.length
+            * match self.length {
+                LengthUnit::Metre => 1.0,
+                LengthUnit::Foot => FOOT,
+                LengthUnit::Inch => 0.0254,
+            }
     }
     /// SI value of one mass unit, kg.
     pub fn mass(&self) -> f64 {
-        match self.mass {
-            MassUnit::Kilogram => 1.0,
-            MassUnit::Slug => SLUG,
-        }
+        self.ratios.mass
+            * match self.mass {
+                MassUnit::Kilogram => 1.0,
+                MassUnit::Slug => SLUG,
+            }
     }
     /// SI value of one force unit, N.
     pub fn force(&self) -> f64 {
-        match self.force {
-            ForceUnit::Newton => 1.0,
-            ForceUnit::PoundForce => POUND_FORCE,
-        }
+        let r = &self.ratios;
+        r.mass * r.length / (r.time * r.time)
+            * match self.force {
+                ForceUnit::Newton => 1.0,
+                ForceUnit::PoundForce => POUND_FORCE,
+            }
     }
     /// SI value of one angle unit, rad.
     pub fn angle(&self) -> f64 {
@@ -113,9 +153,10 @@ impl Units {
     }
     /// SI value of one time unit, s.
     pub fn time(&self) -> f64 {
-        match self.time {
-            TimeUnit::Second => 1.0,
-        }
+        self.ratios.time
+            * match self.time {
+                TimeUnit::Second => 1.0,
+            }
     }
     /// Velocity, m/s per (length/time).
     pub fn velocity(&self) -> f64 {
