@@ -9,6 +9,7 @@ use touchdown_scenario::units::Short;
 use touchdown_validation::boundary::{
     self, BoundaryPoint, Direction, EnginePoint, Limit, Settings, Stops, Transition,
 };
+use touchdown_validation::checkpoint::{self, Checkpoint};
 use touchdown_validation::cross_validation::{self, CrossValidation};
 use touchdown_validation::reference::{self, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
@@ -161,13 +162,34 @@ fn facts_text(o: &mut String, facts: &[facts::FactCheck]) {
 pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
     let paths = Paths::new(root);
     eprintln!("cross-validating: 8 folds and the fit to every row (about 690,000 landings: several hours on 2 cores in a release build) ...");
-    let cv = cross_validation::cross_validate(&paths)?;
+    // With --out, finished work is kept under it, so that a stopped run resumes: the key names
+    // this program and every file it reads, so work of another build or other data is redone.
+    let checkpoint = match out {
+        Some(dir) => {
+            let exe = std::env::current_exe().context("cannot find this program's file")?;
+            let key = checkpoint::key_of(&[exe, root.join("reference"), root.join("scenarios")])?;
+            let c = Checkpoint::new(&dir.join("cross-validation.checkpoint"), key)?;
+            let kept = c.kept();
+            if kept > 0 {
+                eprintln!(
+                    "resuming: {kept} finished units of this run kept in {}",
+                    c.dir().display()
+                );
+            }
+            Some(c)
+        }
+        None => None,
+    };
+    let cv = cross_validation::cross_validate(&paths, checkpoint.as_ref())?;
     let settings = serde_json::json!({ "protocol": "cv" });
     let text = Document::new("cross-validation", None, &settings, &cv).pretty();
     if let Some(dir) = out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         let path = dir.join("cross-validation.json");
         std::fs::write(&path, &text).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if let Some(c) = checkpoint {
+        c.finish()?;
     }
     if json {
         println!("{text}");

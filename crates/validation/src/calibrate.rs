@@ -12,7 +12,7 @@ use crate::ValidationError;
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use touchdown_scenario::ScenarioBase;
@@ -128,7 +128,7 @@ pub fn infeasible(e: &ValidationError) -> bool {
 }
 
 /// A fit of parameters to rows.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Fit {
     /// The fitted values, file units, in the parameters' order.
     pub value: Vec<f64>,

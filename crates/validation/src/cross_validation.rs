@@ -12,6 +12,7 @@ use crate::calibrate::{
     fields_of, fit, infeasible, overrides, relative_errors, rows_of, table_model, Fit, Predict,
     Restarts, INFEASIBLE,
 };
+use crate::checkpoint::{counted, Checkpoint};
 use crate::facts::{self, FactCheck};
 use crate::reference::{
     self, CalibrationRecord, Estimates, FitParameter, Paths, Protocol, Row, TableI,
@@ -21,9 +22,9 @@ use nalgebra::{DMatrix, DVector};
 use rand_chacha::rand_core::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, Normal};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Points of each parameter's profile, spread evenly over its bounds.
 pub const PROFILE_POINTS: usize = 9;
@@ -118,7 +119,7 @@ impl CvProtocol {
 }
 
 /// How well the rows of a fit determine one parameter.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Determination {
     /// The parameter.
     pub name: String,
@@ -136,7 +137,7 @@ pub struct Determination {
 }
 
 /// What the rows of a fit determine.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Identifiability {
     /// Singular values of the Jacobian of the relative stroke errors to the scaled parameters,
     /// largest first (dimensionless).
@@ -454,14 +455,16 @@ fn quantile(values: &mut [f64], q: f64) -> f64 {
 
 /// The profile of parameter `k` over its bounds ([`PROFILE_POINTS`] values): the others
 /// fitted again at each, from their values in `full` (the fit to every row), with the
-/// protocol's optimiser and restarts.
+/// protocol's optimiser and restarts; each point a unit of `checkpoint`. Returns the profile
+/// and the landings it ran.
 fn profile(
     table: &[Row],
     protocol: &CvProtocol,
     k: usize,
     full: &Fit,
     predict: &Predict,
-) -> Result<Profile, ValidationError> {
+    checkpoint: Option<&Checkpoint>,
+) -> Result<(Profile, usize), ValidationError> {
     let p = &protocol.parameter[k];
     let values: Vec<f64> = (0..PROFILE_POINTS)
         .map(|i| p.lower + (p.upper - p.lower) * i as f64 / (PROFILE_POINTS - 1) as f64)
@@ -481,39 +484,72 @@ fn profile(
             }
         })
         .collect();
-    let points: Vec<Option<(f64, Vec<f64>)>> = values
+    let points: Vec<(ProfilePoint, usize)> = values
         .par_iter()
-        .map(|v| {
-            let with = |y: &[f64]| {
-                let mut x = y.to_vec();
-                x.insert(k, *v);
-                x
-            };
-            let fixed = |row: &Row, y: &[f64]| predict(row, &with(y));
-            let f = fit(
-                table,
-                &others,
-                protocol.max_iterations,
-                Some(protocol.restarts()),
-                &fixed,
-            )?;
-            Ok((f.objective < INFEASIBLE).then(|| (f.objective, with(&f.value))))
+        .enumerate()
+        .map(|(j, v)| {
+            unit(
+                checkpoint,
+                &format!("profile-{k}-{j}"),
+                predict,
+                |predict| {
+                    let with = |y: &[f64]| {
+                        let mut x = y.to_vec();
+                        x.insert(k, *v);
+                        x
+                    };
+                    let fixed = |row: &Row, y: &[f64]| predict(row, &with(y));
+                    let f = fit(
+                        table,
+                        &others,
+                        protocol.max_iterations,
+                        Some(protocol.restarts()),
+                        &fixed,
+                    )?;
+                    Ok(ProfilePoint {
+                        fit: (f.objective < INFEASIBLE).then(|| (f.objective, with(&f.value))),
+                    })
+                },
+            )
         })
         .collect::<Result<_, ValidationError>>()?;
+    let landings = points.iter().map(|(_, n)| n).sum();
     let mut profile = Profile {
         name: p.name.clone(),
         value: Vec::new(),
         objective: Vec::new(),
         fitted: Vec::new(),
     };
-    for (v, point) in values.into_iter().zip(points) {
-        if let Some((objective, x)) = point {
+    for (v, (point, _)) in values.into_iter().zip(points) {
+        if let Some((objective, x)) = point.fit {
             profile.value.push(v);
             profile.objective.push(objective);
             profile.fitted.push(x);
         }
     }
-    Ok(profile)
+    Ok((profile, landings))
+}
+
+/// One point of a profile: the objective and every parameter of the fit there, or `None` if
+/// no feasible parameter set was found.
+#[derive(Serialize, Deserialize)]
+struct ProfilePoint {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    fit: Option<(f64, Vec<f64>)>,
+}
+
+/// The unit of work `name`, kept in `checkpoint` if there is one (computed with `predict`
+/// unless the checkpoint holds it), and the landings it ran.
+fn unit<T: Serialize + DeserializeOwned>(
+    checkpoint: Option<&Checkpoint>,
+    name: &str,
+    predict: &Predict,
+    compute: impl FnOnce(&Predict) -> Result<T, ValidationError>,
+) -> Result<(T, usize), ValidationError> {
+    match checkpoint {
+        Some(c) => c.unit(name, predict, compute),
+        None => counted(predict, compute),
+    }
 }
 
 /// Mean and largest |error| of `folds` restricted to `rows`.
@@ -541,13 +577,23 @@ fn errors(folds: &[Fold], rows: &[u32]) -> Errors {
     }
 }
 
+/// What a fold computes: the fit on every row but the held-out one, what they determine, and
+/// the prediction of the held-out row with its interval, in.
+#[derive(Serialize, Deserialize)]
+struct FoldParts {
+    fit: Fit,
+    identifiability: Identifiability,
+    predicted_in: f64,
+    interval_in: [f64; 2],
+}
+
 /// One fold: fit on every row of `table` but `held_out`, predict it with its interval.
 fn fold(
     table: &[Row],
     held_out: usize,
     protocol: &CvProtocol,
     predict: &Predict,
-) -> Result<Fold, ValidationError> {
+) -> Result<FoldParts, ValidationError> {
     let row = &table[held_out];
     let rows: Vec<Row> = table
         .iter()
@@ -596,11 +642,26 @@ fn fold(
             sets.len()
         )));
     }
-    let interval_in = [quantile(&mut spread, 0.025), quantile(&mut spread, 0.975)];
-    let error_pct = 100.0 * (predicted_in - row.experiment) / row.experiment;
-    Ok(Fold {
-        held_out: row.id,
+    Ok(FoldParts {
         fit: fitted,
+        identifiability,
+        predicted_in,
+        interval_in: [quantile(&mut spread, 0.025), quantile(&mut spread, 0.975)],
+    })
+}
+
+/// The fold of `row` from what it computed.
+fn fold_of(row: &Row, parts: FoldParts) -> Fold {
+    let FoldParts {
+        fit,
+        identifiability,
+        predicted_in,
+        interval_in,
+    } = parts;
+    let error_pct = 100.0 * (predicted_in - row.experiment) / row.experiment;
+    Fold {
+        held_out: row.id,
+        fit,
         identifiability,
         predicted_in,
         interval_in,
@@ -610,16 +671,19 @@ fn fold(
         report_error_pct: 100.0 * (row.analysis - row.experiment) / row.experiment,
         within_10_pct: error_pct.abs() <= 10.0,
         within_interval: interval_in[0] <= row.experiment && row.experiment <= interval_in[1],
-    })
+    }
 }
 
 /// Cross-validates `protocol` over the rows of `table` with the model `predict`;
-/// `two_row_held_out` are the rows the two-row protocol holds out (its target's rows).
+/// `two_row_held_out` are the rows the two-row protocol holds out (its target's rows). With a
+/// `checkpoint`, every fold, the fit to every row and every profile point is kept there as it
+/// ends, and what it already holds is not computed again (the result is the same).
 pub fn cross_validate_with(
     table: &[Row],
     protocol: &CvProtocol,
     two_row_held_out: &[u32],
     predict: &Predict,
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<CrossValidation, ValidationError> {
     protocol.check()?;
     if table.len() <= protocol.parameter.len() {
@@ -630,35 +694,44 @@ pub fn cross_validate_with(
             protocol.parameter.len()
         )));
     }
-    let landings = AtomicUsize::new(0);
-    let counted = |row: &Row, x: &[f64]| {
-        landings.fetch_add(1, Ordering::Relaxed);
-        predict(row, x)
-    };
-    let predict: &Predict = &counted;
-    let folds: Vec<Fold> = (0..table.len())
+    let folds: Vec<(FoldParts, usize)> = (0..table.len())
         .into_par_iter()
-        .map(|i| fold(table, i, protocol, predict))
+        .map(|i| {
+            unit(checkpoint, &format!("fold-{i}"), predict, |predict| {
+                fold(table, i, protocol, predict)
+            })
+        })
         .collect::<Result<_, _>>()?;
-    let full_fit = fit(
-        table,
-        &protocol.parameter,
-        protocol.max_iterations,
-        Some(protocol.restarts()),
-        predict,
-    )?;
-    let (identifiability, _) = identifiability(
-        table,
-        &protocol.parameter,
-        protocol,
-        &full_fit.value,
-        predict,
-    )?;
-    let profiles = (0..protocol.parameter.len())
-        .map(|k| profile(table, protocol, k, &full_fit, predict))
-        .collect::<Result<_, _>>()?;
+    let mut landings: usize = folds.iter().map(|(_, n)| n).sum();
+    let folds: Vec<Fold> = (table.iter().zip(folds))
+        .map(|(row, (parts, _))| fold_of(row, parts))
+        .collect();
+    let ((full_fit, identifiability), full_landings) =
+        unit(checkpoint, "full", predict, |predict| {
+            let full_fit = fit(
+                table,
+                &protocol.parameter,
+                protocol.max_iterations,
+                Some(protocol.restarts()),
+                predict,
+            )?;
+            let (identifiability, _) = identifiability(
+                table,
+                &protocol.parameter,
+                protocol,
+                &full_fit.value,
+                predict,
+            )?;
+            Ok((full_fit, identifiability))
+        })?;
+    landings += full_landings;
+    let mut profiles = Vec::with_capacity(protocol.parameter.len());
+    for k in 0..protocol.parameter.len() {
+        let (p, n) = profile(table, protocol, k, &full_fit, predict, checkpoint)?;
+        profiles.push(p);
+        landings += n;
+    }
     let all: Vec<u32> = table.iter().map(|r| r.id).collect();
-    let landings = landings.load(Ordering::Relaxed);
     Ok(CrossValidation {
         all_rows: errors(&folds, &all),
         two_row_held_out: errors(&folds, two_row_held_out),
@@ -675,8 +748,12 @@ pub fn cross_validate_with(
 }
 
 /// Cross-validates the 1/6-scale model on the core over Table I
-/// (`reference/cross-validation-protocol.toml`).
-pub fn cross_validate(paths: &Paths) -> Result<CrossValidation, ValidationError> {
+/// (`reference/cross-validation-protocol.toml`), its finished work kept in `checkpoint` if
+/// one is given ([`cross_validate_with`]).
+pub fn cross_validate(
+    paths: &Paths,
+    checkpoint: Option<&Checkpoint>,
+) -> Result<CrossValidation, ValidationError> {
     let protocol: CvProtocol = reference::read(&paths.reference("cross-validation-protocol.toml"))?;
     let two_row: Protocol = reference::read(&paths.reference("calibration-protocol.toml"))?;
     let table: TableI = reference::read(&paths.reference("table-i.toml"))?;
@@ -689,7 +766,7 @@ pub fn cross_validate(paths: &Paths) -> Result<CrossValidation, ValidationError>
         .map(|r| r.id)
         .filter(|id| !two_row.rows.contains(id))
         .collect();
-    let mut cv = cross_validate_with(&table.row, &protocol, &held_out, &model)?;
+    let mut cv = cross_validate_with(&table.row, &protocol, &held_out, &model, checkpoint)?;
     cv.facts = facts::check(paths, &overrides(&fields, &cv.full_fit.value))?.checks;
     cv.landings += 1;
     Ok(cv)
@@ -768,7 +845,7 @@ mod tests {
             .collect();
         let predict = |r: &Row, x: &[f64]| Ok(linear(x, r.vv));
         let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-        let cv = cross_validate_with(&table, &p, &[1, 2, 3], &predict).unwrap();
+        let cv = cross_validate_with(&table, &p, &[1, 2, 3], &predict, None).unwrap();
         assert_eq!(cv.folds.len(), 6);
         for f in &cv.folds {
             assert!(
@@ -804,7 +881,7 @@ mod tests {
             parameter("c", 2.0),
             parameter("unused", 2.0),
         ]);
-        let cv = cross_validate_with(&table, &p, &[1], &predict).unwrap();
+        let cv = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
         let id = &cv.identifiability;
         let d = &id.parameters;
         assert!(d[2].determined && d[2].ratio < 0.1, "{d:?}");
@@ -825,16 +902,53 @@ mod tests {
             .collect();
         let predict = |r: &Row, x: &[f64]| Ok(x[0] * r.vv.abs() + x[1]);
         let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-        let cv = cross_validate_with(&table, &p, &[1], &predict).unwrap();
+        let cv = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
         let mut moved = table.clone();
         moved[2].experiment *= 2.0;
-        let again = cross_validate_with(&moved, &p, &[1], &predict).unwrap();
+        let again = cross_validate_with(&moved, &p, &[1], &predict, None).unwrap();
         // Row 3's own fold is bit for bit the same fit; every other fold, which sees row 3, moves.
         assert_eq!(cv.folds[2].fit, again.folds[2].fit);
         assert_eq!(cv.folds[2].predicted_in, again.folds[2].predicted_in);
         for i in [0, 1, 3, 4] {
             assert_ne!(cv.folds[i].fit, again.folds[i].fit, "fold {i}");
         }
+    }
+
+    #[test]
+    fn a_run_stopped_part_way_resumes_from_its_checkpoint_to_the_same_result() {
+        let table: Vec<Row> = (1..=5)
+            .map(|i| row(i, -(i as f64), 2.0 * i as f64 + 0.3 * (i as f64).sin()))
+            .collect();
+        let predict = |r: &Row, x: &[f64]| Ok(x[0] * r.vv.abs() + x[1]);
+        let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
+        let whole = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
+        // A run that dies after a third of its landings (as a killed run would) ...
+        let dir = tempfile::tempdir().unwrap();
+        let checkpoint = Checkpoint::new(dir.path(), "this run").unwrap();
+        let calls = std::sync::atomic::AtomicUsize::new(0);
+        let dying = |r: &Row, x: &[f64]| {
+            if calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed) > whole.landings / 3 {
+                Err(ValidationError::Calibration("killed".into()))
+            } else {
+                predict(r, x)
+            }
+        };
+        assert!(cross_validate_with(&table, &p, &[1], &dying, Some(&checkpoint)).is_err());
+        let kept = checkpoint.kept();
+        assert!(kept > 0, "some units finished before the kill");
+        // ... resumes from what it kept, landing fewer, to the same result and count.
+        let resumed_calls = std::sync::atomic::AtomicUsize::new(0);
+        let counting = |r: &Row, x: &[f64]| {
+            resumed_calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            predict(r, x)
+        };
+        let resumed = cross_validate_with(&table, &p, &[1], &counting, Some(&checkpoint)).unwrap();
+        assert_eq!(resumed, whole);
+        let landed = resumed_calls.load(std::sync::atomic::Ordering::Relaxed);
+        assert!(landed < whole.landings, "{landed} of {}", whole.landings);
+        // Units of another run's key are not taken.
+        let other = Checkpoint::new(dir.path(), "another program").unwrap();
+        assert_eq!(other.kept(), 0);
     }
 
     #[test]
@@ -850,7 +964,7 @@ mod tests {
             .collect();
         let predict = |r: &Row, x: &[f64]| Ok(linear(x, r.vv));
         let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-        let cv = cross_validate_with(&table, &p, &[1], &predict).unwrap();
+        let cv = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
         for f in &cv.folds {
             let width = (f.interval_in[1] - f.interval_in[0]) / f.predicted_in;
             assert!(width > 0.01 && width < 0.5, "row {}: {width}", f.held_out);

@@ -8,6 +8,7 @@
 
 pub mod boundary;
 pub mod calibrate;
+pub mod checkpoint;
 pub mod cross_validation;
 pub mod estimate;
 pub mod facts;
