@@ -63,6 +63,30 @@ def test_overrides_and_text_change_the_landing():
     assert e.value.file == "<scenario text>"
 
 
+def test_mujoco_runs_from_the_package_with_no_variable(monkeypatch):
+    """The package finds the project's MuJoCo library (target/, built by scripts/setup-python)
+    with no TOUCHDOWN_MUJOCO_LIBRARY: run, compare and view with their default engines."""
+    for name in ("TOUCHDOWN_MUJOCO_LIBRARY", "TOUCHDOWN_HOME", "TOUCHDOWN_PYTHON"):
+        monkeypatch.delenv(name, raising=False)
+    flat = ROOT / "scenarios" / "flat-drop.toml"
+    assert touchdown.run(flat, engine="mujoco")["summary"]["engine"] == "mujoco"
+    engines = [e["name"] for e in touchdown.compare(flat)["engines"]]
+    assert engines == ["core", "rapier", "mujoco"]
+
+
+def test_a_path_that_names_no_file_is_file_not_found(tmp_path, monkeypatch):
+    """A one-line string is a path (scenario text spans lines): a missing file raises
+    FileNotFoundError naming the path and the working directory, never a TOML error."""
+    monkeypatch.chdir(tmp_path)
+    for call in (touchdown.run, touchdown.compare):
+        with pytest.raises(FileNotFoundError) as e:
+            call("scenarios/nope.toml")
+        assert e.value.filename == "scenarios/nope.toml"
+        assert str(tmp_path) in str(e.value)
+    with pytest.raises(FileNotFoundError):
+        touchdown.run("typo.tom")
+
+
 def test_errors_carry_the_file_field_and_cause():
     with pytest.raises(touchdown.ScenarioInvalid) as e:
         touchdown.run(SCENARIO, overrides={"touchdown.vertical_speed": -10.0})

@@ -64,7 +64,8 @@ def run(
     history: bool = True,
     frame: Optional[str] = None,
 ) -> dict:
-    """Lands `scenario` (a scenario file's path, or its TOML text without `extends`) on
+    """Lands `scenario` (a scenario file's path, or its TOML text without `extends`: text spans
+    lines, and a one-line string naming no file raises FileNotFoundError) on
     `engine` ("core", "rapier" or "mujoco"), with `overrides` (field path, e.g.
     "touchdown.attitude[2]", to value in the file's units). Returns {"summary": dict (as
     `touchdown run --format json`, docs/schemas/run.schema.json), "history": the history (a dict of NumPy arrays, or with

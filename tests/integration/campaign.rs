@@ -22,15 +22,40 @@ fn small() -> PathBuf {
     scenario("campaigns/small.toml")
 }
 
+/// Every file under `dir`, relative to it, sorted.
+fn tree(dir: &Path) -> Vec<PathBuf> {
+    fn walk(root: &Path, dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else {
+                out.push(path.strip_prefix(root).unwrap().to_path_buf());
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+/// The folders `a` and `b` hold the same files (histories included), byte for byte.
 fn assert_same_files(a: &Path, b: &Path) {
+    let files = tree(a);
+    assert_eq!(files, tree(b), "{} and {}", a.display(), b.display());
     for f in FILES {
+        assert!(files.contains(&PathBuf::from(f)), "{f} missing");
+    }
+    for f in files {
         let (x, y) = (
-            std::fs::read(a.join(f)).unwrap(),
-            std::fs::read(b.join(f)).unwrap(),
+            std::fs::read(a.join(&f)).unwrap(),
+            std::fs::read(b.join(&f)).unwrap(),
         );
         assert!(
             x == y,
-            "{f} differs between {} and {}",
+            "{} differs between {} and {}",
+            f.display(),
             a.display(),
             b.display()
         );

@@ -423,5 +423,37 @@ pub fn merge(
     };
     let statistics = Statistics::of(&manifest.columns, &rows, manifest.confidence);
     store::write_all(out, &manifest, &rows, &statistics)?;
+    for part in parts {
+        copy_histories(part, out)?;
+    }
     Ok((manifest, rows, statistics))
+}
+
+/// Copies the histories a part wrote (`histories/landing-N.csv`, each landing in one part)
+/// into the merged folder `out`.
+fn copy_histories(part: &Path, out: &Path) -> Result<(), CampaignError> {
+    let from = part.join("histories");
+    if !from.is_dir() {
+        return Ok(());
+    }
+    let to = out.join("histories");
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    };
+    if same(&from, &to) {
+        return Ok(());
+    }
+    let io = |path: &Path, e: std::io::Error| CampaignError::Store {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    std::fs::create_dir_all(&to).map_err(|e| io(&to, e))?;
+    for entry in std::fs::read_dir(&from).map_err(|e| io(&from, e))? {
+        let file = entry.map_err(|e| io(&from, e))?.path();
+        if let Some(name) = file.file_name() {
+            std::fs::copy(&file, to.join(name)).map_err(|e| io(&file, e))?;
+        }
+    }
+    Ok(())
 }

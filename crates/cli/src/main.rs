@@ -429,6 +429,11 @@ impl std::str::FromStr for Set {
             return Err(format!("expected a field path before '=', got {s:?}"));
         }
         let value = value.trim();
+        if value.contains('\n') {
+            return Err(format!(
+                "expected one value on one line after '=' (a TOML value, e.g. [0.0, 1.0]), got {value:?}"
+            ));
+        }
         // A TOML value as the file would hold it; a bare word is a string (surface.kind=soil).
         let value = toml::from_str::<toml::Table>(&format!("v = {value}"))
             .ok()

@@ -1062,6 +1062,35 @@ fn the_project_is_found_from_any_directory() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("expected the project's folder"));
 }
 
+/// A copied binary (nothing beside it) runs MuJoCo with `$TOUCHDOWN_HOME` alone: the library
+/// is found in the project's build folders.
+#[test]
+fn a_copied_binary_runs_mujoco_with_touchdown_home_alone() {
+    let dir = temp("copied-binary");
+    std::fs::create_dir_all(&dir).unwrap();
+    let copy = dir.join("touchdown");
+    std::fs::copy(env!("CARGO_BIN_EXE_touchdown"), &copy).unwrap();
+    let o = Command::new(&copy)
+        .args([
+            "run",
+            "scenarios/flat-drop.toml",
+            "--engine",
+            "mujoco",
+            "--format",
+            "json",
+        ])
+        .current_dir(root())
+        .env("TOUCHDOWN_HOME", root())
+        .env_remove("TOUCHDOWN_MUJOCO_LIBRARY")
+        .env_remove("TOUCHDOWN_PYTHON")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["engine"], "mujoco");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `run`'s energy lines say which side of the balance each is on: the initial kinetic energy
 /// plus the residual equals the sum of the lines signed + and −, as printed (to their rounding),
 /// on a sliding landing and on one with thrust (a mechanism that puts energy in).

@@ -138,7 +138,8 @@ pub fn project_python(needed_for: &str) -> Result<PathBuf, MujocoError> {
 impl Launch {
     /// Finds the interpreter (`$TOUCHDOWN_PYTHON`, else the project's `.venv`), the runner and
     /// the library (`$TOUCHDOWN_MUJOCO_LIBRARY`, else next to the running executable or in its
-    /// `deps/`), or says which is missing and how to set it up.
+    /// `deps/`, else in the project's `target/release/` or `target/debug/`), or says which is
+    /// missing and how to set it up.
     pub fn locate() -> Result<Launch, MujocoError> {
         let root = home()?;
         let python = project_python("the MuJoCo engine")?;
@@ -381,25 +382,41 @@ fn run_guarded(
 }
 
 /// The library next to the running executable (a binary in `target/<profile>/`, or a test or
-/// bench in `target/<profile>/deps/`).
+/// bench in `target/<profile>/deps/`); else the most recently built of the project's
+/// (`target/release/`, `target/debug/` and their `deps/`, [`home`]): what a copied or
+/// installed binary with `TOUCHDOWN_HOME`, and the Python package (whose executable is the
+/// interpreter), find.
 fn find_library() -> Result<PathBuf, MujocoError> {
     let name = library_name();
     let exe = std::env::current_exe()?;
     let dir = exe.parent().unwrap_or(Path::new("."));
-    let candidates = [dir.join("deps").join(&name), dir.join(&name)];
+    let mut candidates = vec![dir.join("deps").join(&name), dir.join(&name)];
+    if let Some(beside) = candidates.iter().find(|p| p.is_file()) {
+        return Ok(beside.clone());
+    }
+    let root = home().ok();
+    if let Some(root) = &root {
+        for profile in ["release", "debug"] {
+            let target = root.join("target").join(profile);
+            candidates.push(target.join(&name));
+            candidates.push(target.join("deps").join(&name));
+        }
+    }
+    let built = |p: &PathBuf| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     candidates
         .iter()
-        .find(|p| p.is_file())
-        .cloned()
+        .filter_map(|p| Some((built(p)?, p)))
+        .max()
+        .map(|(_, p)| p.clone())
         .ok_or_else(|| {
             MujocoError::Setup(format!(
-                "the touchdown MuJoCo library {name} is not next to {} (looked in {}); build it with `cargo build -p touchdown-mujoco`, or set TOUCHDOWN_MUJOCO_LIBRARY",
-                exe.display(),
+                "the touchdown MuJoCo library {name} was not found (looked in {}); build it with `cargo build --release -p touchdown-mujoco` in {} (scripts/setup-python does), or set TOUCHDOWN_MUJOCO_LIBRARY to it",
                 candidates
                     .iter()
                     .map(|p| p.display().to_string())
                     .collect::<Vec<_>>()
-                    .join(", ")
+                    .join(", "),
+                root.unwrap_or_else(home_shown).display()
             ))
         })
 }

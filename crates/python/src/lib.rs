@@ -46,6 +46,20 @@ pyo3::create_exception!(
 
 /// The exception of a scenario error, with its file and field as attributes.
 fn scenario_error(py: Python<'_>, e: &ScenarioError) -> PyErr {
+    if let ScenarioError::Io { file, source } = e {
+        if source.kind() == std::io::ErrorKind::NotFound {
+            let cwd = std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_else(|_| "?".into());
+            return pyo3::exceptions::PyFileNotFoundError::new_err((
+                2,
+                format!(
+                    "no scenario file {file} (relative paths are from the working directory {cwd}); scenario text is TOML of several lines"
+                ),
+                file.clone(),
+            ));
+        }
+    }
     let err = ScenarioInvalid::new_err(e.to_string());
     let (file, field, message) = match e {
         ScenarioError::Field {
@@ -143,12 +157,14 @@ fn campaign_error(py: Python<'_>, e: &CampaignError) -> PyErr {
 /// What names a scenario given as text in messages.
 const TEXT_SOURCE: &str = "<scenario text>";
 
-/// A scenario file, or TOML text; with the name messages give it.
+/// A scenario file, or TOML text; with the name messages give it. A scenario's text spans
+/// lines (every key and table starts one), so a string of one line is a path: a missing file
+/// is `FileNotFoundError`, never TOML read from the path (docs/python.md).
 fn base(scenario: &str) -> Result<(ScenarioBase, &str), ScenarioError> {
-    if Path::new(scenario).is_file() {
-        Ok((ScenarioBase::load(scenario)?, scenario))
-    } else {
+    if scenario.contains('\n') {
         Ok((ScenarioBase::from_toml(TEXT_SOURCE, scenario)?, TEXT_SOURCE))
+    } else {
+        Ok((ScenarioBase::load(scenario)?, scenario))
     }
 }
 

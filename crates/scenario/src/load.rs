@@ -437,14 +437,16 @@ impl ScenarioBase {
     /// The scenario with some values replaced: each override is a field path such as
     /// `primary_strut.compression.stages[0].crush_load` or `touchdown.attitude[2]` and a value
     /// in the file's own units, of the kind the field holds (a number for a number, a string for
-    /// a string, a boolean for a boolean). The overrides form the top layer of the `extends`
+    /// a string, a boolean for a boolean, an array for an array, replaced whole, a table for a
+    /// table, merged key by key; a number or an array where a field takes either). `extends`,
+    /// `units` and `schema_version` cannot be overridden. The overrides form the top layer of the `extends`
     /// chain (named `overrides` in messages); a path that does not exist in the merged file is
     /// an error.
     pub fn with(&self, overrides: &[(&str, toml::Value)]) -> Result<Scenario, ScenarioError> {
         let mut merged = self.merged.clone();
         let mut layer = toml::Table::new();
         for (field, value) in overrides {
-            set_path(&mut merged.table, field, value)
+            set_path(&mut merged.table, field, value, false)
                 .map_err(|m| ScenarioError::field(OVERRIDES, *field, m))?;
             set_path_creating(&mut layer, field, value);
         }
@@ -485,7 +487,19 @@ pub fn merged_table(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError
 /// Replaces the number at `field` (e.g. `primary_strut.compression.stages[0].crush_load`) in a
 /// scenario table; the path must exist and hold a number.
 pub fn set_field(table: &mut toml::Table, field: &str, value: f64) -> Result<(), String> {
-    set_path(table, field, &toml::Value::Float(value))
+    set_path(table, field, &toml::Value::Float(value), true)
+}
+
+/// Why `field` cannot be overridden, if it cannot: what decides how the file is read, not a
+/// value of the landing.
+fn not_overridable(field: &str) -> Option<String> {
+    let head = path_keys(field).first().map(|(k, _)| *k).unwrap_or("");
+    match head {
+        "extends" => Some("`extends` is merged when the file is read; an override cannot change which file is extended (write a file that extends the other)".into()),
+        "units" => Some("the units decide how every number of the file is read; an override cannot change them (write the file in the other units)".into()),
+        "schema_version" => Some("the schema version is the file's, not a value of the landing".into()),
+        _ => None,
+    }
 }
 
 /// The kind of value a field holds, in messages.
@@ -500,11 +514,26 @@ fn kind_of(v: &toml::Value) -> &'static str {
     }
 }
 
-/// Replaces the value at `field` in `table` with `value`, of the same kind (a number is
-/// written as a float). A field no file of the chain writes is added, with the tables that
-/// lead to it, as a file extending the scenario would add it: the scenario's strict schema then
-/// refuses a field that does not exist, naming it. An array element must exist.
-fn set_path(table: &mut toml::Table, field: &str, value: &toml::Value) -> Result<(), String> {
+/// Replaces the value at `field` in `table` with `value`, as a file extending the scenario
+/// would: a number (written as a float), string or boolean for one of its kind, an array whole
+/// (a number for an array and an array for a number where a field takes either, such as a
+/// per-leg `surface.hole`: the schema then checks it), a table merged key by key. With
+/// `number_only`, only a number for a number. A field no file of the chain writes is added,
+/// with the tables that lead to it: the scenario's strict schema then refuses a field that
+/// does not exist, naming it. An array element must exist. `extends`, `units` and
+/// `schema_version` are refused ([`not_overridable`]).
+fn set_path(
+    table: &mut toml::Table,
+    field: &str,
+    value: &toml::Value,
+    number_only: bool,
+) -> Result<(), String> {
+    if let Some(why) = not_overridable(field) {
+        return Err(why);
+    }
+    if number_only && !matches!(value, toml::Value::Float(_) | toml::Value::Integer(_)) {
+        return Err(format!("expected a number, got {}", kind_of(value)));
+    }
     let keys = path_keys(field);
     let mut node = table;
     for (n, (key, index)) in keys.iter().enumerate() {
@@ -531,13 +560,18 @@ fn set_path(table: &mut toml::Table, field: &str, value: &toml::Value) -> Result
         };
         if last {
             let (have, given) = (kind_of(entry), kind_of(value));
-            if have != given || matches!(value, toml::Value::Array(_) | toml::Value::Table(_)) {
+            let either = matches!(
+                (have, given),
+                ("a number", "an array") | ("an array", "a number")
+            );
+            if (have != given && (number_only || !either)) || (number_only && have != "a number") {
                 return Err(format!("the field holds {have}; the override is {given}"));
             }
-            *entry = match value {
-                toml::Value::Integer(i) => toml::Value::Float(*i as f64),
-                v => v.clone(),
-            };
+            match (entry, value) {
+                (toml::Value::Table(t), toml::Value::Table(o)) => merge(t, o.clone()),
+                (entry, toml::Value::Integer(i)) => *entry = toml::Value::Float(*i as f64),
+                (entry, v) => *entry = v.clone(),
+            }
             return Ok(());
         }
         node = entry
