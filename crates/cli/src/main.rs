@@ -796,18 +796,14 @@ fn run_landing(
         if !(t.is_finite() && t > 0.0) {
             anyhow::bail!("--timestep: expected a positive number of seconds, got {t:e}");
         }
+        // In the file's time unit (its [similarity] applied), as the file would state it.
+        let step = Some(t / sc.units.time());
         let changed = match engine {
             Engine::Core => anyhow::bail!(
                 "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"
             ),
-            Engine::Rapier => {
-                let seconds = sc.units.time();
-                sc.with_rapier(|r| r.timestep = Some(t / seconds))
-            }
-            Engine::Mujoco => {
-                let seconds = sc.units.time();
-                sc.with_mujoco(|m| m.timestep = Some(t / seconds))
-            }
+            Engine::Rapier => sc.with_rapier(|r| r.timestep = step),
+            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = step),
         };
         sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
     }

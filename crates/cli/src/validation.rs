@@ -685,16 +685,6 @@ fn transition_line(t: &Transition) -> String {
     format!("           transition   {arrow}   {at:<16} ({bracket})")
 }
 
-fn limit(l: Option<Limit>) -> &'static str {
-    match l {
-        None => "—",
-        Some(Limit::Overturn) => "overturn",
-        Some(Limit::Undecided) => "undecided",
-        Some(Limit::Capacity) => "capacity",
-        Some(Limit::OverturnAndCapacity) => "overturn_and_capacity",
-    }
-}
-
 fn restitution(e: Option<f64>) -> String {
     e.map_or_else(|| "file".into(), |e| format!("{e}"))
 }
@@ -743,7 +733,7 @@ fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
             opt(p.unstable_at),
             past,
             opt(p.safe.safe_to),
-            limit(p.safe.limit),
+            p.safe.limit.map_or("—", Limit::name),
             p.landings,
             p.undecided
         );
@@ -884,9 +874,7 @@ fn boundary_csv(points: &[EnginePoint], velocity: f64) -> Result<String> {
                 p.undecided.to_string(),
                 f(past),
                 f(p.safe.safe_to_vh_m_s),
-                p.safe
-                    .limit
-                    .map_or_else(String::new, |l| limit(Some(l)).into()),
+                p.safe.limit.map_or("", Limit::name).to_string(),
             ]
         };
         if p.transitions.is_empty() {

@@ -23,7 +23,7 @@ pub const CONTACT_PER_MODE: f64 = 4.0;
 
 /// Default time constant of MuJoCo's footpad contacts (`solref[0]`) per step: MuJoCo's floor,
 /// the stiffest contact the step resolves.
-pub const TIMECONST_PER_STEP: f64 = 2.0;
+pub const TIMECONST_PER_STEP: f64 = touchdown_scenario::model::Mujoco::MIN_TIMECONST_PER_STEP;
 
 /// Default width of MuJoCo's contact impedance ramp (`solimp[2]`) per contact sphere radius.
 pub const WIDTH_PER_CONTACT_RADIUS: f64 = 0.1;

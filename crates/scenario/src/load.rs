@@ -564,7 +564,7 @@ fn set_path(
                 (have, given),
                 ("a number", "an array") | ("an array", "a number")
             );
-            if (have != given && (number_only || !either)) || (number_only && have != "a number") {
+            if have != given && (number_only || !either) {
                 return Err(format!("the field holds {have}; the override is {given}"));
             }
             match (entry, value) {
@@ -709,12 +709,13 @@ fn resolve_mujoco(
         .map(|v| c.positive_si("engines.mujoco.contact_timeconst", v, u.time()))
         .transpose()?;
     if let (Some(step), Some(timeconst)) = (timestep, contact_timeconst) {
-        if timeconst < 2.0 * step {
+        let least = model::Mujoco::MIN_TIMECONST_PER_STEP * step;
+        if timeconst < least {
             return Err(c.err(
                 "engines.mujoco.contact_timeconst",
                 format!(
                     "expected at least twice engines.mujoco.timestep, {} in the file's time unit (MuJoCo would silently raise it)",
-                    short(2.0 * step / u.time())
+                    short(least / u.time())
                 ),
             ));
         }

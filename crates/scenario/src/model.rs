@@ -560,6 +560,12 @@ pub struct Mujoco {
     pub contact_width: Option<f64>,
 }
 
+impl Mujoco {
+    /// The least contact time constant MuJoCo takes, in time steps (it silently raises a
+    /// smaller one).
+    pub const MIN_TIMECONST_PER_STEP: f64 = 2.0;
+}
+
 /// The gear links the multibody engines add.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GearLinks {

@@ -331,9 +331,8 @@ pub struct CapacityEdge {
     pub stops: Stops,
 }
 
-/// What ends the safe envelope.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+/// What ends the safe envelope (written as [`Limit::name`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Limit {
     /// The landing overturned.
     Overturn,
@@ -343,6 +342,25 @@ pub enum Limit {
     Capacity,
     /// The landing overturned with a strut past its capacity.
     OverturnAndCapacity,
+}
+
+impl Limit {
+    /// Its name in documents and tables: `overturn`, `undecided`, `capacity`,
+    /// `overturn_and_capacity`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Limit::Overturn => "overturn",
+            Limit::Undecided => "undecided",
+            Limit::Capacity => "capacity",
+            Limit::OverturnAndCapacity => "overturn_and_capacity",
+        }
+    }
+}
+
+impl Serialize for Limit {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
 }
 
 /// The safe envelope: every landing searched up to `safe_to` was stable and within every
@@ -472,14 +490,10 @@ fn land_all(vhs: &[f64], land: &Land) -> Result<Vec<Point>, ValidationError> {
 type Land<'a> = dyn Fn(f64) -> Result<Landed, ValidationError> + Sync + 'a;
 
 /// The scan points between `from` and `to` (scenario velocity unit) every `step`, computed
-/// from `from` (not accumulated), leaving out those within 1e-9 of a step of a point of
-/// `landed` (ascending).
-fn scan_points(from: f64, to: f64, step: f64, landed: &[Point]) -> Vec<f64> {
+/// from `from` (not accumulated), ascending.
+fn scan_points(from: f64, to: f64, step: f64) -> impl Iterator<Item = f64> {
     let n = ((to - from) / step + 1e-9).floor() as usize;
-    (0..=n)
-        .map(|i| from + i as f64 * step)
-        .filter(|vh| !landed.iter().any(|(x, _)| (x - vh).abs() <= 1e-9 * step))
-        .collect()
+    (0..=n).map(move |i| from + i as f64 * step)
 }
 
 /// The search at one descent speed `vv`: the `grid`, a scan at `settings.scan_step` around
@@ -494,19 +508,19 @@ fn at_descent_speed(
     // Around each change of outcome the grid sees, scan finer from a grid step below it to a
     // grid step above it, where an outcome alternating faster than the grid would hide.
     if let Some(step) = settings.scan_step {
-        let mut scan: Vec<f64> = Vec::new();
-        for i in 1..landed.len() {
-            if landed[i - 1].1.outcome != landed[i].1.outcome {
-                let from = (landed[i - 1].0 - settings.vh_step).max(grid[0]);
-                let to = (landed[i].0 + settings.vh_step).min(grid[grid.len() - 1]);
-                for vh in scan_points(from, to, step, &landed) {
-                    if !scan.iter().any(|x| (x - vh).abs() <= 1e-9 * step) {
-                        scan.push(vh);
-                    }
-                }
-            }
-        }
+        // Points within 1e-9 of a step of one another, or of a grid point, are one point.
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * step;
+        let mut scan: Vec<f64> = (landed.windows(2))
+            .filter(|w| w[0].1.outcome != w[1].1.outcome)
+            .flat_map(|w| {
+                let from = (w[0].0 - settings.vh_step).max(grid[0]);
+                let to = (w[1].0 + settings.vh_step).min(grid[grid.len() - 1]);
+                scan_points(from, to, step)
+            })
+            .filter(|&vh| !landed.iter().any(|p| same(p.0, vh)))
+            .collect();
         scan.sort_by(f64::total_cmp);
+        scan.dedup_by(|a, b| same(*a, *b));
         landed.extend(land_all(&scan, land)?);
         landed.sort_by(|a, b| a.0.total_cmp(&b.0));
     }
@@ -742,8 +756,7 @@ pub struct EnginePoint {
     /// The engine that searched.
     pub engine: Engine,
     /// The end stops' coefficient of restitution the search set on every strut's load-stroke
-    /// diagram
-    /// (`None`: the scenario's own).
+    /// diagram (`None`: the scenario's own).
     pub stop_restitution: Option<f64>,
     /// What it found.
     pub point: BoundaryPoint,
