@@ -145,6 +145,22 @@ def test_a_strut_past_its_capacity_is_named_beside_the_outcome(browser, tmp_path
     assert console_problems(browser, page_path) == []
 
 
+def test_a_scenario_named_like_markup_is_shown_as_text(browser, tmp_path):
+    # A name that opens a comment and a script inside the embedded JSON (`<!--<script>`) would
+    # swallow the rest of the page if the JSON held a `<`: it renders, named as written.
+    name = "<!--<script></script>"
+    scenario = tmp_path / "markup.toml"
+    scenario.write_text(f'extends = "{ROOT / "scenarios" / "flat-drop.toml"}"\nname = {json.dumps(name)}\n')
+    run = subprocess.run([TOUCHDOWN, "view", scenario, "--engines", "core", "--out", tmp_path],
+                         capture_output=True, cwd=ROOT)
+    assert run.returncode == 0, run.stderr.decode()
+    page_path = tmp_path / "markup.html"
+    view_still.open_page(browser, page_path)
+    assert browser.execute_script("return touchdownView.ready") is True
+    assert browser.find_element(By.ID, "scenario-name").text == name
+    assert console_problems(browser, page_path) == []
+
+
 def test_the_slider_moves_time_and_the_picture(page, landing):
     t0, t1 = page.execute_script("return touchdownView.timeRange()")
     before, clock = canvas_png(page, "view-0"), page.find_element(By.ID, "clock").text

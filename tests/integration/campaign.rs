@@ -120,6 +120,80 @@ fn added_landings_leave_the_first_ones_unchanged() {
     assert_same_files(&extended, &at_once);
 }
 
+/// `--out` is checked before any landing runs (a file, a folder of other files, another part
+/// of the campaign are refused), written by one process at a time, and replaced only when the
+/// new folder is complete: a run stopped part-way leaves the previous folder as it was. A merge
+/// may name one of its own parts as `--out`.
+#[test]
+fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
+    use touchdown_campaign::folder::Staging;
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    let refused = |out: &Path, shard: Option<Shard>, says: &str| {
+        let mut landed = 0;
+        match run(&campaign, shard, None, Some(out), |_| landed += 1) {
+            Err(CampaignError::Store { path, message }) => {
+                assert_eq!(path, out.display().to_string());
+                assert!(message.contains(says), "{message}");
+            }
+            other => panic!("expected a refusal, got {other:?}"),
+        }
+        assert_eq!(landed, 0, "refused after landings ran");
+    };
+    let file = tmp.path().join("a-file");
+    std::fs::write(&file, "keep").unwrap();
+    refused(&file, None, "is not a folder");
+    let foreign = tmp.path().join("foreign");
+    std::fs::create_dir(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "keep").unwrap();
+    refused(&foreign, None, "not a campaign's");
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("notes.txt")).unwrap(),
+        "keep"
+    );
+    let whole = tmp.path().join("whole");
+    run(&campaign, None, None, Some(&whole), |_| ()).unwrap();
+    let copy = tmp.path().join("copy");
+    touchdown_campaign::folder::copy_tree(&whole, &copy).unwrap();
+    refused(
+        &whole,
+        Some(Shard { index: 1, count: 3 }),
+        "holds landings 0 to 23 of 24",
+    );
+    // While another writer holds the folder, a second is refused.
+    let held = Staging::begin(&whole).unwrap();
+    refused(&whole, None, "another touchdown is writing this folder");
+    // A writer stopped part-way (its folder dropped unfinished) leaves the old one intact; the
+    // next run clears what it left and replaces the folder with the same bytes.
+    std::fs::write(held.dir().join("landings.jsonl"), "cut").unwrap();
+    drop(held);
+    assert_same_files(&whole, &copy);
+    run(&campaign, None, None, Some(&whole), |_| ()).unwrap();
+    assert_same_files(&whole, &copy);
+    assert!(!tmp.path().join("whole.partial").exists());
+    // A merge into one of its own parts.
+    let parts: Vec<PathBuf> = (1..=2)
+        .map(|k| {
+            let dir = tmp.path().join(format!("part-{k}"));
+            run(
+                &campaign,
+                Some(Shard { index: k, count: 2 }),
+                None,
+                Some(&dir),
+                |_| (),
+            )
+            .unwrap();
+            dir
+        })
+        .collect();
+    merge(&[&parts[0], &parts[1]], &parts[0]).unwrap();
+    assert_same_files(&parts[0], &whole);
+    assert!(matches!(
+        merge(&[&parts[1]], &foreign),
+        Err(CampaignError::Mismatch(_)) | Err(CampaignError::Store { .. })
+    ));
+}
+
 #[test]
 fn the_values_applied_are_the_values_drawn_and_reach_the_model() {
     let campaign = Campaign::load(small()).unwrap();
@@ -223,6 +297,7 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
         "scenario = \"../",
         &format!("scenario = \"{}/", scenario("").display()),
     );
+    let deep_field = format!("{}\"\nunit", vec!["a"; 60_000].join("."));
     let cases = [
         (
             "std_dev = 1.5",
@@ -253,6 +328,16 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "weights = [3.0, 1.0]",
             "weights = [3.0]",
             "field `dispersion[4].weights`: expected one weight per value",
+        ),
+        (
+            "weights = [3.0, 1.0]",
+            "weights = [1e308, 1e308]",
+            "field `dispersion[4].weights`: expected weights ≥ 0, not all zero, with a finite sum",
+        ),
+        (
+            "touchdown.vertical_velocity\"\nunit",
+            deep_field.as_str(),
+            "a field path of 60000 parts",
         ),
         (
             "coefficient = -0.5",
@@ -327,6 +412,49 @@ fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
     )
     .unwrap();
     assert!(message(&[&a, &d]).contains("campaign (its SHA-256)"));
+    // A record no landing could have written (an outcome of another name, or none) is
+    // refused by file and line: the counts would no longer add up.
+    let e = tmp.path().join("e");
+    std::fs::create_dir(&e).unwrap();
+    for name in [
+        "manifest.json",
+        "landings.jsonl",
+        "landings.parquet",
+        "statistics.json",
+    ] {
+        std::fs::copy(c.join(name), e.join(name)).unwrap();
+    }
+    let jsonl = std::fs::read_to_string(c.join("landings.jsonl")).unwrap();
+    for (tampered, says) in [
+        (
+            jsonl.replacen("\"outcome\":\"", "\"outcome\":\"banana", 1),
+            "\"banana",
+        ),
+        (
+            jsonl.replacen("\"outcome\":", "\"outcome_was\":", 1),
+            "unknown column",
+        ),
+        (without_failure(&jsonl), "column \"failure\" is missing"),
+    ] {
+        assert_ne!(tampered, jsonl);
+        std::fs::write(e.join("landings.jsonl"), &tampered).unwrap();
+        match merge(&[&a, &e], &tmp.path().join("out")) {
+            Err(CampaignError::Store { path, message }) => {
+                assert!(path.ends_with("landings.jsonl:1"), "{path}");
+                assert!(message.contains(says), "{message}");
+            }
+            other => panic!("expected a refusal, got {other:?}"),
+        }
+    }
+}
+
+/// The JSON Lines `text` with the first record's `failure` left out.
+fn without_failure(text: &str) -> String {
+    let (first, rest) = text.split_once('\n').unwrap();
+    let mut record: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_str(first).unwrap();
+    record.remove("failure").unwrap();
+    format!("{}\n{rest}", serde_json::Value::Object(record))
 }
 
 #[test]

@@ -11,9 +11,11 @@
 //! | [`record`] | a landing's record: the values applied (read back), its outcome and failure mode, its strokes, loads and margins |
 //! | [`statistics`] | P(stable) with its Clopper-Pearson lower bound, the zero-failure sizes, counts, percentiles |
 //! | [`store`] | the manifest, `landings.jsonl`, `landings.parquet`, `statistics.json` |
+//! | [`folder`] | the campaign's folder: built beside `--out`, locked, exchanged when complete |
 //! | [`run`] | landings in parallel, shards, merges and extensions |
 
 pub mod distribution;
+pub mod folder;
 pub mod record;
 pub mod run;
 pub mod spec;

@@ -207,6 +207,31 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
 /// A landing's record: one cell per column of [`columns`].
 pub type Row = Vec<Cell>;
 
+/// Whether a record read back from a file is one a landing could have written: its `outcome`
+/// one of [`Status`]'s names and its `failure` one of [`Failure`]'s, both present (the
+/// statistics count every landing once by each). `Err` says which column holds what.
+pub fn check(columns: &[Column], row: &Row) -> Result<(), String> {
+    let named = |column: &str, names: &[&str]| {
+        let cell = columns
+            .iter()
+            .position(|c| c.name == column)
+            .and_then(|i| row.get(i));
+        match cell {
+            Some(Cell::Text(t)) if names.contains(&t.as_str()) => Ok(()),
+            Some(Cell::Text(t)) => Err(format!(
+                "column {column:?}: {t:?} is not one of {}",
+                names.join(", ")
+            )),
+            _ => Err(format!(
+                "column {column:?} is missing: every record has one of {}",
+                names.join(", ")
+            )),
+        }
+    };
+    named("outcome", &Status::ALL.map(Status::name))?;
+    named("failure", &Failure::ALL.map(Failure::name))
+}
+
 /// The record of landing `landing` that ran with the values `applied` and ended with `result`:
 /// the summary of a landing that completed, or why it did not.
 pub fn row(

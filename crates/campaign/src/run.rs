@@ -2,6 +2,7 @@
 //! (rayon) with their records handed on in landing order; shards, merges and extensions.
 
 use crate::distribution::{scores, Value};
+use crate::folder::{self, Staging};
 use crate::record::{self, Column, Row};
 use crate::spec::Campaign;
 use crate::statistics::Statistics;
@@ -105,7 +106,7 @@ pub fn land(
     }
     let history_dir = histories.filter(|_| campaign.histories.contains(&landing));
     let result = match history_dir {
-        Some(dir) => land_with_history(campaign, landing, &sc, dir),
+        Some(dir) => land_with_history(campaign, landing, &sc, dir)?,
         None => touchdown_registry::land_reusing_runner(
             campaign.engine,
             &campaign.scenario_path,
@@ -126,44 +127,42 @@ pub fn land(
 }
 
 /// A landing whose history is kept: `dir/landing-N.csv` (the MuJoCo runner writes its own
-/// files into `dir/landing-N/`).
+/// files into `dir/landing-N/`). A history that cannot be written is an error of the
+/// campaign's folder (`Err`), not of the engine.
 fn land_with_history(
     campaign: &Campaign,
     landing: u64,
     sc: &Scenario,
     dir: &Path,
-) -> Result<touchdown_record::Summary, touchdown_registry::EngineFailure> {
-    let setup = |e: String| touchdown_registry::EngineFailure {
-        engine: campaign.engine,
-        scenario: campaign.scenario_path.display().to_string(),
-        error: RunError::setup(campaign.engine, e),
+) -> Result<Result<touchdown_record::Summary, touchdown_registry::EngineFailure>, CampaignError> {
+    let store = |path: &Path, message: String| CampaignError::Store {
+        path: path.display().to_string(),
+        message,
     };
-    std::fs::create_dir_all(dir)
-        .map_err(|e| setup(format!("cannot create {}: {e}", dir.display())))?;
+    std::fs::create_dir_all(dir).map_err(|e| store(dir, e.to_string()))?;
     if campaign.engine == Engine::Mujoco {
         let own = dir.join(format!("landing-{landing}"));
-        std::fs::create_dir_all(&own)
-            .map_err(|e| setup(format!("cannot create {}: {e}", own.display())))?;
-        return touchdown_registry::land_reusing_runner(
+        std::fs::create_dir_all(&own).map_err(|e| store(&own, e.to_string()))?;
+        return Ok(touchdown_registry::land_reusing_runner(
             campaign.engine,
             &campaign.scenario_path,
             sc,
             &mut (),
             Some(&own),
-        );
+        ));
     }
     let path = dir.join(format!("landing-{landing}.csv"));
     let mut history =
-        Some(History::create(&path, sc.legs.len()).map_err(|e| setup(e.to_string()))?);
+        Some(History::create(&path, sc.legs.len()).map_err(|e| store(&path, e.to_string()))?);
     let summary = touchdown_registry::land_reusing_runner(
         campaign.engine,
         &campaign.scenario_path,
         sc,
         &mut history,
         None,
-    )?;
+    );
     if let Some(h) = history {
-        h.finish().map_err(|e| setup(e.to_string()))?;
+        h.finish().map_err(|e| store(&path, e.to_string()))?;
     }
     Ok(summary)
 }
@@ -267,6 +266,9 @@ pub fn run_range(
 
 /// Runs a campaign, or one shard of it, writing its files into `out` when given; `each` sees
 /// every record in landing order. Returns the manifest, the records and their statistics.
+/// `out` must be new, empty, or this very part of this campaign (which is replaced): it is
+/// checked before any landing runs, and written only when every landing has (module
+/// [`crate::folder`]).
 pub fn run(
     campaign: &Campaign,
     shard: Option<Shard>,
@@ -276,36 +278,63 @@ pub fn run(
 ) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
     let range = shard.map_or(0..campaign.landings, |s| s.range(campaign.landings));
     let columns = record::columns(campaign);
-    let histories = out.map(|d| d.join("histories"));
-    let rows = run_range(campaign, range.clone(), threads, histories.as_deref(), each)?;
     let part = Part {
         first_landing: range.start,
         end_landing: range.end,
         shard: shard.map(|s| s.to_string()),
     };
-    finish(campaign, campaign.landings, part, &columns, rows, out)
+    let staging = match out {
+        Some(dir) => {
+            let fresh = Manifest::new(campaign, campaign.landings, part.clone(), &columns);
+            folder::check_out(dir, |held| {
+                held.same_campaign(&fresh).map_err(|m| {
+                    format!("holds another campaign's landings ({m}): name a new or empty folder")
+                })?;
+                if held.part != part || held.landings != fresh.landings {
+                    return Err(format!(
+                        "holds landings {} to {} of {} of this campaign, this run writes {} to {} of {}: name a new or empty folder (or extend a finished campaign with --add)",
+                        held.part.first_landing,
+                        held.part.end_landing.saturating_sub(1),
+                        held.landings,
+                        part.first_landing,
+                        part.end_landing.saturating_sub(1),
+                        fresh.landings
+                    ));
+                }
+                Ok(())
+            })?;
+            Some(Staging::begin(dir)?)
+        }
+        None => None,
+    };
+    let histories = staging.as_ref().map(|s| s.dir().join("histories"));
+    let rows = run_range(campaign, range, threads, histories.as_deref(), each)?;
+    finish(campaign, campaign.landings, part, &columns, rows, staging)
 }
 
-/// The manifest and statistics of `rows`, written into `out` when given.
+/// The manifest and statistics of `rows`, written into the folder being built, which then
+/// takes its place, when there is one.
 fn finish(
     campaign: &Campaign,
     landings: u64,
     part: Part,
     columns: &[Column],
     rows: Vec<Row>,
-    out: Option<&Path>,
+    staging: Option<Staging>,
 ) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
     let manifest = Manifest::new(campaign, landings, part, columns);
     let statistics = Statistics::of(columns, &rows, campaign.confidence);
-    if let Some(dir) = out {
-        store::write_all(dir, &manifest, &rows, &statistics)?;
+    if let Some(staging) = staging {
+        store::write_all(staging.dir(), &manifest, &rows, &statistics)?;
+        staging.commit()?;
     }
     Ok((manifest, rows, statistics))
 }
 
 /// Adds `more` landings to the finished campaign in `dir` (written by a run or a merge of the
 /// same campaign file), without changing the landings it holds: landings n..n+more are run and
-/// the folder rewritten as if the campaign had planned n + more from the start.
+/// the folder replaced, when they have all run, by the one the campaign would have written had
+/// it planned n + more from the start.
 pub fn add(
     campaign: &Campaign,
     dir: &Path,
@@ -338,7 +367,11 @@ pub fn add(
                 crate::spec::MAX_LANDINGS
             ))
         })?;
-    let histories = dir.join("histories");
+    let staging = Staging::begin(dir)?;
+    let histories = staging.dir().join("histories");
+    if dir.join("histories").is_dir() {
+        folder::copy_tree(&dir.join("histories"), &histories)?;
+    }
     rows.extend(run_range(
         campaign,
         old.landings..total,
@@ -351,13 +384,14 @@ pub fn add(
         end_landing: total,
         shard: None,
     };
-    finish(campaign, total, part, &columns, rows, Some(dir))
+    finish(campaign, total, part, &columns, rows, Some(staging))
 }
 
 /// Merges the campaign folders `parts` (shards of one campaign, run by one build) into `out`:
 /// refused unless they are parts of the same campaign and together hold each of its landings
 /// once. The result is the folder the whole campaign run at once writes, byte for byte; returns
-/// its manifest, records and statistics.
+/// its manifest, records and statistics. `out` may be one of the parts or an earlier merge of
+/// the same campaign (it is replaced when the merge is complete), or a new or empty folder.
 pub fn merge(
     parts: &[&Path],
     out: &Path,
@@ -390,6 +424,11 @@ pub fn merge(
             )));
         }
     }
+    folder::check_out(out, |held| {
+        first.same_campaign(held).map_err(|m| {
+            format!("holds another campaign's landings ({m}): name a new or empty folder")
+        })
+    })?;
     read.sort_by_key(|(m, _)| m.part.first_landing);
     let mut next = 0;
     for (m, _) in &read {
@@ -422,38 +461,14 @@ pub fn merge(
         shard: None,
     };
     let statistics = Statistics::of(&manifest.columns, &rows, manifest.confidence);
-    store::write_all(out, &manifest, &rows, &statistics)?;
+    let staging = Staging::begin(out)?;
     for part in parts {
-        copy_histories(part, out)?;
-    }
-    Ok((manifest, rows, statistics))
-}
-
-/// Copies the histories a part wrote (`histories/landing-N.csv`, each landing in one part)
-/// into the merged folder `out`.
-fn copy_histories(part: &Path, out: &Path) -> Result<(), CampaignError> {
-    let from = part.join("histories");
-    if !from.is_dir() {
-        return Ok(());
-    }
-    let to = out.join("histories");
-    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
-    };
-    if same(&from, &to) {
-        return Ok(());
-    }
-    let io = |path: &Path, e: std::io::Error| CampaignError::Store {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    };
-    std::fs::create_dir_all(&to).map_err(|e| io(&to, e))?;
-    for entry in std::fs::read_dir(&from).map_err(|e| io(&from, e))? {
-        let file = entry.map_err(|e| io(&from, e))?.path();
-        if let Some(name) = file.file_name() {
-            std::fs::copy(&file, to.join(name)).map_err(|e| io(&file, e))?;
+        let histories = part.join("histories");
+        if histories.is_dir() {
+            folder::copy_tree(&histories, &staging.dir().join("histories"))?;
         }
     }
-    Ok(())
+    store::write_all(staging.dir(), &manifest, &rows, &statistics)?;
+    staging.commit()?;
+    Ok((manifest, rows, statistics))
 }

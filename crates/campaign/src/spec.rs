@@ -399,12 +399,15 @@ fn dispersion(
                     ),
                 ));
             }
+            // The sum is the normaliser of the draw: it must be finite (weights of 1e308 each
+            // overflow it, and every probability would read as 0) and positive.
+            let sum = weights.iter().sum::<f64>();
             if weights.iter().any(|w| !(w.is_finite() && *w >= 0.0))
-                || weights.iter().sum::<f64>() <= 0.0
+                || !(sum.is_finite() && sum > 0.0)
             {
                 return Err((
                     format!("{at}.weights"),
-                    "expected weights ≥ 0, not all zero".into(),
+                    "expected weights ≥ 0, not all zero, with a finite sum (they are relative: scale them down)".into(),
                 ));
             }
             (field, unit, Distribution::choice(values, &weights))

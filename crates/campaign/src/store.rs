@@ -180,7 +180,7 @@ pub fn read_json_lines(
             {
                 return Err(err(format!("unknown column {key:?}")));
             }
-            columns
+            let row: Row = columns
                 .iter()
                 .map(|c| {
                     let v = object.get(&c.name);
@@ -202,7 +202,9 @@ pub fn read_json_lines(
                         }
                     })
                 })
-                .collect()
+                .collect::<Result<_, _>>()?;
+            crate::record::check(columns, &row).map_err(err)?;
+            Ok(row)
         })
         .collect()
 }
@@ -345,21 +347,23 @@ pub fn pretty<T: Serialize>(value: &T) -> String {
     serde_json::to_string_pretty(value).unwrap_or_default()
 }
 
-/// Reads the manifest and records of a campaign folder.
-pub fn read_dir(dir: &Path) -> Result<(Manifest, Vec<Row>), CampaignError> {
-    let read = |name: &str| {
-        let path = dir.join(name);
-        std::fs::read_to_string(&path).map_err(|e| CampaignError::Store {
-            path: path.display().to_string(),
-            message: format!(
-                "{e} (expected a campaign folder written by `touchdown campaign --out`)"
-            ),
-        })
-    };
+/// The text of the file `name` of the campaign folder `dir`.
+fn read_file(dir: &Path, name: &str) -> Result<String, CampaignError> {
+    let path = dir.join(name);
+    std::fs::read_to_string(&path).map_err(|e| CampaignError::Store {
+        path: path.display().to_string(),
+        message: format!("{e} (expected a campaign folder written by `touchdown campaign --out`)"),
+    })
+}
+
+/// Reads the manifest of a campaign folder.
+pub fn read_manifest(dir: &Path) -> Result<Manifest, CampaignError> {
     let manifest: Manifest =
-        serde_json::from_str(&read("manifest.json")?).map_err(|e| CampaignError::Store {
-            path: dir.join("manifest.json").display().to_string(),
-            message: format!("not a campaign manifest: {e}"),
+        serde_json::from_str(&read_file(dir, "manifest.json")?).map_err(|e| {
+            CampaignError::Store {
+                path: dir.join("manifest.json").display().to_string(),
+                message: format!("not a campaign manifest: {e}"),
+            }
         })?;
     if manifest.format != FORMAT {
         return Err(CampaignError::Store {
@@ -367,8 +371,14 @@ pub fn read_dir(dir: &Path) -> Result<(Manifest, Vec<Row>), CampaignError> {
             message: format!("format {:?}, expected {FORMAT:?}", manifest.format),
         });
     }
+    Ok(manifest)
+}
+
+/// Reads the manifest and records of a campaign folder.
+pub fn read_dir(dir: &Path) -> Result<(Manifest, Vec<Row>), CampaignError> {
+    let manifest = read_manifest(dir)?;
     let file = dir.join("landings.jsonl").display().to_string();
-    let rows = read_json_lines(&file, &read("landings.jsonl")?, &manifest.columns)?;
+    let rows = read_json_lines(&file, &read_file(dir, "landings.jsonl")?, &manifest.columns)?;
     let span = manifest.part.end_landing - manifest.part.first_landing;
     let indices_ok = rows.len() as u64 == span
         && rows

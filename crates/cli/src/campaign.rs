@@ -1,8 +1,8 @@
 //! `touchdown campaign`: a Monte Carlo campaign of dispersed landings (docs/campaigns.md), its
 //! shards, merges and extensions, and its statistics as text or JSON.
 
+use crate::{out, outln};
 use anyhow::{Context, Result};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use touchdown_campaign::record::Row;
 use touchdown_campaign::store::{self, Manifest};
@@ -62,12 +62,12 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
     };
     let bar = crate::progress_bar(planned, "landings");
     let columns = touchdown_campaign::record::columns(&campaign);
-    let stdout = std::io::stdout();
-    let mut lines = stdout.lock();
+    // The first error writing the records ends the command once the landings have run.
+    let mut unwritten = None;
     let mut each = |row: &Row| {
         bar.inc(1);
-        if output == Output::JsonLines {
-            let _ = writeln!(lines, "{}", store::json_line(&columns, row));
+        if output == Output::JsonLines && unwritten.is_none() {
+            unwritten = outln!("{}", store::json_line(&columns, row)).err();
         }
     };
     let (manifest, rows, statistics) = match add {
@@ -78,6 +78,9 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         None => touchdown_campaign::run::run(&campaign, shard, threads, out, &mut each)?,
     };
     bar.finish_and_clear();
+    if let Some(e) = unwritten {
+        return Err(e);
+    }
     if let (true, Some(dir)) = (plot, out) {
         let boundary = dir.join("boundary.json");
         let _ = std::fs::remove_file(&boundary);
@@ -184,7 +187,7 @@ pub fn merge(parts: &[PathBuf], out: &Path, output: Output) -> Result<()> {
     let (manifest, rows, statistics) = touchdown_campaign::merge(&parts, out)?;
     if output == Output::JsonLines {
         for row in &rows {
-            println!("{}", store::json_line(&manifest.columns, row));
+            outln!("{}", store::json_line(&manifest.columns, row))?;
         }
     }
     report(&manifest, &statistics, output)
@@ -192,11 +195,11 @@ pub fn merge(parts: &[PathBuf], out: &Path, output: Output) -> Result<()> {
 
 fn report(manifest: &Manifest, statistics: &Statistics, output: Output) -> Result<()> {
     match output {
-        Output::JsonLines => println!(
+        Output::JsonLines => outln!(
             "{}",
             serde_json::to_string(&serde_json::json!({ "statistics": statistics }))?
-        ),
-        Output::Text => print!("{}", text(manifest, statistics)),
+        )?,
+        Output::Text => out!("{}", text(manifest, statistics))?,
     }
     Ok(())
 }

@@ -396,7 +396,7 @@ enum CampaignAction {
 #[derive(clap::Args)]
 struct Overrides {
     /// Change one value of the scenario: a field path and a value in the scenario's own units,
-    /// as in the file (`--set touchdown.vertical_velocity=-10.0`, `--set surface.kind=soil`,
+    /// as in the file (`--set touchdown.vertical_velocity=-10.0`, `--set footpad.detached=rigid`,
     /// `--set 'touchdown.attitude[2]=45.0'`); repeatable.
     #[arg(long = "set", value_name = "FIELD=VALUE")]
     set: Vec<Set>,
@@ -525,6 +525,31 @@ fn main() -> std::process::ExitCode {
     }
 }
 
+/// Writes to standard output (`out!` as `print!`, `outln!` as `println!`), flushed, and
+/// returns what stops it (a full disk) as an error naming standard output, where `print!`
+/// panics.
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::write_stdout(format_args!($($arg)*))
+    };
+}
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::write_stdout(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+pub(crate) use {out, outln};
+
+/// What `out!` and `outln!` do.
+pub fn write_stdout(text: std::fmt::Arguments) -> Result<()> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_fmt(text)
+        .and_then(|()| stdout.flush())
+        .context("cannot write to standard output")
+}
+
 /// Prints the scenario's warnings (values legal but outside their usual range) on stderr.
 pub fn warn(sc: &Scenario) {
     for w in sc.warnings() {
@@ -633,7 +658,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             let path = out_file(&out, "", &scenario, "xml")?;
             std::fs::write(&path, xml)
                 .with_context(|| format!("cannot write {}", path.display()))?;
-            println!("wrote {}", path.display());
+            outln!("wrote {}", path.display())?;
             Ok(())
         }
         Command::Validate {
@@ -705,8 +730,9 @@ fn run(cli: Cli) -> Result<Verdict> {
         }
         Command::Completions { shell } => {
             let mut cmd = <Cli as clap::CommandFactory>::command();
-            clap_complete::generate(shell, &mut cmd, "touchdown", &mut std::io::stdout());
-            Ok(())
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut cmd, "touchdown", &mut script);
+            out!("{}", String::from_utf8_lossy(&script))
         }
         Command::Man { out } => man_pages(&out),
         Command::Campaign(args) => {
@@ -774,7 +800,7 @@ fn man_pages(dir: &Path) -> Result<()> {
         write(&format!("touchdown-{}", sub.get_name()), sub.clone())?;
     }
     write("touchdown", cmd)?;
-    println!("wrote the manual pages into {}", dir.display());
+    outln!("wrote the manual pages into {}", dir.display())?;
     Ok(())
 }
 
@@ -849,8 +875,8 @@ fn run_landing(
         std::fs::write(dir.join("summary.json"), &document)?;
     }
     match format {
-        Format::Text => print!("{}", report::text(&sc, &summary, set)),
-        Format::Json => println!("{document}"),
+        Format::Text => out!("{}", report::text(&sc, &summary, set))?,
+        Format::Json => outln!("{document}")?,
     }
     Ok(())
 }
@@ -884,15 +910,15 @@ fn compare(
         }
         // One line per scenario as it finishes (JSON Lines).
         match format {
-            Format::Text => println!("{}", touchdown_compare::report::text(&c)),
-            Format::Json => println!("{document}"),
+            Format::Text => outln!("{}", touchdown_compare::report::text(&c))?,
+            Format::Json => outln!("{document}")?,
         }
     }
     if let Format::Text = format {
-        print!(
+        out!(
             "tolerances\n{}",
             touchdown_compare::report::tolerances_text()
-        );
+        )?;
     }
     Ok(passed)
 }
@@ -954,8 +980,8 @@ fn precision(
         }
     }
     match format {
-        Format::Text => print!("{}", precision::text(&study)),
-        Format::Json => println!("{json}"),
+        Format::Text => out!("{}", precision::text(&study))?,
+        Format::Json => outln!("{json}")?,
     }
     Ok(())
 }
@@ -992,7 +1018,7 @@ fn robustness(
         eprintln!("  {m}")
     })?;
     match format {
-        Format::Text => print!("{}", robustness::text(&r, &chosen)),
+        Format::Text => out!("{}", robustness::text(&r, &chosen))?,
         Format::Json => {
             let options = serde_json::json!({
                 "engines": engines,
@@ -1001,7 +1027,7 @@ fn robustness(
             });
             let settings = settings(&[], options);
             let document = touchdown_record::Document::new("robustness", None, &settings, &r);
-            println!("{}", document.pretty());
+            outln!("{}", document.pretty())?;
         }
     }
     Ok(())

@@ -1,5 +1,6 @@
 //! The validation commands: validate, calibrate, estimate, sensitivity, boundary.
 
+use crate::{out, outln};
 use anyhow::{bail, Context, Result};
 use std::fmt::Write;
 use std::path::Path;
@@ -30,9 +31,9 @@ pub fn validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
         std::fs::write(dir.join("fig-25-26-series.json"), series.line())?;
     }
     if json {
-        println!("{document}");
+        outln!("{document}")?;
     } else {
-        print!("{}", validation_text(&v));
+        out!("{}", validation_text(&v))?;
     }
     Ok(v.targets.held_out_within_10_pct && v.targets.mean_no_worse_than_report)
 }
@@ -192,9 +193,9 @@ pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<boo
         c.finish()?;
     }
     if json {
-        println!("{text}");
+        outln!("{text}")?;
     } else {
-        print!("{}", cross_validation_text(&cv));
+        out!("{}", cross_validation_text(&cv))?;
     }
     Ok(cv.target_met())
 }
@@ -365,16 +366,16 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Res
     let protocol: Protocol = reference::read(&paths.reference("calibration-protocol.toml"))?;
     let record = calibrate::calibrate(&paths, &protocol, rows.as_deref())?;
     let ids: Vec<String> = record.rows.iter().map(u32::to_string).collect();
-    println!(
+    outln!(
         "calibrated on Table I rows {} ({}: {} iterations, objective {:.3e})",
         ids.join(", "),
         record.optimiser,
         record.iterations,
         record.objective
-    );
+    )?;
     let determined = cross_validation::determination(&paths, &record, &protocol.parameter)?;
     for (p, d) in record.parameter.iter().zip(&determined.parameters) {
-        println!(
+        outln!(
             "  {}: {} -> {:.6}  (sd {}, {:.2} of its bounds'; {})",
             p.name,
             p.initial,
@@ -386,7 +387,7 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Res
             } else {
                 "NOT determined by the rows"
             }
-        );
+        )?;
     }
     let undetermined: Vec<&str> = determined
         .parameters
@@ -409,11 +410,11 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Res
         }
     }
     let written = calibrate::write(&paths, &record, out)?;
-    println!(
+    outln!(
         "wrote {} and {}",
         written[0].display(),
         written[1].display()
-    );
+    )?;
     Ok(())
 }
 
@@ -426,19 +427,19 @@ pub fn estimate(root: &Path) -> Result<()> {
         .with_context(|| format!("cannot write {}", path.display()))?;
     let b = &e.best;
     let m = &b.measured;
-    println!(
+    outln!(
         "figure 25-26 landing: Vv = {:.2} ft/s down, Vh = {:.2} ft/s (objective {:.3}; {} landings, {} failed)",
         b.descent_speed_ft_s, b.horizontal_speed_ft_s, b.objective, e.landings, e.failed
-    );
-    println!(
+    )?;
+    outln!(
         "  within 1 of it ({} landings): Vv {:.2}-{:.2} ft/s, Vh {:.2}-{:.2} ft/s",
         e.within_1,
         e.descent_speed_within_1_ft_s[0],
         e.descent_speed_within_1_ft_s[1],
         e.horizontal_speed_within_1_ft_s[0],
         e.horizontal_speed_within_1_ft_s[1]
-    );
-    println!(
+    )?;
+    outln!(
         "  free flight {:.3} s, downhill strike {:.3} s, pitch rate {:+.2} -> {:+.2} rad/s, second stage {:+.3} ft, {:?}",
         m.free_flight_s,
         m.downhill_strike_s,
@@ -446,10 +447,10 @@ pub fn estimate(root: &Path) -> Result<()> {
         m.pitch_rate_after_rad_s,
         m.second_stage_depth_ft,
         m.outcome
-    );
+    )?;
     // Named within the project, so the report reads the same on every machine.
     let shown = path.strip_prefix(root).unwrap_or(&path);
-    println!("wrote {}", shown.display());
+    outln!("wrote {}", shown.display())?;
     Ok(())
 }
 
@@ -462,12 +463,12 @@ pub fn sensitivity(root: &Path, fraction: f64, json: bool) -> Result<()> {
     if json {
         let settings = serde_json::json!({ "fraction": fraction });
         let body = serde_json::json!({ "parameters": table });
-        println!(
+        outln!(
             "{}",
             Document::new("sensitivity", None, &settings, &body).pretty()
-        );
+        )?;
     } else {
-        print!("{}", sensitivity_text(&table, fraction));
+        out!("{}", sensitivity_text(&table, fraction))?;
     }
     Ok(())
 }
@@ -582,15 +583,17 @@ pub fn boundary(
     let id = ScenarioId::new(scenario.display(), &sc);
     let options = boundary::options(&vvs, settings, &vunit, engines, restitutions);
     let settings_json = crate::settings(set, options);
-    // JSON Lines: each point as soon as it and those before it are found.
+    // JSON Lines: each point as soon as it and those before it are found; the first error
+    // writing them ends the command once the search returns.
+    let unwritten = std::sync::Mutex::new(None);
     let stream = |p: &EnginePoint| {
         if format == BoundaryFormat::Json {
-            bar.suspend(|| {
-                println!(
-                    "{}",
-                    boundary::document_line(p, velocity, &id, &settings_json)
-                )
-            });
+            let line = boundary::document_line(p, velocity, &id, &settings_json);
+            if let Err(e) = bar.suspend(|| outln!("{line}")) {
+                if let Ok(mut first) = unwritten.lock() {
+                    first.get_or_insert(e);
+                }
+            }
         }
     };
     let points = boundary::search_engines(
@@ -604,10 +607,13 @@ pub fn boundary(
         &stream,
     )?;
     bar.finish_and_clear();
+    if let Some(e) = unwritten.into_inner().ok().flatten() {
+        return Err(e);
+    }
     match format {
         BoundaryFormat::Json => {}
-        BoundaryFormat::Csv => print!("{}", boundary_csv(&points, velocity)?),
-        BoundaryFormat::Text => print!("{}", boundary_text(&points, &vunit, settings)),
+        BoundaryFormat::Csv => out!("{}", boundary_csv(&points, velocity)?)?,
+        BoundaryFormat::Text => out!("{}", boundary_text(&points, &vunit, settings))?,
     }
     if let Some(dir) = out {
         let lines: Vec<String> = points

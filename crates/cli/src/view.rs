@@ -2,6 +2,7 @@
 //! plays it (docs/engines.md, "Watching the engines land"; docs/outputs.md, "The trajectory
 //! file").
 
+use crate::outln;
 use crate::{load, out_file, warn, Set};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -48,16 +49,16 @@ pub fn view(
     }
     for r in &runs {
         let frames = r.recording.as_ref().map_or(0, |f| f.frames.t_s.len());
-        println!(
+        outln!(
             "{}: {} after {:.4} s, {} steps, {} frames",
             r.engine,
             format!("{:?}", r.summary.outcome).to_lowercase(),
             r.summary.t_end_s,
             r.summary.steps,
             frames
-        );
+        )?;
     }
     let (data, page) = write(dir, (scenario, &sc, set), &runs, frame_interval)?;
-    println!("wrote {}\nwrote {}", data.display(), page.display());
+    outln!("wrote {}\nwrote {}", data.display(), page.display())?;
     Ok(())
 }

@@ -697,6 +697,51 @@ fn output_to_a_closed_pipe_ends_quietly() {
     );
 }
 
+/// Output to a full disk is an error naming standard output (exit 1), not a panic (exit 101),
+/// for every command that writes results on standard output.
+#[cfg(unix)]
+#[test]
+fn output_to_a_full_disk_is_an_error_naming_standard_output() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    for args in [
+        &["run", "scenarios/flat-drop.toml"][..],
+        &["completions", "bash"],
+        &[
+            "campaign",
+            "scenarios/campaigns/small.toml",
+            "--format",
+            "json",
+        ],
+        &[
+            "boundary",
+            "scenarios/table-i-2-2-vv8.toml",
+            "--vv=-8:-8:2",
+            "--vh-step",
+            "8",
+            "--vh-max",
+            "8",
+            "--format",
+            "json",
+        ],
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_touchdown"))
+            .args(args)
+            .current_dir(root())
+            .stdout(full.try_clone().unwrap())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains("error: cannot write to standard output: No space left on device"),
+            "{args:?}: {err}"
+        );
+    }
+}
+
 /// A time step the engine refuses is blamed on the argument that set it.
 #[test]
 fn a_refused_timestep_names_the_argument() {

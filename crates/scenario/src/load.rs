@@ -458,7 +458,7 @@ impl ScenarioBase {
 /// The value at the field path `field` (`a.b[2].c`) of `root`, if there is one.
 fn field_at<'a>(root: &'a toml::Value, field: &str) -> Option<&'a toml::Value> {
     let mut node = root;
-    for (key, index) in path_keys(field) {
+    for (key, index) in path_keys(field).ok()? {
         node = node.get(key)?;
         if let Some(i) = index {
             node = node.get(i)?;
@@ -467,13 +467,43 @@ fn field_at<'a>(root: &'a toml::Value, field: &str) -> Option<&'a toml::Value> {
     Some(node)
 }
 
-/// The keys of a field path `a.b[2].c`: (key, optional array index) pairs.
-fn path_keys(field: &str) -> Vec<(&str, Option<usize>)> {
+/// Parts a field path may have: the schema's deepest fields have 4
+/// (`primary_strut.compression.stages[0].crush_load`); a longer path names no field, and
+/// refusing it here keeps a hostile one (tens of thousands of parts) from nesting tables
+/// deeper than the reader's stack.
+const MAX_PATH_PARTS: usize = 16;
+
+/// The keys of a field path `a.b[2].c`: (key, optional array index) pairs; `Err` says why the
+/// text is not a field path (an empty key, an index that is not a whole number in brackets,
+/// more than [`MAX_PATH_PARTS`] parts).
+fn path_keys(field: &str) -> Result<Vec<(&str, Option<usize>)>, String> {
+    let parts = field.split('.').count();
+    if parts > MAX_PATH_PARTS {
+        return Err(format!(
+            "a field path of {parts} parts: no field is deeper than {MAX_PATH_PARTS}"
+        ));
+    }
     field
         .split('.')
-        .map(|k| match k.split_once('[') {
-            Some((key, rest)) => (key, rest.trim_end_matches(']').parse().ok()),
-            None => (k, None),
+        .map(|k| {
+            let (key, index) = match k.split_once('[') {
+                Some((key, rest)) => {
+                    let index = rest
+                        .strip_suffix(']')
+                        .and_then(|i| i.parse::<usize>().ok())
+                        .ok_or_else(|| {
+                            format!("`{k}`: expected an index as a whole number in brackets, such as `legs[0]`")
+                        })?;
+                    (key, Some(index))
+                }
+                None => (k, None),
+            };
+            if key.is_empty() {
+                return Err(format!(
+                    "`{field}` has an empty key: expected keys joined by dots, such as `touchdown.vertical_velocity`"
+                ));
+            }
+            Ok((key, index))
         })
         .collect()
 }
@@ -493,7 +523,7 @@ pub fn set_field(table: &mut toml::Table, field: &str, value: f64) -> Result<(),
 /// Why `field` cannot be overridden, if it cannot: what decides how the file is read, not a
 /// value of the landing.
 fn not_overridable(field: &str) -> Option<String> {
-    let head = path_keys(field).first().map(|(k, _)| *k).unwrap_or("");
+    let head = field.split(['.', '[']).next().unwrap_or("");
     match head {
         "extends" => Some("`extends` is merged when the file is read; an override cannot change which file is extended (write a file that extends the other)".into()),
         "units" => Some("the units decide how every number of the file is read; an override cannot change them (write the file in the other units)".into()),
@@ -534,7 +564,7 @@ fn set_path(
     if number_only && !matches!(value, toml::Value::Float(_) | toml::Value::Integer(_)) {
         return Err(format!("expected a number, got {}", kind_of(value)));
     }
-    let keys = path_keys(field);
+    let keys = path_keys(field)?;
     let mut node = table;
     for (n, (key, index)) in keys.iter().enumerate() {
         let last = n + 1 == keys.len();
@@ -583,7 +613,9 @@ fn set_path(
 
 /// Records an override in its own layer table (for naming the overrides in messages).
 fn set_path_creating(table: &mut toml::Table, field: &str, value: &toml::Value) {
-    let keys = path_keys(field);
+    let Ok(keys) = path_keys(field) else {
+        return;
+    };
     let mut node = table;
     for (key, _) in &keys[..keys.len() - 1] {
         node = node

@@ -728,4 +728,17 @@ fn an_override_takes_arrays_tables_and_per_leg_values_as_an_extending_file_would
         assert_eq!(got, field);
         assert!(message.contains(says), "{field}: {message}");
     }
+    // Paths that are not field paths: refused by what is wrong with them, never nested (a
+    // 60,000-part path used to overflow the stack).
+    let deep = vec!["a"; 60_000].join(".");
+    for (field, says) in [
+        (deep.as_str(), "60000 parts"),
+        ("touchdown..vertical_velocity", "empty key"),
+        ("surface.hole[x]", "whole number in brackets"),
+        ("surface.hole[1", "whole number in brackets"),
+    ] {
+        let (_, got, message) = field_error(base.with(&[(field, Value::Float(1.0))]));
+        assert_eq!(got, field);
+        assert!(message.contains(says), "{message}");
+    }
 }

@@ -22,8 +22,10 @@ pub fn page(title: &str, trajectory_json: &str) -> String {
         "TITLE" => Some(escape_html(title)),
         "UPLOT_CSS" => Some(UPLOT_CSS.to_string()),
         "VIEW_CSS" => Some(VIEW_CSS.to_string()),
-        // The embedded JSON cannot close its <script> element.
-        "TRAJECTORY_JSON" => Some(trajectory_json.replace("</", "<\\/")),
+        // The embedded JSON holds no `<` (JSON has it only inside strings, where `\u003c`
+        // reads the same), so it can neither close its <script> element (`</script>`) nor
+        // open a comment that swallows the rest of the page (`<!--<script>`).
+        "TRAJECTORY_JSON" => Some(trajectory_json.replace('<', "\\u003c")),
         "UPLOT_JS" => Some(licence.clone() + UPLOT_JS),
         "VIEW_JS" => Some(VIEW_JS.to_string()),
         _ => None,
@@ -67,10 +69,11 @@ mod tests {
     /// licence travels with it.
     #[test]
     fn fills_every_placeholder() {
-        let html = page("a <b> & c", r#"{"scenario_name": "</script>"}"#);
+        let html = page("a <b> & c", r#"{"scenario_name": "</script><!--<script>"}"#);
         assert!(!html.contains("{{"), "a placeholder is left");
         assert!(html.contains("a &lt;b&gt; &amp; c"));
-        assert!(html.contains(r#"{"scenario_name": "<\/script>"}"#));
+        assert!(html.contains(r#"{"scenario_name": "\u003c/script>\u003c!--\u003cscript>"}"#));
+        assert!(!html.contains("<!--"), "the page holds a comment opener");
         assert!(html.contains("Permission is hereby granted"));
         for remote in ["src=\"http", "href=\"http", "src='http", "@import"] {
             assert!(!html.contains(remote), "the page loads {remote}...");
