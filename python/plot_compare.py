@@ -443,19 +443,23 @@ def traces(args: argparse.Namespace) -> None:
     subtitle = "the engines overlaid"
     if verdicts is not None and verdicts["pairs"]:
 
+        drawn = {name for _, _, _, channels in panels for name, _ in channels}
+
         def verdict(p) -> str:
+            """PASS, or FAIL naming the channels that fail (those not drawn marked so): a
+            failure the panels do not show is named where the reader looks first."""
             if p["pass"]:
                 return "PASS"
-            why = []
-            failed = sum(not ch["pass"] for ch in p["channels"].values())
-            if failed:
-                why.append(f"{failed} of {len(p['channels'])} channels")
+            failed = [name for name, ch in p["channels"].items() if not ch["pass"]]
+            named = [name.replace("_", " ") + ("" if name in drawn else " (not drawn)") for name in failed[:3]]
+            if len(failed) > 3:
+                named.append(f"{len(failed) - 3} more")
             if not p["outcome_agrees"]:
-                why.append("outcomes differ")
-            return f"FAIL ({', '.join(why)})" if why else "FAIL"
+                named.insert(0, "outcomes differ")
+            return f"FAIL on {', '.join(named)}" if named else "FAIL"
 
-        overall = ", ".join(f"{engine_name(p['a'])}–{engine_name(p['b'])} {verdict(p)}" for p in verdicts["pairs"])
-        subtitle = f"every channel of the comparison (the plotted ones beside each panel): {overall}"
+        overall = "\n".join(f"{engine_name(p['a'])}–{engine_name(p['b'])} {verdict(p)}" for p in verdicts["pairs"])
+        subtitle = f"every channel of the comparison (touchdown compare's text has them all):\n{overall}"
     fig.suptitle(f"{title}\n{subtitle}", fontsize=11)
     fig.savefig(args.out, dpi=DPI, metadata=PNG_METADATA)
 

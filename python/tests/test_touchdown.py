@@ -74,6 +74,28 @@ def test_mujoco_runs_from_the_package_with_no_variable(monkeypatch):
     assert engines == ["core", "rapier", "mujoco"]
 
 
+def test_mujoco_runs_from_the_package_installed_elsewhere_with_no_variable(tmp_path):
+    """The package as pip installs it, outside the project (a copy of python/touchdown with its
+    native module), run from a folder outside the project with no TOUCHDOWN_* variable: it
+    finds the project it was built from, its MuJoCo library and its runner."""
+    import os
+    import shutil
+
+    site = tmp_path / "site-packages"
+    shutil.copytree(ROOT / "python" / "touchdown", site / "touchdown", ignore=shutil.ignore_patterns("__pycache__"))
+    env = {k: v for k, v in os.environ.items() if not k.startswith("TOUCHDOWN_")}
+    env["PYTHONPATH"] = str(site)
+    code = (
+        "import touchdown; "
+        "print(touchdown.__file__); "
+        f"print(touchdown.run({str(ROOT / 'scenarios' / 'flat-drop.toml')!r}, engine='mujoco')['summary']['engine'])"
+    )
+    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    module, engine = out.stdout.split()
+    assert module.startswith(str(site)) and engine == "mujoco"
+
+
 def test_a_path_that_names_no_file_is_file_not_found(tmp_path, monkeypatch):
     """A one-line string is a path (scenario text spans lines): a missing file raises
     FileNotFoundError naming the path and the working directory, never a TOML error."""
@@ -95,6 +117,10 @@ def test_errors_carry_the_file_field_and_cause():
     with pytest.raises(touchdown.ScenarioInvalid) as e:
         touchdown.run(SCENARIO, overrides={"touchdown.vertical_velocity": float("nan")})
     assert e.value.field == "touchdown.vertical_velocity"
+    # A hostile field path (60,000 parts) is refused, never nested past the stack.
+    with pytest.raises(touchdown.ScenarioInvalid) as e:
+        touchdown.run(SCENARIO, overrides={".".join(["a"] * 60_000): 1.0})
+    assert "a field path of 60000 parts" in e.value.message
     with pytest.raises(touchdown.TouchdownError):
         touchdown.run(SCENARIO, engine="bullet")
 

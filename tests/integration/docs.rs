@@ -200,12 +200,12 @@ fn every_link_of_the_docs_reaches_a_file_and_section_of_the_repository() {
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
 
-/// The README names every bundled scenario (each file under scenarios/, by its path there), so
-/// a new scenario cannot go unlisted.
+/// scenarios/README.md names every bundled scenario (each file under scenarios/, by its path
+/// there), so a new scenario cannot go unlisted.
 #[test]
-fn the_readme_lists_every_bundled_scenario() {
+fn the_scenario_list_names_every_bundled_scenario() {
     let root = touchdown_tests::root();
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let readme = std::fs::read_to_string(root.join("scenarios/README.md")).unwrap();
     let scenarios = root.join("scenarios");
     let mut missing: Vec<String> = files_under(&scenarios, "toml")
         .iter()
@@ -220,6 +220,6 @@ fn the_readme_lists_every_bundled_scenario() {
     missing.sort();
     assert!(
         missing.is_empty(),
-        "scenarios the README does not list: {missing:?}"
+        "scenarios scenarios/README.md does not list: {missing:?}"
     );
 }
