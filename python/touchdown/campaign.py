@@ -24,8 +24,11 @@ def merge(parts: Iterable[Union[str, PathLike]], out_dir: Union[str, PathLike]) 
 
 
 def shard_dir(out_dir: Union[str, PathLike], k: int, n: int) -> Path:
-    """The folder of shard `k` of `n` under a campaign's `out_dir`."""
-    return Path(out_dir) / "shards" / f"shard-{k}-of-{n}"
+    """The folder of shard `k` of `n` of the campaign merged into `out_dir`: beside it, under
+    `<out_dir>.shards/`, since a campaign's folder holds the campaign's files only (the merge
+    replaces it whole)."""
+    out = Path(out_dir)
+    return out.with_name(out.name + ".shards") / f"shard-{k}-of-{n}"
 
 
 def run_shard_atomically(campaign: str, k: int, n: int, out_dir: str) -> str:

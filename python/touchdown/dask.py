@@ -32,7 +32,7 @@ def run_campaign(
     progress: bool = True,
 ) -> Path:
     """Runs the campaign file `campaign` as `shards` shards on the cluster of `client` and
-    merges them into `out_dir` (the shards' folders under `out_dir/shards/`). Size the shards
+    merges them into `out_dir` (the shards' folders beside it, under `<out_dir>.shards/`). Size the shards
     so that each task lasts seconds (Dask's overhead is about a millisecond a task). Returns
     `out_dir`."""
     if shards < 1:
