@@ -230,7 +230,7 @@ def test_a_comparison_is_the_command_lines():
     assert py == json.loads(cli.stdout)  # the one line of JSON Lines, for one scenario
     assert [e["name"] for e in py["engines"]] == ["core", "rapier"]
     assert py["schema"] == "touchdown.compare/1" and py["settings"]["engines"] == ["core", "rapier"]
-    with pytest.raises(touchdown.TouchdownError, match="at least two engines"):
+    with pytest.raises(touchdown.TouchdownError, match=r"at least two engines to compare \(got core\)$"):
         touchdown.compare(flat, engines=["core", "core"])
 
 
@@ -279,6 +279,10 @@ def test_a_boundary_is_the_command_lines_and_overrides_move_it():
     # Once per end-stop law, each point naming its law.
     laws = touchdown.boundary(SCENARIO, vv=[-8.0], vh_step=4.0, vh_max=16.0, stop_restitution=[0.5, 1.0])
     assert [p["stop_restitution"] for p in laws] == [0.5, 1.0]
+    # One vertical velocity may be given as a number.
+    [one] = touchdown.boundary(SCENARIO, vv=-8.0, vh_step=4.0, vh_max=16.0)
+    assert one["settings"]["vv_ft_s"] == [-8.0]
+    assert {k: v for k, v in one.items() if k != "settings"} == {k: v for k, v in py[0].items() if k != "settings"}
     assert laws[0]["settings"]["stop_restitution"] == [0.5, 1.0]
     with pytest.raises(ValueError, match="vh_step"):
         touchdown.boundary(SCENARIO, vv=[-8.0], vh_step=0.0)

@@ -110,7 +110,7 @@ def view(
 
 def boundary(
     scenario: Union[str, PathLike],
-    vv: Sequence[float],
+    vv: Union[float, Sequence[float]],
     vh_start: float = 0.0,
     vh_step: float = 2.0,
     vh_max: float = 30.0,
@@ -122,7 +122,8 @@ def boundary(
 ) -> list:
     """The report's stability-boundary search of `scenario` (a path, or TOML text) with
     `overrides`, as `touchdown boundary --format json` does: at each vertical velocity of `vv`
-    (negative down, as the scenario files write `touchdown.vertical_velocity`), the horizontal
+    (negative down, as the scenario files write `touchdown.vertical_velocity`; one number or a
+    list), the horizontal
     speeds on the grid `vh_start`, `vh_start + vh_step`, ... up to `vh_max`, scanned every
     `scan_step` around the changes the grid finds (None: 0.25 when below `vh_step`; 0: the grid
     only), every change of outcome and the first speed past a strut's capacity bisected to
@@ -133,6 +134,8 @@ def boundary(
     none), `stable_at_vh_m_s`, `unstable_at_vh_m_s`, `transitions` (each end with its
     `stable_stops` / `unstable_stops`), `band`, `capacity`, `safe`, `undecided_at_vh_m_s`,
     `landings`, `undecided`, with the scenario and the settings."""
+    if isinstance(vv, (int, float)):
+        vv = [vv]  # one vertical velocity, as a list of one
     lines = _native.boundary(
         str(scenario),
         [float(v) for v in vv],

@@ -89,7 +89,7 @@ impl CampaignError {
     pub fn file(e: &touchdown_scenario::ScenarioError) -> Self {
         use touchdown_scenario::ScenarioError as S;
         let (file, message) = match e {
-            S::Io { file, source } => (file, source.to_string()),
+            S::Io { file, cause } => (file, cause.to_string()),
             S::TooLarge { file, bytes, most } => (
                 file,
                 format!("the file is {bytes} bytes; a campaign file is at most {most}"),

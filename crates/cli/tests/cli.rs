@@ -247,6 +247,13 @@ fn bad_input_fails_with_the_file_and_field() {
         "{err}"
     );
     assert!(out.stdout.is_empty(), "nothing is written on failure");
+    // A missing file: its path and the cause, once.
+    let out = touchdown(&["run", "scenarios/nope.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        err.trim(),
+        "error: scenarios/nope.toml: cannot read the scenario file: No such file or directory (os error 2)"
+    );
 }
 
 #[test]

@@ -46,7 +46,7 @@ pub enum CompareError {
         message: String,
     },
     /// Fewer than two distinct engines asked for.
-    #[error("name at least two engines to compare (got {0:?})")]
+    #[error("name at least two engines to compare (got {})", if .0.is_empty() { "none".to_string() } else { names(.0) })]
     TooFewEngines(Vec<Engine>),
     /// A setting out of its range, named as the command line names it (`--frame-interval`).
     #[error("{argument}: expected {expected}, got {got}")]

@@ -46,8 +46,8 @@ pyo3::create_exception!(
 
 /// The exception of a scenario error, with its file and field as attributes.
 fn scenario_error(py: Python<'_>, e: &ScenarioError) -> PyErr {
-    if let ScenarioError::Io { file, source } = e {
-        if source.kind() == std::io::ErrorKind::NotFound {
+    if let ScenarioError::Io { file, cause } = e {
+        if cause.kind() == std::io::ErrorKind::NotFound {
             let cwd = std::env::current_dir()
                 .map(|d| d.display().to_string())
                 .unwrap_or_else(|_| "?".into());

@@ -5,11 +5,9 @@
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
     /// The file could not be read.
-    #[error("{file}: cannot read the scenario file: {source}")]
-    Io {
-        file: String,
-        source: std::io::Error,
-    },
+    /// (`cause` is part of the message, not a chained source, so that it reads once.)
+    #[error("{file}: cannot read the scenario file: {cause}")]
+    Io { file: String, cause: std::io::Error },
     /// The file is larger than any scenario file: `bytes` over the limit `most`.
     #[error("{file}: cannot read the scenario file: the file is {} bytes; a scenario file is at most {} bytes", crate::units::short(*bytes as f64), crate::units::short(*most as f64))]
     TooLarge { file: String, bytes: u64, most: u64 },

@@ -65,9 +65,9 @@ pub fn read_toml(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError> {
 fn read_table(path: &Path) -> Result<toml::Table, ScenarioError> {
     use std::io::Read;
     let file = path.display().to_string();
-    let io = |source: std::io::Error| ScenarioError::Io {
+    let io = |cause: std::io::Error| ScenarioError::Io {
         file: file.clone(),
-        source,
+        cause,
     };
     let not_a_file = |kind: &str| ScenarioError::NotAFile {
         file: file.clone(),
@@ -171,8 +171,8 @@ fn load_merged(path: &Path, depth: usize) -> Result<Merged, ScenarioError> {
     let mut base = load_merged(&parent_path, depth + 1).map_err(|e| match e {
         ScenarioError::Io {
             file: missing,
-            source,
-        } => ScenarioError::field(&file, "extends", format!("cannot read {missing}: {source}")),
+            cause,
+        } => ScenarioError::field(&file, "extends", format!("cannot read {missing}: {cause}")),
         ScenarioError::NotAFile { file: target, kind } => ScenarioError::field(
             &file,
             "extends",
