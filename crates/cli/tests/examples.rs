@@ -3,15 +3,9 @@
 //! README's prose. They run from a fresh folder holding only `scenarios/` (as the project's
 //! folder does), with `TOUCHDOWN_HOME` set as the README's quick start sets it.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .unwrap()
-}
+use touchdown_tests::{python, root};
 
 /// A fresh working folder where the examples' relative paths (`scenarios/...`) resolve.
 fn workspace() -> tempfile::TempDir {
@@ -28,16 +22,6 @@ fn command(program: &Path, args: &[String], cwd: &Path) -> Output {
         .env("TOUCHDOWN_HOME", root())
         .output()
         .unwrap_or_else(|e| panic!("{} does not run: {e}", program.display()))
-}
-
-fn python() -> PathBuf {
-    let python = root().join(".venv/bin/python");
-    assert!(
-        python.is_file(),
-        "{} is missing: run scripts/setup-python",
-        python.display()
-    );
-    python
 }
 
 /// The lines of `text`'s code blocks indented by four spaces, and the bodies of its fenced
@@ -193,24 +177,20 @@ fn the_help_and_readme_option_examples_run_as_shown() {
         args.push("--help".into());
         String::from_utf8(command(touchdown, &args, dir.path()).stdout).unwrap()
     };
-    let commands = [
-        "run",
-        "compare",
-        "view",
-        "precision",
-        "robustness",
-        "export-mjcf",
-        "validate",
-        "calibrate",
-        "estimate",
-        "sensitivity",
-        "boundary",
-        "campaign",
-        "completions",
-        "man",
-    ];
-    let mut text = help(&[]);
-    for c in commands {
+    // Every subcommand `touchdown --help` lists.
+    let top = help(&[]);
+    let commands: Vec<&str> = top
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter(|l| l.as_bytes().get(2).is_some_and(|b| b.is_ascii_lowercase()))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(commands.len() >= 14, "{commands:?}");
+    let mut text = top.clone();
+    for c in &commands {
         text += &help(&[c]);
     }
     text += &std::fs::read_to_string(root().join("README.md")).unwrap();
