@@ -428,7 +428,7 @@ fn with_stops(e: f64) -> Scenario {
 /// `laws::honeycomb::tests::a_plastic_stop_is_the_limit_of_small_restitutions`). The maxima of
 /// this rocking landing are not compared across e: they move by up to 9 % between e = 0.001 and
 /// 0.01, which the landing's sensitivity, not the law, decides. The multibody engines refuse
-/// stops less elastic than `touchdown_multibody::strut::MIN_STOP_RESTITUTION`, naming the field.
+/// stops less elastic than `touchdown_multibody::step::MIN_STOP_RESTITUTION`, naming the field.
 #[test]
 fn a_plastic_stop_lands_on_the_core_and_is_refused_where_unresolved() {
     let plastic = touchdown_core::run(&with_stops(0.0)).unwrap();

@@ -83,14 +83,23 @@ pub fn gear_modes(sc: &Scenario, laws: &GearLaws) -> [Mode; 2] {
     ]
 }
 
-/// The stiffer of [`gear_modes`].
-pub fn stiffest_mode(sc: &Scenario, laws: &GearLaws) -> Mode {
-    let [a, b] = gear_modes(sc, laws);
-    if b.omega > a.omega {
-        b
+/// A multibody engine's fixed time step: `stated` (the value of the scenario field `field`) as
+/// stated, else [`STEP_PER_MODE`] over the stiffest of [`gear_modes`]; checked
+/// ([`check_step`]). Returns the step, s, and the stiffest mode.
+fn time_step(
+    sc: &Scenario,
+    stated: Option<f64>,
+    field: &str,
+) -> Result<(f64, Mode), ScenarioError> {
+    let modes = gear_modes(sc, &GearLaws::from_scenario(sc)?);
+    let stiffest = if modes[1].omega > modes[0].omega {
+        modes[1]
     } else {
-        a
-    }
+        modes[0]
+    };
+    let dt = stated.unwrap_or(STEP_PER_MODE / stiffest.omega);
+    check_step(sc, &modes, dt, field, stated.is_some())?;
+    Ok((dt, stiffest))
 }
 
 /// The settings of a rapier landing, SI.
@@ -111,17 +120,8 @@ impl RapierSettings {
     /// `sc`'s rapier settings: each stated one as stated, each other derived (module doc),
     /// the step checked against the run budget and the stiffest gear mode.
     pub fn new(sc: &Scenario) -> Result<RapierSettings, ScenarioError> {
-        let laws = GearLaws::from_scenario(sc)?;
-        let mode = stiffest_mode(sc, &laws);
         let r = &sc.rapier;
-        let timestep = r.timestep.unwrap_or(STEP_PER_MODE / mode.omega);
-        check_step(
-            sc,
-            &laws,
-            timestep,
-            "engines.rapier.timestep",
-            r.timestep.is_some(),
-        )?;
+        let (timestep, mode) = time_step(sc, r.timestep, "engines.rapier.timestep")?;
         Ok(RapierSettings {
             timestep,
             contact_frequency: r
@@ -151,18 +151,8 @@ impl MujocoSettings {
     /// the step checked against the run budget and the stiffest gear mode, the contact time
     /// constant against MuJoCo's floor of twice the step.
     pub fn new(sc: &Scenario) -> Result<MujocoSettings, ScenarioError> {
-        let laws = GearLaws::from_scenario(sc)?;
         let m = &sc.mujoco;
-        let timestep = m
-            .timestep
-            .unwrap_or(STEP_PER_MODE / stiffest_mode(sc, &laws).omega);
-        check_step(
-            sc,
-            &laws,
-            timestep,
-            "engines.mujoco.timestep",
-            m.timestep.is_some(),
-        )?;
+        let (timestep, _) = time_step(sc, m.timestep, "engines.mujoco.timestep")?;
         let contact_timeconst = m.contact_timeconst.unwrap_or(TIMECONST_PER_STEP * timestep);
         if contact_timeconst < TIMECONST_PER_STEP * timestep {
             let field = "engines.mujoco.contact_timeconst";
@@ -188,7 +178,7 @@ impl MujocoSettings {
 }
 
 /// Checks a multibody engine's fixed time step `dt` (s) against the run budget
-/// (`integrator.max_steps` steps to `integrator.t_end`) and the stiffest explicit strut law
+/// (`integrator.max_steps` steps to `integrator.t_end`) and the explicit gear `modes`
 /// ([`gear_modes`]). (The obstacle walls are built no stiffer than the step resolves,
 /// `crate::wall`, so they never refuse it.) The error, on the scenario field `field` that sets
 /// the step (`stated`: the file states it; otherwise it was derived), says which mode is too
@@ -196,7 +186,7 @@ impl MujocoSettings {
 /// is refused on its field.
 fn check_step(
     sc: &Scenario,
-    laws: &GearLaws,
+    modes: &[Mode; 2],
     dt: f64,
     field: &str,
     stated: bool,
@@ -232,7 +222,7 @@ fn check_step(
             ),
         ));
     }
-    for Mode { what, omega } in gear_modes(sc, laws) {
+    for &Mode { what, omega } in modes {
         if omega * dt > MAX_OMEGA_DT {
             return Err(ScenarioError::field(
                 sc.file_of(field),
