@@ -823,7 +823,7 @@ fn run_landing(
             anyhow::bail!("--timestep: expected a positive number of seconds, got {t:e}");
         }
         // In the file's time unit (its [similarity] applied), as the file would state it.
-        let step = Some(t / sc.units.time());
+        let step = Some(t / sc.units().time());
         let changed = match engine {
             Engine::Core => anyhow::bail!(
                 "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"

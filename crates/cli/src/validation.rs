@@ -579,7 +579,7 @@ pub fn boundary(
     let bar = crate::progress_bar(0, "landings");
     let overrides = crate::overrides(set);
     let vunit = format!("{}/s", sc.file.units.length_label());
-    let velocity = sc.units.velocity();
+    let velocity = sc.units().velocity();
     let id = ScenarioId::new(scenario.display(), &sc);
     let options = boundary::options(&vvs, settings, &vunit, engines, restitutions);
     let settings_json = crate::settings(set, options);

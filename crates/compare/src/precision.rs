@@ -98,7 +98,7 @@ impl Method {
         sc: &Scenario,
         value: f64,
     ) -> Result<Scenario, touchdown_scenario::ScenarioError> {
-        let time = sc.units.time();
+        let time = sc.units().time();
         let sc = sc.clone();
         match self {
             Method::Report => sc.with_integrator(|it| {
@@ -228,7 +228,7 @@ pub fn reference_level(
     level: usize,
 ) -> Result<Scenario, touchdown_scenario::ScenarioError> {
     let rtol = 1.0e-9 / 10f64.powi(level as i32);
-    let time = sc.units.time();
+    let time = sc.units().time();
     sc.clone().with_integrator(|it| {
         it.scheme = Scheme::Dopri5;
         it.rtol = rtol;

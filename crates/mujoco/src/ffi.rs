@@ -161,7 +161,7 @@ pub unsafe extern "C" fn touchdown_mujoco_open(
         let mut sc = Scenario::load(Path::new(path))?;
         sc.require_engine(Engine::Mujoco, crate::unsupported)?;
         if timestep > 0.0 {
-            let seconds = sc.units.time();
+            let seconds = sc.units().time();
             sc = sc.with_mujoco(|m| m.timestep = Some(timestep / seconds))?;
         }
         r.xml = Some(

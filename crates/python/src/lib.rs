@@ -384,7 +384,7 @@ fn boundary(
             &values,
             options(&vv, settings, &unit, &engines, &stop_restitution),
         );
-        let velocity = sc.units.velocity();
+        let velocity = sc.units().velocity();
         Ok(points
             .iter()
             .map(|p| document_line(p, velocity, &id, &settings))

@@ -336,18 +336,16 @@ impl Scenario {
         toml::to_string(&self.file).expect("a scenario always serialises")
     }
 
+    /// The units the file's numbers were read in ([`ScenarioFile::read_units`]).
+    pub fn units(&self) -> Units {
+        self.file.read_units()
+    }
+
     /// SHA-256 of the resolved scenario ([`Scenario::to_toml`]), hex: what identifies a
     /// scenario in exported models and comparison snapshots.
     pub fn sha256(&self) -> String {
         use sha2::{Digest, Sha256};
-        use std::fmt::Write;
-        Sha256::digest(self.to_toml().as_bytes()).iter().fold(
-            String::with_capacity(64),
-            |mut s, b| {
-                let _ = write!(s, "{b:02x}");
-                s
-            },
-        )
+        format!("{:x}", Sha256::digest(self.to_toml().as_bytes()))
     }
 
     /// The file of the `extends` chain that sets `field` (a path such as
@@ -825,7 +823,7 @@ impl Scenario {
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.rapier);
         let c = Check::new(&self.layers);
-        let rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.units)?;
+        let rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.units())?;
         let warnings = c.into_warnings();
         self.rapier = rapier;
         self.replace_warnings("engines.rapier.", warnings);
@@ -841,7 +839,7 @@ impl Scenario {
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.integrator);
         let c = Check::new(&self.layers);
-        let integrator = resolve_integrator(&c, &self.file.integrator, &self.units)?;
+        let integrator = resolve_integrator(&c, &self.file.integrator, &self.units())?;
         let warnings = c.into_warnings();
         self.integrator = integrator;
         self.replace_warnings("integrator.", warnings);
@@ -856,7 +854,7 @@ impl Scenario {
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.mujoco);
         let c = Check::new(&self.layers);
-        let mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.units)?;
+        let mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.units())?;
         let warnings = c.into_warnings();
         self.mujoco = mujoco;
         self.replace_warnings("engines.mujoco.", warnings);
@@ -1327,14 +1325,12 @@ fn resolve(
             format!("expected {SCHEMA_VERSION}, got {}", file.schema_version),
         ));
     }
-    let u = match &file.similarity {
-        None => file.units,
-        Some(s) => file.units.similar(
-            c.positive_si("similarity.length", s.length, 1.0)?,
-            c.positive_si("similarity.mass", s.mass, 1.0)?,
-            c.positive_si("similarity.time", s.time, 1.0)?,
-        ),
-    };
+    if let Some(s) = &file.similarity {
+        c.positive_si("similarity.length", s.length, 1.0)?;
+        c.positive_si("similarity.mass", s.mass, 1.0)?;
+        c.positive_si("similarity.time", s.time, 1.0)?;
+    }
+    let u = file.read_units();
     let vehicle = model::Vehicle {
         mass: c.positive_si("vehicle.mass", file.vehicle.mass, u.mass())?,
         inertia: inertia(&c, &file.vehicle.inertia, &u)?,
@@ -1514,7 +1510,6 @@ fn resolve(
     Ok(Scenario {
         source: source.to_string(),
         layers,
-        units: u,
         file,
         vehicle,
         arrangement,

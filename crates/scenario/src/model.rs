@@ -4,7 +4,6 @@ use crate::error::Warning;
 use crate::schema::{
     self, Arrangement, AttitudeReference, CountedEnergy, ReleaseRule, ScenarioFile, WallRule,
 };
-use crate::units::Units;
 use nalgebra::{Matrix3, Vector3};
 
 /// A validated scenario in SI units (m, kg, N, s, rad).
@@ -14,9 +13,6 @@ pub struct Scenario {
     pub source: String,
     /// The merged file with every default written out (in the file's units), for `--out`.
     pub file: ScenarioFile,
-    /// The units the file's numbers were read in: its `[units]` with its `[similarity]`
-    /// applied (one file unit in SI; `file.units` without the similarity names the units).
-    pub units: Units,
     /// Rigid vehicle.
     pub vehicle: Vehicle,
     /// Gear arrangement (fig. 4).

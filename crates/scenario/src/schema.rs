@@ -84,6 +84,18 @@ pub struct Similarity {
     pub time: f64,
 }
 
+impl ScenarioFile {
+    /// The units the file's numbers are read in: its `[units]` with its `[similarity]` applied
+    /// (one file unit in SI; `units` alone names them). The ratios are checked positive when
+    /// the file is resolved.
+    pub fn read_units(&self) -> Units {
+        match &self.similarity {
+            None => self.units,
+            Some(s) => self.units.similar(s.length, s.mass, s.time),
+        }
+    }
+}
+
 /// The idealised rigid vehicle (report M, I, g).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -123,7 +123,6 @@ pub(crate) fn counted<T>(
 /// the program itself and everything it reads.
 pub fn key_of(inputs: &[PathBuf]) -> Result<String, ValidationError> {
     use sha2::{Digest, Sha256};
-    use std::fmt::Write;
     let mut hash = Sha256::new();
     for input in inputs {
         let mut files = Vec::new();
@@ -137,10 +136,7 @@ pub fn key_of(inputs: &[PathBuf]) -> Result<String, ValidationError> {
             hash.update(&bytes);
         }
     }
-    Ok(hash.finalize().iter().fold(String::new(), |mut s, b| {
-        let _ = write!(s, "{b:02x}");
-        s
-    }))
+    Ok(format!("{:x}", hash.finalize()))
 }
 
 /// Every file at or under `path`.

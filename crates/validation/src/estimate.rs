@@ -176,7 +176,7 @@ pub fn estimate(paths: &Paths) -> Result<Estimate, ValidationError> {
         )));
     }
     // Speeds in ft/s, the file in its own length unit.
-    let per_file_unit = FOOT / sc.units.velocity();
+    let per_file_unit = FOOT / sc.units().velocity();
     let (dx, dy) = (hx / norm, hy / norm);
     let vvs = protocol.descent_speed.values("descent_speed")?;
     let vhs = protocol.horizontal_speed.values("horizontal_speed")?;
