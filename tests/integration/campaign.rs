@@ -310,6 +310,16 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "field `dispersion[0].unit`: \"m/s\": the scenario states lengths in ft",
         ),
         (
+            "unit = \"ft/s\"\ndistribution = \"normal\"",
+            "unit = \"ft\"\ndistribution = \"normal\"",
+            "field `dispersion[0].unit`: \"ft\" is a length, but `touchdown.vertical_velocity` is a length/time: write its numbers in ft/s",
+        ),
+        (
+            "unit = \"deg\"",
+            "unit = \"1\"",
+            "is a pure number, but `touchdown.attitude[2]` is an angle: write its numbers in deg",
+        ),
+        (
             "touchdown.vertical_velocity\"\nunit",
             "touchdown.vertical_speed\"\nunit",
             "field `dispersion[0].field`: `touchdown.vertical_speed` cannot be set",

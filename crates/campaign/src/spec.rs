@@ -239,6 +239,13 @@ impl Campaign {
                         format!("`{}` cannot be set in the base scenario: {e}", d.field),
                     )
                 })?;
+            // The field exists: its unit must be of its dimension (docs/scenario-format.md,
+            // "Ranges"), not only in the scenario's units.
+            if let Some(unit) = &d.unit {
+                base_scenario
+                    .check_unit(&d.field, unit)
+                    .map_err(|m| err(&format!("dispersion[{i}].unit"), m))?;
+            }
             dispersions.push(d);
         }
         let copula = copula(&spec.correlations, &dispersions)

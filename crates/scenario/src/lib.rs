@@ -2,6 +2,8 @@
 //! table and strict fields (unknown fields are errors), resolved into SI.
 //!
 //! * [`schema`]: the file as written, in its own units (each field documents its dimension);
+//! * [`dimension`]: the powers of length, mass, force, angle and time of a unit, read alike
+//!   from the Ranges table, a campaign's units and the fields table's dimension column;
 //! * [`units`]: the unit systems a file may declare, and [`units::short`], the short notation
 //!   every number in a message is printed in;
 //! * [`ranges`]: the range of physical plausibility of every number, checked on load in SI;
@@ -15,6 +17,7 @@
 //! it is opened), and a table of the schema is read only from a TOML table (never from an
 //! array, which serde's derived structs would otherwise accept field by field).
 
+pub mod dimension;
 pub mod error;
 pub mod initial;
 mod load;

@@ -1,6 +1,7 @@
 //! Reading a scenario file: TOML parsing, `extends` merging, schema checking and resolution
 //! into SI with validation. Every error names the file and the field.
 
+use crate::dimension::{Dimension, Powers};
 use crate::error::ScenarioError;
 use crate::mechanisms;
 use crate::model::{self, Scenario};
@@ -313,6 +314,52 @@ impl Scenario {
             .into_iter()
             .map(|field| file.as_ref().and_then(|f| field_at(f, field)).cloned())
             .collect()
+    }
+
+    /// The dimension of the number at `field` (`gear.legs[1].primary_strut.viscous.coefficient`),
+    /// from its row of [`ranges::RANGES`]: a viscous coefficient's follows the exponent beside
+    /// it in this scenario, a polynomial coefficient's its index. `None` for a field with no
+    /// row (a count, a flag, or no field at all).
+    pub fn dimension_of(&self, field: &str) -> Option<Result<Dimension, String>> {
+        let row = ranges::lookup(field)?;
+        let gamma = field
+            .strip_suffix("viscous.coefficient")
+            .map(|strut| format!("{strut}viscous.exponent"))
+            .and_then(|exponent| self.values_of([exponent.as_str()]).pop().flatten())
+            .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)));
+        let index = field
+            .strip_suffix(']')
+            .and_then(|f| f.rsplit_once('['))
+            .and_then(|(_, i)| i.parse::<u32>().ok())
+            .map(f64::from);
+        Some(Dimension::parse(row.unit, Powers { gamma, index }))
+    }
+
+    /// Checks that `unit` (written beside numbers meant for `field`, as a campaign does:
+    /// `"ft/s"`, `"1"`) names this file's own units ([`Units::suffix_of`]) and the field's
+    /// dimension ([`Scenario::dimension_of`]), so that a length given to a velocity is refused
+    /// rather than read as one. Returns the unit as a name suffix (`ft_s`), or what is wrong and
+    /// the unit to write.
+    pub fn check_unit(&self, field: &str, unit: &str) -> Result<String, String> {
+        let units = self.units();
+        let suffix = units.suffix_of(unit)?;
+        let given = Dimension::parse(unit, Powers::default())?;
+        let wanted = match self.dimension_of(field) {
+            Some(d) => d?,
+            None => Dimension::NONE,
+        };
+        if given == wanted {
+            return Ok(suffix);
+        }
+        let write = match wanted.written_in(&units) {
+            Some(w) => format!("write its numbers in {w}"),
+            None => "no unit with whole powers names it".into(),
+        };
+        Err(format!(
+            "{unit:?} is {}, but `{field}` is {}: {write}",
+            article(&given.words()),
+            article(&wanted.words())
+        ))
     }
 
     /// A number of the merged file at a field path (file units), as [`Scenario::load_with`]
@@ -880,6 +927,10 @@ thread_local! {
     /// Fields range-checked on this thread (tests: every field of a scenario is checked).
     pub(crate) static RANGE_CHECKED: std::cell::RefCell<std::collections::BTreeSet<String>> =
         const { std::cell::RefCell::new(std::collections::BTreeSet::new()) };
+    /// Each range-checked field and the factor its value was brought to SI with (tests: the
+    /// factor is its dimension's in the file's units).
+    pub(crate) static SI_FACTORS: std::cell::RefCell<Vec<(String, f64)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
 }
 
 impl<'a> Check<'a> {
@@ -939,6 +990,8 @@ impl Check<'_> {
         };
         #[cfg(test)]
         RANGE_CHECKED.with(|c| c.borrow_mut().insert(ranges::normalize(field)));
+        #[cfg(test)]
+        SI_FACTORS.with(|c| c.borrow_mut().push((field.to_string(), scale)));
         let shown = x / r.si;
         let unit = if r.unit.is_empty() {
             String::new()
@@ -1530,4 +1583,15 @@ fn resolve(
         slosh,
         warnings,
     })
+}
+
+/// A dimension's words with their article: `a length/time`, `a pure number`.
+fn article(words: &str) -> String {
+    if words.starts_with("a ") {
+        words.to_string()
+    } else if words.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        format!("an {words}")
+    } else {
+        format!("a {words}")
+    }
 }

@@ -2,8 +2,9 @@
 //! wrote a number, special files, clear messages, plausibility ranges and warnings. Each test
 //! names what it guards; the catalogue in tests/data/malformed/ holds one file per case too.
 
+use crate::dimension::{Dimension, Powers};
 use crate::error::ScenarioError;
-use crate::load::RANGE_CHECKED;
+use crate::load::{RANGE_CHECKED, SI_FACTORS};
 use crate::ranges::{self, RANGES};
 use crate::Scenario;
 use std::collections::BTreeSet;
@@ -603,6 +604,83 @@ fn every_numeric_field_has_a_range_checked_on_load() {
         .map(|r| r.field)
         .collect();
     assert!(unused.is_empty(), "ranges of no field: {unused:?}");
+}
+
+/// The Ranges table's units are the dimensions the loader reads: every number of every bundled
+/// scenario (and of a similar vehicle) is brought to SI by its dimension's factor in the file's
+/// units, the one a campaign's unit is checked against.
+#[test]
+fn every_fields_dimension_is_the_one_it_is_read_with() {
+    let dir = scratch("dimensions");
+    let similar = dir.join("similar.toml");
+    std::fs::write(
+        &similar,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = \"similar\"\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
+            root().join("scenarios/fig-25-26.toml").display().to_string()
+        ),
+    )
+    .unwrap();
+    let mut files = bundled();
+    files.push(similar);
+    let mut checked = 0;
+    for path in &files {
+        SI_FACTORS.with(|c| c.borrow_mut().clear());
+        let scenario = Scenario::load(path).unwrap();
+        let units = scenario.units();
+        for (field, factor) in SI_FACTORS.with(|c| c.borrow().clone()) {
+            let dimension = scenario
+                .dimension_of(&field)
+                .unwrap_or_else(|| panic!("{}: `{field}` has no row", path.display()))
+                .unwrap_or_else(|e| panic!("{}: `{field}`: {e}", path.display()));
+            let expected = dimension.si_factor(&units);
+            assert!(
+                (factor - expected).abs() <= 1e-12 * expected.abs(),
+                "{}: `{field}` is read with {factor}, its dimension ({}) gives {expected}",
+                path.display(),
+                dimension.words()
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000, "{checked} numbers checked");
+}
+
+/// docs/scenario-format.md's fields table gives each field the dimension its range has.
+#[test]
+fn the_fields_table_states_each_fields_dimension() {
+    let doc = std::fs::read_to_string(root().join("docs/scenario-format.md")).unwrap();
+    let table = doc
+        .split("## Fields")
+        .nth(1)
+        .and_then(|t| t.split("\n## ").next())
+        .unwrap();
+    let mut checked = 0;
+    for line in table.lines().filter(|l| l.starts_with("| `")) {
+        let cells: Vec<&str> = line.split(" | ").collect();
+        let (names, words) = (cells[0].trim_start_matches("| "), cells[1].trim());
+        if words == "as above" || words.contains(',') || names.contains("...") {
+            continue;
+        }
+        // "—": a pure number (or no number at all: such fields have no range).
+        let words = if words.starts_with('—') { "1" } else { words };
+        for name in names.split(", ") {
+            let field = name.trim_matches('`');
+            let Some(row) = ranges::lookup(field) else {
+                continue;
+            };
+            let powers = Powers {
+                gamma: Some(1.0),
+                index: Some(2.0),
+            };
+            let table = Dimension::parse(row.unit, powers).unwrap();
+            let stated = Dimension::parse(words, powers)
+                .unwrap_or_else(|e| panic!("`{field}`: its dimension {words:?}: {e}"));
+            assert_eq!(stated, table, "`{field}`: {words:?} against {:?}", row.unit);
+            checked += 1;
+        }
+    }
+    assert!(checked >= 40, "{checked} fields checked");
 }
 
 /// docs/scenario-format.md lists every range as the code has it.
