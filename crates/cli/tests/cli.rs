@@ -18,17 +18,50 @@ fn touchdown(args: &[&str]) -> std::process::Output {
         .expect("the touchdown binary runs")
 }
 
-fn temp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("touchdown-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+/// A path in a folder of its own that is removed, with everything in it, when the value goes
+/// out of scope: no test leaves files behind.
+struct Scratch {
+    _folder: tempfile::TempDir,
+    path: PathBuf,
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for Scratch {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.path.as_os_str()
+    }
+}
+
+/// A folder path `name` that does not exist yet (the command under test may create it).
+fn temp(name: &str) -> Scratch {
+    let folder = tempfile::Builder::new()
+        .prefix("touchdown-cli-")
+        .tempdir()
+        .unwrap();
+    let path = folder.path().join(name);
+    Scratch {
+        _folder: folder,
+        path,
+    }
 }
 
 /// Writes `dir/file`, a scenario named `name` that extends the bundled `base` (a path under
 /// scenarios/) with the TOML `extra`; returns its path.
-fn extending(dir: &str, file: &str, base: &str, name: &str, extra: &str) -> PathBuf {
+fn extending(dir: &str, file: &str, base: &str, name: &str, extra: &str) -> Scratch {
     let d = temp(dir);
-    std::fs::create_dir_all(&d).unwrap();
+    std::fs::create_dir_all(&*d).unwrap();
     let f = d.join(file);
     let base = root().join("scenarios").join(base);
     std::fs::write(
@@ -39,7 +72,10 @@ fn extending(dir: &str, file: &str, base: &str, name: &str, extra: &str) -> Path
         ),
     )
     .unwrap();
-    f
+    Scratch {
+        _folder: d._folder,
+        path: f,
+    }
 }
 
 #[test]
@@ -771,7 +807,7 @@ fn a_refused_timestep_names_the_argument() {
 #[test]
 fn a_campaign_streams_json_lines_then_its_statistics_and_draws_its_plots() {
     let dir = temp("campaign");
-    let plots = dir.clone();
+    let plots = dir.to_path_buf();
     let out = touchdown(&[
         "campaign",
         "scenarios/campaigns/small.toml",

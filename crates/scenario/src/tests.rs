@@ -35,15 +35,12 @@ fn bundled() -> Vec<PathBuf> {
     files
 }
 
-/// A scratch folder for this test process.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "touchdown-scenario-tests-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch folder of its own, removed with everything in it when the value is dropped.
+fn scratch(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("touchdown-scenario-tests-{name}-"))
+        .tempdir()
+        .unwrap()
 }
 
 /// Writes `dir/file` extending `base` with the TOML `extra`; returns its path.
@@ -190,7 +187,8 @@ fn every_table_of_every_bundled_scenario_refuses_an_array_in_its_place() {
 
 #[test]
 fn the_array_readings_serde_would_accept_are_refused() {
-    let dir = scratch("arrays");
+    let folder = scratch("arrays");
+    let dir = folder.path();
     let flat = scenario("flat-drop.toml");
     for (extra, field) in [
         ("stability = [1.0]\n", "stability"),
@@ -203,7 +201,7 @@ fn the_array_readings_serde_would_accept_are_refused() {
         ),
         ("[gear]\nparametric = [1.0]\n", "gear.parametric"),
     ] {
-        let file = extending(&dir, "a.toml", &flat, extra);
+        let file = extending(dir, "a.toml", &flat, extra);
         let (owner, got, message) = field_error(Scenario::load(&file));
         assert_eq!(got, field, "{message}");
         assert!(owner.ends_with("a.toml"), "{owner}");
@@ -215,10 +213,11 @@ fn the_array_readings_serde_would_accept_are_refused() {
 
 #[test]
 fn an_extending_file_may_not_change_the_units_it_inherits() {
-    let dir = scratch("units");
+    let folder = scratch("units");
+    let dir = folder.path();
     let vehicle = scenario("vehicles/lm-1-6.toml");
     let flat = scenario("flat-drop.toml");
-    let file = extending(&dir, "metres.toml", &flat, "[units]\nlength = \"m\"\n");
+    let file = extending(dir, "metres.toml", &flat, "[units]\nlength = \"m\"\n");
     let (owner, field, message) = field_error(Scenario::load(&file));
     assert!(owner.ends_with("metres.toml"), "{owner}");
     assert_eq!(field, "units.length");
@@ -227,8 +226,8 @@ fn an_extending_file_may_not_change_the_units_it_inherits() {
         "{message}"
     );
     // Two levels down: the file that set the inherited unit is named.
-    let middle = extending(&dir, "middle.toml", &flat, "");
-    let file = extending(&dir, "kilograms.toml", &middle, "[units]\nmass = \"kg\"\n");
+    let middle = extending(dir, "middle.toml", &flat, "");
+    let file = extending(dir, "kilograms.toml", &middle, "[units]\nmass = \"kg\"\n");
     let (_, field, message) = field_error(Scenario::load(&file));
     assert_eq!(field, "units.mass");
     assert!(
@@ -237,7 +236,7 @@ fn an_extending_file_may_not_change_the_units_it_inherits() {
     );
     // Restating the same units is not a change.
     let same = "[units]\nlength = \"ft\"\nmass = \"slug\"\nforce = \"lbf\"\nangle = \"deg\"\ntime = \"s\"\n";
-    let file = extending(&dir, "same.toml", &flat, same);
+    let file = extending(dir, "same.toml", &flat, same);
     Scenario::load(&file).unwrap();
 }
 
@@ -256,15 +255,16 @@ fn not_a_file(result: Result<Scenario, ScenarioError>, path: &Path, kind: &str) 
 
 #[test]
 fn a_directory_or_a_device_is_refused_naming_it() {
-    let dir = scratch("special");
-    not_a_file(Scenario::load(&dir), &dir, "directory");
+    let folder = scratch("special");
+    let dir = folder.path();
+    not_a_file(Scenario::load(dir), dir, "directory");
     #[cfg(unix)]
     not_a_file(
         Scenario::load("/dev/null"),
         Path::new("/dev/null"),
         "character device",
     );
-    let file = extending(&dir, "dir.toml", &dir, "");
+    let file = extending(dir, "dir.toml", dir, "");
     let (_, field, message) = field_error(Scenario::load(&file));
     assert_eq!(field, "extends");
     assert!(
@@ -286,7 +286,8 @@ fn within_a_minute<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) ->
 #[cfg(unix)]
 #[test]
 fn a_fifo_is_refused_without_blocking() {
-    let dir = scratch("fifo");
+    let folder = scratch("fifo");
+    let dir = folder.path();
     let fifo = dir.join("pipe.toml");
     match std::process::Command::new("mkfifo").arg(&fifo).status() {
         Ok(s) if s.success() => {}
@@ -297,7 +298,7 @@ fn a_fifo_is_refused_without_blocking() {
     }
     let f = fifo.clone();
     not_a_file(within_a_minute(move || Scenario::load(f)), &fifo, "FIFO");
-    let file = extending(&dir, "pipe-base.toml", &fifo, "");
+    let file = extending(dir, "pipe-base.toml", &fifo, "");
     let (owner, field, message) = field_error(within_a_minute(move || Scenario::load(file)));
     assert!(owner.ends_with("pipe-base.toml"), "{owner}");
     assert_eq!(field, "extends");
@@ -325,7 +326,8 @@ fn empty_input_says_it_is_empty() {
             other => panic!("{other:?}"),
         }
     }
-    let dir = scratch("empty");
+    let folder = scratch("empty");
+    let dir = folder.path();
     let empty = dir.join("empty.toml");
     std::fs::write(&empty, "").unwrap();
     match Scenario::load(&empty) {
@@ -449,10 +451,11 @@ fn hostile_numbers_in_every_field_are_refused_with_short_messages() {
 
 #[test]
 fn ranges_are_checked_in_si_whatever_the_file_units() {
-    let dir = scratch("si");
+    let folder = scratch("si");
+    let dir = folder.path();
     let flat = scenario("flat-drop.toml");
     // 1e7 kg is 685 218 slug.
-    let heavy = extending(&dir, "heavy.toml", &flat, "[vehicle]\nmass = 6.9e5\n");
+    let heavy = extending(dir, "heavy.toml", &flat, "[vehicle]\nmass = 6.9e5\n");
     let (_, field, message) = field_error(Scenario::load(&heavy));
     assert_eq!(field, "vehicle.mass");
     assert!(
@@ -460,7 +463,7 @@ fn ranges_are_checked_in_si_whatever_the_file_units() {
             && message.contains("[0.001, 1e+07] kg"),
         "{message}"
     );
-    let ok = extending(&dir, "ok.toml", &flat, "[vehicle]\nmass = 6.8e5\n");
+    let ok = extending(dir, "ok.toml", &flat, "[vehicle]\nmass = 6.8e5\n");
     let sc = Scenario::load(&ok).unwrap();
     // Legal but heavier than the usual range: a warning, naming the file and the field.
     let w = &sc.warnings()[0];
@@ -475,10 +478,11 @@ fn ranges_are_checked_in_si_whatever_the_file_units() {
 
 #[test]
 fn unusual_values_are_accepted_with_a_warning() {
-    let dir = scratch("warnings");
+    let folder = scratch("warnings");
+    let dir = folder.path();
     let flat = scenario("flat-drop.toml");
     let file = extending(
-        &dir,
+        dir,
         "fast.toml",
         &flat,
         "[touchdown]\nvertical_velocity = -150.0\n",
@@ -554,7 +558,8 @@ fn legs_closer_than_the_least_separation_are_refused() {
 fn every_numeric_field_has_a_range_checked_on_load() {
     let mut files = bundled();
     // Explicit cantilever legs (with l21): the catalogue's standalone file, its third leg fixed.
-    let dir = scratch("coverage");
+    let folder = scratch("coverage");
+    let dir = folder.path();
     let text = std::fs::read_to_string(
         root().join("tests/data/malformed/strut-cannot-reach-footpad.toml"),
     )
@@ -611,7 +616,8 @@ fn every_numeric_field_has_a_range_checked_on_load() {
 /// units, the one a campaign's unit is checked against.
 #[test]
 fn every_fields_dimension_is_the_one_it_is_read_with() {
-    let dir = scratch("dimensions");
+    let folder = scratch("dimensions");
+    let dir = folder.path();
     let similar = dir.join("similar.toml");
     std::fs::write(
         &similar,
@@ -728,9 +734,10 @@ fn an_override_adds_a_field_no_file_writes_as_an_extending_file_would() {
             ("name", Value::String("test".into())),
         ])
         .unwrap();
-    let dir = scratch("override-adds");
+    let folder = scratch("override-adds");
+    let dir = folder.path();
     let file = extending(
-        &dir,
+        dir,
         "adds.toml",
         &scenario("flat-drop.toml"),
         "[touchdown]\nbody_rates = [0.5, 0.0, 0.0]\n\n[stability]\nterminate_on_decision = false\n",
@@ -766,9 +773,10 @@ fn an_override_takes_arrays_tables_and_per_leg_values_as_an_extending_file_would
             ("name", Value::String("test".into())),
         ])
         .unwrap();
-    let dir = scratch("override-arrays");
+    let folder = scratch("override-arrays");
+    let dir = folder.path();
     let file = extending(
-        &dir,
+        dir,
         "arrays.toml",
         &scenario("flat-drop.toml"),
         "[touchdown]\nhorizontal_velocity = [0.0, 1.0]\n\n[surface]\nhole = [0.1, 0.0, 0.0, 0.0]\n\n[secondary_strut.tension]\nstroke_out_rate = 700000.0\nonset_rate = 9000\n",
