@@ -20,7 +20,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
+sys.path.insert(0, str(ROOT / "python" / "figures"))
 import view_still  # noqa: E402
 
 SCENARIO = "scenarios/robotic-lander-slope.toml"

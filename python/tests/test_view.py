@@ -1,6 +1,6 @@
 """The trajectory viewer (`touchdown view`, crates/view/assets) in a real browser: the page
 written by the command line, opened from disk in Debian's headless Chromium through Selenium
-(python/view_still.py), played, turned, read back pixel by pixel. Run by scripts/test, after
+(python/figures/view_still.py), played, turned, read back pixel by pixel. Run by scripts/test, after
 scripts/setup-browser has installed Chromium and ChromeDriver."""
 
 import base64
@@ -19,8 +19,8 @@ from selenium.webdriver.support.ui import Select
 
 ROOT = Path(__file__).resolve().parents[2]
 TOUCHDOWN = ROOT / "target" / "debug" / "touchdown"
-sys.path.insert(0, str(ROOT / "python"))
-import view_still  # noqa: E402  (python/, beside the tests' package)
+sys.path.insert(0, str(ROOT / "python" / "figures"))
+import view_still  # noqa: E402  (python/figures/)
 
 # The landing the tests watch (two engines, a slope, holes, touchdowns and lift-offs), and a
 # second one the file picker opens.
@@ -302,7 +302,7 @@ def test_side_by_side_shows_one_view_per_engine_and_the_camera_turns(page, landi
 
 
 def test_a_still_of_the_page(landing, tmp_path):
-    """python/view_still.py (the stills of docs/engines.md) saves the page as a PNG."""
+    """python/figures/view_still.py (the stills of docs/engines.md) saves the page as a PNG."""
     doc = landing["doc"]
     t = doc["engines"][0]["frames"]["t_s"][-1] / 2
     png = view_still.still(landing["page"], t, tmp_path / "still.png", mode="side-by-side", width=1200, height=800)

@@ -473,7 +473,7 @@ fn the_parquet_records_read_back_in_pandas_polars_and_duckdb() {
     let campaign = Campaign::load(small()).unwrap();
     run(&campaign, None, None, Some(tmp.path()), |_| ()).unwrap();
     let out = std::process::Command::new(python())
-        .arg(root().join("python/campaign_read.py"))
+        .arg(root().join("python/tests/campaign_read.py"))
         .arg(tmp.path())
         .output()
         .unwrap();

@@ -13,7 +13,7 @@ fn validation_plots_regenerate_from_the_committed_data() {
     let _ = std::fs::remove_dir_all(&out);
     for script in ["plot_validation.py", "plot_cross_validation.py"] {
         let status = Command::new(&python)
-            .arg(root.join("python").join(script))
+            .arg(root.join("python/figures").join(script))
             .arg("--data")
             .arg(root.join("docs/validation"))
             .arg("--out")

@@ -9,9 +9,10 @@
 //! is their correlation), and maps each score through its distribution's quantile function.
 
 use nalgebra::{DMatrix, DVector};
-use rand_chacha::rand_core::{Rng, SeedableRng};
+use rand_chacha::rand_core::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use statrs::distribution::{ContinuousCDF, Normal};
+use touchdown_sampling::open_unit;
 
 /// A value applied to a scenario field.
 #[derive(Debug, Clone, PartialEq)]
@@ -223,11 +224,6 @@ pub fn stream(seed: u64, landing: u64) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::from_seed(key);
     rng.set_stream(landing);
     rng
-}
-
-/// A uniform number in the open interval (0, 1) from 53 random bits.
-pub fn open_unit(rng: &mut ChaCha8Rng) -> f64 {
-    ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)
 }
 
 /// The normal scores of landing `landing`: one per dispersion, correlated by `copula`.

@@ -7,6 +7,7 @@
 use crate::record::{Cell, Column, Failure, Kind, Row, Status};
 use serde::Serialize;
 use statrs::distribution::{Beta, ContinuousCDF};
+use touchdown_sampling::percentile;
 
 /// A count of landings under a name.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -127,14 +128,6 @@ pub fn clopper_pearson_lower(k: u64, n: u64, confidence: f64) -> f64 {
 /// the least n with Rⁿ ≤ 1 − C.
 pub fn zero_failure_landings(reliability: f64, confidence: f64) -> u64 {
     ((1.0 - confidence).ln() / reliability.ln()).ceil() as u64
-}
-
-/// The `p` percentile (0 ≤ p ≤ 1) of sorted values by linear interpolation.
-pub fn percentile(sorted: &[f64], p: f64) -> f64 {
-    let h = (sorted.len() - 1) as f64 * p;
-    let lo = h.floor() as usize;
-    let hi = (lo + 1).min(sorted.len() - 1);
-    sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
 }
 
 /// The reliabilities the zero-failure table lists.
@@ -335,14 +328,5 @@ mod tests {
             (correlation(&[1.0, 2.0, 3.0], &[1.0, 0.0, 0.0]) + 0.8660254037844387).abs() < 1e-12
         );
         assert_eq!(correlation(&[1.0, 1.0], &[0.0, 1.0]), 0.0);
-    }
-
-    #[test]
-    fn percentiles_interpolate_as_numpy_does() {
-        let v = [1.0, 2.0, 3.0, 4.0];
-        // numpy.percentile([1, 2, 3, 4], [50, 90]) = [2.5, 3.7]
-        assert_eq!(percentile(&v, 0.5), 2.5);
-        assert!((percentile(&v, 0.9) - 3.7).abs() < 1e-12);
-        assert_eq!(percentile(&[5.0], 0.99), 5.0);
     }
 }

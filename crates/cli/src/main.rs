@@ -774,7 +774,7 @@ pub fn out_file(dir: &Path, prefix: &str, scenario: &Path, ext: &str) -> Result<
 }
 
 /// The project's folder: `--root` if given, else found as the MuJoCo engine finds its runner
-/// (`touchdown_mujoco::launch::home`).
+/// (`touchdown_home::home`).
 fn home(root: Option<PathBuf>) -> Result<PathBuf> {
     match root {
         Some(r) if r.join("reference").is_dir() && r.join("scenarios").is_dir() => Ok(r),
@@ -782,7 +782,7 @@ fn home(root: Option<PathBuf>) -> Result<PathBuf> {
             "--root {}: expected the project's folder, holding reference/ and scenarios/",
             r.display()
         ),
-        None => Ok(touchdown_mujoco::launch::home()?),
+        None => Ok(touchdown_home::home()?),
     }
 }
 

@@ -1,4 +1,4 @@
-//! The comparison plots: data written by the Rust side, drawn by `python/plot_compare.py` with
+//! The comparison plots: data written by the Rust side, drawn by `python/figures/plot_compare.py` with
 //! the pinned matplotlib of the project's Python environment.
 
 use anyhow::{bail, Context, Result};
@@ -7,15 +7,16 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use touchdown_compare::ScenarioComparison;
 
-/// Runs `python/plot_compare.py` with `args`.
+/// Runs `python/figures/plot_compare.py` with `args`.
 fn draw(args: &[&OsStr]) -> Result<()> {
     run_script("plot_compare.py", args)
 }
 
-/// Runs the plotting script `python/<name>` with `args`; its error output becomes the error.
+/// Runs the plotting script `python/figures/<name>` with `args`; its error output becomes the
+/// error.
 fn run_script(name: &str, args: &[&OsStr]) -> Result<()> {
-    let python = touchdown_mujoco::launch::project_python("--plot")?;
-    let script: PathBuf = touchdown_mujoco::launch::home()?.join("python").join(name);
+    let python = touchdown_home::project_python("--plot")?;
+    let script: PathBuf = touchdown_home::home()?.join("python/figures").join(name);
     let out = Command::new(&python)
         .arg(script)
         .args(args)
@@ -23,7 +24,7 @@ fn run_script(name: &str, args: &[&OsStr]) -> Result<()> {
         .with_context(|| format!("cannot start {}", python.display()))?;
     if !out.status.success() {
         bail!(
-            "python/{name} failed: {}",
+            "python/figures/{name} failed: {}",
             String::from_utf8_lossy(&out.stderr).trim()
         );
     }

@@ -5,7 +5,7 @@
 //! | [`trace`] | the time series a comparison needs (vertical velocity, pitch rate), from any engine |
 //! | [`metrics`] | divergence of two engines, channel by channel, against written tolerances |
 //! | [`report`] | a scenario's comparison as text (rounded for snapshot review) and JSON |
-//! | [`plot`] | the traces behind the metrics, as CSV for `python/plot_compare.py` |
+//! | [`plot`] | the traces behind the metrics, as CSV for `python/figures/plot_compare.py` |
 //! | [`robustness`] | the stiff and extreme catalogue: every case on every engine, classified; the largest stable steps |
 //! | [`precision`] | work-precision: every engine and scheme over a ladder of steps or tolerances against a converged reference |
 //!

@@ -1,4 +1,4 @@
-//! What `touchdown compare --plot DIR` hands to the plotting script (`python/plot_compare.py`):
+//! What `touchdown compare --plot DIR` hands to the plotting script (`python/figures/plot_compare.py`):
 //! one CSV per engine and scenario with the traces the comparison measured, so that the plots
 //! show exactly the series the metrics were computed from (the 2 ms vertical acceleration of
 //! [`Trace::vertical_acceleration`] included), and no series is recomputed in Python.

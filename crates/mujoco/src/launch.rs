@@ -13,18 +13,6 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 use touchdown_record::Summary;
 
-/// The workspace this crate was built from: where [`home`] looks last.
-const BUILT_IN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-
-/// The environment variable that names the project's folder.
-pub const HOME_VARIABLE: &str = "TOUCHDOWN_HOME";
-
-/// A file every copy of the project holds, by which [`home`] recognises it.
-const MARKER: &str = "python/mujoco/run.py";
-
-/// The command that sets up the Python environment.
-pub const SETUP_COMMAND: &str = "scripts/setup-python";
-
 /// Exit status of the runner when `mujoco` cannot be imported.
 pub const RUNNER_SETUP_STATUS: i32 = 3;
 
@@ -61,78 +49,7 @@ pub struct Launch {
 }
 
 fn setup_error(what: String) -> MujocoError {
-    MujocoError::Setup(format!(
-        "{what}; run `{SETUP_COMMAND}` in {} (it creates .venv with the pinned mujoco and matplotlib)",
-        home_shown().display()
-    ))
-}
-
-/// Where the project's folder was looked for, and why it was not found.
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct HomeNotFound(String);
-
-/// The project's folder (holding `.venv/`, `python/`, `scripts/`, `reference/` and
-/// `scenarios/`): `$TOUCHDOWN_HOME` if set; else the first folder holding the project above the
-/// running executable (`target/release/touchdown`), then above the current directory; else the
-/// folder this crate was built from. An error says where it looked.
-pub fn home() -> Result<PathBuf, HomeNotFound> {
-    let holds = |d: &Path| d.join(MARKER).is_file();
-    if let Some(h) = std::env::var_os(HOME_VARIABLE) {
-        let h = PathBuf::from(h);
-        return if holds(&h) {
-            Ok(h.canonicalize().unwrap_or(h))
-        } else {
-            Err(HomeNotFound(format!(
-                "${HOME_VARIABLE} is {}, which does not hold the project ({MARKER} is missing)",
-                h.display()
-            )))
-        };
-    }
-    let above = |start: Option<PathBuf>| {
-        start.and_then(|s| s.ancestors().find(|d| holds(d)).map(Path::to_path_buf))
-    };
-    let exe = std::env::current_exe()
-        .ok()
-        .and_then(|e| e.canonicalize().ok());
-    let cwd = std::env::current_dir().ok();
-    if let Some(found) = above(exe.clone()).or_else(|| above(cwd.clone())) {
-        return Ok(found);
-    }
-    let built = PathBuf::from(BUILT_IN);
-    if holds(&built) {
-        return Ok(built.canonicalize().unwrap_or(built));
-    }
-    let shown = |p: Option<PathBuf>| p.map_or("?".into(), |p| p.display().to_string());
-    Err(HomeNotFound(format!(
-        "cannot find the project's folder (one holding {MARKER}): ${HOME_VARIABLE} is not set, \
-         and none was found above the executable ({}), above the current directory ({}) or at \
-         {}; set {HOME_VARIABLE} to the project's folder",
-        shown(exe),
-        shown(cwd),
-        built.display()
-    )))
-}
-
-/// The project's folder for a message: [`home`], or where it was built.
-fn home_shown() -> PathBuf {
-    home().unwrap_or_else(|_| PathBuf::from(BUILT_IN))
-}
-
-/// The project's Python interpreter (`$TOUCHDOWN_PYTHON`, else the `.venv` of the project's
-/// folder, [`home`]), or a setup error saying that `needed_for` needs it and how to create it.
-pub fn project_python(needed_for: &str) -> Result<PathBuf, MujocoError> {
-    let python = match std::env::var_os("TOUCHDOWN_PYTHON") {
-        Some(p) => PathBuf::from(p),
-        None => home()?.join(".venv").join("bin").join("python"),
-    };
-    if !python.is_file() {
-        return Err(setup_error(format!(
-            "{needed_for} needs the project's Python environment, and {} does not exist",
-            python.display()
-        )));
-    }
-    Ok(python)
+    MujocoError::Setup(format!("{what}; {}", touchdown_home::setup_hint()))
 }
 
 impl Launch {
@@ -141,8 +58,8 @@ impl Launch {
     /// `deps/`, else in the project's `target/release/` or `target/debug/`), or says which is
     /// missing and how to set it up.
     pub fn locate() -> Result<Launch, MujocoError> {
-        let root = home()?;
-        let python = project_python("the MuJoCo engine")?;
+        let root = touchdown_home::home()?;
+        let python = touchdown_home::project_python("the MuJoCo engine")?;
         let runner = root.join("python").join("mujoco").join("run.py");
         if !runner.is_file() {
             return Err(MujocoError::Setup(format!(
@@ -383,7 +300,7 @@ fn run_guarded(
 
 /// The library next to the running executable (a binary in `target/<profile>/`, or a test or
 /// bench in `target/<profile>/deps/`); else the most recently built of the project's
-/// (`target/release/`, `target/debug/` and their `deps/`, [`home`]): what a copied or
+/// (`target/release/`, `target/debug/` and their `deps/`, [`touchdown_home::home`]): what a copied or
 /// installed binary with `TOUCHDOWN_HOME`, and the Python package (whose executable is the
 /// interpreter), find.
 fn find_library() -> Result<PathBuf, MujocoError> {
@@ -394,7 +311,7 @@ fn find_library() -> Result<PathBuf, MujocoError> {
     if let Some(beside) = candidates.iter().find(|p| p.is_file()) {
         return Ok(beside.clone());
     }
-    let root = home().ok();
+    let root = touchdown_home::home().ok();
     if let Some(root) = &root {
         for profile in ["release", "debug"] {
             let target = root.join("target").join(profile);
@@ -416,7 +333,7 @@ fn find_library() -> Result<PathBuf, MujocoError> {
                     .map(|p| p.display().to_string())
                     .collect::<Vec<_>>()
                     .join(", "),
-                root.unwrap_or_else(home_shown).display()
+                root.unwrap_or_else(touchdown_home::home_shown).display()
             ))
         })
 }

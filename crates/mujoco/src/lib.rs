@@ -48,8 +48,17 @@ pub enum MujocoError {
     #[error("{0}")]
     Io(#[from] std::io::Error),
     /// The project's folder (runner, venv) cannot be found.
-    #[error(transparent)]
-    Home(#[from] launch::HomeNotFound),
+    #[error("{0}")]
+    Home(String),
+}
+
+impl From<touchdown_home::HomeError> for MujocoError {
+    fn from(e: touchdown_home::HomeError) -> Self {
+        match e {
+            touchdown_home::HomeError::NotFound(where_looked) => MujocoError::Home(where_looked),
+            touchdown_home::HomeError::NoPython(what) => MujocoError::Setup(what),
+        }
+    }
 }
 
 impl From<MujocoError> for touchdown_record::RunError {

@@ -19,12 +19,13 @@ use crate::reference::{
 };
 use crate::ValidationError;
 use nalgebra::{DMatrix, DVector};
-use rand_chacha::rand_core::{Rng, SeedableRng};
+use rand_chacha::rand_core::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, Normal};
+use touchdown_sampling::{open_unit, percentile};
 
 /// Points of each parameter's profile, spread evenly over its bounds.
 pub const PROFILE_POINTS: usize = 9;
@@ -401,11 +402,6 @@ fn identifiability(
     ))
 }
 
-/// A uniform number in the open interval (0, 1) from 53 random bits.
-fn open_unit(rng: &mut ChaCha8Rng) -> f64 {
-    ((rng.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-}
-
 /// `count` parameter sets (file units) drawn from the normal centred on the fit `x` with the
 /// scaled covariance `c`, truncated to the bounds by rejection; stream `stream` of `seed`.
 fn draws(
@@ -442,15 +438,6 @@ fn draws(
         }
     }
     Ok(out)
-}
-
-/// The `q` quantile (0 to 1) of `values`, linearly interpolated between order statistics (as
-/// numpy's default).
-fn quantile(values: &mut [f64], q: f64) -> f64 {
-    values.sort_by(f64::total_cmp);
-    let h = q * (values.len() - 1) as f64;
-    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
-    values[lo] + (h - lo as f64) * (values[hi] - values[lo])
 }
 
 /// The profile of parameter `k` over its bounds ([`PROFILE_POINTS`] values): the others
@@ -646,7 +633,10 @@ fn fold(
         fit: fitted,
         identifiability,
         predicted_in,
-        interval_in: [quantile(&mut spread, 0.025), quantile(&mut spread, 0.975)],
+        interval_in: {
+            spread.sort_by(f64::total_cmp);
+            [percentile(&spread, 0.025), percentile(&spread, 0.975)]
+        },
     })
 }
 

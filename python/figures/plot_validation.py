@@ -16,10 +16,10 @@ draws beside it under the same name:
                    report's stated facts about figures 25-26 overlaid (fig-25-26.csv: the curves);
 * boundary-2-2.png the stability boundary of the figure 25-26 configuration (horizontal vs
                    descent velocity), drawn as `touchdown boundary --plot` draws one
-                   (python/plot_compare.py) (boundary-2-2.jsonl, copied when --out is another
+                   (python/figures/plot_compare.py) (boundary-2-2.jsonl, copied when --out is another
                    folder).
 
-Usage: python/plot_validation.py [--data DIR] [--out DIR]
+Usage: python/figures/plot_validation.py [--data DIR] [--out DIR]
 
 Run it with the project's venv (`scripts/setup-python`, then `.venv/bin/python`); `scripts/plots`
 regenerates the data and the plots together. The output is deterministic as far as matplotlib
@@ -342,7 +342,7 @@ def load_boundary(data_dir: Path):
 
 def plot_boundary(points, out: Path):
     """The stability boundary of the figure 25-26 configuration, drawn as `touchdown boundary
-    --plot` draws one (python/plot_compare.py), with the report's statement about fig. 27 in the
+    --plot` draws one (python/figures/plot_compare.py), with the report's statement about fig. 27 in the
     legend (its points are not available, so nothing of it is drawn)."""
     fig, ax = plt.subplots(figsize=(12, 6.5), layout="constrained")
     engine_handles, kind_handles = draw_boundary(ax, points, "ft/s")
@@ -403,7 +403,7 @@ def fig_25_26_data(series, path: Path) -> None:
 
 
 def main(argv=None) -> int:
-    root = Path(__file__).resolve().parent.parent
+    root = Path(__file__).resolve().parents[2]
     default = root / "docs" / "validation"
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--data", type=Path, default=default,

@@ -2,7 +2,7 @@
 in Debian's headless Chromium, driven through Selenium, set to a time and a layout, saved as a
 PNG. Used by python/tests/test_view.py and for the stills of docs/engines.md.
 
-    .venv/bin/python python/view_still.py OUT/fig-25-26.html --time 0.08 --out still.png \\
+    .venv/bin/python python/figures/view_still.py OUT/fig-25-26.html --time 0.08 --out still.png \\
         [--mode side-by-side] [--width 1400] [--height 1000 | --part views]
 
 Chromium and ChromeDriver come from Debian (/usr/bin/chromium, /usr/bin/chromedriver; see

@@ -12,7 +12,7 @@ and writes cross-validation.png into the output folder (both default docs/valida
 * right:  each parameter's spread at that fit against its bounds' (sd / bounds' sd), with the
           protocol's line between determined and not.
 
-Usage: python/plot_cross_validation.py [--data DIR] [--out DIR]   (the project's .venv)
+Usage: python/figures/plot_cross_validation.py [--data DIR] [--out DIR]   (the project's .venv)
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ M_PER_IN = 0.0254
 
 
 def main(argv=None) -> int:
-    default = Path(__file__).resolve().parent.parent / "docs" / "validation"
+    default = Path(__file__).resolve().parents[2] / "docs" / "validation"
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--data", type=Path, default=default, help="folder holding cross-validation.json")
     ap.add_argument("--out", type=Path, default=None, help="folder for cross-validation.png (default: --data)")

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates the two engine comparison tables of docs/engines.md as Markdown.
 
-    python3 python/engine_tables.py [--touchdown BIN] [--jobs N] [--out FILE]
+    python3 python/figures/engine_tables.py [--touchdown BIN] [--jobs N] [--out FILE]
 
 (normally through `scripts/engine-tables`, which builds the release binary first). Runs
 `touchdown run SCENARIO --engine core|rapier|mujoco --format json` on every landing of the
@@ -40,7 +40,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 ENGINES = ("core", "rapier", "mujoco")
 PRIMARY_MIN_M = 0.010
 SECONDARY_MIN_M = 0.005

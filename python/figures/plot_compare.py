@@ -29,10 +29,10 @@ series, verdicts and boundaries the Rust side measured (nothing is recomputed he
               `touchdown precision --format json`.
 
 Usage:
-  python/plot_compare.py traces --data DIR --stem STEM --engines core,rapier,mujoco \
+  python/figures/plot_compare.py traces --data DIR --stem STEM --engines core,rapier,mujoco \
       [--title TITLE] --out FILE.png [--report COMPARE.json]
-  python/plot_compare.py boundaries --data FILE.json --unit ft/s --title TITLE --out FILE.png
-  python/plot_compare.py precision --data FILE.json --title TITLE --out FILE.png
+  python/figures/plot_compare.py boundaries --data FILE.json --unit ft/s --title TITLE --out FILE.png
+  python/figures/plot_compare.py precision --data FILE.json --title TITLE --out FILE.png
 
 `touchdown boundary --plot` passes the title "<scenario name>\\nstability boundary per engine";
 the plot is titled with the configuration (the scenario's name without its own touchdown
