@@ -21,7 +21,7 @@
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
-    BodyEnergy, Fault, GearBook, MujocoSettings, PadStep, Reading, StrutKinematics, VehicleState,
+    BodyEnergy, Fault, GearBook, MujocoSettings, PadStep, Reading, StrutKinematics, BodyMotion,
 };
 use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;
@@ -140,7 +140,7 @@ pub struct MujocoLanding {
     started: bool,
     t: f64,
     steps: u64,
-    vehicle: VehicleState,
+    vehicle: BodyMotion,
     /// Angular velocity in body axes, rad/s (MuJoCo's free-joint rates).
     omega_body: Vector3<f64>,
     /// Footpad contact-point velocities at this state and before the last step, m/s.
@@ -238,7 +238,7 @@ impl MujocoLanding {
             started: false,
             t: 0.0,
             steps: 0,
-            vehicle: VehicleState {
+            vehicle: BodyMotion {
                 position: Vector3::zeros(),
                 rotation: Matrix3::identity(),
                 velocity: Vector3::zeros(),
@@ -328,7 +328,7 @@ impl MujocoLanding {
         let quat = UnitQuaternion::from_quaternion(Quaternion::new(q[3], q[4], q[5], q[6]));
         let rotation = quat.to_rotation_matrix().into_inner();
         self.omega_body = Vector3::new(v[3], v[4], v[5]);
-        self.vehicle = VehicleState {
+        self.vehicle = BodyMotion {
             position: Vector3::new(q[0], q[1], q[2]),
             rotation,
             velocity: Vector3::new(v[0], v[1], v[2]),
@@ -487,7 +487,7 @@ impl MujocoLanding {
     }
 
     /// What the book reads of the bodies now, the vehicle in state `vehicle` (as read).
-    fn reading<'a>(&self, vehicle: &'a VehicleState) -> Reading<'a> {
+    fn reading<'a>(&self, vehicle: &'a BodyMotion) -> Reading<'a> {
         Reading {
             t: self.t,
             vehicle,

@@ -6,7 +6,7 @@
 //! crush is committed at each state once the loads there are evaluated (as the core commits
 //! after evaluating its accepted state: the rim pushes with the crush of the state before).
 
-use crate::book::{Fault, VehicleState};
+use crate::book::{Fault, BodyMotion};
 use nalgebra::Vector3;
 use touchdown_laws::scene::{Attitude, Propulsion};
 use touchdown_record::Law;
@@ -50,7 +50,7 @@ impl VehicleLoads {
     pub fn evaluate(
         &mut self,
         t: f64,
-        v: &VehicleState,
+        v: &BodyMotion,
         first_contact: impl Fn() -> Option<f64>,
     ) -> Result<(), Fault> {
         if self.is_empty() {
@@ -92,7 +92,7 @@ impl VehicleLoads {
     /// Work of the loads held over the step from `before` to `after` (`dt` s long) on the
     /// vehicle, J: the force on the centre of mass's displacement, the torque on the mean
     /// angular velocity; all the loads, and their driving part.
-    pub fn step_work(&self, before: &VehicleState, after: &VehicleState, dt: f64) -> StepWork {
+    pub fn step_work(&self, before: &BodyMotion, after: &BodyMotion, dt: f64) -> StepWork {
         if self.is_empty() {
             return StepWork::default();
         }

@@ -82,9 +82,10 @@ impl PadContact {
     }
 }
 
-/// The vehicle's state as the bookkeeping reads it (inertial frame = the surface frame).
+/// The vehicle body's pose and velocity as the bookkeeping reads them (inertial frame = the
+/// surface frame); named apart from the core's `VehicleState`, which also holds Euler angles.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct VehicleState {
+pub struct BodyMotion {
     /// Centre of mass, m.
     pub position: Vector3<f64>,
     /// Body → inertial rotation.
@@ -95,7 +96,7 @@ pub struct VehicleState {
     pub angular_velocity: Vector3<f64>,
 }
 
-impl VehicleState {
+impl BodyMotion {
     /// The pitch rate: angular velocity about the inertial X axis, rad/s.
     pub fn pitch_rate(&self) -> f64 {
         self.angular_velocity.x
@@ -130,7 +131,7 @@ pub struct Fault {
 
 impl Fault {
     /// The divergence at time `time` (s) with the vehicle in state `vehicle`.
-    pub fn at(self, time: f64, vehicle: &VehicleState) -> Divergence {
+    pub fn at(self, time: f64, vehicle: &BodyMotion) -> Divergence {
         Divergence::new(time, self.law, self.leg, self.message, vehicle.at_stop())
     }
 }
@@ -168,7 +169,7 @@ pub struct Reading<'a> {
     /// Time, s.
     pub t: f64,
     /// The vehicle.
-    pub vehicle: &'a VehicleState,
+    pub vehicle: &'a BodyMotion,
     /// Whether every body state the engine reads is finite.
     pub finite: bool,
     /// The bodies' energies.
@@ -339,7 +340,7 @@ impl GearBook {
     /// `pad_velocity(i)`, m/s, inertial). Returns the energy report of the new state.
     pub fn finish_step(
         &mut self,
-        before: &VehicleState,
+        before: &BodyMotion,
         dt: f64,
         now: &Reading,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
@@ -449,7 +450,7 @@ impl GearBook {
     fn evaluate_applied(
         &mut self,
         t: f64,
-        v: &VehicleState,
+        v: &BodyMotion,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<(), Fault> {
         let contacts = &self.contacts;
@@ -496,7 +497,7 @@ impl GearBook {
     /// into the mechanisms account (done on the vehicle and the footpads, so it counts
     /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements;
     /// the thrust's and the RCS's positive work is also booked as energy put in.
-    fn book_applied(&mut self, before: &VehicleState, after: &VehicleState, dt: f64) {
+    fn book_applied(&mut self, before: &BodyMotion, after: &BodyMotion, dt: f64) {
         let applied = self.applied.step_work(before, after, dt);
         self.ledger.mechanisms -= applied.applied;
         self.ledger.driving_input += applied.driving.max(0.0);
@@ -578,7 +579,7 @@ impl GearBook {
     fn update_stability(
         &mut self,
         t: f64,
-        v: &VehicleState,
+        v: &BodyMotion,
         old_velocity: Option<&Vector3<f64>>,
         energy: &EnergyReport,
     ) {
@@ -601,7 +602,7 @@ impl GearBook {
 
     /// Updates the extremes with the current strokes, strut forces and the pitch rate at time
     /// `t`, s.
-    fn update_extremes(&mut self, t: f64, v: &VehicleState) {
+    fn update_extremes(&mut self, t: f64, v: &BodyMotion) {
         for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
             self.extremes
                 .update_leg(i, k.c, k.s, f.primary(k.c_dot), f.secondary());
@@ -675,7 +676,7 @@ impl GearBook {
 
     /// Writes the state at time `t` (s), the vehicle in state `v`, into `out` (a sample made for
     /// as many legs), with the energy report `energy`.
-    pub fn sample(&self, out: &mut Sample, t: f64, v: &VehicleState, energy: EnergyReport) {
+    pub fn sample(&self, out: &mut Sample, t: f64, v: &BodyMotion, energy: EnergyReport) {
         let r = v.rotation;
         out.t = t;
         out.position = v.position;

@@ -19,7 +19,7 @@ pub mod wall;
 
 pub use applied::VehicleLoads;
 pub use book::{
-    BodyEnergy, Fault, GearBook, PadContact, PadStep, Reading, VehicleState, CONTACT_FLAG_SETTINGS,
+    BodyEnergy, Fault, GearBook, PadContact, PadStep, Reading, BodyMotion, CONTACT_FLAG_SETTINGS,
 };
 pub use step::{MujocoSettings, RapierSettings};
 pub use strut::{strut_forces, StrutForces, StrutKinematics};

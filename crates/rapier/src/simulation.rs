@@ -17,7 +17,7 @@ use crate::assembly::{
 use crate::struts;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_multibody::{BodyEnergy, GearBook, PadStep, RapierSettings, Reading, VehicleState};
+use touchdown_multibody::{BodyEnergy, GearBook, PadStep, RapierSettings, Reading, BodyMotion};
 use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -161,9 +161,9 @@ impl RapierSimulation {
     }
 
     /// The vehicle's state.
-    fn vehicle_state(&self) -> VehicleState {
+    fn vehicle_state(&self) -> BodyMotion {
         let v = self.vehicle();
-        VehicleState {
+        BodyMotion {
             position: v.point(&Vector3::zeros()),
             rotation: v.rotation(),
             velocity: v.linvel,
@@ -246,7 +246,7 @@ impl RapierSimulation {
     }
 
     /// What the book reads of the bodies now, the vehicle in state `v`.
-    fn reading<'a>(&self, v: &'a VehicleState) -> Reading<'a> {
+    fn reading<'a>(&self, v: &'a BodyMotion) -> Reading<'a> {
         let finite = self.bodies.iter().all(|(h, _)| {
             let s = self.state(*h);
             s.pose.translation.is_finite()
