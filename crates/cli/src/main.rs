@@ -1,497 +1,26 @@
 //! `touchdown`: runs landing scenarios and reports them.
 
+mod args;
+mod boundary;
 mod campaign;
+mod compare;
+mod landing;
+mod manual;
 mod plots;
+mod precision;
 mod report;
+mod robustness;
 mod validation;
 mod view;
 
 use anyhow::{bail, Context, Result};
-use clap::{Parser, Subcommand, ValueEnum};
+use args::{CampaignAction, Cli, Command, Format, TableFormat, ValidationProtocol};
+use clap::Parser;
 use std::path::{Path, PathBuf};
-use touchdown_record::History;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
-#[derive(Parser)]
-#[command(
-    name = "touchdown",
-    version,
-    about = "Touchdown dynamics of soft-landing spacecraft (NASA TN D-7045 testbench)",
-    max_term_width = 100
-)]
-struct Cli {
-    #[command(subcommand)]
-    command: Command,
-}
-
-#[derive(Subcommand)]
-enum Command {
-    /// Run one landing and print its summary.
-    Run {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Output format of the summary on standard output.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// history.csv: keep every Nth step's row (and the last), not every step's.
-        #[arg(long, value_name = "N", requires = "out", default_value_t = 1)]
-        every: usize,
-        /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
-        /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
-        /// in the project's Python environment with the shared laws; settings in
-        /// [engines.mujoco]; set up by scripts/setup-python). The scenario's engines.applicable
-        /// must list it.
-        #[arg(long, default_value = "core", value_parser = str::parse::<Engine>)]
-        engine: Engine,
-        /// rapier and MuJoCo engines: fixed time step, s (overrides engines.rapier.timestep or
-        /// engines.mujoco.timestep).
-        #[arg(long)]
-        timestep: Option<f64>,
-    },
-    /// Run scenarios through several engines and report how far apart they land, channel by
-    /// channel against written tolerances (docs/engines.md, "Comparing the engines").
-    Compare {
-        /// Scenario files (TOML).
-        #[arg(required = true)]
-        scenarios: Vec<PathBuf>,
-        #[command(flatten)]
-        set: Overrides,
-        /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
-        /// those its engines.applicable lists.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// Also write each scenario's comparison into DIR: DIR/<scenario>.json (its document, as
-        /// --format json prints it) and the traces the metrics were computed from,
-        /// DIR/<scenario>.<engine>.csv.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
-        /// window, pitch rate, strokes against time, each channel's verdict) into
-        /// DIR/<scenario>.png (matplotlib, in the project's Python environment).
-        #[arg(long, requires = "out")]
-        plot: bool,
-        /// Also write each scenario's landings to watch into DIR: DIR/<scenario>.html (a
-        /// self-contained page playing the engines side by side) and the trajectory file it
-        /// plays, DIR/<scenario>.trajectory.json (as `touchdown view` writes them).
-        #[arg(long, value_name = "DIR")]
-        view: Option<PathBuf>,
-        /// With --view: landing time between the frames kept, s (every contact event is kept
-        /// besides).
-        #[arg(long, value_name = "S", requires = "view", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
-        frame_interval: f64,
-        /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
-        #[arg(long)]
-        report_only: bool,
-    },
-    /// Watch a landing: run the scenario on each engine and write a page that plays them side by
-    /// side or overlaid in a browser (struts coloured by force, footpad contact, the ground, the
-    /// stability walls; strokes and pitch rate linked to a time slider), with the trajectory file
-    /// it plays (docs/engines.md, "Watching the engines land").
-    View {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Engines to run, comma-separated: those the scenario's engines.applicable lists.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Landing time between the frames kept, s (every contact event is kept besides).
-        #[arg(long, value_name = "S", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
-        frame_interval: f64,
-        /// Write DIR/<scenario>.html and DIR/<scenario>.trajectory.json here.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-    },
-    /// Work-precision: each engine and integration scheme over a ladder of step sizes or
-    /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
-    /// final attitude) against its cost (steps, force evaluations, wall time). Build with
-    /// --release: wall times of a debug build say nothing.
-    Precision {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Engines to measure, comma-separated (the core with each of its three schemes);
-        /// those the scenario's engines.applicable lists.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Timed runs per rung (the wall time is their median).
-        #[arg(long, default_value_t = 3)]
-        repeats: usize,
-        /// Only the first N (coarsest) rungs of each ladder.
-        #[arg(long, value_name = "N")]
-        rungs: Option<usize>,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// Also write the study into DIR/precision-<scenario>.json (its document, as --format
-        /// json prints it).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also draw the log-log work-precision plot into DIR/precision-<scenario>.png
-        /// (matplotlib, in the project's Python environment).
-        #[arg(long, requires = "out")]
-        plot: bool,
-    },
-    /// The stiff and extreme catalogue (docs/robustness.md): every case on every engine that
-    /// applies, classified as completed (bounded energy, strokes within the struts), stopped or
-    /// refused with a diagnostic, or failed; with --search, the largest stable step of each
-    /// stiff case and fixed-step method. Build with --release.
-    Robustness {
-        /// Engines, comma-separated.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Only these cases, comma-separated (default: the whole catalogue).
-        #[arg(long, value_delimiter = ',')]
-        cases: Option<Vec<String>>,
-        /// Also search the largest stable step of each stiff case.
-        #[arg(long)]
-        search: bool,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// The project's folder, holding scenarios/ (default: $TOUCHDOWN_HOME, else the project
-        /// found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
-    /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
-    /// how to open it in MuJoCo's viewer.
-    ExportMjcf {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Folder to write the model into, as DIR/<scenario>.xml.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-    },
-    /// Run every Table I landing and the figure 25-26 landing against the report.
-    Validate {
-        /// Which protocol: `two-row` (reference/calibration-protocol.toml: the calibrated
-        /// scenarios against the rows they were not fitted to) or `cv` (reference/
-        /// cross-validation-protocol.toml: leave-one-out over every row, what the rows
-        /// determine, an interval on every prediction; about 690,000 landings, several hours
-        /// on 2 cores, release).
-        #[arg(long, value_enum, default_value_t = ValidationProtocol::TwoRow)]
-        protocol: ValidationProtocol,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-        /// Also write the data behind the plots here: validation.json and fig-25-26-series.json
-        /// (two-row), cross-validation.json (cv).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Exit 0 whatever the verdict (by default a target not met exits with status 3).
-        #[arg(long)]
-        report_only: bool,
-    },
-    /// Fit the estimated parameters to the calibration rows (reference/calibration-protocol.toml)
-    /// and write the calibrated vehicle and the record into --out, or over the tracked
-    /// scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml with
-    /// --update-tracked. Refused when the rows are fewer than the parameters; parameters the
-    /// rows do not determine are flagged, and never written over the tracked files.
-    Calibrate {
-        /// Table I rows to calibrate on, e.g. 3,7 (default: the protocol's).
-        #[arg(long, value_delimiter = ',')]
-        rows: Option<Vec<u32>>,
-        /// Write the calibrated vehicle and the record into this folder.
-        #[arg(
-            long,
-            required_unless_present = "update_tracked",
-            conflicts_with = "update_tracked"
-        )]
-        out: Option<PathBuf>,
-        /// Write them over the tracked files the Table I scenarios extend.
-        #[arg(long)]
-        update_tracked: bool,
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
-    /// Estimate the figure 25-26 landing's touchdown velocities from the facts the text states
-    /// (reference/fig-25-26-velocity-protocol.toml) and write reference/fig-25-26-velocities.toml.
-    Estimate {
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
-    /// How each estimated parameter (±fraction) moves each Table I stroke.
-    Sensitivity {
-        /// Relative change of each parameter.
-        #[arg(long, default_value_t = 0.2)]
-        fraction: f64,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
-    /// A Monte Carlo campaign: landings of a base scenario with dispersed touchdown conditions,
-    /// in parallel, with the probability of a stable landing and its lower confidence bound,
-    /// failure modes, strokes against capacities and peak loads (docs/campaigns.md).
-    Campaign(CampaignArgs),
-    /// Print the shell completion script for SHELL (bash, zsh, fish, elvish, powershell), e.g.
-    /// `touchdown completions bash > ~/.local/share/bash-completion/completions/touchdown`.
-    Completions {
-        /// The shell.
-        shell: clap_complete::Shell,
-    },
-    /// Write the manual pages (roff): touchdown.1 and one touchdown-COMMAND.1 per command, into
-    /// DIR (read with `man -l DIR/touchdown.1`).
-    Man {
-        /// Folder for the pages.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-    },
-    /// The report's stability-boundary search: for each vertical velocity, every horizontal
-    /// speed at which the landing changes between stable and unstable (a band where it
-    /// alternates), the first at which a strut goes past its capacity, and the safe envelope,
-    /// found on a grid of Vh, scanned finer around the changes and bisected; undecided
-    /// landings are listed, never counted as either (settings in the scenario's length unit
-    /// per second, the horizontal direction the scenario's; JSON and CSV in SI).
-    Boundary {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Vertical velocities FROM:TO:STEP as the scenario files write them, negative down, in
-        /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12).
-        #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
-        vv: String,
-        /// First horizontal speed of the grid.
-        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-        vh_start: f64,
-        /// Step of the horizontal-speed grid: every grid point is landed, and every change of
-        /// outcome between neighbours is bisected.
-        #[arg(long, default_value_t = 2.0)]
-        vh_step: f64,
-        /// Largest horizontal speed of the grid.
-        #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
-        vh_max: f64,
-        /// Bisection tolerance on the horizontal speed.
-        #[arg(long, default_value_t = 0.05)]
-        tol: f64,
-        /// Step of the finer scan from a grid step below the first change the grid finds to a
-        /// grid step above the last, so that an outcome alternating faster than the grid is
-        /// seen (default 0.25 when below --vh-step; 0: the grid only).
-        #[arg(long, value_name = "STEP")]
-        scan_step: Option<f64>,
-        /// Search once per end-stop coefficient of restitution in this comma-separated list,
-        /// set on every strut's load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and
-        /// report the spread: how much of the boundary the estimated stop law decides.
-        #[arg(long, value_delimiter = ',', value_name = "E,...")]
-        stop_restitution: Vec<f64>,
-        /// Engines that search, comma-separated; each searches the same configuration and the
-        /// output has one row per engine and descent speed.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = TableFormat::Text)]
-        format: TableFormat,
-        /// Also write the points into DIR/boundary-<scenario>.jsonl (as --format json prints
-        /// them).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also draw the engines' boundaries, overlaid, into DIR/boundary-<scenario>.png
-        /// (matplotlib, in the project's Python environment).
-        #[arg(long, requires = "out")]
-        plot: bool,
-    },
-}
-
-#[derive(clap::Args)]
-#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
-struct CampaignArgs {
-    #[command(subcommand)]
-    action: Option<CampaignAction>,
-    /// Campaign file (TOML; docs/campaigns.md).
-    #[arg(required = true)]
-    file: Option<PathBuf>,
-    /// Run only shard K of N (landings ⌊(K−1)·n/N⌋ to ⌊K·n/N⌋ − 1); `touchdown campaign merge`
-    /// joins the shards' folders.
-    #[arg(long, value_name = "K/N", value_parser = str::parse::<touchdown_campaign::Shard>)]
-    shard: Option<touchdown_campaign::Shard>,
-    /// Write manifest.json, landings.jsonl, landings.parquet and statistics.json (and the
-    /// histories the campaign asks for) into DIR; with --add, the finished campaign to extend.
-    #[arg(long, value_name = "DIR")]
-    out: Option<PathBuf>,
-    /// Output on standard output: the statistics as text, or JSON Lines (a landing record per
-    /// line as they finish, in landing order, then one line {"statistics": ...}).
-    #[arg(long, value_enum, default_value_t = Format::Text)]
-    format: Format,
-    /// Add M landings to the finished campaign in --out, leaving its landings unchanged.
-    #[arg(long, value_name = "M")]
-    add: Option<u64>,
-    /// Threads that land (default: one per core); the records do not depend on it.
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
-    /// Also draw outcomes.png (every landing over the two dispersed inputs most correlated
-    /// with a stable landing) and strokes.png (strokes against capacities) into --out, from
-    /// the records there (matplotlib, in the project's Python environment).
-    #[arg(long, requires = "out")]
-    plot: bool,
-}
-
-#[derive(Subcommand)]
-enum CampaignAction {
-    /// Join the folders of a campaign's shards into one, refusing parts of other campaigns,
-    /// builds or base scenarios, and parts that overlap or leave landings out.
-    Merge {
-        /// The shards' folders.
-        #[arg(required = true)]
-        parts: Vec<PathBuf>,
-        /// Folder of the merged campaign.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// Output format (as for a campaign).
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-    },
-}
-
-/// `--set FIELD=VALUE`, on every command that takes a scenario.
-#[derive(clap::Args)]
-struct Overrides {
-    /// Change one value of the scenario: a field path and a value in the scenario's own units,
-    /// as in the file (`--set touchdown.vertical_velocity=-10.0`, `--set footpad.detached=rigid`,
-    /// `--set 'touchdown.attitude[2]=45.0'`); repeatable.
-    #[arg(long = "set", value_name = "FIELD=VALUE")]
-    set: Vec<Set>,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum TableFormat {
-    Text,
-    Json,
-    Csv,
-}
-
-/// A `--set FIELD=VALUE` override: a scenario field path and its value in the scenario's own
-/// units, as TOML (a number, a boolean, a quoted or bare string).
-#[derive(Debug, Clone)]
-pub struct Set {
-    field: String,
-    value: toml::Value,
-}
-
-impl std::str::FromStr for Set {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Set, String> {
-        let (field, value) = s.split_once('=').ok_or_else(|| {
-            format!("expected FIELD=VALUE (e.g. touchdown.vertical_velocity=-10.0), got {s:?}")
-        })?;
-        let field = field.trim();
-        if field.is_empty() {
-            return Err(format!("expected a field path before '=', got {s:?}"));
-        }
-        let value = value.trim();
-        if value.contains('\n') {
-            return Err(format!(
-                "expected one value on one line after '=' (a TOML value, e.g. [0.0, 1.0]), got {value:?}"
-            ));
-        }
-        // A TOML value as the file would hold it; a bare word is a string (surface.kind=soil).
-        let value = toml::from_str::<toml::Table>(&format!("v = {value}"))
-            .ok()
-            .and_then(|mut t| t.remove("v"))
-            .unwrap_or_else(|| toml::Value::String(value.to_string()));
-        Ok(Set {
-            field: field.to_string(),
-            value,
-        })
-    }
-}
-
-impl std::fmt::Display for Set {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} = {}", self.field, self.value)
-    }
-}
-
-/// The overrides of `--set`, as [`ScenarioBase::with`] takes them.
-pub fn overrides(set: &[Set]) -> Vec<(&str, toml::Value)> {
-    set.iter()
-        .map(|s| (s.field.as_str(), s.value.clone()))
-        .collect()
-}
-
-/// The settings of a command's documents: the `--set` overrides, then its `options` (an
-/// object, each name with its unit).
-pub fn settings(set: &[Set], options: serde_json::Value) -> serde_json::Value {
-    touchdown_record::document::settings(set.iter().map(|s| (s.field.as_str(), &s.value)), options)
-}
-
-/// The scenario file at `path` read once, and resolved with the `--set` overrides (an error
-/// names the field, as for a file).
-pub fn load(path: &Path, set: &[Set]) -> Result<(touchdown_scenario::ScenarioBase, Scenario)> {
-    let base = touchdown_scenario::ScenarioBase::load(path)?;
-    let sc = base.with(&overrides(set));
-    let sc = if set.is_empty() {
-        sc?
-    } else {
-        sc.with_context(|| format!("{} with --set", path.display()))?
-    };
-    Ok((base, sc))
-}
-
-/// The validation protocols of `touchdown validate`.
-#[derive(Clone, Copy, ValueEnum)]
-enum ValidationProtocol {
-    /// Two calibration rows, six held out (reference/calibration-protocol.toml).
-    TwoRow,
-    /// Leave-one-out cross-validation (reference/cross-validation-protocol.toml).
-    Cv,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum Format {
-    Text,
-    Json,
-}
+pub(crate) use args::{load, overrides, settings, Set};
 
 /// What a command found, for its exit status: 0 when it passes (or has no verdict), 3 when
 /// its verdict fails (`compare` with a failing pair, `validate` with a target not met; see
@@ -590,7 +119,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             every,
             engine,
             timestep,
-        } => run_landing(
+        } => landing::run(
             &scenario,
             &set.set,
             format,
@@ -608,7 +137,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             frame_interval,
             report_only,
         } => {
-            let passed = compare(
+            let passed = compare::compare(
                 &scenarios,
                 &set.set,
                 &engines,
@@ -634,7 +163,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             format,
             out,
             plot,
-        } => precision(
+        } => precision::precision(
             &scenario,
             &set.set,
             &engines,
@@ -649,18 +178,8 @@ fn run(cli: Cli) -> Result<Verdict> {
             search,
             format,
             root,
-        } => robustness(&home(root)?, &engines, cases, search, format),
-        Command::ExportMjcf { scenario, set, out } => {
-            let sc = load(&scenario, &set.set)?.1;
-            warn(&sc);
-            touchdown_registry::require(Engine::Mujoco, &sc)?;
-            let xml = touchdown_mujoco::export(&sc)?;
-            let path = out_file(&out, "", &scenario, "xml")?;
-            std::fs::write(&path, xml)
-                .with_context(|| format!("cannot write {}", path.display()))?;
-            outln!("wrote {}", path.display())?;
-            Ok(())
-        }
+        } => robustness::robustness(&home(root)?, &engines, cases, search, format),
+        Command::ExportMjcf { scenario, set, out } => export_mjcf(&scenario, &set.set, &out),
         Command::Validate {
             protocol,
             format,
@@ -714,11 +233,11 @@ fn run(cli: Cli) -> Result<Verdict> {
                 scan_step: touchdown_validation::boundary::scan_step(scan_step, vh_step),
             };
             let format = match format {
-                TableFormat::Text => validation::BoundaryFormat::Text,
-                TableFormat::Json => validation::BoundaryFormat::Json,
-                TableFormat::Csv => validation::BoundaryFormat::Csv,
+                TableFormat::Text => boundary::BoundaryFormat::Text,
+                TableFormat::Json => boundary::BoundaryFormat::Json,
+                TableFormat::Csv => boundary::BoundaryFormat::Csv,
             };
-            validation::boundary(
+            boundary::boundary(
                 &scenario,
                 &set.set,
                 &vv,
@@ -728,13 +247,8 @@ fn run(cli: Cli) -> Result<Verdict> {
                 (out.as_deref(), plot),
             )
         }
-        Command::Completions { shell } => {
-            let mut cmd = <Cli as clap::CommandFactory>::command();
-            let mut script = Vec::new();
-            clap_complete::generate(shell, &mut cmd, "touchdown", &mut script);
-            out!("{}", String::from_utf8_lossy(&script))
-        }
-        Command::Man { out } => man_pages(&out),
+        Command::Completions { shell } => manual::completions(shell),
+        Command::Man { out } => manual::man_pages(&out),
         Command::Campaign(args) => {
             let output = |f| match f {
                 Format::Text => campaign::Output::Text,
@@ -786,249 +300,14 @@ fn home(root: Option<PathBuf>) -> Result<PathBuf> {
     }
 }
 
-/// `touchdown man`: the manual page of the command and of each subcommand into `dir`.
-fn man_pages(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let cmd = <Cli as clap::CommandFactory>::command();
-    let write = |name: &str, cmd: clap::Command| -> Result<()> {
-        let path = dir.join(format!("{name}.1"));
-        let mut bytes = Vec::new();
-        clap_mangen::Man::new(cmd).title(name).render(&mut bytes)?;
-        std::fs::write(&path, bytes).with_context(|| format!("cannot write {}", path.display()))
-    };
-    for sub in cmd.get_subcommands() {
-        write(&format!("touchdown-{}", sub.get_name()), sub.clone())?;
-    }
-    write("touchdown", cmd)?;
-    outln!("wrote the manual pages into {}", dir.display())?;
-    Ok(())
-}
-
-/// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
-/// summary.json, history.csv and scenario.resolved.toml in that folder.
-fn run_landing(
-    scenario: &Path,
-    set: &[Set],
-    format: Format,
-    (out, every): (Option<&Path>, usize),
-    (engine, timestep): (Engine, Option<f64>),
-) -> Result<()> {
-    if every == 0 {
-        anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
-    }
-    let mut sc = load(scenario, set)?.1;
-    touchdown_registry::require(engine, &sc)?;
-    if let Some(t) = timestep {
-        if !(t.is_finite() && t > 0.0) {
-            anyhow::bail!("--timestep: expected a positive number of seconds, got {t:e}");
-        }
-        // In the file's time unit (its [similarity] applied), as the file would state it.
-        let step = Some(t / sc.units().time());
-        let changed = match engine {
-            Engine::Core => anyhow::bail!(
-                "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"
-            ),
-            Engine::Rapier => sc.with_rapier(|r| r.timestep = step),
-            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = step),
-        };
-        sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
-    }
-    warn(&sc);
-    if let Some(dir) = out {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    }
-    // The MuJoCo runner writes its own history.csv.
-    let mut recorder = match out {
-        Some(dir) if engine != Engine::Mujoco => {
-            Some(History::create(&dir.join("history.csv"), sc.legs.len())?)
-        }
-        _ => None,
-    };
-    let landed = touchdown_registry::land(engine, scenario, &sc, &mut recorder, out);
-    // An engine that refuses the step it was given blames the argument first.
-    let summary = match timestep {
-        Some(t) => landed.with_context(|| format!("--timestep {t:e} s"))?,
-        None => landed?,
-    };
-    if let Some(r) = recorder {
-        r.finish()?;
-    }
-    if let Some(dir) = out {
-        // Every engine has written the same history.csv: one thinning for all.
-        if every > 1 {
-            touchdown_record::history::decimate(&dir.join("history.csv"), every)?;
-        }
-        std::fs::write(
-            dir.join("scenario.resolved.toml"),
-            report::resolved_scenario(&sc),
-        )?;
-    }
-    let options = match timestep {
-        Some(t) => serde_json::json!({ "timestep_s": t }),
-        None => serde_json::json!({}),
-    };
-    let document = summary.document(
-        &touchdown_record::ScenarioId::new(scenario.display(), &sc),
-        &settings(set, options),
-    );
-    if let Some(dir) = out {
-        std::fs::write(dir.join("summary.json"), &document)?;
-    }
-    match format {
-        Format::Text => out!("{}", report::text(&sc, &summary, set))?,
-        Format::Json => outln!("{document}")?,
-    }
-    Ok(())
-}
-
-/// `touchdown compare`: every scenario through every engine asked for, every pair compared;
-/// whether every pair passed on every scenario.
-fn compare(
-    scenarios: &[PathBuf],
-    set: &[Set],
-    engines: &[Engine],
-    format: Format,
-    (out, plot): (Option<&Path>, bool),
-    watch: Option<(&Path, f64)>,
-) -> Result<bool> {
-    let engines = touchdown_compare::engine_set(engines).context("--engines")?;
-    let settings = settings(set, serde_json::json!({ "engines": engines }));
-    let mut passed = true;
-    for path in scenarios {
-        let sc = load(path, set)?.1;
-        warn(&sc);
-        let interval = watch.map(|(_, f)| f);
-        let c = touchdown_compare::compare_recorded(path, &sc, &engines, interval)?;
-        passed &= c.pairs.iter().all(|p| p.pass);
-        let document = touchdown_compare::report::json_line(&c, &settings);
-        if let Some(dir) = out {
-            plots::comparison(&c, &document, path, dir, plot)?;
-        }
-        if let Some((dir, interval)) = watch {
-            let (data, page) = view::write(dir, (path, &sc, set), &c.runs, interval)?;
-            eprintln!("wrote {} and {}", page.display(), data.display());
-        }
-        // One line per scenario as it finishes (JSON Lines).
-        match format {
-            Format::Text => outln!("{}", touchdown_compare::report::text(&c))?,
-            Format::Json => outln!("{document}")?,
-        }
-    }
-    if let Format::Text = format {
-        out!(
-            "tolerances\n{}",
-            touchdown_compare::report::tolerances_text()
-        )?;
-    }
-    Ok(passed)
-}
-
-/// `touchdown precision`: the work-precision study of a scenario.
-fn precision(
-    scenario: &Path,
-    set: &[Set],
-    engines: &[Engine],
-    (repeats, rungs): (usize, Option<usize>),
-    format: Format,
-    out: Option<&Path>,
-    plot: bool,
-) -> Result<()> {
-    use touchdown_compare::precision::{self, Method};
-    if repeats == 0 {
-        anyhow::bail!("--repeats: expected at least 1 timed run per rung");
-    }
-    if rungs == Some(0) {
-        anyhow::bail!("--rungs: expected at least 1 rung per ladder");
-    }
-    let methods: Vec<Method> = Method::ALL
-        .into_iter()
-        .filter(|m| engines.contains(&m.engine()))
-        .collect();
-    eprintln!("computing the converged reference ...");
+/// `touchdown export-mjcf`: the scenario's MuJoCo model (MJCF) into `out`.
+fn export_mjcf(scenario: &Path, set: &[Set], out: &Path) -> Result<()> {
     let sc = load(scenario, set)?.1;
     warn(&sc);
-    let study =
-        precision::work_precision_resolved(scenario, &sc, &methods, rungs, repeats, |rung| {
-            eprintln!(
-                "  {} {}: {}",
-                rung.method.name(),
-                precision::setting_label(rung.method, rung.value),
-                match (&rung.measured, &rung.failure) {
-                    (Some(m), _) => format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
-                    (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
-                }
-            );
-        })?;
-    let mut options = serde_json::json!({
-        "engines": engines,
-        "repeats": repeats,
-    });
-    if let Some(n) = rungs {
-        options["rungs"] = n.into();
-    }
-    let id = touchdown_record::ScenarioId {
-        path: study.file.clone(),
-        sha256: study.scenario_sha256.clone(),
-    };
-    let settings = settings(set, options);
-    let json = touchdown_record::Document::new("precision", Some(&id), &settings, &study).pretty();
-    if let Some(dir) = out {
-        let data = out_file(dir, "precision-", scenario, "json")?;
-        std::fs::write(&data, &json).with_context(|| format!("cannot write {}", data.display()))?;
-        if plot {
-            plots::precision(&data, &study.scenario, &data.with_extension("png"))?;
-        }
-    }
-    match format {
-        Format::Text => out!("{}", precision::text(&study))?,
-        Format::Json => outln!("{json}")?,
-    }
-    Ok(())
-}
-
-/// `touchdown robustness`: the stiff and extreme catalogue.
-fn robustness(
-    root: &Path,
-    engines: &[Engine],
-    cases: Option<Vec<String>>,
-    search: bool,
-    format: Format,
-) -> Result<()> {
-    use touchdown_compare::robustness::{self, CATALOGUE};
-    let chosen: Vec<_> = match &cases {
-        None => CATALOGUE.to_vec(),
-        Some(names) => names
-            .iter()
-            .map(|n| {
-                CATALOGUE
-                    .iter()
-                    .find(|c| c.name == n)
-                    .copied()
-                    .ok_or_else(|| {
-                        let known: Vec<_> = CATALOGUE.iter().map(|c| c.name).collect();
-                        anyhow::anyhow!(
-                            "--cases: no case {n:?} (the catalogue: {})",
-                            known.join(", ")
-                        )
-                    })
-            })
-            .collect::<Result<_>>()?,
-    };
-    let r = robustness::run_catalogue(&root.join("scenarios"), &chosen, engines, search, |m| {
-        eprintln!("  {m}")
-    })?;
-    match format {
-        Format::Text => out!("{}", robustness::text(&r, &chosen))?,
-        Format::Json => {
-            let options = serde_json::json!({
-                "engines": engines,
-                "cases": chosen.iter().map(|c| c.name).collect::<Vec<_>>(),
-                "search": search,
-            });
-            let settings = settings(&[], options);
-            let document = touchdown_record::Document::new("robustness", None, &settings, &r);
-            outln!("{}", document.pretty())?;
-        }
-    }
+    touchdown_registry::require(Engine::Mujoco, &sc)?;
+    let xml = touchdown_mujoco::export(&sc)?;
+    let path = out_file(out, "", scenario, "xml")?;
+    std::fs::write(&path, xml).with_context(|| format!("cannot write {}", path.display()))?;
+    outln!("wrote {}", path.display())?;
     Ok(())
 }

@@ -1,0 +1,489 @@
+//! The command line's arguments: every subcommand and option as clap derives them, and what
+//! the shared ones mean (`--set` overrides applied to a scenario). Each command's work is in
+//! its own module (`crate::landing`, `crate::compare`, ...); `main.rs` dispatches.
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::{Path, PathBuf};
+use touchdown_scenario::schema::Engine;
+use touchdown_scenario::Scenario;
+
+#[derive(Parser)]
+#[command(
+    name = "touchdown",
+    version,
+    about = "Touchdown dynamics of soft-landing spacecraft (NASA TN D-7045 testbench)",
+    max_term_width = 100
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Command {
+    /// Run one landing and print its summary.
+    Run {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Output format of the summary on standard output.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// history.csv: keep every Nth step's row (and the last), not every step's.
+        #[arg(long, value_name = "N", requires = "out", default_value_t = 1)]
+        every: usize,
+        /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
+        /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
+        /// in the project's Python environment with the shared laws; settings in
+        /// [engines.mujoco]; set up by scripts/setup-python). The scenario's engines.applicable
+        /// must list it.
+        #[arg(long, default_value = "core", value_parser = str::parse::<Engine>)]
+        engine: Engine,
+        /// rapier and MuJoCo engines: fixed time step, s (overrides engines.rapier.timestep or
+        /// engines.mujoco.timestep).
+        #[arg(long)]
+        timestep: Option<f64>,
+    },
+    /// Run scenarios through several engines and report how far apart they land, channel by
+    /// channel against written tolerances (docs/engines.md, "Comparing the engines").
+    Compare {
+        /// Scenario files (TOML).
+        #[arg(required = true)]
+        scenarios: Vec<PathBuf>,
+        #[command(flatten)]
+        set: Overrides,
+        /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
+        /// those its engines.applicable lists.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Also write each scenario's comparison into DIR: DIR/<scenario>.json (its document, as
+        /// --format json prints it) and the traces the metrics were computed from,
+        /// DIR/<scenario>.<engine>.csv.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
+        /// window, pitch rate, strokes against time, each channel's verdict) into
+        /// DIR/<scenario>.png (matplotlib, in the project's Python environment).
+        #[arg(long, requires = "out")]
+        plot: bool,
+        /// Also write each scenario's landings to watch into DIR: DIR/<scenario>.html (a
+        /// self-contained page playing the engines side by side) and the trajectory file it
+        /// plays, DIR/<scenario>.trajectory.json (as `touchdown view` writes them).
+        #[arg(long, value_name = "DIR")]
+        view: Option<PathBuf>,
+        /// With --view: landing time between the frames kept, s (every contact event is kept
+        /// besides).
+        #[arg(long, value_name = "S", requires = "view", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
+        frame_interval: f64,
+        /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
+        #[arg(long)]
+        report_only: bool,
+    },
+    /// Watch a landing: run the scenario on each engine and write a page that plays them side by
+    /// side or overlaid in a browser (struts coloured by force, footpad contact, the ground, the
+    /// stability walls; strokes and pitch rate linked to a time slider), with the trajectory file
+    /// it plays (docs/engines.md, "Watching the engines land").
+    View {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Engines to run, comma-separated: those the scenario's engines.applicable lists.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Landing time between the frames kept, s (every contact event is kept besides).
+        #[arg(long, value_name = "S", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
+        frame_interval: f64,
+        /// Write DIR/<scenario>.html and DIR/<scenario>.trajectory.json here.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+    /// Work-precision: each engine and integration scheme over a ladder of step sizes or
+    /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
+    /// final attitude) against its cost (steps, force evaluations, wall time). Build with
+    /// --release: wall times of a debug build say nothing.
+    Precision {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Engines to measure, comma-separated (the core with each of its three schemes);
+        /// those the scenario's engines.applicable lists.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Timed runs per rung (the wall time is their median).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Only the first N (coarsest) rungs of each ladder.
+        #[arg(long, value_name = "N")]
+        rungs: Option<usize>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// Also write the study into DIR/precision-<scenario>.json (its document, as --format
+        /// json prints it).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Also draw the log-log work-precision plot into DIR/precision-<scenario>.png
+        /// (matplotlib, in the project's Python environment).
+        #[arg(long, requires = "out")]
+        plot: bool,
+    },
+    /// The stiff and extreme catalogue (docs/robustness.md): every case on every engine that
+    /// applies, classified as completed (bounded energy, strokes within the struts), stopped or
+    /// refused with a diagnostic, or failed; with --search, the largest stable step of each
+    /// stiff case and fixed-step method. Build with --release.
+    Robustness {
+        /// Engines, comma-separated.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core,rapier,mujoco",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Only these cases, comma-separated (default: the whole catalogue).
+        #[arg(long, value_delimiter = ',')]
+        cases: Option<Vec<String>>,
+        /// Also search the largest stable step of each stiff case.
+        #[arg(long)]
+        search: bool,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// The project's folder, holding scenarios/ (default: $TOUCHDOWN_HOME, else the project
+        /// found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
+    /// how to open it in MuJoCo's viewer.
+    ExportMjcf {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Folder to write the model into, as DIR/<scenario>.xml.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+    /// Run every Table I landing and the figure 25-26 landing against the report.
+    Validate {
+        /// Which protocol: `two-row` (reference/calibration-protocol.toml: the calibrated
+        /// scenarios against the rows they were not fitted to) or `cv` (reference/
+        /// cross-validation-protocol.toml: leave-one-out over every row, what the rows
+        /// determine, an interval on every prediction; about 690,000 landings, several hours
+        /// on 2 cores, release).
+        #[arg(long, value_enum, default_value_t = ValidationProtocol::TwoRow)]
+        protocol: ValidationProtocol,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
+        /// Also write the data behind the plots here: validation.json and fig-25-26-series.json
+        /// (two-row), cross-validation.json (cv).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Exit 0 whatever the verdict (by default a target not met exits with status 3).
+        #[arg(long)]
+        report_only: bool,
+    },
+    /// Fit the estimated parameters to the calibration rows (reference/calibration-protocol.toml)
+    /// and write the calibrated vehicle and the record into --out, or over the tracked
+    /// scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml with
+    /// --update-tracked. Refused when the rows are fewer than the parameters; parameters the
+    /// rows do not determine are flagged, and never written over the tracked files.
+    Calibrate {
+        /// Table I rows to calibrate on, e.g. 3,7 (default: the protocol's).
+        #[arg(long, value_delimiter = ',')]
+        rows: Option<Vec<u32>>,
+        /// Write the calibrated vehicle and the record into this folder.
+        #[arg(
+            long,
+            required_unless_present = "update_tracked",
+            conflicts_with = "update_tracked"
+        )]
+        out: Option<PathBuf>,
+        /// Write them over the tracked files the Table I scenarios extend.
+        #[arg(long)]
+        update_tracked: bool,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// Estimate the figure 25-26 landing's touchdown velocities from the facts the text states
+    /// (reference/fig-25-26-velocity-protocol.toml) and write reference/fig-25-26-velocities.toml.
+    Estimate {
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// How each estimated parameter (±fraction) moves each Table I stroke.
+    Sensitivity {
+        /// Relative change of each parameter.
+        #[arg(long, default_value_t = 0.2)]
+        fraction: f64,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+        /// else the project found above the executable or the current directory).
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// A Monte Carlo campaign: landings of a base scenario with dispersed touchdown conditions,
+    /// in parallel, with the probability of a stable landing and its lower confidence bound,
+    /// failure modes, strokes against capacities and peak loads (docs/campaigns.md).
+    Campaign(CampaignArgs),
+    /// Print the shell completion script for SHELL (bash, zsh, fish, elvish, powershell), e.g.
+    /// `touchdown completions bash > ~/.local/share/bash-completion/completions/touchdown`.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Write the manual pages (roff): touchdown.1 and one touchdown-COMMAND.1 per command, into
+    /// DIR (read with `man -l DIR/touchdown.1`).
+    Man {
+        /// Folder for the pages.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+    /// The report's stability-boundary search: for each vertical velocity, every horizontal
+    /// speed at which the landing changes between stable and unstable (a band where it
+    /// alternates), the first at which a strut goes past its capacity, and the safe envelope,
+    /// found on a grid of Vh, scanned finer around the changes and bisected; undecided
+    /// landings are listed, never counted as either (settings in the scenario's length unit
+    /// per second, the horizontal direction the scenario's; JSON and CSV in SI).
+    Boundary {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Vertical velocities FROM:TO:STEP as the scenario files write them, negative down, in
+        /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12).
+        #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
+        vv: String,
+        /// First horizontal speed of the grid.
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        vh_start: f64,
+        /// Step of the horizontal-speed grid: every grid point is landed, and every change of
+        /// outcome between neighbours is bisected.
+        #[arg(long, default_value_t = 2.0)]
+        vh_step: f64,
+        /// Largest horizontal speed of the grid.
+        #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+        vh_max: f64,
+        /// Bisection tolerance on the horizontal speed.
+        #[arg(long, default_value_t = 0.05)]
+        tol: f64,
+        /// Step of the finer scan from a grid step below the first change the grid finds to a
+        /// grid step above the last, so that an outcome alternating faster than the grid is
+        /// seen (default 0.25 when below --vh-step; 0: the grid only).
+        #[arg(long, value_name = "STEP")]
+        scan_step: Option<f64>,
+        /// Search once per end-stop coefficient of restitution in this comma-separated list,
+        /// set on every strut's load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and
+        /// report the spread: how much of the boundary the estimated stop law decides.
+        #[arg(long, value_delimiter = ',', value_name = "E,...")]
+        stop_restitution: Vec<f64>,
+        /// Engines that search, comma-separated; each searches the same configuration and the
+        /// output has one row per engine and descent speed.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "core",
+            value_parser = str::parse::<Engine>
+        )]
+        engines: Vec<Engine>,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = TableFormat::Text)]
+        format: TableFormat,
+        /// Also write the points into DIR/boundary-<scenario>.jsonl (as --format json prints
+        /// them).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Also draw the engines' boundaries, overlaid, into DIR/boundary-<scenario>.png
+        /// (matplotlib, in the project's Python environment).
+        #[arg(long, requires = "out")]
+        plot: bool,
+    },
+}
+
+#[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub(crate) struct CampaignArgs {
+    #[command(subcommand)]
+    pub(crate) action: Option<CampaignAction>,
+    /// Campaign file (TOML; docs/campaigns.md).
+    #[arg(required = true)]
+    pub(crate) file: Option<PathBuf>,
+    /// Run only shard K of N (landings ⌊(K−1)·n/N⌋ to ⌊K·n/N⌋ − 1); `touchdown campaign merge`
+    /// joins the shards' folders.
+    #[arg(long, value_name = "K/N", value_parser = str::parse::<touchdown_campaign::Shard>)]
+    pub(crate) shard: Option<touchdown_campaign::Shard>,
+    /// Write manifest.json, landings.jsonl, landings.parquet and statistics.json (and the
+    /// histories the campaign asks for) into DIR; with --add, the finished campaign to extend.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Output on standard output: the statistics as text, or JSON Lines (a landing record per
+    /// line as they finish, in landing order, then one line {"statistics": ...}).
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// Add M landings to the finished campaign in --out, leaving its landings unchanged.
+    #[arg(long, value_name = "M")]
+    pub(crate) add: Option<u64>,
+    /// Threads that land (default: one per core); the records do not depend on it.
+    #[arg(long, value_name = "N")]
+    pub(crate) threads: Option<usize>,
+    /// Also draw outcomes.png (every landing over the two dispersed inputs most correlated
+    /// with a stable landing) and strokes.png (strokes against capacities) into --out, from
+    /// the records there (matplotlib, in the project's Python environment).
+    #[arg(long, requires = "out")]
+    pub(crate) plot: bool,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum CampaignAction {
+    /// Join the folders of a campaign's shards into one, refusing parts of other campaigns,
+    /// builds or base scenarios, and parts that overlap or leave landings out.
+    Merge {
+        /// The shards' folders.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+        /// Folder of the merged campaign.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Output format (as for a campaign).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+}
+
+/// `--set FIELD=VALUE`, on every command that takes a scenario.
+#[derive(clap::Args)]
+pub(crate) struct Overrides {
+    /// Change one value of the scenario: a field path and a value in the scenario's own units,
+    /// as in the file (`--set touchdown.vertical_velocity=-10.0`, `--set footpad.detached=rigid`,
+    /// `--set 'touchdown.attitude[2]=45.0'`); repeatable.
+    #[arg(long = "set", value_name = "FIELD=VALUE")]
+    pub(crate) set: Vec<Set>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum TableFormat {
+    Text,
+    Json,
+    Csv,
+}
+
+/// A `--set FIELD=VALUE` override: a scenario field path and its value in the scenario's own
+/// units, as TOML (a number, a boolean, a quoted or bare string).
+#[derive(Debug, Clone)]
+pub struct Set {
+    pub(crate) field: String,
+    pub(crate) value: toml::Value,
+}
+
+impl std::str::FromStr for Set {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Set, String> {
+        let (field, value) = s.split_once('=').ok_or_else(|| {
+            format!("expected FIELD=VALUE (e.g. touchdown.vertical_velocity=-10.0), got {s:?}")
+        })?;
+        let field = field.trim();
+        if field.is_empty() {
+            return Err(format!("expected a field path before '=', got {s:?}"));
+        }
+        let value = value.trim();
+        if value.contains('\n') {
+            return Err(format!(
+                "expected one value on one line after '=' (a TOML value, e.g. [0.0, 1.0]), got {value:?}"
+            ));
+        }
+        // A TOML value as the file would hold it; a bare word is a string (surface.kind=soil).
+        let value = toml::from_str::<toml::Table>(&format!("v = {value}"))
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(value.to_string()));
+        Ok(Set {
+            field: field.to_string(),
+            value,
+        })
+    }
+}
+
+impl std::fmt::Display for Set {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} = {}", self.field, self.value)
+    }
+}
+
+/// The overrides of `--set`, as [`ScenarioBase::with`] takes them.
+pub fn overrides(set: &[Set]) -> Vec<(&str, toml::Value)> {
+    set.iter()
+        .map(|s| (s.field.as_str(), s.value.clone()))
+        .collect()
+}
+
+/// The settings of a command's documents: the `--set` overrides, then its `options` (an
+/// object, each name with its unit).
+pub fn settings(set: &[Set], options: serde_json::Value) -> serde_json::Value {
+    touchdown_record::document::settings(set.iter().map(|s| (s.field.as_str(), &s.value)), options)
+}
+
+/// The scenario file at `path` read once, and resolved with the `--set` overrides (an error
+/// names the field, as for a file).
+pub fn load(path: &Path, set: &[Set]) -> Result<(touchdown_scenario::ScenarioBase, Scenario)> {
+    let base = touchdown_scenario::ScenarioBase::load(path)?;
+    let sc = base.with(&overrides(set));
+    let sc = if set.is_empty() {
+        sc?
+    } else {
+        sc.with_context(|| format!("{} with --set", path.display()))?
+    };
+    Ok((base, sc))
+}
+
+/// The validation protocols of `touchdown validate`.
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum ValidationProtocol {
+    /// Two calibration rows, six held out (reference/calibration-protocol.toml).
+    TwoRow,
+    /// Leave-one-out cross-validation (reference/cross-validation-protocol.toml).
+    Cv,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum Format {
+    Text,
+    Json,
+}

@@ -1,0 +1,49 @@
+//! `touchdown compare`: scenarios through several engines, every pair compared.
+
+use crate::args::{Format, Set};
+use crate::{load, out, outln, plots, settings, view, warn};
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+use touchdown_scenario::schema::Engine;
+
+/// `touchdown compare`: every scenario through every engine asked for, every pair compared;
+/// whether every pair passed on every scenario.
+pub fn compare(
+    scenarios: &[PathBuf],
+    set: &[Set],
+    engines: &[Engine],
+    format: Format,
+    (out, plot): (Option<&Path>, bool),
+    watch: Option<(&Path, f64)>,
+) -> Result<bool> {
+    let engines = touchdown_compare::engine_set(engines).context("--engines")?;
+    let settings = settings(set, serde_json::json!({ "engines": engines }));
+    let mut passed = true;
+    for path in scenarios {
+        let sc = load(path, set)?.1;
+        warn(&sc);
+        let interval = watch.map(|(_, f)| f);
+        let c = touchdown_compare::compare_recorded(path, &sc, &engines, interval)?;
+        passed &= c.pairs.iter().all(|p| p.pass);
+        let document = touchdown_compare::report::json_line(&c, &settings);
+        if let Some(dir) = out {
+            plots::comparison(&c, &document, path, dir, plot)?;
+        }
+        if let Some((dir, interval)) = watch {
+            let (data, page) = view::write(dir, (path, &sc, set), &c.runs, interval)?;
+            eprintln!("wrote {} and {}", page.display(), data.display());
+        }
+        // One line per scenario as it finishes (JSON Lines).
+        match format {
+            Format::Text => outln!("{}", touchdown_compare::report::text(&c))?,
+            Format::Json => outln!("{document}")?,
+        }
+    }
+    if let Format::Text = format {
+        out!(
+            "tolerances\n{}",
+            touchdown_compare::report::tolerances_text()
+        )?;
+    }
+    Ok(passed)
+}

@@ -1,0 +1,85 @@
+//! `touchdown run`: one landing on one engine.
+
+use crate::args::{Format, Set};
+use crate::{load, out, outln, report, settings, warn};
+use anyhow::{Context, Result};
+use std::path::Path;
+use touchdown_record::History;
+use touchdown_scenario::schema::Engine;
+
+/// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
+/// summary.json, history.csv and scenario.resolved.toml in that folder.
+pub fn run(
+    scenario: &Path,
+    set: &[Set],
+    format: Format,
+    (out, every): (Option<&Path>, usize),
+    (engine, timestep): (Engine, Option<f64>),
+) -> Result<()> {
+    if every == 0 {
+        anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
+    }
+    let mut sc = load(scenario, set)?.1;
+    touchdown_registry::require(engine, &sc)?;
+    if let Some(t) = timestep {
+        if !(t.is_finite() && t > 0.0) {
+            anyhow::bail!("--timestep: expected a positive number of seconds, got {t:e}");
+        }
+        // In the file's time unit (its [similarity] applied), as the file would state it.
+        let step = Some(t / sc.units().time());
+        let changed = match engine {
+            Engine::Core => anyhow::bail!(
+                "--timestep sets the step of a multibody engine; add --engine rapier or --engine mujoco"
+            ),
+            Engine::Rapier => sc.with_rapier(|r| r.timestep = step),
+            Engine::Mujoco => sc.with_mujoco(|m| m.timestep = step),
+        };
+        sc = changed.with_context(|| format!("--timestep {t:e} s"))?;
+    }
+    warn(&sc);
+    if let Some(dir) = out {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    // The MuJoCo runner writes its own history.csv.
+    let mut recorder = match out {
+        Some(dir) if engine != Engine::Mujoco => {
+            Some(History::create(&dir.join("history.csv"), sc.legs.len())?)
+        }
+        _ => None,
+    };
+    let landed = touchdown_registry::land(engine, scenario, &sc, &mut recorder, out);
+    // An engine that refuses the step it was given blames the argument first.
+    let summary = match timestep {
+        Some(t) => landed.with_context(|| format!("--timestep {t:e} s"))?,
+        None => landed?,
+    };
+    if let Some(r) = recorder {
+        r.finish()?;
+    }
+    if let Some(dir) = out {
+        // Every engine has written the same history.csv: one thinning for all.
+        if every > 1 {
+            touchdown_record::history::decimate(&dir.join("history.csv"), every)?;
+        }
+        std::fs::write(
+            dir.join("scenario.resolved.toml"),
+            report::resolved_scenario(&sc),
+        )?;
+    }
+    let options = match timestep {
+        Some(t) => serde_json::json!({ "timestep_s": t }),
+        None => serde_json::json!({}),
+    };
+    let document = summary.document(
+        &touchdown_record::ScenarioId::new(scenario.display(), &sc),
+        &settings(set, options),
+    );
+    if let Some(dir) = out {
+        std::fs::write(dir.join("summary.json"), &document)?;
+    }
+    match format {
+        Format::Text => out!("{}", report::text(&sc, &summary, set))?,
+        Format::Json => outln!("{document}")?,
+    }
+    Ok(())
+}

@@ -1,0 +1,70 @@
+//! `touchdown precision`: a scenario's work-precision study (error against run time).
+
+use crate::args::{Format, Set};
+use crate::{load, out, out_file, outln, plots, settings, warn};
+use anyhow::{Context, Result};
+use std::path::Path;
+use touchdown_scenario::schema::Engine;
+
+/// `touchdown precision`: the work-precision study of a scenario.
+pub fn precision(
+    scenario: &Path,
+    set: &[Set],
+    engines: &[Engine],
+    (repeats, rungs): (usize, Option<usize>),
+    format: Format,
+    out: Option<&Path>,
+    plot: bool,
+) -> Result<()> {
+    use touchdown_compare::precision::{self, Method};
+    if repeats == 0 {
+        anyhow::bail!("--repeats: expected at least 1 timed run per rung");
+    }
+    if rungs == Some(0) {
+        anyhow::bail!("--rungs: expected at least 1 rung per ladder");
+    }
+    let methods: Vec<Method> = Method::ALL
+        .into_iter()
+        .filter(|m| engines.contains(&m.engine()))
+        .collect();
+    eprintln!("computing the converged reference ...");
+    let sc = load(scenario, set)?.1;
+    warn(&sc);
+    let study =
+        precision::work_precision_resolved(scenario, &sc, &methods, rungs, repeats, |rung| {
+            eprintln!(
+                "  {} {}: {}",
+                rung.method.name(),
+                precision::setting_label(rung.method, rung.value),
+                match (&rung.measured, &rung.failure) {
+                    (Some(m), _) => format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
+                    (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
+                }
+            );
+        })?;
+    let mut options = serde_json::json!({
+        "engines": engines,
+        "repeats": repeats,
+    });
+    if let Some(n) = rungs {
+        options["rungs"] = n.into();
+    }
+    let id = touchdown_record::ScenarioId {
+        path: study.file.clone(),
+        sha256: study.scenario_sha256.clone(),
+    };
+    let settings = settings(set, options);
+    let json = touchdown_record::Document::new("precision", Some(&id), &settings, &study).pretty();
+    if let Some(dir) = out {
+        let data = out_file(dir, "precision-", scenario, "json")?;
+        std::fs::write(&data, &json).with_context(|| format!("cannot write {}", data.display()))?;
+        if plot {
+            plots::precision(&data, &study.scenario, &data.with_extension("png"))?;
+        }
+    }
+    match format {
+        Format::Text => out!("{}", precision::text(&study))?,
+        Format::Json => outln!("{json}")?,
+    }
+    Ok(())
+}
