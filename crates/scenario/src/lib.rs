@@ -17,13 +17,17 @@
 //! it is opened), and a table of the schema is read only from a TOML table (never from an
 //! array, which serde's derived structs would otherwise accept field by field).
 
+mod check;
 pub mod dimension;
 pub mod error;
 pub mod initial;
 mod load;
 mod mechanisms;
 pub mod model;
+mod overrides;
 pub mod ranges;
+mod read;
+mod resolve;
 pub mod schema;
 mod strict;
 #[cfg(test)]
@@ -31,5 +35,8 @@ mod tests;
 pub mod units;
 
 pub use error::{ScenarioError, Warning};
-pub use load::{merged_table, read_strict, read_toml, set_field, ScenarioBase, SchemaMismatch};
+pub use load::ScenarioBase;
 pub use model::Scenario;
+pub use overrides::set_field;
+pub use read::{merged_table, read_toml};
+pub use resolve::{read_strict, SchemaMismatch};

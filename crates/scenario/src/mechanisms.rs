@@ -2,8 +2,8 @@
 //! each is absent unless its table is given, and each is checked against the rest of the scene
 //! (a soil surface has no curbs, a curb needs a footpad crush diagram, ...).
 
+use crate::check::Check;
 use crate::error::ScenarioError;
-use crate::load::Check;
 use crate::model;
 use crate::schema::{self, Arrangement, RcsMode};
 use crate::units::{short, Units};

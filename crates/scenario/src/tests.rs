@@ -2,9 +2,9 @@
 //! wrote a number, special files, clear messages, plausibility ranges and warnings. Each test
 //! names what it guards; the catalogue in tests/data/malformed/ holds one file per case too.
 
+use crate::check::{RANGE_CHECKED, SI_FACTORS};
 use crate::dimension::{Dimension, Powers};
 use crate::error::ScenarioError;
-use crate::load::{RANGE_CHECKED, SI_FACTORS};
 use crate::ranges::{self, RANGES};
 use crate::Scenario;
 use std::collections::BTreeSet;
