@@ -6,7 +6,7 @@
 //! crush is committed at each state once the loads there are evaluated (as the core commits
 //! after evaluating its accepted state: the rim pushes with the crush of the state before).
 
-use crate::book::{Fault, BodyMotion};
+use crate::motion::{BodyMotion, Fault};
 use nalgebra::Vector3;
 use touchdown_laws::scene::{Attitude, Propulsion};
 use touchdown_record::Law;

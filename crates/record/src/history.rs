@@ -1,14 +1,14 @@
 //! `history.csv`: one row per accepted step, the same columns for every engine (SI units, named
 //! in the header).
 
-use crate::summary::EnergyReport;
+use crate::energy::EnergyReport;
 use crate::Sample;
 use nalgebra::Vector3;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
-/// The energy columns, J, one per account of [`crate::summary::EnergyReport`], so that the balance
+/// The energy columns, J, one per account of [`crate::energy::EnergyReport`], so that the balance
 /// rebuilds from a row: `residual_j` = `kinetic_j` + `potential_change_j` + `footpad_j` +
 /// `honeycomb_stored_j` + `honeycomb_dissipated_j` + `viscous_j` + `bearing_friction_j` +
 /// `sliding_friction_j` + `mechanisms_j` − `contact_events_j` − `kinetic_initial_j`

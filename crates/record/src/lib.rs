@@ -5,7 +5,8 @@
 //! |---|---|
 //! | [`stability`] | stability distance, overturning velocity and the stable-landing conditions, eqs. (105)-(107) |
 //! | [`capacity`] | the struts' capacities, and the struts a landing stroked past them onto their end stops |
-//! | [`summary`] | the landing summary, the energy report and the running extremes behind them |
+//! | [`summary`] | the landing summary and the running extremes behind it |
+//! | [`energy`] | the energy ledger: the accounts since touchdown, the work per mechanism, the imbalance that stops a run |
 //! | [`sample`] | one row of the time history |
 //! | [`history`] | the time-history file `history.csv` |
 //! | [`document`] | the envelope of every JSON document: which document, the scenario, the settings |
@@ -17,6 +18,7 @@
 
 pub mod capacity;
 pub mod document;
+pub mod energy;
 pub mod history;
 pub mod landing;
 pub mod outcome;
@@ -26,12 +28,13 @@ pub mod summary;
 
 pub use capacity::{Capacity, PastCapacity, StrutCapacities};
 pub use document::{Document, ScenarioId};
+pub use energy::{EnergyLedger, EnergyReport, Imbalance};
 pub use history::History;
 pub use landing::{Landing, Observer};
 pub use outcome::{Divergence, Law, RunError, SetupFailure, StateAtStop};
 pub use sample::{LegSample, Sample};
 pub use stability::{Outcome, PadView, StabilityTracker};
-pub use summary::{EnergyLedger, EnergyReport, Extremes, Imbalance, Progress, Summary};
+pub use summary::{Extremes, Progress, Summary};
 
 /// Force evaluations a run may make per step of its budget (a multibody engine evaluates once
 /// a step; the core's adaptive scheme up to about seven times, more when it rejects steps).

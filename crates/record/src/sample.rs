@@ -1,6 +1,6 @@
 //! One row of a landing's time history (`history.csv`), the same for every engine.
 
-use crate::summary::EnergyReport;
+use crate::energy::EnergyReport;
 use nalgebra::Vector3;
 
 /// One gear at one instant.

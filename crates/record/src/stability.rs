@@ -6,7 +6,7 @@
 //! n̂ = G×AB/|G×AB| (the outward normal), SD = ACM·n̂ is positive while the centre of mass is
 //! inside the wall.
 
-use crate::summary::EnergyReport;
+use crate::energy::EnergyReport;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 use touchdown_scenario::model::Stability;
