@@ -5,7 +5,7 @@
 //! and take-offs are motions of a body, not a switch at the step rate.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
-use touchdown_core::surface::ContactState;
+use touchdown_core::ContactState;
 use touchdown_core::{Landing, Observer, Simulation};
 use touchdown_scenario::Scenario;
 

@@ -41,6 +41,7 @@ mod mechanisms;
 mod mujoco;
 mod physics;
 mod plots;
+mod public_surface;
 mod rapier;
 mod scenario_errors;
 mod similarity;

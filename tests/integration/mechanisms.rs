@@ -331,7 +331,7 @@ fn curbs_crush_as_their_table_says(detached: Detached) {
         let pad = &sim.footpads()[leg];
         match detached {
             Detached::Inertial => pad.first_contact.is_some(),
-            Detached::Rigid => pad.state == touchdown_core::surface::ContactState::Contact,
+            Detached::Rigid => pad.state == touchdown_core::ContactState::Contact,
         }
     };
     loop {

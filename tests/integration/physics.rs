@@ -56,7 +56,7 @@ impl Observer<Simulation> for Invariants {
         if sim
             .footpads()
             .iter()
-            .any(|p| p.state == touchdown_core::surface::ContactState::Contact)
+            .any(|p| p.state == touchdown_core::ContactState::Contact)
         {
             return;
         }
@@ -127,7 +127,7 @@ fn torque_free_tumbling_conserves_energy_and_angular_momentum() {
     assert!(
         sim.footpads()
             .iter()
-            .all(|p| p.state != touchdown_core::surface::ContactState::Contact),
+            .all(|p| p.state != touchdown_core::ContactState::Contact),
         "the vehicle must fly free"
     );
     let (e0, h0) = (inv.energy[0], inv.momentum[0]);
@@ -254,7 +254,7 @@ fn sliding_footpads_are_pushed_outward() {
     }
     let v = sim.vehicle();
     for (i, (pad, leg)) in sim.footpads().iter().zip(&sc.legs).enumerate() {
-        assert_eq!(pad.state, touchdown_core::surface::ContactState::Contact);
+        assert_eq!(pad.state, touchdown_core::ContactState::Contact);
         let radial = (v.t_bi * leg.bp).xy().normalize();
         let moved = (pad.position - pad.touchdown_xy.push(pad.position.z)).xy();
         assert!(sim.gear()[i].fcp > 0.0);
@@ -316,7 +316,7 @@ impl Observer<Simulation> for NormalForce {
     fn observe(&mut self, sim: &Simulation) {
         let t_bi = sim.vehicle().t_bi;
         for (i, (p, g)) in sim.footpads().iter().zip(sim.gear()).enumerate() {
-            if p.state == touchdown_core::surface::ContactState::Contact {
+            if p.state == touchdown_core::ContactState::Contact {
                 // eqs. (67), (85): FZI, positive pressing, plus the footpad's weight; and, for
                 // the massless footpad, the primary honeycomb force, negative on its extension
                 // stop. (A footpad with inertia can land while it hangs on that stop, its strut
@@ -428,7 +428,7 @@ fn with_stops(e: f64) -> Scenario {
 /// `laws::honeycomb::tests::a_plastic_stop_is_the_limit_of_small_restitutions`). The maxima of
 /// this rocking landing are not compared across e: they move by up to 9 % between e = 0.001 and
 /// 0.01, which the landing's sensitivity, not the law, decides. The multibody engines refuse
-/// stops less elastic than `touchdown_multibody::step::MIN_STOP_RESTITUTION`, naming the field.
+/// stops less elastic than `MIN_STOP_RESTITUTION` (`crates/multibody/src/step.rs`), naming the field.
 #[test]
 fn a_plastic_stop_lands_on_the_core_and_is_refused_where_unresolved() {
     let plastic = touchdown_core::run(&with_stops(0.0)).unwrap();

@@ -5,37 +5,41 @@
 //!
 //! | module | report |
 //! |---|---|
-//! | [`rigid_body`] | rigid-vehicle equations, eqs. (10)-(15) |
-//! | [`gear`] | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
-//! | [`surface`] | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
-//! | [`mechanisms`] | the scene's optional mechanisms: thrust and nozzle crushing (69-74), RCS (75-82), slosh (108-117), soil (101-104), curbs (86-95), bending (40-48) |
-//! | [`integrator`] | beyond the report: fourth-order and embedded Dormand–Prince Runge–Kutta schemes, a quaternion attitude |
-//! | [`simulation`] | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
+//! | `rigid_body` | rigid-vehicle equations, eqs. (10)-(15) |
+//! | `gear` | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
+//! | `surface` | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
+//! | `mechanisms` | the scene's optional mechanisms: thrust and nozzle crushing (69-74), RCS (75-82), slosh (108-117), soil (101-104), curbs (86-95), bending (40-48) |
+//! | `integrator` | beyond the report: fourth-order and embedded Dormand–Prince Runge–Kutta schemes, a quaternion attitude |
+//! | `simulation` | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
 //!
 //! The stability criteria (eqs. 105-107) and the summary are shared with the other engines in
 //! `touchdown_record`.
 //!
+//! The modules are private: other crates use what the crate root re-exports (kept deliberate
+//! by `tests/integration/public_surface.rs`).
+//!
 //! Departures from the printed equations are listed with their derivations and tests in
 //! `docs/errata.md`.
 
-pub mod contact;
-pub mod diagnostics;
-pub mod gear;
-pub mod integrator;
-pub mod ledger;
-pub mod loads;
-pub mod mechanisms;
+mod contact;
+mod diagnostics;
+mod gear;
+mod integrator;
+mod ledger;
+mod loads;
+mod mechanisms;
 mod release;
-pub mod rigid_body;
-pub mod simulation;
-pub mod state;
-pub mod stepper;
+mod rigid_body;
+mod simulation;
+mod state;
+mod stepper;
 mod stiction;
 mod summation;
-pub mod surface;
+mod surface;
 
 pub use simulation::Simulation;
 pub use state::VehicleState;
+pub use surface::ContactState;
 pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, RunError, Summary};
 
 /// Why the core does not model `mechanism`: never; it models every mechanism of the report

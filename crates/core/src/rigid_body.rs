@@ -54,6 +54,8 @@ impl MassProperties {
 /// Body torque, N·m, written component by component as eqs. (13)-(15) with the corrections
 /// of docs/errata.md (eq. 13: first bracket −Ixz·ωx; eq. 14: −Ixz·ωz, Iyz·ωy, trailing ωx).
 /// `i` = (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) with the report's product convention Ixy = ∫xy dm.
+/// The tests' oracle for the vector form the core integrates (docs/errata.md, eqs. 13-15).
+#[cfg(test)]
 pub fn euler_torque(i: [f64; 6], omega: &Vector3<f64>, omega_dot: &Vector3<f64>) -> Vector3<f64> {
     let [ixx, iyy, izz, ixy, ixz, iyz] = i;
     let (wx, wy, wz) = (omega.x, omega.y, omega.z);

@@ -21,7 +21,7 @@
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
-    BodyEnergy, Fault, GearBook, MujocoSettings, PadStep, Reading, StrutKinematics, BodyMotion,
+    BodyEnergy, BodyMotion, Fault, GearBook, MujocoSettings, PadStep, Reading, StrutKinematics,
 };
 use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;

@@ -24,7 +24,7 @@ pub mod mjcf;
 pub use landing::{refusal, MujocoLanding};
 pub use launch::Launch;
 pub use mjcf::export;
-pub use touchdown_multibody::capabilities::unsupported;
+pub use touchdown_multibody::unsupported;
 
 /// Errors of the MuJoCo engine.
 #[derive(Debug, thiserror::Error)]

@@ -3,24 +3,24 @@
 //!
 //! | module | content |
 //! |---|---|
-//! | [`capabilities`] | what the multibody engines model of the scene's optional mechanisms |
-//! | [`strut`] | the strut laws at one state of a multibody gear (eqs. 49-63): explicit forces, the plateau and bearing-friction bounds, their work over a step |
-//! | [`step`] | the time step and footpad contact, stated or derived from the stiffest gear mode and the contact radius, and the explicit-step check |
-//! | [`motion`] | the vehicle body's motion after a step, and what stops a run before it is placed in time and state |
-//! | [`applied`] | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
-//! | [`wall`] | the obstacle wall that holds a locked footpad laterally from its landing until it rises above the wall (fig. 17) |
-//! | [`book`] | the gear bookkeeping: kinematics before and after a step, hysteresis committed once per step, contact work, the curbs' force on the footpads (eqs. 86-95) with their crush committed once per step, energy ledger, stability criteria, extremes, summary and history samples |
+//! | `capabilities` | what the multibody engines model of the scene's optional mechanisms |
+//! | `strut` | the strut laws at one state of a multibody gear (eqs. 49-63): explicit forces, the plateau and bearing-friction bounds, their work over a step |
+//! | `step` | the time step and footpad contact, stated or derived from the stiffest gear mode and the contact radius, and the explicit-step check |
+//! | `motion` | the vehicle body's motion after a step, and what stops a run before it is placed in time and state |
+//! | `applied` | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
+//! | `wall` | the obstacle wall that holds a locked footpad laterally from its landing until it rises above the wall (fig. 17) |
+//! | `book` | the gear bookkeeping: kinematics before and after a step, hysteresis committed once per step, contact work, the curbs' force on the footpads (eqs. 86-95) with their crush committed once per step, energy ledger, stability criteria, extremes, summary and history samples |
 
-pub mod applied;
-pub mod book;
-pub mod capabilities;
-pub mod motion;
-pub mod step;
-pub mod strut;
-pub mod wall;
+mod applied;
+mod book;
+mod capabilities;
+mod motion;
+mod step;
+mod strut;
+mod wall;
 
-pub use applied::VehicleLoads;
-pub use book::{BodyEnergy, GearBook, PadContact, PadStep, Reading, CONTACT_FLAG_SETTINGS};
+pub use book::{BodyEnergy, GearBook, PadStep, Reading, CONTACT_FLAG_SETTINGS};
+pub use capabilities::unsupported;
 pub use motion::{BodyMotion, Fault};
 pub use step::{MujocoSettings, RapierSettings};
-pub use strut::{strut_forces, StrutForces, StrutKinematics};
+pub use strut::{StrutForces, StrutKinematics};

@@ -17,7 +17,7 @@ pub mod simulation;
 pub mod struts;
 
 pub use simulation::RapierSimulation;
-pub use touchdown_multibody::capabilities::unsupported;
+pub use touchdown_multibody::unsupported;
 pub use touchdown_record::{Landing, Observer, RunError};
 
 /// Runs a scenario to its end on the rapier engine and returns its summary.

@@ -17,7 +17,7 @@ use crate::assembly::{
 use crate::struts;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_multibody::{BodyEnergy, GearBook, PadStep, RapierSettings, Reading, BodyMotion};
+use touchdown_multibody::{BodyEnergy, BodyMotion, GearBook, PadStep, RapierSettings, Reading};
 use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;

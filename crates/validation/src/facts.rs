@@ -4,7 +4,7 @@
 use crate::reference::{self, Paths};
 use crate::ValidationError;
 use serde::{Deserialize, Serialize};
-use touchdown_core::surface::ContactState;
+use touchdown_core::ContactState;
 use touchdown_core::{Landing, Observer, Outcome, Simulation};
 use touchdown_scenario::Scenario;
 
