@@ -291,7 +291,7 @@ fn spread_text(points: &[EnginePoint]) -> String {
     let mut o = String::new();
     let _ = write!(
         o,
-        "\nboundary Vh by end-stop restitution e (every diagram; > Vh: stable up to the largest Vh tried)\n  engine         Vv"
+        "\nboundary Vh by end-stop restitution e (every diagram; > Vh: stable up to the largest Vh tried; spread —: not known, the lowest value being such a bound)\n  engine         Vv"
     );
     for e in &laws {
         let _ = write!(o, "   {:>8}", format!("e = {e}"));
@@ -324,11 +324,14 @@ fn spread_text(points: &[EnginePoint]) -> String {
             let _ = write!(o, "   {shown:>8}");
             values.push(value);
         }
-        let spread = if values.iter().all(Option::is_some) {
-            let found: Vec<(f64, bool)> = values.into_iter().flatten().collect();
-            let lo = found.iter().map(|v| v.0).fold(f64::INFINITY, f64::min);
-            let hi = found.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
-            let bound = found.iter().any(|v| v.1 && v.0 > lo);
+        // The spread is known from below only where the lowest value is a boundary found: a
+        // law that never overturned (a lower bound) at the lowest value leaves it open.
+        let found: Vec<(f64, bool)> = values.iter().flatten().copied().collect();
+        let lo = found.iter().map(|v| v.0).fold(f64::INFINITY, f64::min);
+        let hi = found.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
+        let lowest_found = found.iter().any(|&(v, bound)| !bound && v == lo);
+        let spread = if values.iter().all(Option::is_some) && lowest_found {
+            let bound = found.iter().any(|v| v.1);
             format!("{}{:.3}", if bound { "> " } else { "" }, hi - lo)
         } else {
             "—".into()
@@ -590,6 +593,15 @@ mod boundary_tests {
             ["core", "-8.000", "12.250", ">", "30.000", "7.500", ">", "22.500"],
             "{text}"
         );
+        // No law overturns: the spread is open, not zero.
+        for p in &mut points {
+            p.point.vh = None;
+            p.point.unstable_at = None;
+            p.point.stable_at = Some(36.0);
+        }
+        let text = spread_text(&points);
+        let row: Vec<&str> = text.lines().nth(3).unwrap().split_whitespace().collect();
+        assert_eq!(row.last(), Some(&"—"), "{text}");
     }
 
     fn points_at(e: f64) -> EnginePoint {
