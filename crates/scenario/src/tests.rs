@@ -552,6 +552,21 @@ fn legs_closer_than_the_least_separation_are_refused() {
     assert!(message.contains("at most 32 legs"), "{message}");
 }
 
+/// A similar vehicle (`[similarity]`) written into `dir`: the figure 25-26 landing at full scale
+/// on the Moon. Returns its path.
+fn similar_vehicle(dir: &Path) -> PathBuf {
+    let similar = dir.join("similar.toml");
+    std::fs::write(
+        &similar,
+        format!(
+            "schema_version = 1\nextends = {:?}\nname = \"similar\"\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
+            root().join("scenarios/fig-25-26.toml").display().to_string()
+        ),
+    )
+    .unwrap();
+    similar
+}
+
 /// Every number of every bundled scenario (and of explicit cantilever legs) has a range and is
 /// checked against it on load; every range is of a field some scenario has.
 #[test]
@@ -568,16 +583,7 @@ fn every_numeric_field_has_a_range_checked_on_load() {
     let explicit = dir.join("explicit.toml");
     std::fs::write(&explicit, text).unwrap();
     files.push(explicit);
-    // A similar vehicle (`[similarity]`): the figure 25-26 landing at full scale on the Moon.
-    let similar = dir.join("similar.toml");
-    std::fs::write(
-        &similar,
-        format!(
-            "schema_version = 1\nextends = {:?}\nname = \"similar\"\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
-            root().join("scenarios/fig-25-26.toml").display().to_string()
-        ),
-    )
-    .unwrap();
+    let similar = similar_vehicle(dir);
     files.push(similar);
     let mut leaves = BTreeSet::new();
     RANGE_CHECKED.with(|c| c.borrow_mut().clear());
@@ -618,15 +624,7 @@ fn every_numeric_field_has_a_range_checked_on_load() {
 fn every_fields_dimension_is_the_one_it_is_read_with() {
     let folder = scratch("dimensions");
     let dir = folder.path();
-    let similar = dir.join("similar.toml");
-    std::fs::write(
-        &similar,
-        format!(
-            "schema_version = 1\nextends = {:?}\nname = \"similar\"\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
-            root().join("scenarios/fig-25-26.toml").display().to_string()
-        ),
-    )
-    .unwrap();
+    let similar = similar_vehicle(dir);
     let mut files = bundled();
     files.push(similar);
     let mut checked = 0;
