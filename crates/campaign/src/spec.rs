@@ -243,7 +243,7 @@ impl Campaign {
             // "Ranges"), not only in the scenario's units.
             if let Some(unit) = &d.unit {
                 base_scenario
-                    .check_unit(&d.field, unit)
+                    .check_unit_dimension(&d.field, unit)
                     .map_err(|m| err(&format!("dispersion[{i}].unit"), m))?;
             }
             dispersions.push(d);

@@ -31,6 +31,10 @@ pub struct Dimension {
     pub time: f64,
 }
 
+/// What a unit may be built from, for messages about one that is not.
+pub const UNIT_GRAMMAR: &str =
+    "m, ft, in, kg, slug, N, lbf, deg, rad, s, their products with * and powers ^2, one /, or 1";
+
 /// The values of the symbolic powers a unit may name.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Powers {
@@ -344,11 +348,9 @@ impl Parser<'_> {
 
     fn factor(&mut self) -> Result<Dimension, String> {
         let base = match self.next().cloned() {
-            Some(Token::Name(n)) => named(&n).ok_or_else(|| {
-                format!(
-                    "unknown unit {n:?} (expected m, ft, in, kg, slug, N, lbf, deg, rad, s, their products with * and powers ^2, one /, or 1)"
-                )
-            })?,
+            Some(Token::Name(n)) => {
+                named(&n).ok_or_else(|| format!("unknown unit {n:?} (expected {UNIT_GRAMMAR})"))?
+            }
             Some(Token::One) => Dimension::NONE,
             Some(Token::Open) => {
                 let d = self.quotient()?;

@@ -72,22 +72,20 @@ impl Scenario {
     }
 
     /// Checks that `unit` (written beside numbers meant for `field`, as a campaign does:
-    /// `"ft/s"`, `"1"`) names this file's own units ([`Units::suffix_of`]) and the field's
-    /// dimension ([`Scenario::dimension_of`]), so that a length given to a velocity is refused
-    /// rather than read as one. Returns the unit as a name suffix (`ft_s`), or what is wrong and
-    /// the unit to write.
-    pub fn check_unit(&self, field: &str, unit: &str) -> Result<String, String> {
-        let units = self.units();
-        let suffix = units.suffix_of(unit)?;
+    /// `"ft/s"`, `"1"`; already checked to name this file's own units by
+    /// [`Units::suffix_of`]) is of the field's dimension ([`Scenario::dimension_of`]), so that a
+    /// length given to a velocity is refused rather than read as one. The error says what is
+    /// wrong and the unit to write.
+    pub fn check_unit_dimension(&self, field: &str, unit: &str) -> Result<(), String> {
         let given = Dimension::parse(unit, Powers::default())?;
         let wanted = match self.dimension_of(field) {
             Some(d) => d?,
             None => Dimension::NONE,
         };
         if given == wanted {
-            return Ok(suffix);
+            return Ok(());
         }
-        let write = match wanted.written_in(&units) {
+        let write = match wanted.written_in(&self.units()) {
             Some(w) => format!("write its numbers in {w}"),
             None => "no unit with whole powers names it".into(),
         };

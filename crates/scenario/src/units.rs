@@ -208,7 +208,8 @@ impl Units {
                     "s" => ("s", "times"),
                     other => {
                         return Err(format!(
-                            "{unit:?}: unknown unit {other:?} (expected m, ft, in, kg, slug, N, lbf, deg, rad, s, their products with * and powers ^2, one /, or 1)"
+                            "{unit:?}: unknown unit {other:?} (expected {})",
+                            crate::dimension::UNIT_GRAMMAR
                         ))
                     }
                 };
