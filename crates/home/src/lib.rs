@@ -12,17 +12,17 @@ use std::path::{Path, PathBuf};
 const BUILT_IN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
 
 /// The environment variable that names the project's folder.
-pub const HOME_VARIABLE: &str = "TOUCHDOWN_HOME";
+const HOME_VARIABLE: &str = "TOUCHDOWN_HOME";
 
 /// The environment variable that names the Python interpreter, in place of the project's
 /// `.venv`.
-pub const PYTHON_VARIABLE: &str = "TOUCHDOWN_PYTHON";
+const PYTHON_VARIABLE: &str = "TOUCHDOWN_PYTHON";
 
 /// A file every copy of the project holds, by which [`home`] recognises it.
 const MARKER: &str = "python/mujoco/run.py";
 
 /// The command that sets up the Python environment.
-pub const SETUP_COMMAND: &str = "scripts/setup-python";
+const SETUP_COMMAND: &str = "scripts/setup-python";
 
 /// Why the project's folder or its Python environment cannot be used.
 #[derive(Debug, thiserror::Error)]
