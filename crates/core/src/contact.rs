@@ -8,9 +8,10 @@
 
 use crate::gear::GearState;
 use crate::ledger::PadWork;
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::model::Model;
+use crate::state::State;
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
+use crate::vehicle::VehicleState;
 use nalgebra::{Vector2, Vector3};
 use touchdown_laws::sliding::VELOCITY_ROUNDING;
 use touchdown_laws::sliding_friction;
@@ -22,18 +23,18 @@ use touchdown_scenario::schema::ReleaseRule;
 /// before the step is shortened to locate its landing, m.
 pub const CONTACT_EVENT_DEPTH: f64 = 1e-9;
 
-impl Physics {
+impl State {
     /// Contact logic of the surface (text before eq. 85) at the accepted state, the gear
-    /// evaluated there, for the scene's footpads: with inertia ([`Physics::inertial_contact`]) or
-    /// the report's rigid detached footpad ([`Physics::rigid_contact`]). Returns whether any
+    /// evaluated there, for the scene's footpads: with inertia ([`State::inertial_contact`]) or
+    /// the report's rigid detached footpad ([`State::rigid_contact`]). Returns whether any
     /// footpad changed state or was moved.
-    pub(crate) fn contact_logic(&mut self) -> Result<bool, RunError> {
+    pub(crate) fn contact_logic(&mut self, model: &Model) -> Result<bool, RunError> {
         let mut changed = false;
         for i in 0..self.pads.len() {
-            changed |= if self.inertial {
-                self.inertial_contact(i)?
+            changed |= if model.inertial {
+                self.inertial_contact(model, i)?
             } else {
-                self.rigid_contact(i)?
+                self.rigid_contact(model, i)?
             };
         }
         Ok(changed)
@@ -41,19 +42,19 @@ impl Physics {
 
     /// The contact logic of footpad `i` with inertia (docs/errata.md, "Footpads with inertia"):
     /// off the surface, once it has reached its plane (below it, or within
-    /// [`Physics::contact_tolerance`] and approaching) it meets it in a plastic impact of its
+    /// [`Model::contact_tolerance`] and approaching) it meets it in a plastic impact of its
     /// own mass: it is put on the plane and loses its normal velocity on the rigid surface (the
     /// energy lost is a contact event), and stays in contact unless the surface would have to
     /// pull it there at once. In contact it leaves as soon as the surface would have to pull it
-    /// ([`Physics::leaves`]), keeping its position and velocity: its gear keeps its strokes and
+    /// ([`State::leaves`]), keeping its position and velocity: its gear keeps its strokes and
     /// loads. Returns whether it changed state or was moved.
-    fn inertial_contact(&mut self, i: usize) -> Result<bool, RunError> {
+    fn inertial_contact(&mut self, model: &Model, i: usize) -> Result<bool, RunError> {
         let v = self.vehicle;
         let soil = self.mechanisms.soil.is_some();
-        let s = self.surfaces[i];
+        let s = model.surfaces[i];
         let plane = s.plane();
         if self.pads[i].state == ContactState::Contact {
-            if self.leaves(i, &v, &self.gear[i]) {
+            if self.leaves(model, i, &v, &self.gear[i]) {
                 let pad = &mut self.pads[i];
                 pad.state = ContactState::Detached;
                 pad.stuck = false;
@@ -69,7 +70,7 @@ impl Physics {
         // Decisions at rounding level: a footpad within the contact tolerance of its plane
         // lands if it approaches it faster than rounding (docs/errata.md, "Decisions at
         // rounding level").
-        let tol = self.contact_tolerance;
+        let tol = model.contact_tolerance;
         let speed = (pad.velocity - v.velocity).norm() + v.velocity.norm();
         let below = pad.position.z < plane - tol;
         let touching = pad.position.z <= plane + tol && pad.velocity.z < -VELOCITY_ROUNDING * speed;
@@ -77,14 +78,14 @@ impl Physics {
             return Ok(false);
         }
         let vel = pad.velocity;
-        self.put_down(i, &pad.position, &vel);
+        self.put_down(model, i, &pad.position, &vel);
         // Its gear on the plane after the impact: a rigid surface that would have to pull it
         // there at once takes the impact and lets it go (on soil it penetrates, and leaves by
         // the soil's rule).
         let landed = self.pads[i];
         let mut g = GearState::default();
-        self.evaluate_leg(i, &v, &landed.position, &landed.velocity, &mut g)?;
-        if !soil && self.pressing(&v, &g) < -self.force_rounding {
+        self.evaluate_leg(model, i, &v, &landed.position, &landed.velocity, &mut g)?;
+        if !soil && self.pressing(model, &v, &g) < -model.force_rounding {
             self.pads[i] = Footpad {
                 position: Vector3::new(pad.position.x, pad.position.y, plane),
                 velocity: Vector3::new(landed.velocity.x, landed.velocity.y, vel.z.max(0.0)),
@@ -102,7 +103,13 @@ impl Physics {
     /// inside a curb's crushed zone (`laws::curb::Curbs::landing`: it does not crush the curb
     /// without work), with its normal velocity lost on the rigid surface and kept on soil,
     /// where it penetrates (eq. 103).
-    pub(crate) fn put_down(&mut self, i: usize, position: &Vector3<f64>, velocity: &Vector3<f64>) {
+    pub(crate) fn put_down(
+        &mut self,
+        model: &Model,
+        i: usize,
+        position: &Vector3<f64>,
+        velocity: &Vector3<f64>,
+    ) {
         let pad = self.pads[i];
         let v_normal = if self.mechanisms.soil.is_some() {
             velocity.z
@@ -111,12 +118,12 @@ impl Physics {
         };
         let mut xy = Vector2::new(position.x, position.y);
         if let (Some(curbs), true) = (&self.mechanisms.curbs, pad.first_contact.is_some()) {
-            xy = curbs.landing(i, pad.touchdown_xy, xy, self.footpad_radius);
+            xy = curbs.landing(i, pad.touchdown_xy, xy, model.footpad_radius);
         }
         let v_xy = Vector2::new(velocity.x, velocity.y);
         touch_down(
             &mut self.pads[i],
-            &self.surfaces[i],
+            &model.surfaces[i],
             xy,
             v_xy,
             v_normal,
@@ -129,9 +136,9 @@ impl Physics {
     /// the footpad at rest on it, FZI (the normal component of the gear's force on it, eqs. 67,
     /// 85) plus its weight PMASS·g_n (a footpad is lifted only by a pull larger than its own
     /// weight), or, for the rigid footpad, the report's stand-ins F2P or FCP.
-    pub(crate) fn pressing(&self, v: &VehicleState, g: &GearState) -> f64 {
-        match self.release {
-            ReleaseRule::GearForce => -(v.t_bi * g.fp).z - self.footpad_mass * self.gravity.z,
+    pub(crate) fn pressing(&self, model: &Model, v: &VehicleState, g: &GearState) -> f64 {
+        match model.release {
+            ReleaseRule::GearForce => -(v.t_bi * g.fp).z - model.footpad_mass * model.gravity.z,
             ReleaseRule::StrutForce => g.f2p,
             ReleaseRule::HoneycombForce => g.fcp,
         }
@@ -141,11 +148,11 @@ impl Physics {
     /// state `v` and its gear in state `g`: the surface would have to pull it (its reaction
     /// negative beyond rounding). On soil, a footpad leaves once it is no longer pressed and
     /// has risen out of the soil (docs/errata.md, "Eq. (101)").
-    fn leaves(&self, i: usize, v: &VehicleState, g: &GearState) -> bool {
-        let pressing = self.pressing(v, g);
-        let tol = self.force_rounding;
+    fn leaves(&self, model: &Model, i: usize, v: &VehicleState, g: &GearState) -> bool {
+        let pressing = self.pressing(model, v, g);
+        let tol = model.force_rounding;
         if self.mechanisms.soil.is_some() {
-            return pressing <= tol && self.pads[i].position.z > self.surfaces[i].plane();
+            return pressing <= tol && self.pads[i].position.z > model.surfaces[i].plane();
         }
         pressing < -tol
     }
@@ -156,13 +163,14 @@ impl Physics {
     /// produces "a force equal and opposite to the strut forces resolved at the footpad").
     pub(crate) fn pad_acceleration(
         &self,
+        model: &Model,
         i: usize,
         v: &VehicleState,
         g: &GearState,
     ) -> Vector3<f64> {
         let pad = &self.pads[i];
         let curbs = Vector3::new(pad.curb_xy.x, pad.curb_xy.y, 0.0);
-        let a = (v.t_bi * g.fp + curbs) / self.footpad_mass + self.gravity;
+        let a = (v.t_bi * g.fp + curbs) / model.footpad_mass + model.gravity;
         if pad.walled {
             Vector3::new(0.0, 0.0, a.z)
         } else {
@@ -172,7 +180,7 @@ impl Physics {
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
     /// corrected: the footpad receives −FPI = T_BI·FP).
-    fn sliding_forces(&mut self, i: usize, v: &VehicleState) -> SlidingForces {
+    fn sliding_forces(&mut self, model: &Model, i: usize, v: &VehicleState) -> SlidingForces {
         if self.mechanisms.soil.is_some() {
             self.mechanisms.tick(Mechanism::Soil);
         }
@@ -184,50 +192,50 @@ impl Physics {
         let pad = &self.pads[i];
         let xy = Vector2::new(pad.position.x, pad.position.y);
         let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
-        let mut drag = sliding_friction(self.surfaces[i].friction, fzi); // eq. (85)
+        let mut drag = sliding_friction(model.surfaces[i].friction, fzi); // eq. (85)
         if let Some(soil) = &self.mechanisms.soil {
             // eqs. (102), (104): FGRND = FDRAG + FDRAGP, both along −v̂
-            let depth = self.surfaces[i].plane() - pad.position.z;
+            let depth = model.surfaces[i].plane() - pad.position.z;
             let sp = (xy - pad.touchdown_xy).norm();
             drag += soil.lateral_drag(depth, sp, v_xy.norm());
         }
         let curb_xy = match &self.mechanisms.curbs {
-            Some(curbs) => curbs.force(i, pad.touchdown_xy, xy, v_xy, self.footpad_radius),
+            Some(curbs) => curbs.force(i, pad.touchdown_xy, xy, v_xy, model.footpad_radius),
             None => Vector2::zeros(),
         };
         SlidingForces {
             gear_xy: Vector2::new(on_pad.x, on_pad.y),
             curb_xy,
             drag,
-            gravity_xy: Vector2::new(self.gravity.x, self.gravity.y),
+            gravity_xy: Vector2::new(model.gravity.x, model.gravity.y),
             fzi,
-            mass: self.footpad_mass,
-            rounding: self.force_rounding,
+            mass: model.footpad_mass,
+            rounding: model.force_rounding,
         }
     }
 
     /// Step 2: the sliding footpads advance over `dt` (s) with their forces frozen at the
     /// accepted state `old` (eq. 97); their start is kept for the stages.
-    pub(crate) fn advance_pads(&mut self, dt: f64, old: &VehicleState) -> PadWork {
+    pub(crate) fn advance_pads(&mut self, model: &Model, dt: f64, old: &VehicleState) -> PadWork {
         let mut w = PadWork::default();
         for i in 0..self.pads.len() {
             self.pad_start[i] = (self.pads[i].position, self.pads[i].velocity);
             if self.pads[i].state != ContactState::Contact {
-                self.pads[i].curb_xy = self.curbs_off_surface(i);
+                self.pads[i].curb_xy = self.curbs_off_surface(model, i);
                 continue;
             }
-            if self.surfaces[i].locked() {
+            if model.surfaces[i].locked() {
                 continue;
             }
-            let f = self.sliding_forces(i, old);
-            let m = self.footpad_mass;
+            let f = self.sliding_forces(model, i, old);
+            let m = model.footpad_mass;
             let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
             advance_sliding(&mut self.pads[i], &f, dt);
             if let Some(soil) = &self.mechanisms.soil {
                 // eq. (103) with constant forces over the step; the soil only resists
                 // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
-                let load = f.fzi - m * self.gravity.z; // FZI + weight, downward positive
-                let plane = self.surfaces[i].plane();
+                let load = f.fzi - m * model.gravity.z; // FZI + weight, downward positive
+                let plane = model.surfaces[i].plane();
                 let step = soil.advance_vertical(plane - p0.z, -v0.z, load, m, dt);
                 let pad = &mut self.pads[i];
                 pad.position.z = plane - step.depth;
@@ -240,7 +248,7 @@ impl Physics {
             w.gear += f.gear_xy.dot(&dp);
             w.curbs += f.curb_xy.dot(&dp);
             w.energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
-                - m * self.gravity.dot(&(p1 - p0));
+                - m * model.gravity.dot(&(p1 - p0));
         }
         w
     }
@@ -250,17 +258,17 @@ impl Physics {
     /// stands on the surface beside the footpad's first contact point, and a footpad that flies
     /// into it crushes it as one that slides into it does. Zero for a rigid footpad, which does
     /// not move on its own off the surface.
-    fn curbs_off_surface(&mut self, i: usize) -> Vector2<f64> {
+    fn curbs_off_surface(&mut self, model: &Model, i: usize) -> Vector2<f64> {
         let pad = &self.pads[i];
         let Some(curbs) = &self.mechanisms.curbs else {
             return Vector2::zeros();
         };
-        if !self.inertial || pad.first_contact.is_none() {
+        if !model.inertial || pad.first_contact.is_none() {
             return Vector2::zeros();
         }
         let xy = Vector2::new(pad.position.x, pad.position.y);
         let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
-        let f = curbs.force(i, pad.touchdown_xy, xy, v_xy, self.footpad_radius);
+        let f = curbs.force(i, pad.touchdown_xy, xy, v_xy, model.footpad_radius);
         self.mechanisms.tick(Mechanism::Curbs);
         f
     }
@@ -270,13 +278,18 @@ impl Physics {
     /// inertia, a footpad off the surface that crossed its plane by more than
     /// [`CONTACT_EVENT_DEPTH`] (leaving needs no location: the surface's reaction passes
     /// through zero there, so the footpad's motion is smooth); for the rigid footpad,
-    /// [`Physics::rigid_contact_event`].
-    pub(crate) fn contact_event(&self, v: &VehicleState, trial: &[GearState]) -> bool {
-        if !self.inertial {
-            return self.rigid_contact_event(v, trial);
+    /// [`State::rigid_contact_event`].
+    pub(crate) fn contact_event(
+        &self,
+        model: &Model,
+        v: &VehicleState,
+        trial: &[GearState],
+    ) -> bool {
+        if !model.inertial {
+            return self.rigid_contact_event(model, v, trial);
         }
         self.pads.iter().enumerate().any(|(i, p)| {
-            let depth = self.surfaces[i].plane() - CONTACT_EVENT_DEPTH;
+            let depth = model.surfaces[i].plane() - CONTACT_EVENT_DEPTH;
             p.state != ContactState::Contact
                 && self.pad_start[i].0.z >= depth
                 && p.position.z < depth

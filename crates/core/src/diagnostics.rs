@@ -4,12 +4,13 @@
 //! "Energy guard — judged against the energy put in"). Each names the law most involved and the
 //! leg, with the state at the stop.
 
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::model::Model;
+use crate::state::State;
+use crate::vehicle::VehicleState;
 use touchdown_laws::StrutLoad;
 use touchdown_record::{Divergence, EnergyReport, Law, RunError, StateAtStop};
 
-impl Physics {
+impl State {
     /// A divergence diagnostic at state `v`: `law` failed, on the leg of (0-based) index `leg`
     /// if one is involved (reported 1-based).
     pub(crate) fn diverged(
@@ -30,9 +31,9 @@ impl Physics {
 
     /// Stops a run whose state is not finite or whose energy balance (`e`, this state's report)
     /// has drifted beyond the tolerance, naming the law most involved.
-    pub(crate) fn check_divergence(&self, e: &EnergyReport) -> Result<(), RunError> {
+    pub(crate) fn check_divergence(&self, model: &Model, e: &EnergyReport) -> Result<(), RunError> {
         let v = &self.vehicle;
-        let max_steps = self.integrator.max_steps;
+        let max_steps = model.integrator.max_steps;
         if let Err(budget) = touchdown_record::check_budget(self.steps, self.evaluations, max_steps)
         {
             return Err(self.diverged(v, budget.to_string(), Law::RunBudget, None));
@@ -83,8 +84,8 @@ impl Physics {
         self.ledger
             .check_balance(
                 e,
-                self.integrator.energy_tolerance,
-                self.energy_floor_j,
+                model.integrator.energy_tolerance,
+                model.energy_floor_j,
                 "step too large for the stiffest mode?",
             )
             .map_err(|imbalance| {
@@ -94,7 +95,8 @@ impl Physics {
                         .flat_map(|(i, (g, m))| {
                             let primary = (g.primary_stroke, g.fcp + g.fvp + g.fbr);
                             let secondary = [0, 1].map(|j| g.fc_secondary[j] + g.fv_secondary[j]);
-                            self.laws
+                            model
+                                .laws
                                 .strut_loads(i, m, primary, (g.secondary_stroke, secondary))
                         });
                 let message = format!("{imbalance}; {}", StrutLoad::stiffest(loads));

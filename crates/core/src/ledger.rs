@@ -4,7 +4,9 @@
 //! (docs/errata.md, "Energy guard — judged against the energy put in").
 
 use crate::gear::GearState;
-use crate::simulation::Physics;
+use crate::mechanisms::Power;
+use crate::model::Model;
+use crate::state::State;
 use crate::surface::ContactState;
 use touchdown_record::EnergyReport;
 
@@ -61,15 +63,7 @@ pub(crate) struct PadWork {
     pub(crate) curbs: f64,
 }
 
-/// Power of the vehicle-level mechanisms on the vehicle, W: all of them (`applied`), and the
-/// driving ones' part (`driving`: thrust and RCS, whose positive work is energy put in).
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Power {
-    pub(crate) applied: f64,
-    pub(crate) driving: f64,
-}
-
-impl Physics {
+impl State {
     /// Adds the strut work of the step from the gear states at its start (`previous`) and at
     /// the trial (`trial`). The report's scheme books it with the forces the corrector used
     /// (eq. 24: the accepted state k and the trial at the prediction), so that the ledger and
@@ -125,48 +119,50 @@ impl Physics {
     }
 
     /// Vehicle kinetic energy ½MV² + ½ωᵀJω, J.
-    pub(crate) fn kinetic_energy(&self) -> f64 {
-        self.mass
+    pub(crate) fn kinetic_energy(&self, model: &Model) -> f64 {
+        model
+            .mass
             .kinetic_energy(&self.vehicle.velocity, &self.vehicle.omega)
     }
 
     /// Vehicle potential energy −M·G·R, J.
-    pub(crate) fn potential_energy(&self) -> f64 {
-        -self.mass.mass * self.gravity.dot(&self.vehicle.position)
+    pub(crate) fn potential_energy(&self, model: &Model) -> f64 {
+        -model.mass.mass * model.gravity.dot(&self.vehicle.position)
     }
 
     /// Kinetic + potential energy of the footpads with dynamics, J: with inertia all of them,
     /// since the start (`footpad0`, once set); rigid ones only in contact.
-    pub(crate) fn footpad_energy(&self) -> f64 {
-        let m = self.footpad_mass;
+    pub(crate) fn footpad_energy(&self, model: &Model) -> f64 {
+        let m = model.footpad_mass;
         let now: f64 = self
             .pads
             .iter()
-            .filter(|p| self.inertial || p.state == ContactState::Contact)
-            .map(|p| 0.5 * m * p.velocity.norm_squared() - m * self.gravity.dot(&p.position))
+            .filter(|p| model.inertial || p.state == ContactState::Contact)
+            .map(|p| 0.5 * m * p.velocity.norm_squared() - m * model.gravity.dot(&p.position))
             .sum();
-        now - self.footpad0
+        now - model.footpad0
     }
 
     /// Elastic energy stored in the gear's honeycombs now, J.
-    fn stored_energy(&self) -> f64 {
-        (0..self.legs.len())
+    fn stored_energy(&self, model: &Model) -> f64 {
+        (0..model.legs.len())
             .map(|i| {
                 let g = &self.gear[i];
-                self.laws
+                model
+                    .laws
                     .stored_energy(g.primary_stroke, g.secondary_stroke, &self.memory[i])
             })
             .sum()
     }
 
     /// Energy report at the current state.
-    pub(crate) fn energy(&self) -> EnergyReport {
+    pub(crate) fn energy(&self, model: &Model) -> EnergyReport {
         self.ledger.report(
             self.stability.initial_kinetic_energy(),
-            self.kinetic_energy(),
-            self.potential_energy() - self.potential0,
-            self.footpad_energy(),
-            self.stored_energy(),
+            self.kinetic_energy(model),
+            self.potential_energy(model) - model.potential0,
+            self.footpad_energy(model),
+            self.stored_energy(model),
         )
     }
 }

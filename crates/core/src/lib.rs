@@ -3,14 +3,23 @@
 //! footpad point masses, on a rigid sloped surface with holes and obstacles, integrated with
 //! the report's linear-acceleration predictor-corrector and its step-size rule.
 //!
+//! A landing is a [`Simulation`]: its model (`model`: what the scenario fixes), its state
+//! (`state`: what a step changes) and the scheme that advances it (`stepper`). Every function
+//! of a step takes the model by shared reference and the state by mutable reference.
+//!
 //! | module | report |
 //! |---|---|
+//! | `vehicle` | the rigid vehicle's state and kinematics, eqs. (5)-(15) |
 //! | `rigid_body` | rigid-vehicle equations, eqs. (10)-(15) |
 //! | `gear` | gear geometry, strokes, force resolution, eqs. (26)-(34), (49)-(66) |
 //! | `surface` | footpads on the rigid surface, eqs. (16)-(19), (85)-(100) |
+//! | `contact`, `release`, `stiction` | the contact logic of footpads with inertia and of rigid ones, eqs. (16)-(19), (59)-(63), (85)-(100) |
+//! | `loads` | net loads and accelerations, eqs. (26)-(68), (83)-(84), (9)-(15) |
 //! | `mechanisms` | the scene's optional mechanisms: thrust and nozzle crushing (69-74), RCS (75-82), slosh (108-117), soil (101-104), curbs (86-95), bending (40-48) |
+//! | `ledger`, `diagnostics` | the work and energies, the energy guard and the divergence checks |
+//! | `stepper` | integration, eqs. (20)-(25), and the accepted state with the criteria, eqs. (105)-(107) |
 //! | `integrator` | beyond the report: fourth-order and embedded Dormand–Prince Runge–Kutta schemes, a quaternion attitude |
-//! | `simulation` | integration (eqs. 20-25), net loads (67-68, 83-84), energy, criteria |
+//! | `simulation` | a landing set up from its scenario (eq. 19) and the `Landing` interface |
 //!
 //! The stability criteria (eqs. 105-107) and the summary are shared with the other engines in
 //! `touchdown_record`.
@@ -28,6 +37,7 @@ mod integrator;
 mod ledger;
 mod loads;
 mod mechanisms;
+mod model;
 mod release;
 mod rigid_body;
 mod simulation;
@@ -36,11 +46,12 @@ mod stepper;
 mod stiction;
 mod summation;
 mod surface;
+mod vehicle;
 
 pub use simulation::Simulation;
-pub use state::VehicleState;
 pub use surface::ContactState;
 pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, RunError, Summary};
+pub use vehicle::VehicleState;
 
 /// Why the core does not model `mechanism`: never; it models every mechanism of the report
 /// (docs/engines.md, "Mechanisms each engine models").

@@ -4,11 +4,12 @@
 //! (eqs. 9-15, slosh eq. 109).
 
 use crate::gear::{self, GearOptions, GearState};
-use crate::ledger::Power;
-use crate::simulation::Physics;
-use crate::state::VehicleState;
-use crate::stiction::Held;
+use crate::mechanisms::Power;
+use crate::model::Model;
+use crate::state::State;
+use crate::stiction::{held_friction, Held};
 use crate::surface::{ContactState, Footpad};
+use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
 use touchdown_frames::{euler_acceleration, GIMBAL_LOCK_COS};
 use touchdown_record::{Law, RunError};
@@ -32,25 +33,27 @@ fn first_contact(pads: &[Footpad]) -> Option<f64> {
     pads.iter().filter_map(|p| p.first_contact).reduce(f64::min)
 }
 
-impl Physics {
+impl State {
     /// Gear forces and net loads on the vehicle at `v` with the footpads as they are now,
     /// written into `out` (eqs. 26-68, 83-84). A gear carries its footpad's load in contact and,
     /// with inertia, off the surface (docs/errata.md, "Eq. (66): only pads in contact —
     /// interpreted"); a rigid footpad off the surface carries none.
     pub(crate) fn loads(
         &mut self,
+        model: &Model,
         t: f64,
         v: &VehicleState,
         out: &mut [GearState],
     ) -> Result<Loads, RunError> {
-        self.loads_at(t, v, 1.0, out)
+        self.loads_at(model, t, v, 1.0, out)
     }
 
-    /// [`Physics::loads`] with each sliding footpad a fraction `blend` of the way from its
+    /// [`State::loads`] with each sliding footpad a fraction `blend` of the way from its
     /// start of step to where it is now (a Runge–Kutta stage; 1 is now); the footpads off the
     /// surface are where the stage put them.
     pub(crate) fn loads_at(
         &mut self,
+        model: &Model,
         t: f64,
         v: &VehicleState,
         blend: f64,
@@ -60,12 +63,12 @@ impl Physics {
         let (mut leg_force, mut leg_torque) = std::mem::take(&mut self.leg_loads);
         let mut held = std::mem::take(&mut self.held);
         held.clear();
-        let friction = self.arrangement == Arrangement::Cantilever
-            && self.laws.primary.bearing.friction_coefficient > 0.0;
+        let friction = model.arrangement == Arrangement::Cantilever
+            && model.laws.primary.bearing.friction_coefficient > 0.0;
         for (i, slot) in out.iter_mut().enumerate() {
             let pad = &self.pads[i];
             let free = pad.state != ContactState::Contact;
-            if free && !self.inertial {
+            if free && !model.inertial {
                 // The report's rigid footpad off the surface: its massless gear carries nothing.
                 let prev = &self.gear[i];
                 *slot = GearState {
@@ -83,12 +86,12 @@ impl Physics {
                 let (p0, v0) = self.pad_start[i];
                 (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
             };
-            let bp = self.evaluate_leg(i, v, &position, &velocity, slot)?;
+            let bp = self.evaluate_leg(model, i, v, &position, &velocity, slot)?;
             if free && friction {
                 // Off the surface the bearing friction is set below, once the vehicle's
                 // acceleration without it is known (crate::stiction).
                 let bp_dot = v.t_bi.transpose() * (velocity - v.velocity) - v.omega.cross(&bp);
-                let h = Held::new(i, bp, bp_dot, &self.legs[i].b2);
+                let h = Held::new(i, bp, bp_dot, &model.legs[i].b2);
                 slot.f2p -= slot.fbr;
                 slot.fp -= h.axis * slot.fbr;
                 slot.fbr = 0.0;
@@ -109,18 +112,18 @@ impl Physics {
             };
         }
         // eqs. (83)-(84): the legs' loads in the order of crate::summation, and the mechanisms'.
-        let order = &self.sum_order;
+        let order = &model.sum_order;
         let total = |f: &[Vector3<f64>], q: &[Vector3<f64>]| {
             (order.sum(f) + applied_force, order.sum(q) + applied_torque)
         };
         let (mut force, mut torque) = total(&leg_force, &leg_torque);
         if !held.is_empty() {
-            let acceleration = self.mass.linear_acceleration(&force, &self.gravity);
-            let omega_dot = self.mass.angular_acceleration(&torque, &v.omega);
+            let acceleration = model.mass.linear_acceleration(&force, &model.gravity);
+            let omega_dot = model.mass.angular_acceleration(&torque, &v.omega);
             for h in &held {
                 let slot = &mut out[h.leg];
-                let fbr = self
-                    .held_friction(h, slot, v, &acceleration, &omega_dot)
+                let walled = self.pads[h.leg].walled;
+                let fbr = held_friction(model, walled, h, slot, v, &acceleration, &omega_dot)
                     .map_err(|e| {
                         self.diverged(v, e.to_string(), Law::BearingFriction, Some(h.leg))
                     })?;
@@ -147,6 +150,7 @@ impl Physics {
     /// position BP, m.
     pub(crate) fn evaluate_leg(
         &mut self,
+        model: &Model,
         i: usize,
         v: &VehicleState,
         position: &Vector3<f64>,
@@ -156,19 +160,19 @@ impl Physics {
         let t_ib = v.t_bi.transpose();
         let bp = t_ib * (position - v.position);
         let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
-        if self.arrangement == Arrangement::Tripod {
+        if model.arrangement == Arrangement::Tripod {
             self.mechanisms.tick(Mechanism::Tripod);
         }
         if self.mechanisms.bending.is_some() {
             self.mechanisms.tick(Mechanism::Bending);
         }
         let options = GearOptions {
-            arrangement: self.arrangement,
+            arrangement: model.arrangement,
             bending: (self.mechanisms.bending.as_ref()).map(|b| (b, self.bending_lag[i])),
         };
         gear::evaluate(
-            &self.legs[i],
-            &self.laws,
+            &model.legs[i],
+            &model.laws,
             &self.memory[i],
             &bp,
             &bp_dot,
@@ -181,19 +185,23 @@ impl Physics {
 
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c); the slosh
     /// amplitude's by eq. (109), corrected.
-    pub(crate) fn accelerate(&self, v: &mut VehicleState, loads: &Loads) -> Result<(), RunError> {
-        let euler = self.integrator.attitude == AttitudeForm::Euler;
+    pub(crate) fn accelerate(
+        &self,
+        model: &Model,
+        v: &mut VehicleState,
+        loads: &Loads,
+    ) -> Result<(), RunError> {
+        let euler = model.integrator.attitude == AttitudeForm::Euler;
         // θy stays within ±90° unless it crossed the singularity (cos θy < 0 beyond).
         if euler && v.theta.y.cos() < GIMBAL_LOCK_COS {
-            return Err(self.diverged(
-                v,
+            return Err(self.diverged(v,
                 "Euler-angle singularity: θy reached or crossed ±90° (eqs. 5 and 9a divide by cos θy); integrator.attitude = \"quaternion\" (schemes rk4, dopri5) goes through it".into(),
                 Law::Kinematics,
                 None,
             ));
         }
-        v.acceleration = self.mass.linear_acceleration(&loads.force, &self.gravity);
-        v.omega_dot = self.mass.angular_acceleration(&loads.torque, &v.omega);
+        v.acceleration = model.mass.linear_acceleration(&loads.force, &model.gravity);
+        v.omega_dot = model.mass.angular_acceleration(&loads.torque, &v.omega);
         if euler {
             v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
         }

@@ -5,7 +5,7 @@
 //! never built and never evaluated, and every evaluation of one that is present is counted
 //! ([`Mechanisms::evaluations`]), which is how the tests show it.
 
-use crate::state::VehicleState;
+use crate::vehicle::VehicleState;
 use nalgebra::{Vector2, Vector3};
 use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion};
 use touchdown_laws::{Bending, Curbs, Slosh, Soil};
@@ -27,6 +27,14 @@ impl Evaluations {
     pub fn get(&self, m: Mechanism) -> u64 {
         self.0[m as usize]
     }
+}
+
+/// Power of the vehicle-level mechanisms on the vehicle, W: all of them (`applied`), and the
+/// driving ones' part (`driving`: thrust and RCS, whose positive work is energy put in).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Power {
+    pub(crate) applied: f64,
+    pub(crate) driving: f64,
 }
 
 /// The scene's optional mechanisms.

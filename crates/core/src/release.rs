@@ -7,23 +7,24 @@
 //! ([`crate::contact`]) does not need any of it.
 
 use crate::gear::{self, GearState};
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::model::Model;
+use crate::state::State;
 use crate::surface::ContactState;
+use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
 use touchdown_record::{Law, RunError};
 use touchdown_scenario::schema::Arrangement;
 
-impl Physics {
+impl State {
     /// The contact logic of footpad `i` (the rigid detached footpad) at the current vehicle
     /// state, the gear evaluated there: an airborne footpad whose tentative rigid position
-    /// reaches its plane (within [`Physics::contact_tolerance`]) touches down unless its gear
+    /// reaches its plane (within [`Model::contact_tolerance`]) touches down unless its gear
     /// would pull it there; a footpad in contact leaves as soon as its gear no longer presses it
-    /// onto the surface ([`Physics::rigid_leaves`]), and its gear relaxes. Returns whether the
+    /// onto the surface ([`State::rigid_leaves`]), and its gear relaxes. Returns whether the
     /// footpad changed state.
-    pub(crate) fn rigid_contact(&mut self, i: usize) -> Result<bool, RunError> {
+    pub(crate) fn rigid_contact(&mut self, model: &Model, i: usize) -> Result<bool, RunError> {
         let v = self.vehicle;
-        let s = self.surfaces[i];
+        let s = model.surfaces[i];
         match self.pads[i].state {
             ContactState::Free | ContactState::Detached => {
                 let attached = self.pads[i].bp_attached;
@@ -31,29 +32,29 @@ impl Physics {
                 let vel = v.point_velocity(&attached);
                 self.pads[i].position = tentative;
                 self.pads[i].velocity = vel;
-                if tentative.z > s.plane() + self.contact_tolerance {
+                if tentative.z > s.plane() + model.contact_tolerance {
                     return Ok(false);
                 }
                 let airborne = self.pads[i];
-                self.put_down(i, &tentative, &vel);
+                self.put_down(model, i, &tentative, &vel);
                 // A (re)contact whose first evaluation would pull the footpad, load its
                 // primary's extension stop (a footpad put on its plane from just above it) or
                 // stretch its strut past its bearings is no contact.
                 let pad = self.pads[i];
                 let mut g = GearState::default();
                 let fits = self
-                    .evaluate_leg(i, &v, &pad.position, &pad.velocity, &mut g)
+                    .evaluate_leg(model, i, &v, &pad.position, &pad.velocity, &mut g)
                     .is_ok();
-                let tol = self.force_rounding;
-                if !fits || self.pressing(&v, &g) < -tol || g.fcp < -tol {
+                let tol = model.force_rounding;
+                if !fits || self.pressing(model, &v, &g) < -tol || g.fcp < -tol {
                     self.pads[i] = airborne;
                     return Ok(false);
                 }
                 Ok(true)
             }
             ContactState::Contact => {
-                if self.rigid_leaves(i, &v, &self.gear[i]) {
-                    self.release(i, &v)?;
+                if self.rigid_leaves(model, i, &v, &self.gear[i]) {
+                    self.release(model, i, &v)?;
                     return Ok(true);
                 }
                 Ok(false)
@@ -69,11 +70,17 @@ impl Physics {
     /// footpad between a slack gear and its surface is held by neither; its lightest-mass limit
     /// rests). On soil, a footpad leaves once it is no longer pressed and has risen out of the
     /// soil (docs/errata.md, "Eq. (101)").
-    pub(crate) fn rigid_leaves(&self, i: usize, v: &VehicleState, g: &GearState) -> bool {
-        let pressing = self.pressing(v, g);
-        let tol = self.force_rounding;
+    pub(crate) fn rigid_leaves(
+        &self,
+        model: &Model,
+        i: usize,
+        v: &VehicleState,
+        g: &GearState,
+    ) -> bool {
+        let pressing = self.pressing(model, v, g);
+        let tol = model.force_rounding;
         if self.mechanisms.soil.is_some() {
-            return pressing <= tol && self.pads[i].position.z > self.surfaces[i].plane();
+            return pressing <= tol && self.pads[i].position.z > model.surfaces[i].plane();
         }
         if pressing < -tol || g.fcp < -tol {
             return true;
@@ -90,16 +97,16 @@ impl Physics {
     /// force (the stored energy it releases counts as dissipated by the honeycombs, whose work
     /// the ledger already holds) and the footpad is attached rigidly where the relaxed struts
     /// put it. A relaxed gear that cannot be assembled is an error.
-    fn release(&mut self, i: usize, v: &VehicleState) -> Result<(), RunError> {
+    fn release(&mut self, model: &Model, i: usize, v: &VehicleState) -> Result<(), RunError> {
         let g = self.gear[i];
         let (c, s) = (g.primary_stroke, g.secondary_stroke);
-        self.laws.commit(c, s, &mut self.memory[i]);
+        model.laws.commit(c, s, &mut self.memory[i]);
         let bp = v.t_bi.transpose() * (self.pads[i].position - v.position);
         let relaxed = gear::relax(
-            &self.legs[i],
-            &self.laws,
+            &model.legs[i],
+            &model.laws,
             &self.memory[i],
-            self.arrangement,
+            model.arrangement,
             &bp,
             c,
             s,
@@ -112,7 +119,7 @@ impl Physics {
                 Some(i),
             )
         })?;
-        let relaxed = self.above_plane(i, v, relaxed, c);
+        let relaxed = self.above_plane(model, i, v, relaxed, c);
         self.relaxation[i] = (
             c - relaxed.primary_stroke,
             [0, 1].map(|j| s[j] - relaxed.secondary_stroke[j]),
@@ -136,16 +143,17 @@ impl Physics {
     /// counted, until the footpad lands again.
     fn above_plane(
         &self,
+        model: &Model,
         i: usize,
         v: &VehicleState,
         relaxed: gear::Relaxed,
         c: f64,
     ) -> gear::Relaxed {
-        let plane = self.surfaces[i].plane();
-        let leg = &self.legs[i];
+        let plane = model.surfaces[i].plane();
+        let leg = &model.legs[i];
         let axis = (relaxed.bp - leg.b2).normalize();
         let down = (v.t_bi * axis).z;
-        if self.arrangement != Arrangement::Cantilever
+        if model.arrangement != Arrangement::Cantilever
             || v.point(&relaxed.bp).z >= plane
             || down >= 0.0
         {
@@ -163,17 +171,22 @@ impl Physics {
 
     /// Whether a rigid footpad's contact changes within the step just taken to `v`, the gear's
     /// forces there in the trial states (the Dormand–Prince pair's last stage is the new
-    /// state): a footpad that has stayed in contact and leaves ([`Physics::contact_steps`]), or
+    /// state): a footpad that has stayed in contact and leaves ([`State::contact_steps`]), or
     /// an airborne one that crossed its plane in the step by more than
     /// [`crate::contact::CONTACT_EVENT_DEPTH`] (one already below it at the start, kept off by a
     /// gear that would pull it, is no event).
-    pub(crate) fn rigid_contact_event(&self, v: &VehicleState, trial: &[GearState]) -> bool {
+    pub(crate) fn rigid_contact_event(
+        &self,
+        model: &Model,
+        v: &VehicleState,
+        trial: &[GearState],
+    ) -> bool {
         self.pads.iter().enumerate().any(|(i, p)| match p.state {
             ContactState::Contact => {
-                self.contact_steps[i] > 1 && self.rigid_leaves(i, v, &trial[i])
+                self.contact_steps[i] > 1 && self.rigid_leaves(model, i, v, &trial[i])
             }
             ContactState::Free | ContactState::Detached => {
-                let depth = self.surfaces[i].plane() - crate::contact::CONTACT_EVENT_DEPTH;
+                let depth = model.surfaces[i].plane() - crate::contact::CONTACT_EVENT_DEPTH;
                 self.pad_start[i].0.z >= depth && v.point(&p.bp_attached).z < depth
             }
         })

@@ -9,8 +9,8 @@
 //! beyond it, the bound, opposing the stroking.
 
 use crate::gear::GearState;
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::model::Model;
+use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
 use touchdown_laws::GearLaws;
 
@@ -58,54 +58,52 @@ impl Held {
     }
 }
 
-impl Physics {
-    /// The bearing friction FBR (N, compression positive) on the primary strut of the footpad
-    /// `h` off the surface, its gear in state `g` evaluated without friction, the vehicle at `v`
-    /// accelerating at `acceleration` (m/s², inertial, gravity included) and `omega_dot`
-    /// (rad/s², body): the force that makes the compression rate ċ relax to zero with the time
-    /// constant [`relaxation`], clamped to the
-    /// bound μB·(F1 + F2) of eq. (63). The footpad's acceleration is its gear's force over its
-    /// mass plus gravity, vertical only while its obstacle's wall holds it.
-    pub(crate) fn held_friction(
-        &self,
-        h: &Held,
-        g: &GearState,
-        v: &VehicleState,
-        acceleration: &Vector3<f64>,
-        omega_dot: &Vector3<f64>,
-    ) -> Result<f64, touchdown_laws::LawError> {
-        let bound = (self.laws.primary.bearing).friction_bound(g.fm, g.primary_stroke)?;
-        if bound == 0.0 {
-            return Ok(0.0);
-        }
-        let (bp, bp_dot, w) = (h.bp, h.bp_dot, v.omega);
-        let (e, len) = (h.axis, h.length);
-        let c_dot = -e.dot(&bp_dot);
-        let across = bp_dot - e * e.dot(&bp_dot);
-        // The footpad's inertial acceleration per unit of FBR along T_BI·ê, and without it.
-        let m = self.footpad_mass;
-        let walled = self.pads[h.leg].walled;
-        let project = |f: Vector3<f64>| {
-            if walled {
-                Vector3::new(0.0, 0.0, f.z)
-            } else {
-                f
-            }
-        };
-        let e_inertial = v.t_bi * e;
-        let per_unit = e_inertial.dot(&project(e_inertial)) / m;
-        if per_unit <= 0.0 {
-            // A walled footpad on a horizontal strut: friction cannot move it; kinetic law.
-            return (self.laws.primary.bearing).friction(g.fm, g.primary_stroke, c_dot);
-        }
-        let free = e_inertial.dot(&project(v.t_bi * g.fp / m + self.gravity));
-        // c̈ = −ê·B̈P − |ḂP⊥|²/|BP − B2|, with
-        // ê·B̈P = ê·T_IB·(P̈ − R̈) − ê·(2ω×ḂP + ω̇×BP + ω×(ω×BP)); set c̈ = −ċ/τ.
-        let frame =
-            e.dot(&(w.cross(&bp_dot) * 2.0 + omega_dot.cross(&bp) + w.cross(&w.cross(&bp))));
-        let relax = c_dot / self.held_relaxation;
-        let wanted = relax - across.norm_squared() / len + e_inertial.dot(acceleration) + frame;
-        let required = (wanted - free) / per_unit;
-        Ok(required.clamp(-bound, bound))
+/// The bearing friction FBR (N, compression positive) on the primary strut of the footpad `h`
+/// off the surface of `model` (`walled` while its obstacle's wall holds it), its gear in state `g` evaluated without friction, the vehicle at `v`
+/// accelerating at `acceleration` (m/s², inertial, gravity included) and `omega_dot`
+/// (rad/s², body): the force that makes the compression rate ċ relax to zero with the time
+/// constant [`relaxation`], clamped to the
+/// bound μB·(F1 + F2) of eq. (63). The footpad's acceleration is its gear's force over its
+/// mass plus gravity, vertical only while its obstacle's wall holds it.
+#[inline]
+pub(crate) fn held_friction(
+    model: &Model,
+    walled: bool,
+    h: &Held,
+    g: &GearState,
+    v: &VehicleState,
+    acceleration: &Vector3<f64>,
+    omega_dot: &Vector3<f64>,
+) -> Result<f64, touchdown_laws::LawError> {
+    let bound = (model.laws.primary.bearing).friction_bound(g.fm, g.primary_stroke)?;
+    if bound == 0.0 {
+        return Ok(0.0);
     }
+    let (bp, bp_dot, w) = (h.bp, h.bp_dot, v.omega);
+    let (e, len) = (h.axis, h.length);
+    let c_dot = -e.dot(&bp_dot);
+    let across = bp_dot - e * e.dot(&bp_dot);
+    // The footpad's inertial acceleration per unit of FBR along T_BI·ê, and without it.
+    let m = model.footpad_mass;
+    let project = |f: Vector3<f64>| {
+        if walled {
+            Vector3::new(0.0, 0.0, f.z)
+        } else {
+            f
+        }
+    };
+    let e_inertial = v.t_bi * e;
+    let per_unit = e_inertial.dot(&project(e_inertial)) / m;
+    if per_unit <= 0.0 {
+        // A walled footpad on a horizontal strut: friction cannot move it; kinetic law.
+        return (model.laws.primary.bearing).friction(g.fm, g.primary_stroke, c_dot);
+    }
+    let free = e_inertial.dot(&project(v.t_bi * g.fp / m + model.gravity));
+    // c̈ = −ê·B̈P − |ḂP⊥|²/|BP − B2|, with
+    // ê·B̈P = ê·T_IB·(P̈ − R̈) − ê·(2ω×ḂP + ω̇×BP + ω×(ω×BP)); set c̈ = −ċ/τ.
+    let frame = e.dot(&(w.cross(&bp_dot) * 2.0 + omega_dot.cross(&bp) + w.cross(&w.cross(&bp))));
+    let relax = c_dot / model.held_relaxation;
+    let wanted = relax - across.norm_squared() / len + e_inertial.dot(acceleration) + frame;
+    let required = (wanted - free) / per_unit;
+    Ok(required.clamp(-bound, bound))
 }

@@ -13,7 +13,7 @@
 //! (or `exponent`) is a viscous law's exponent and `i` a polynomial coefficient's index: a unit
 //! that names them is read with their values ([`Powers`]).
 
-use crate::units::Units;
+use crate::units::{Units, UNIT_GRAMMAR};
 
 /// Powers of the five base quantities. Powers are real: a viscous coefficient's, N/(m/s)^γ,
 /// follows its exponent γ.
@@ -30,10 +30,6 @@ pub struct Dimension {
     /// Power of time.
     pub time: f64,
 }
-
-/// What a unit may be built from, for messages about one that is not.
-pub const UNIT_GRAMMAR: &str =
-    "m, ft, in, kg, slug, N, lbf, deg, rad, s, their products with * and powers ^2, one /, or 1";
 
 /// The values of the symbolic powers a unit may name.
 #[derive(Debug, Clone, Copy, Default)]

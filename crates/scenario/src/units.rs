@@ -3,6 +3,10 @@
 
 use serde::{Deserialize, Serialize};
 
+/// What a unit may be built from, for messages about one that is not.
+pub const UNIT_GRAMMAR: &str =
+    "m, ft, in, kg, slug, N, lbf, deg, rad, s, their products with * and powers ^2, one /, or 1";
+
 /// Length unit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum LengthUnit {
@@ -209,7 +213,7 @@ impl Units {
                     other => {
                         return Err(format!(
                             "{unit:?}: unknown unit {other:?} (expected {})",
-                            crate::dimension::UNIT_GRAMMAR
+                            UNIT_GRAMMAR
                         ))
                     }
                 };

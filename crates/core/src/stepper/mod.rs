@@ -21,19 +21,21 @@
 //! interpolated along their step, nothing committed); the strut and mechanism work is the
 //! method's quadrature of the stage powers. An adaptive step whose error estimate exceeds the
 //! tolerance is rejected: the footpads go back to the start and the step is retried shorter.
-//! Steps 6-8 are the same for every scheme (`Physics::finish_step`, in [`crate::simulation`]),
+//! Steps 6-8 are the same for every scheme (`State::finish_step`, in [`accept`]),
 //! so the hysteresis is committed only at accepted states.
 //!
 //! Nothing in the step allocates.
 
+mod accept;
 pub mod report;
 pub mod runge_kutta;
 
 use crate::gear::GearState;
 use crate::ledger::{PadWork, Quadrature};
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::model::Model;
+use crate::state::State;
 use crate::surface::ContactState;
+use crate::vehicle::VehicleState;
 use touchdown_record::RunError;
 use touchdown_scenario::schema::Scheme;
 
@@ -75,9 +77,14 @@ pub(crate) struct Advance {
 
 /// An integration scheme.
 pub(crate) trait Stepper {
-    /// Steps 2-5 from the accepted state `old` of `physics`: the footpads advanced, the new
+    /// Steps 2-5 from the accepted state `old` of `state` (its model `model`): the footpads advanced, the new
     /// state computed into the scratch space. Nothing is committed.
-    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError>;
+    fn advance(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        old: &VehicleState,
+    ) -> Result<Advance, RunError>;
 
     /// The stepper's scratch space.
     fn scratch(&mut self) -> &mut Scratch;
@@ -85,13 +92,13 @@ pub(crate) trait Stepper {
     /// Adds the scheme's own counts to the summary's integrator settings (none by default).
     fn describe(&self, _settings: &mut serde_json::Map<String, serde_json::Value>) {}
 
-    /// One accepted step of `physics` (see the module documentation).
-    fn step(&mut self, physics: &mut Physics) -> Result<(), RunError> {
-        let old = physics.vehicle;
-        self.scratch().previous.copy_from_slice(&physics.gear);
-        let power_old = physics.applied_power;
-        let step = self.advance(physics, &old)?;
-        physics.finish_step(&old, &step, power_old, self.scratch())
+    /// One accepted step of `state` (see the module documentation).
+    fn step(&mut self, model: &Model, state: &mut State) -> Result<(), RunError> {
+        let old = state.vehicle;
+        self.scratch().previous.copy_from_slice(&state.gear);
+        let power_old = state.applied_power;
+        let step = self.advance(model, state, &old)?;
+        state.finish_step(model, &old, &step, power_old, self.scratch())
     }
 }
 
@@ -149,16 +156,16 @@ pub(crate) const PAD_MODE_STEP: f64 = 0.5;
 /// "Eq. (25): VEL and first contacts — interpreted, plus two additions"), that the modes of a
 /// footpad with inertia on its gear are resolved ([`PAD_MODE_STEP`]) and that the end time is
 /// met.
-pub(crate) fn limit_step(physics: &Physics, mut dt: f64) -> f64 {
-    let it = &physics.integrator;
-    let v = &physics.vehicle;
-    for (i, (p, s)) in physics.pads.iter().zip(&physics.surfaces).enumerate() {
+pub(crate) fn limit_step(model: &Model, state: &State, mut dt: f64) -> f64 {
+    let it = &model.integrator;
+    let v = &state.vehicle;
+    for (i, (p, s)) in state.pads.iter().zip(&model.surfaces).enumerate() {
         if p.state == ContactState::Contact {
             continue;
         }
         // A footpad with inertia moves on its own; a rigid one with its attachment point.
-        let (height, rate) = if physics.inertial {
-            dt = dt.min(physics.pad_mode_step(i).max(it.dt_min));
+        let (height, rate) = if model.inertial {
+            dt = dt.min(state.pad_mode_step(model, i).max(it.dt_min));
             (p.position.z, p.velocity.z)
         } else {
             (
@@ -174,22 +181,28 @@ pub(crate) fn limit_step(physics: &Physics, mut dt: f64) -> f64 {
             }
         }
     }
-    dt.min(it.t_end - physics.t).max(f64::MIN_POSITIVE)
+    dt.min(it.t_end - state.t).max(f64::MIN_POSITIVE)
 }
 
-impl Physics {
+impl State {
     /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
     /// [`PAD_MODE_STEP`]/ω with ω² = (k_2P + k_31 + k_41)/PMASS, each strut's rate the slope of
     /// the branch of its law it is on at the accepted state (the sum bounds the largest
     /// eigenvalue of the footpad's stiffness Σ k_j·û_j·û_jᵀ, each strut's stroke moving at most
     /// as fast as the footpad), s. The report's scheme leaves k_2P out: it takes that axial mode
     /// implicitly ([`report`]'s footpad corrector).
-    pub(crate) fn pad_mode_step(&self, i: usize) -> f64 {
+    pub(crate) fn pad_mode_step(&self, model: &Model, i: usize) -> f64 {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
-        let secondary = &self.laws.secondary.honeycomb;
-        let primary = match self.integrator.scheme {
+        let secondary = &model.laws.secondary.honeycomb;
+        let primary = match model.integrator.scheme {
             Scheme::Report => 0.0,
-            _ => self.laws.primary.branch(g.primary_stroke, memory.primary).1,
+            _ => {
+                model
+                    .laws
+                    .primary
+                    .branch(g.primary_stroke, memory.primary)
+                    .1
+            }
         };
         let k = primary
             + secondary
@@ -199,7 +212,7 @@ impl Physics {
                 .branch(g.secondary_stroke[1], memory.secondary[1])
                 .1;
         if k > 0.0 {
-            PAD_MODE_STEP * (self.footpad_mass / k).sqrt()
+            PAD_MODE_STEP * (model.footpad_mass / k).sqrt()
         } else {
             f64::INFINITY
         }

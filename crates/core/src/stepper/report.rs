@@ -6,9 +6,10 @@ use super::{limit_step, Advance, Scratch, Stepper};
 use crate::gear::GearState;
 use crate::ledger::Quadrature;
 use crate::loads::Loads;
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::model::Model;
+use crate::state::State;
 use crate::surface::ContactState;
+use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
 use std::ops::{Add, Div, Mul};
 use touchdown_record::RunError;
@@ -27,10 +28,15 @@ impl PredictorCorrector {
 }
 
 impl Stepper for PredictorCorrector {
-    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
-        let dt = limit_step(physics, step_size(physics));
-        let pads = physics.advance_pads(dt, old);
-        let trial_power = predict_correct(physics, &mut self.scratch, dt, old)?;
+    fn advance(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        old: &VehicleState,
+    ) -> Result<Advance, RunError> {
+        let dt = limit_step(model, state, step_size(model, state));
+        let pads = state.advance_pads(model, dt, old);
+        let trial_power = predict_correct(model, state, &mut self.scratch, dt, old)?;
         Ok(Advance {
             dt,
             quadrature: Quadrature::Trapezoid { trial_power },
@@ -44,12 +50,12 @@ impl Stepper for PredictorCorrector {
 }
 
 /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], s.
-fn step_size(physics: &Physics) -> f64 {
-    let it = &physics.integrator;
-    let v = &physics.vehicle;
+fn step_size(model: &Model, state: &State) -> f64 {
+    let it = &model.integrator;
+    let v = &state.vehicle;
     let mut vel: f64 = 0.0;
-    for p in &physics.pads {
-        let rel = if physics.inertial || p.state == ContactState::Contact {
+    for p in &state.pads {
+        let rel = if model.inertial || p.state == ContactState::Contact {
             p.velocity - v.velocity
         } else {
             v.t_bi * v.omega.cross(&p.bp_attached)
@@ -89,15 +95,16 @@ fn correct<T: Quantity>(x: T, x_dot: T, x_ddot: T, trial: T, dt: f64) -> (T, T) 
 /// evaluated into `scratch.trial`, the corrected state written into `scratch.new`: returns the
 /// vehicle-level mechanisms' power at the trial, W.
 fn predict_correct(
-    physics: &mut Physics,
+    model: &Model,
+    state: &mut State,
     scratch: &mut Scratch,
     dt: f64,
     old: &VehicleState,
 ) -> Result<f64, RunError> {
-    let slosh = physics.mechanisms.slosh.is_some();
+    let slosh = state.mechanisms.slosh.is_some();
     // 3. predictor, c = 0 (eqs. 22-23); the footpads off the surface too (eqs. 16-18)
-    let inertial = physics.inertial;
-    for p in physics.pads.iter_mut() {
+    let inertial = model.inertial;
+    for p in state.pads.iter_mut() {
         if inertial && p.state != ContactState::Contact {
             (p.position, p.velocity) = predict(p.position, p.velocity, p.acceleration, dt);
         }
@@ -111,15 +118,15 @@ fn predict_correct(
             predict(old.slosh_q, old.slosh_q_dot, old.slosh_q_ddot, dt);
     }
     // 4. trial evaluation
-    let mut loads = physics.loads(physics.t + dt, &pred, &mut scratch.trial)?;
-    physics.evaluations += 1;
+    let mut loads = state.loads(model, state.t + dt, &pred, &mut scratch.trial)?;
+    state.evaluations += 1;
     // 5. corrector. The footpads off the surface first (`correct_footpads`): the change of
     // their primary's force the implicit correction finds is the trial's, on the footpad, on
     // the vehicle and in the ledger alike.
     if inertial {
-        correct_footpads(physics, &pred, scratch, &mut loads, dt);
+        correct_footpads(model, state, &pred, scratch, &mut loads, dt);
     }
-    physics.accelerate(&mut pred, &loads)?;
+    state.accelerate(model, &mut pred, &loads)?;
     // the vehicle: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
     let new = &mut scratch.new;
     *new = *old;
@@ -166,25 +173,27 @@ struct Corrected {
 /// (`scratch.trial`) and into `loads` on the vehicle, summed in the legs' order
 /// (crate::summation), in the evaluation's per-leg buffers.
 fn correct_footpads(
-    physics: &mut Physics,
+    model: &Model,
+    state: &mut State,
     pred: &VehicleState,
     scratch: &mut Scratch,
     loads: &mut Loads,
     dt: f64,
 ) {
-    let (mut leg_force, mut leg_torque) = std::mem::take(&mut physics.leg_loads);
+    let (mut leg_force, mut leg_torque) = std::mem::take(&mut state.leg_loads);
     leg_force.fill(Vector3::zeros());
     leg_torque.fill(Vector3::zeros());
-    for i in 0..physics.pads.len() {
-        if physics.pads[i].state != ContactState::Contact {
+    for i in 0..state.pads.len() {
+        if state.pads[i].state != ContactState::Contact {
             let c = correct_footpad(
-                physics,
+                model,
+                state,
                 i,
                 pred,
                 (&scratch.previous[i], &scratch.trial[i]),
                 dt,
             );
-            let bp = pred.t_bi.transpose() * (physics.pads[i].position - pred.position);
+            let bp = pred.t_bi.transpose() * (state.pads[i].position - pred.position);
             let on_pad = c.axis * c.force;
             let slot = &mut scratch.trial[i];
             slot.fcp += c.force;
@@ -192,13 +201,13 @@ fn correct_footpads(
             slot.fp += on_pad;
             leg_torque[i] = bp.cross(&(-on_pad)); // eq. (66)
             leg_force[i] = -(pred.t_bi * on_pad); // eqs. (67)-(68)
-            let pad = &mut physics.pads[i];
+            let pad = &mut state.pads[i];
             (pad.position, pad.velocity) = (c.position, c.velocity);
         }
     }
-    loads.force += physics.sum_order.sum(&leg_force);
-    loads.torque += physics.sum_order.sum(&leg_torque);
-    physics.leg_loads = (leg_force, leg_torque);
+    loads.force += model.sum_order.sum(&leg_force);
+    loads.torque += model.sum_order.sum(&leg_torque);
+    state.leg_loads = (leg_force, leg_torque);
 }
 
 /// The corrector of footpad `i` off the surface over `dt` (s), the vehicle predicted at `pred`
@@ -210,19 +219,20 @@ fn correct_footpads(
 /// spring in its free play). Stable for any stiffness of that law (docs/errata.md, "Footpads
 /// with inertia", "Numerics").
 fn correct_footpad(
-    physics: &Physics,
+    model: &Model,
+    state: &State,
     i: usize,
     pred: &VehicleState,
     (start, trial): (&GearState, &GearState),
     dt: f64,
 ) -> Corrected {
-    let pad = &physics.pads[i];
-    let m = physics.footpad_mass;
-    let u0 = physics.pad_start[i].1;
+    let pad = &state.pads[i];
+    let m = model.footpad_mass;
+    let u0 = state.pad_start[i].1;
     let a0 = pad.acceleration;
-    let a_star = physics.pad_acceleration(i, pred, trial);
+    let a_star = state.pad_acceleration(model, i, pred, trial);
     let bp = pred.t_bi.transpose() * (pad.position - pred.position);
-    let axis = (bp - physics.legs[i].b2).normalize();
+    let axis = (bp - model.legs[i].b2).normalize();
     let inertial_axis = pred.t_bi * axis;
     let w = if pad.walled {
         Vector3::new(0.0, 0.0, inertial_axis.z)
@@ -232,9 +242,9 @@ fn correct_footpad(
     // The law's secant over the step (regularised within 1e-9 of the strut's length, where a
     // stroke change is rounding), at most its stiffest slope: no state decides it at rounding
     // level, and a strut in its free play or on a plateau is no spring.
-    let stiffest = physics.laws.primary.honeycomb.stop.stiffest_rate();
+    let stiffest = model.laws.primary.honeycomb.stop.stiffest_rate();
     let dc = trial.primary_stroke - start.primary_stroke;
-    let eps = 1e-9 * physics.legs[i].l2p;
+    let eps = 1e-9 * model.legs[i].l2p;
     let k = ((trial.fcp - start.fcp) * dc / (dc * dc + eps * eps)).clamp(0.0, stiffest);
     // (I + α·ŵŵᵀ)·δ = (a* − a_k)·Δt²/4 with α = k·Δt²/(4·PMASS), by Sherman–Morrison
     let alpha = k * dt * dt / (4.0 * m);

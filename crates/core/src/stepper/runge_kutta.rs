@@ -4,10 +4,12 @@
 
 use super::{limit_step, Advance, Scratch, Stepper};
 use crate::integrator::{self, Ode, Tableau, DOPRI5, MAX_STAGES, RK4};
-use crate::ledger::{Power, Quadrature, StageWork};
-use crate::simulation::Physics;
-use crate::state::VehicleState;
+use crate::ledger::{Quadrature, StageWork};
+use crate::mechanisms::Power;
+use crate::model::Model;
+use crate::state::State;
 use crate::surface::{ContactState, Footpad};
+use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
 use touchdown_record::RunError;
 
@@ -36,11 +38,17 @@ impl Fixed {
 }
 
 impl Stepper for Fixed {
-    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
-        let dt = limit_step(physics, physics.integrator.dt_max);
-        let pads = physics.advance_pads(dt, old);
+    fn advance(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        old: &VehicleState,
+    ) -> Result<Advance, RunError> {
+        let dt = limit_step(model, state, model.integrator.dt_max);
+        let pads = state.advance_pads(model, dt, old);
         let step = runge_kutta(
-            physics,
+            model,
+            state,
             (&mut self.scratch, &mut self.pad_rates),
             dt,
             old,
@@ -91,23 +99,28 @@ impl Stepper for Adaptive {
     /// One accepted step from `old`: steps whose error ratio exceeds 1 are rejected (the
     /// footpads restored) and retried shorter; a step at `dt_min` is accepted whatever its
     /// error, and counted.
-    fn advance(&mut self, physics: &mut Physics, old: &VehicleState) -> Result<Advance, RunError> {
-        let (dt_min, dt_max) = (physics.integrator.dt_min, physics.integrator.dt_max);
-        self.pads_saved.copy_from_slice(&physics.pads);
+    fn advance(
+        &mut self,
+        model: &Model,
+        state: &mut State,
+        old: &VehicleState,
+    ) -> Result<Advance, RunError> {
+        let (dt_min, dt_max) = (model.integrator.dt_min, model.integrator.dt_max);
+        self.pads_saved.copy_from_slice(&state.pads);
         loop {
             let planned = self.next_dt.clamp(dt_min, dt_max);
-            let dt = limit_step(physics, planned);
-            let pads = physics.advance_pads(dt, old);
+            let dt = limit_step(model, state, planned);
+            let pads = state.advance_pads(model, dt, old);
             let floor = dt <= dt_min * (1.0 + 1e-9);
             // A stage that takes a law out of its domain (a strut stretched past its bearings
             // by a step too long to see its footpad leave) rejects the step, above dt_min.
             let space = (&mut self.scratch, &mut self.pad_rates);
-            let step = match runge_kutta(physics, space, dt, old, &DOPRI5) {
+            let step = match runge_kutta(model, state, space, dt, old, &DOPRI5) {
                 Ok(step) => step,
                 Err(_) if !floor => {
                     self.rejected += 1;
                     self.next_dt = 0.5 * dt;
-                    physics.pads.copy_from_slice(&self.pads_saved);
+                    state.pads.copy_from_slice(&self.pads_saved);
                     continue;
                 }
                 Err(e) => return Err(e),
@@ -120,7 +133,7 @@ impl Stepper for Adaptive {
             // A footpad that lands or leaves within the step is located to dt_min: the step is
             // retried at half its length until it ends within dt_min of the event.
             let s = &self.scratch;
-            let event = !floor && physics.contact_event(&s.new, &s.trial);
+            let event = !floor && state.contact_event(model, &s.new, &s.trial);
             if (ratio <= 1.0 && !event) || floor {
                 self.forced += u64::from(ratio > 1.0);
                 let proposal = integrator::next_step(dt, ratio, DOPRI5.error_order);
@@ -143,7 +156,7 @@ impl Stepper for Adaptive {
             } else {
                 integrator::next_step(dt, ratio, DOPRI5.error_order)
             };
-            physics.pads.copy_from_slice(&self.pads_saved);
+            state.pads.copy_from_slice(&self.pads_saved);
         }
     }
 
@@ -164,31 +177,32 @@ struct Step {
     ratio: f64,
 }
 
-/// One step of the Runge–Kutta method `tab` from the accepted state `old` of `physics` over
+/// One step of the Runge–Kutta method `tab` from the accepted state `old` of `state` over
 /// `dt` (s), the sliding footpads already advanced; the new state is written into
 /// `scratch.new`, the footpads off the surface advanced with the vehicle (their stage rates in
 /// `pad_rates`). Each stage evaluates the forces at its own state into `scratch.trial`,
 /// committing nothing. With a first-same-as-last method the last stage is the new state: it
 /// comes back evaluated, its forces in `scratch.trial`.
 fn runge_kutta(
-    physics: &mut Physics,
+    model: &Model,
+    state: &mut State,
     (scratch, pad_rates): (&mut Scratch, &mut PadRates),
     dt: f64,
     old: &VehicleState,
     tab: &Tableau,
 ) -> Result<Step, RunError> {
-    let form = physics.integrator.attitude;
+    let form = model.integrator.attitude;
     let y0 = old.ode();
     let mut k = [Ode::zeros(); MAX_STAGES];
     k[0] = old.rate(form);
-    for (rates, p) in pad_rates.iter_mut().zip(&physics.pads) {
+    for (rates, p) in pad_rates.iter_mut().zip(&state.pads) {
         rates[0] = (p.velocity, p.acceleration);
     }
     let mut work = StageWork::default();
     work.add(
         tab.b[0] * dt,
         &scratch.previous,
-        physics.applied_power.applied,
+        state.applied_power.applied,
     );
     let mut v = *old;
     let mut last_power = Power::default();
@@ -201,20 +215,20 @@ fn runge_kutta(
         }
         v.set_ode(&y, form);
         for (n, rates) in pad_rates.iter().enumerate() {
-            if moves_freely(physics, n) {
-                (physics.pads[n].position, physics.pads[n].velocity) =
-                    pad_stage(physics.pad_start[n], rates, &tab.a[i], i, dt);
+            if moves_freely(model, state, n) {
+                (state.pads[n].position, state.pads[n].velocity) =
+                    pad_stage(state.pad_start[n], rates, &tab.a[i], i, dt);
             }
         }
-        let t = physics.t + tab.c[i] * dt;
-        let loads = physics.loads_at(t, &v, tab.c[i], &mut scratch.trial)?;
-        physics.evaluations += 1;
-        physics.accelerate(&mut v, &loads)?;
+        let t = state.t + tab.c[i] * dt;
+        let loads = state.loads_at(model, t, &v, tab.c[i], &mut scratch.trial)?;
+        state.evaluations += 1;
+        state.accelerate(model, &mut v, &loads)?;
         k[i] = v.rate(form);
         for (n, rates) in pad_rates.iter_mut().enumerate() {
-            if moves_freely(physics, n) {
-                let a = physics.pad_acceleration(n, &v, &scratch.trial[n]);
-                rates[i] = (physics.pads[n].velocity, a);
+            if moves_freely(model, state, n) {
+                let a = state.pad_acceleration(model, n, &v, &scratch.trial[n]);
+                rates[i] = (state.pads[n].velocity, a);
             }
         }
         work.add(tab.b[i] * dt, &scratch.trial, loads.applied_power.applied);
@@ -226,16 +240,16 @@ fn runge_kutta(
     }
     let mut pad_ratio: f64 = 0.0;
     for (n, rates) in pad_rates.iter().enumerate() {
-        if !moves_freely(physics, n) {
+        if !moves_freely(model, state, n) {
             continue;
         }
-        let start = physics.pad_start[n];
+        let start = state.pad_start[n];
         let end = pad_stage(start, rates, &tab.b, tab.stages, dt);
-        (physics.pads[n].position, physics.pads[n].velocity) = end;
+        (state.pads[n].position, state.pads[n].velocity) = end;
         if let Some(e) = &tab.e {
             let origin = (Vector3::zeros(), Vector3::zeros());
             let error = pad_stage(origin, rates, e, tab.stages, dt);
-            let it = &physics.integrator;
+            let it = &model.integrator;
             let pairs = [(start.0, end.0, error.0), (start.1, end.1, error.1)];
             for (a, b, e) in pairs {
                 for c in 0..3 {
@@ -251,7 +265,7 @@ fn runge_kutta(
             for (w, ki) in e.iter().zip(&k).take(tab.stages) {
                 error.add_scaled(dt * w, ki);
             }
-            let it = &physics.integrator;
+            let it = &model.integrator;
             integrator::error_ratio(&y0, &y1, &error, it.rtol, it.atol).max(pad_ratio)
         }
         None => 0.0,
@@ -272,10 +286,10 @@ fn runge_kutta(
     })
 }
 
-/// Whether footpad `n` of `physics` is integrated with the vehicle: it has inertia and is off
+/// Whether footpad `n` of `state` is integrated with the vehicle: it has inertia and is off
 /// its surface.
-fn moves_freely(physics: &Physics, n: usize) -> bool {
-    physics.inertial && physics.pads[n].state != ContactState::Contact
+fn moves_freely(model: &Model, state: &State, n: usize) -> bool {
+    model.inertial && state.pads[n].state != ContactState::Contact
 }
 
 /// A footpad's position and velocity (m, m/s) from `start` after `dt` (s) with the weights
