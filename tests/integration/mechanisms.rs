@@ -336,7 +336,8 @@ fn curbs_crush_as_their_table_says(detached: Detached) {
     };
     loop {
         let curbs = sim.mechanisms().curbs.as_ref().unwrap();
-        for (k, ((leg, curb), memory)) in curbs.list.iter().zip(&curbs.memory).enumerate() {
+        let memories = &sim.mechanism_state().curb_memory;
+        for (k, ((leg, curb), memory)) in curbs.list.iter().zip(memories).enumerate() {
             let pad = &sim.footpads()[*leg];
             if pushed(&sim, *leg) {
                 let xy = nalgebra::Vector2::new(pad.position.x, pad.position.y);
@@ -354,7 +355,8 @@ fn curbs_crush_as_their_table_says(detached: Detached) {
     }
     let curbs = sim.mechanisms().curbs.as_ref().unwrap();
     let mut expected = kept + held.iter().sum::<f64>();
-    for (((_, _), memory), k) in curbs.list.iter().zip(&curbs.memory).zip(0..) {
+    let memories = &sim.mechanism_state().curb_memory;
+    for (((_, _), memory), k) in curbs.list.iter().zip(memories).zip(0..) {
         let x_max = memory.max_stroke;
         // Crushing to x_max, less the elastic energy it holds there: the plastic work.
         expected += virgin_area(&sc, x_max, &format!("curb {k}"))
@@ -698,7 +700,7 @@ fn footpads_crush_against_curbs_as_their_table_says_on_the_multibody_engines() {
     let sc = Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
     for engine in [Engine::Rapier, Engine::Mujoco] {
         let (s, rows) = multibody_run(engine, &path);
-        let mut curbs = curbs_from_scenario(&sc).unwrap().unwrap();
+        let curbs = curbs_from_scenario(&sc).unwrap().unwrap();
         let mut expected = 0.0;
         for (n, (leg, curb)) in curbs.list.clone().into_iter().enumerate() {
             let column = |what: &str| rows.column(&format!("leg{}_{what}", leg + 1));
@@ -713,7 +715,6 @@ fn footpads_crush_against_curbs_as_their_table_says_on_the_multibody_engines() {
                     .commit(curb.crush(xy(first), xy(k), sc.footpad.radius), &mut memory);
             }
             let x_now = curb.crush(xy(first), xy(x.len() - 1), sc.footpad.radius);
-            curbs.memory[n] = memory;
             expected += crush_work(&sc, &curbs, &memory, x_now, &format!("{engine}, curb {n}"));
         }
         let e = &s.energy;

@@ -50,7 +50,7 @@ impl State {
     /// loads. Returns whether it changed state or was moved.
     fn inertial_contact(&mut self, model: &Model, i: usize) -> Result<bool, RunError> {
         let v = self.vehicle;
-        let soil = self.mechanisms.soil.is_some();
+        let soil = model.mechanisms.soil.is_some();
         let s = model.surfaces[i];
         let plane = s.plane();
         if self.pads[i].state == ContactState::Contact {
@@ -111,14 +111,20 @@ impl State {
         velocity: &Vector3<f64>,
     ) {
         let pad = self.pads[i];
-        let v_normal = if self.mechanisms.soil.is_some() {
+        let v_normal = if model.mechanisms.soil.is_some() {
             velocity.z
         } else {
             0.0
         };
         let mut xy = Vector2::new(position.x, position.y);
-        if let (Some(curbs), true) = (&self.mechanisms.curbs, pad.first_contact.is_some()) {
-            xy = curbs.landing(i, pad.touchdown_xy, xy, model.footpad_radius);
+        if let (Some(curbs), true) = (&model.mechanisms.curbs, pad.first_contact.is_some()) {
+            xy = curbs.landing(
+                &self.mechanisms.curb_memory,
+                i,
+                pad.touchdown_xy,
+                xy,
+                model.footpad_radius,
+            );
         }
         let v_xy = Vector2::new(velocity.x, velocity.y);
         touch_down(
@@ -151,7 +157,7 @@ impl State {
     fn leaves(&self, model: &Model, i: usize, v: &VehicleState, g: &GearState) -> bool {
         let pressing = self.pressing(model, v, g);
         let tol = model.force_rounding;
-        if self.mechanisms.soil.is_some() {
+        if model.mechanisms.soil.is_some() {
             return pressing <= tol && self.pads[i].position.z > model.surfaces[i].plane();
         }
         pressing < -tol
@@ -181,10 +187,10 @@ impl State {
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
     /// corrected: the footpad receives −FPI = T_BI·FP).
     fn sliding_forces(&mut self, model: &Model, i: usize, v: &VehicleState) -> SlidingForces {
-        if self.mechanisms.soil.is_some() {
+        if model.mechanisms.soil.is_some() {
             self.mechanisms.tick(Mechanism::Soil);
         }
-        if self.mechanisms.curbs.is_some() {
+        if model.mechanisms.curbs.is_some() {
             self.mechanisms.tick(Mechanism::Curbs);
         }
         let on_pad = v.t_bi * self.gear[i].fp; // −FPI, eq. (67) reversed
@@ -193,14 +199,21 @@ impl State {
         let xy = Vector2::new(pad.position.x, pad.position.y);
         let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
         let mut drag = sliding_friction(model.surfaces[i].friction, fzi); // eq. (85)
-        if let Some(soil) = &self.mechanisms.soil {
+        if let Some(soil) = &model.mechanisms.soil {
             // eqs. (102), (104): FGRND = FDRAG + FDRAGP, both along −v̂
             let depth = model.surfaces[i].plane() - pad.position.z;
             let sp = (xy - pad.touchdown_xy).norm();
             drag += soil.lateral_drag(depth, sp, v_xy.norm());
         }
-        let curb_xy = match &self.mechanisms.curbs {
-            Some(curbs) => curbs.force(i, pad.touchdown_xy, xy, v_xy, model.footpad_radius),
+        let curb_xy = match &model.mechanisms.curbs {
+            Some(curbs) => curbs.force(
+                &self.mechanisms.curb_memory,
+                i,
+                pad.touchdown_xy,
+                xy,
+                v_xy,
+                model.footpad_radius,
+            ),
             None => Vector2::zeros(),
         };
         SlidingForces {
@@ -231,7 +244,7 @@ impl State {
             let m = model.footpad_mass;
             let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
             advance_sliding(&mut self.pads[i], &f, dt);
-            if let Some(soil) = &self.mechanisms.soil {
+            if let Some(soil) = &model.mechanisms.soil {
                 // eq. (103) with constant forces over the step; the soil only resists
                 // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
                 let load = f.fzi - m * model.gravity.z; // FZI + weight, downward positive
@@ -260,7 +273,7 @@ impl State {
     /// not move on its own off the surface.
     fn curbs_off_surface(&mut self, model: &Model, i: usize) -> Vector2<f64> {
         let pad = &self.pads[i];
-        let Some(curbs) = &self.mechanisms.curbs else {
+        let Some(curbs) = &model.mechanisms.curbs else {
             return Vector2::zeros();
         };
         if !model.inertial || pad.first_contact.is_none() {
@@ -268,7 +281,14 @@ impl State {
         }
         let xy = Vector2::new(pad.position.x, pad.position.y);
         let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
-        let f = curbs.force(i, pad.touchdown_xy, xy, v_xy, model.footpad_radius);
+        let f = curbs.force(
+            &self.mechanisms.curb_memory,
+            i,
+            pad.touchdown_xy,
+            xy,
+            v_xy,
+            model.footpad_radius,
+        );
         self.mechanisms.tick(Mechanism::Curbs);
         f
     }

@@ -104,7 +104,9 @@ impl State {
         let (mut applied_force, mut applied_torque) = (Vector3::zeros(), Vector3::zeros());
         let mut applied_power = Power::default();
         let pads = &self.pads;
-        if let Some(a) = self.mechanisms.vehicle_loads(t, || first_contact(pads), v) {
+        if let Some(a) =
+            (model.mechanisms).vehicle_loads(&mut self.mechanisms, t, || first_contact(pads), v)
+        {
             (applied_force, applied_torque) = (v.t_bi * a.force, a.torque);
             applied_power = Power {
                 applied: applied_force.dot(&v.velocity) + a.torque.dot(&v.omega),
@@ -163,12 +165,12 @@ impl State {
         if model.arrangement == Arrangement::Tripod {
             self.mechanisms.tick(Mechanism::Tripod);
         }
-        if self.mechanisms.bending.is_some() {
+        if model.mechanisms.bending.is_some() {
             self.mechanisms.tick(Mechanism::Bending);
         }
         let options = GearOptions {
             arrangement: model.arrangement,
-            bending: (self.mechanisms.bending.as_ref()).map(|b| (b, self.bending_lag[i])),
+            bending: (model.mechanisms.bending.as_ref()).map(|b| (b, self.bending_lag[i])),
         };
         gear::evaluate(
             &model.legs[i],
@@ -205,7 +207,7 @@ impl State {
         if euler {
             v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
         }
-        v.slosh_q_ddot = self.mechanisms.slosh_acceleration(v); // eq. (109), corrected
+        v.slosh_q_ddot = (model.mechanisms).slosh_acceleration(&self.mechanisms, v); // eq. (109), corrected
         Ok(())
     }
 }

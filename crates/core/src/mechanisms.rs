@@ -8,7 +8,7 @@
 use crate::vehicle::VehicleState;
 use nalgebra::{Vector2, Vector3};
 use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion};
-use touchdown_laws::{Bending, Curbs, Slosh, Soil};
+use touchdown_laws::{Bending, CrushMemory, Curbs, Slosh, Soil};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{Scenario, ScenarioError};
 
@@ -37,11 +37,11 @@ pub(crate) struct Power {
     pub(crate) driving: f64,
 }
 
-/// The scene's optional mechanisms.
+/// The scene's optional mechanisms: their laws, which the scenario fixes (part of the
+/// landing's [`crate::model::Model`]); what they commit is in [`MechanismState`].
 #[derive(Debug, Clone)]
 pub struct Mechanisms {
-    /// Descent engine (thrust, amplification, nozzle crushing) and RCS, with the committed
-    /// nozzle crush.
+    /// Descent engine (thrust, amplification, nozzle crushing) and RCS.
     pub propulsion: Propulsion,
     /// Propellant slosh.
     pub slosh: Option<Slosh>,
@@ -51,13 +51,32 @@ pub struct Mechanisms {
     pub curbs: Option<Curbs>,
     /// Primary-strut bending.
     pub bending: Option<Bending>,
+    declared: Vec<Mechanism>,
+}
+
+/// What the mechanisms of a landing commit and count as it goes (part of the landing's
+/// [`crate::state::State`]).
+#[derive(Debug, Clone)]
+pub struct MechanismState {
+    /// Committed nozzle crush (shortening along Z_B), m.
+    pub nozzle_crush: f64,
+    /// The curbs' committed crush memories, one per curb of [`Mechanisms::curbs`].
+    pub curb_memory: Vec<CrushMemory>,
     /// Specific force at the slosh mass, body axes, m/s², at the last accepted state: the
     /// slosh equations use it one step lagged, which breaks the algebraic loop between the
     /// vehicle's and the slosh mass's accelerations (docs/errata.md, "Eq. (108): effective axial
     /// acceleration, lagged one step").
     pub slosh_specific_force: Vector3<f64>,
-    declared: Vec<Mechanism>,
     evaluations: Evaluations,
+}
+
+impl MechanismState {
+    /// Counts one evaluation of `m` (for the mechanisms evaluated elsewhere: soil, curbs,
+    /// bending).
+    #[inline]
+    pub fn tick(&mut self, m: Mechanism) {
+        self.evaluations.tick(m);
+    }
 }
 
 impl Mechanisms {
@@ -71,27 +90,29 @@ impl Mechanisms {
             soil: scene::soil_from_scenario(s)?,
             curbs: scene::curbs_from_scenario(s)?,
             bending: scene::bending_from_scenario(s)?,
-            slosh_specific_force: Vector3::new(0.0, 0.0, s.vehicle.gravity),
             declared: s.mechanisms(),
-            evaluations: Evaluations::default(),
         })
     }
 
-    /// Counts one evaluation of `m` (for the mechanisms evaluated elsewhere: soil, curbs,
-    /// bending).
-    #[inline]
-    pub fn tick(&mut self, m: Mechanism) {
-        self.evaluations.tick(m);
+    /// The state of these mechanisms at the start of a landing in gravity `gravity` (m/s²):
+    /// nothing crushed, nothing evaluated, the slosh mass's specific force that of rest.
+    pub fn start(&self, gravity: f64) -> MechanismState {
+        MechanismState {
+            nozzle_crush: 0.0,
+            curb_memory: self.curbs.as_ref().map_or_else(Vec::new, Curbs::memories),
+            slosh_specific_force: Vector3::new(0.0, 0.0, gravity),
+            evaluations: Evaluations::default(),
+        }
     }
 
-    /// Evaluations of each declared mechanism evaluated during a run so far, in the order of
-    /// [`Mechanism::ALL`] (trunnion springs are folded into the diagrams when the laws are
-    /// built, so they are not listed).
-    pub fn evaluations(&self) -> Vec<(Mechanism, u64)> {
+    /// Evaluations in `state` of each declared mechanism evaluated during a run so far, in the
+    /// order of [`Mechanism::ALL`] (trunnion springs are folded into the diagrams when the laws
+    /// are built, so they are not listed).
+    pub fn evaluations(&self, state: &MechanismState) -> Vec<(Mechanism, u64)> {
         self.declared
             .iter()
             .filter(|m| **m != Mechanism::TrunnionSprings) // folded into the diagrams
-            .map(|m| (*m, self.evaluations.get(*m)))
+            .map(|m| (*m, state.evaluations.get(*m)))
             .collect()
     }
 
@@ -101,11 +122,13 @@ impl Mechanisms {
     }
 
     /// Loads of the descent engine, the RCS and the slosh mass on the vehicle at time `t` (s)
-    /// and state `v`, or `None` when the scene has none of them; `first_contact` gives the
-    /// first footpad contact (s), for the RCS delay.
+    /// and state `v`, their committed memories in `state` (where the evaluations are counted),
+    /// or `None` when the scene has none of them; `first_contact` gives the first footpad
+    /// contact (s), for the RCS delay.
     #[inline]
     pub fn vehicle_loads(
-        &mut self,
+        &self,
+        state: &mut MechanismState,
         t: f64,
         first_contact: impl Fn() -> Option<f64>,
         v: &VehicleState,
@@ -115,7 +138,7 @@ impl Mechanisms {
             return None;
         }
         for m in p.mechanisms() {
-            self.evaluations.tick(m);
+            state.evaluations.tick(m);
         }
         let attitude = Attitude {
             position: &v.position,
@@ -123,10 +146,10 @@ impl Mechanisms {
             theta: &v.theta,
             omega: &v.omega,
         };
-        let mut out = p.loads(t, first_contact, &attitude); // eqs. (72)-(73), (80)-(81)
+        let mut out = p.loads(t, first_contact, &attitude, state.nozzle_crush); // eqs. (72)-(73), (80)-(81)
         if let Some(slosh) = &self.slosh {
-            self.evaluations.tick(Mechanism::Slosh);
-            let axial = slosh.axial(&self.slosh_specific_force);
+            state.evaluations.tick(Mechanism::Slosh);
+            let axial = slosh.axial(&state.slosh_specific_force);
             let lateral = slosh.wall_force(&v.slosh_q, axial); // eqs. (108), (115)
                                                                // The slosh mass presses on the tank floor with M_s·Z̈_B,eff along −Z_B (the appendix
                                                                // drops this axial load: docs/errata.md, "The slosh mass's axial load — added"); it
@@ -137,28 +160,29 @@ impl Mechanisms {
         Some(out)
     }
 
-    /// Slosh acceleration q̈ at state `v` (eq. 109, corrected), m/s²; zero without slosh.
+    /// Slosh acceleration q̈ at state `v` (eq. 109, corrected), the lagged specific force in
+    /// `state`, m/s²; zero without slosh.
     #[inline]
-    pub fn slosh_acceleration(&self, v: &VehicleState) -> Vector2<f64> {
+    pub fn slosh_acceleration(&self, state: &MechanismState, v: &VehicleState) -> Vector2<f64> {
         match &self.slosh {
             None => Vector2::zeros(),
             Some(slosh) => {
-                let f = &self.slosh_specific_force;
+                let f = &state.slosh_specific_force;
                 let axial = slosh.axial(f);
                 slosh.acceleration(&v.slosh_q, &Vector2::new(f.x, f.y), axial)
             }
         }
     }
 
-    /// Commits the accepted state `v`: the nozzle crush grows by the rim's penetration, and the
-    /// specific force at the slosh mass is taken for the next step.
-    pub fn commit(&mut self, v: &VehicleState, gravity: &Vector3<f64>) {
-        self.propulsion.commit(&v.position, &v.t_bi);
+    /// Commits the accepted state `v` into `state`: the nozzle crush grows by the rim's
+    /// penetration, and the specific force at the slosh mass is taken for the next step.
+    pub fn commit(&self, state: &mut MechanismState, v: &VehicleState, gravity: &Vector3<f64>) {
+        (self.propulsion).commit(&v.position, &v.t_bi, &mut state.nozzle_crush);
         if let Some(slosh) = &self.slosh {
             // (A_tank − G) in body axes at r_s = (0, 0, −d) (docs/errata.md, "Eq. (109): 2-D
             // amplitude, lateral specific force").
             let r = Self::slosh_arm(slosh);
-            self.slosh_specific_force = v.t_bi.transpose() * (v.acceleration - gravity)
+            state.slosh_specific_force = v.t_bi.transpose() * (v.acceleration - gravity)
                 + v.omega_dot.cross(&r)
                 + v.omega.cross(&v.omega.cross(&r));
         }

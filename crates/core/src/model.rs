@@ -4,6 +4,7 @@
 //! shared reference beside the [`crate::state::State`] they change, as MuJoCo passes its
 //! `mjModel` beside its `mjData`.
 
+use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
 use crate::summation::SumOrder;
 use nalgebra::Vector3;
@@ -50,6 +51,8 @@ pub(crate) struct Model {
     /// The time over which the bearing friction brings a footpad's stroking to rest off the
     /// surface, s ([`crate::stiction::relaxation`]).
     pub(crate) held_relaxation: f64,
+    /// The scene's optional mechanisms' laws.
+    pub(crate) mechanisms: Mechanisms,
     /// The order in which the legs' loads are summed ([`crate::summation`]).
     pub(crate) sum_order: SumOrder,
     /// Potential energy of the vehicle at the start, J.

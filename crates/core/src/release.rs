@@ -79,7 +79,7 @@ impl State {
     ) -> bool {
         let pressing = self.pressing(model, v, g);
         let tol = model.force_rounding;
-        if self.mechanisms.soil.is_some() {
+        if model.mechanisms.soil.is_some() {
             return pressing <= tol && self.pads[i].position.z > model.surfaces[i].plane();
         }
         if pressing < -tol || g.fcp < -tol {

@@ -8,7 +8,7 @@
 //! [`crate::stepper`].
 
 use crate::gear::GearState;
-use crate::mechanisms::{Mechanisms, Power};
+use crate::mechanisms::{MechanismState, Mechanisms, Power};
 use crate::model::Model;
 use crate::rigid_body::MassProperties;
 use crate::state::State;
@@ -110,6 +110,7 @@ impl Simulation {
             force_rounding,
             held_relaxation,
             sum_order: SumOrder::new(&scenario.legs),
+            mechanisms,
             potential0: 0.0,
             footpad0: 0.0,
         };
@@ -121,7 +122,7 @@ impl Simulation {
             pads,
             memory: vec![GearMemory::default(); n],
             gear: vec![GearState::default(); n],
-            mechanisms,
+            mechanisms: model.mechanisms.start(scenario.vehicle.gravity),
             bending_lag: vec![Vector3::zeros(); n],
             relaxation: vec![(0.0, [0.0; 2]); n],
             contact_steps: vec![0; n],
@@ -184,11 +185,17 @@ impl Simulation {
     /// Evaluations of each mechanism the scene declares (and only those), in the order of
     /// [`Mechanism::ALL`].
     pub fn mechanism_evaluations(&self) -> Vec<(Mechanism, u64)> {
-        self.state.mechanisms.evaluations()
+        self.model.mechanisms.evaluations(&self.state.mechanisms)
     }
 
     /// The scene's optional mechanisms as built.
     pub fn mechanisms(&self) -> &Mechanisms {
+        &self.model.mechanisms
+    }
+
+    /// What the scene's mechanisms have committed so far (the nozzle crush, the curbs' crush
+    /// memories) and counted.
+    pub fn mechanism_state(&self) -> &MechanismState {
         &self.state.mechanisms
     }
 

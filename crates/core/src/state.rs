@@ -4,7 +4,7 @@
 //! allocates. The fixed part of the landing is its [`crate::model::Model`].
 
 use crate::gear::GearState;
-use crate::mechanisms::{Mechanisms, Power};
+use crate::mechanisms::{MechanismState, Power};
 use crate::stiction::Held;
 use crate::surface::Footpad;
 use crate::vehicle::VehicleState;
@@ -29,9 +29,9 @@ pub(crate) struct State {
     pub(crate) memory: Vec<GearMemory>,
     /// Gear states at the accepted state.
     pub(crate) gear: Vec<GearState>,
-    /// The scene's optional mechanisms with the memories they commit (the nozzle crush, the
-    /// curbs' crush, the lagged slosh specific force) and their evaluation counts.
-    pub(crate) mechanisms: Mechanisms,
+    /// What the mechanisms commit (the nozzle crush, the curbs' crush, the lagged slosh
+    /// specific force) and their evaluation counts.
+    pub(crate) mechanisms: MechanismState,
     /// Point-1 bending displacement per leg at the last accepted state (lagged: docs/errata.md,
     /// "Eqs. (47)-(48): bending coupling"), m.
     pub(crate) bending_lag: Vec<Vector3<f64>>,

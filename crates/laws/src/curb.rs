@@ -157,25 +157,31 @@ impl FootpadCrush {
     }
 }
 
-/// The curbs of a scene: each (leg, curb) with its crush memory, and the footpad crushing
-/// diagram (fig. 18) they share.
+/// The curbs of a scene: each (leg, curb), and the footpad crushing diagram (fig. 18) they
+/// share. The committed crush memories are the caller's, one per curb in the order of `list`
+/// ([`Curbs::memories`]), as the gear's memories are ([`crate::GearMemory`]).
 #[derive(Debug, Clone)]
 pub struct Curbs {
     /// (leg index, curb), at most two per leg.
     pub list: Vec<(usize, Curb)>,
     /// Footpad crushing diagram with memory.
     pub crush: FootpadCrush,
-    /// Committed crush memory per curb (one per footpad and curb: crush along different curbs is
-    /// independent).
-    pub memory: Vec<CrushMemory>,
 }
 
 impl Curbs {
+    /// The memories of uncrushed curbs, one per curb of `list` (crush along different curbs is
+    /// independent).
+    pub fn memories(&self) -> Vec<CrushMemory> {
+        vec![CrushMemory::default(); self.list.len()]
+    }
+
     /// In-plane force of leg `leg`'s curbs on its footpad, N, with the footpad at `pad_xy`
     /// (m) moving at `velocity` (m/s), its first contact at `touchdown_xy` (m), radius `radius`
-    /// (m): eqs. (91)-(95) per curb, summed over the footpad's curbs (eq. 96 corrected).
+    /// (m), the curbs' committed memories `memory`: eqs. (91)-(95) per curb, summed over the
+    /// footpad's curbs (eq. 96 corrected).
     pub fn force(
         &self,
+        memory: &[CrushMemory],
         leg: usize,
         touchdown_xy: Vector2<f64>,
         pad_xy: Vector2<f64>,
@@ -183,7 +189,7 @@ impl Curbs {
         radius: f64,
     ) -> Vector2<f64> {
         let mut f = Vector2::zeros();
-        for ((l, curb), m) in self.list.iter().zip(&self.memory) {
+        for ((l, curb), m) in self.list.iter().zip(memory) {
             if *l == leg {
                 let pstrk = curb.crush(touchdown_xy, pad_xy, radius); // eq. (93)
                 let pfrc = self.crush.force(pstrk, *m); // fig. 18 with memory
@@ -196,19 +202,21 @@ impl Curbs {
     }
 
     /// Where a footpad of leg `leg` landing again at `pad_xy` (m; its first contact at
-    /// `touchdown_xy`, radius `r`, m) meets its curbs: moved back along each curb's normal to
-    /// the crushed face, where the curb carries no load (its permanent set), if it would land
-    /// beyond it. A footpad that comes down inside a curb's crushed zone lands against the curb,
-    /// as it does on its plane: it does not crush the curb without work.
+    /// `touchdown_xy`, radius `r`, m) meets its curbs (committed memories `memory`): moved back
+    /// along each curb's normal to the crushed face, where the curb carries no load (its
+    /// permanent set), if it would land beyond it. A footpad that comes down inside a curb's
+    /// crushed zone lands against the curb, as it does on its plane: it does not crush the curb
+    /// without work.
     pub fn landing(
         &self,
+        memory: &[CrushMemory],
         leg: usize,
         touchdown_xy: Vector2<f64>,
         pad_xy: Vector2<f64>,
         r: f64,
     ) -> Vector2<f64> {
         let mut xy = pad_xy;
-        for ((l, curb), m) in self.list.iter().zip(&self.memory) {
+        for ((l, curb), m) in self.list.iter().zip(memory) {
             if *l == leg {
                 let face = self.crush.table.permanent_set(*m).max(0.0);
                 let beyond = curb.crush(touchdown_xy, xy, r) - face;
@@ -220,9 +228,17 @@ impl Curbs {
         xy
     }
 
-    /// Commits the crush of leg `leg`'s curbs with the footpad at `pad_xy` (accepted state).
-    pub fn commit(&mut self, leg: usize, touchdown_xy: Vector2<f64>, pad_xy: Vector2<f64>, r: f64) {
-        for ((l, curb), m) in self.list.iter().zip(&mut self.memory) {
+    /// Commits into `memory` the crush of leg `leg`'s curbs with the footpad at `pad_xy`
+    /// (accepted state).
+    pub fn commit(
+        &self,
+        memory: &mut [CrushMemory],
+        leg: usize,
+        touchdown_xy: Vector2<f64>,
+        pad_xy: Vector2<f64>,
+        r: f64,
+    ) {
+        for ((l, curb), m) in self.list.iter().zip(memory) {
             if *l == leg {
                 self.crush.commit(curb.crush(touchdown_xy, pad_xy, r), m);
             }

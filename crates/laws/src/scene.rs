@@ -139,16 +139,14 @@ pub struct Attitude<'a> {
 
 /// The scene's propulsion: the descent engine with its nozzle (eqs. 69-74) and the RCS
 /// (eqs. 75-82), the vehicle-level mechanisms every engine applies the same way, as a force
-/// and a torque on the vehicle; with the committed nozzle crush (docs/errata.md, "Eqs. (72)-(73):
-/// nozzle crushing").
+/// and a torque on the vehicle. The committed nozzle crush is the caller's (docs/errata.md,
+/// "Eqs. (72)-(73): nozzle crushing").
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Propulsion {
     /// Descent engine (`thrust`), if declared.
     pub engine: Option<DescentEngine>,
     /// Reaction control system (`rcs`), if declared.
     pub rcs: Option<Rcs>,
-    /// Committed nozzle crush (shortening along Z_B), m.
-    pub nozzle_crush: f64,
 }
 
 impl Propulsion {
@@ -157,7 +155,6 @@ impl Propulsion {
         Ok(Propulsion {
             engine: DescentEngine::from_scenario(s)?,
             rcs: rcs_from_scenario(s)?,
-            nozzle_crush: 0.0,
         })
     }
 
@@ -179,7 +176,8 @@ impl Propulsion {
         .filter_map(|(m, declared)| declared.then_some(m))
     }
 
-    /// Engine and RCS loads in body axes at simulation time `t` (s) with the vehicle at `a`;
+    /// Engine and RCS loads in body axes at simulation time `t` (s) with the vehicle at `a`
+    /// and the committed nozzle crush `nozzle_crush` (shortening along Z_B, m);
     /// `first_contact` gives the first footpad contact (s), for the RCS delay (asked only if
     /// the RCS translates).
     #[inline]
@@ -188,10 +186,11 @@ impl Propulsion {
         t: f64,
         first_contact: impl Fn() -> Option<f64>,
         a: &Attitude,
+        nozzle_crush: f64,
     ) -> AppliedLoads {
         let mut out = AppliedLoads::default();
         if let Some(engine) = &self.engine {
-            let e = engine.loads(t, a.position, a.t_bi, self.nozzle_crush);
+            let e = engine.loads(t, a.position, a.t_bi, nozzle_crush);
             out.force += e.force; // eq. (72)
             out.torque += e.torque; // eq. (73)
             out.driving.0 += e.thrust.0;
@@ -213,10 +212,10 @@ impl Propulsion {
     }
 
     /// Commits an accepted state (vehicle at `position`, m, attitude `t_bi`): the nozzle crush
-    /// grows by the rim's penetration.
-    pub fn commit(&mut self, position: &Vector3<f64>, t_bi: &Matrix3<f64>) {
+    /// `nozzle_crush` (m) grows by the rim's penetration.
+    pub fn commit(&self, position: &Vector3<f64>, t_bi: &Matrix3<f64>, nozzle_crush: &mut f64) {
         if let Some(engine) = &self.engine {
-            self.nozzle_crush += engine.crush_increment(position, t_bi, self.nozzle_crush);
+            *nozzle_crush += engine.crush_increment(position, t_bi, *nozzle_crush);
         }
     }
 }
@@ -298,11 +297,7 @@ pub fn curbs_from_scenario(s: &Scenario) -> Result<Option<crate::Curbs>, Scenari
             .map_err(field(s, &format!("surface.curbs[{i}]")))?;
         curbs.push((c.leg, curb));
     }
-    Ok(Some(crate::Curbs {
-        memory: vec![crate::CrushMemory::default(); curbs.len()],
-        list: curbs,
-        crush,
-    }))
+    Ok(Some(crate::Curbs { list: curbs, crush }))
 }
 
 /// The scene's primary-strut bending law (eqs. 40-48), if it declares one. The coupling is

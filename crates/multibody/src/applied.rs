@@ -16,8 +16,10 @@ use touchdown_scenario::{Scenario, ScenarioError};
 /// The propulsion of a multibody landing and the loads it applies over the current step.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct VehicleLoads {
-    /// The scene's engine and RCS, with the committed nozzle crush.
+    /// The scene's engine and RCS.
     pub propulsion: Propulsion,
+    /// The committed nozzle crush (shortening along Z_B), m.
+    pub nozzle_crush: f64,
     /// Force on the vehicle's centre of mass over the current step, N, inertial axes.
     pub force: Vector3<f64>,
     /// Torque on the vehicle over the current step, N·m, inertial axes.
@@ -66,8 +68,8 @@ impl VehicleLoads {
             theta: &theta,
             omega: &omega,
         };
-        let body = self.propulsion.loads(t, first_contact, &attitude);
-        self.propulsion.commit(&v.position, r);
+        let body = (self.propulsion).loads(t, first_contact, &attitude, self.nozzle_crush);
+        (self.propulsion).commit(&v.position, r, &mut self.nozzle_crush);
         self.force = r * body.force; // eqs. (74), (82)
         self.torque = r * body.torque;
         self.driving = (r * body.driving.0, r * body.driving.1);

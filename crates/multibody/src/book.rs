@@ -22,7 +22,7 @@ use crate::step::stiffest_rate;
 use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use crate::wall::ObstacleWall;
 use nalgebra::{Vector2, Vector3};
-use touchdown_laws::{Curbs, GearLaws, GearMemory, StrutLoad};
+use touchdown_laws::{CrushMemory, Curbs, GearLaws, GearMemory, StrutLoad};
 use touchdown_record::{
     EnergyLedger, EnergyReport, Extremes, Law, PadView, Progress, Sample, StabilityTracker,
     StrutCapacities, Summary,
@@ -147,8 +147,10 @@ pub struct GearBook {
     pub pad_steps: Vec<PadStep>,
     /// The engine and RCS loads on the vehicle (nothing without them).
     pub applied: VehicleLoads,
-    /// The curbs with their footpad crushing and its committed memory (nothing without them).
+    /// The curbs with their footpad crushing (nothing without them).
     pub curbs: Option<Curbs>,
+    /// The curbs' committed crush memories, one per curb of `curbs`.
+    curb_memory: Vec<CrushMemory>,
     /// The curbs' force on each footpad over the current step, N, inertial axes (z = 0).
     curb_forces: Vec<Vector3<f64>>,
     /// Each locked footpad's obstacle wall (none where OBST ≤ 0).
@@ -197,6 +199,7 @@ impl GearBook {
                     .then(|| ObstacleWall::new(p.obstacle, sc.footpad.mass, primary_rate, dt))
             })
             .collect();
+        let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
         Ok(GearBook {
             legs: sc.legs.clone(),
             surfaces: sc.surface.pads.clone(),
@@ -208,7 +211,8 @@ impl GearBook {
             contacts: vec![PadContact::default(); n],
             pad_steps: vec![PadStep::default(); n],
             applied: VehicleLoads::new(sc)?,
-            curbs: touchdown_laws::scene::curbs_from_scenario(sc)?,
+            curb_memory: curbs.as_ref().map_or_else(Vec::new, Curbs::memories),
+            curbs,
             curb_forces: vec![Vector3::zeros(); n],
             walls,
             wall_forces: vec![Vector3::zeros(); n],
@@ -413,7 +417,7 @@ impl GearBook {
                 self.wall_forces[i] = w.force(self.kin[i].footpad.xy(), &pad_velocity(i));
             }
         }
-        let Some(curbs) = &mut self.curbs else {
+        let Some(curbs) = &self.curbs else {
             return Ok(());
         };
         self.curb_evaluations += 1;
@@ -426,8 +430,9 @@ impl GearBook {
                 continue;
             }
             let (td, xy) = (self.touchdown_xy[i], self.kin[i].footpad.xy());
-            let on_pad = curbs.force(i, td, xy, pad_velocity(i).xy(), self.pad_radius);
-            curbs.commit(i, td, xy, self.pad_radius);
+            let memory = &mut self.curb_memory;
+            let on_pad = curbs.force(memory, i, td, xy, pad_velocity(i).xy(), self.pad_radius);
+            curbs.commit(memory, i, td, xy, self.pad_radius);
             if !on_pad.norm().is_finite() {
                 return Err(Fault {
                     law: Law::Curbs,

@@ -58,7 +58,7 @@ impl State {
         } = scratch;
         // The curbs' work on the footpads with inertia off the surface, their force frozen over
         // the step (the footpads' energy change is in the footpad energy).
-        if model.inertial && self.mechanisms.curbs.is_some() {
+        if model.inertial && model.mechanisms.curbs.is_some() {
             let mut curbs_off_surface = 0.0;
             for (p, (p0, _)) in self.pads.iter().zip(&self.pad_start) {
                 if p.state != ContactState::Contact {
@@ -113,12 +113,18 @@ impl State {
             // A curb is crushed by a footpad on the surface, and by one with inertia off it.
             let crushing = pad.state == ContactState::Contact
                 || (model.inertial && pad.first_contact.is_some());
-            if let (Some(curbs), true) = (&mut self.mechanisms.curbs, crushing) {
+            if let (Some(curbs), true) = (&model.mechanisms.curbs, crushing) {
                 let xy = Vector2::new(pad.position.x, pad.position.y);
-                curbs.commit(i, pad.touchdown_xy, xy, model.footpad_radius);
+                curbs.commit(
+                    &mut self.mechanisms.curb_memory,
+                    i,
+                    pad.touchdown_xy,
+                    xy,
+                    model.footpad_radius,
+                );
             }
         }
-        self.mechanisms.commit(new, &model.gravity);
+        (model.mechanisms).commit(&mut self.mechanisms, new, &model.gravity);
         // Work of the vehicle-level mechanisms on the vehicle with the forces the step used
         // (the report: trapezoid of their power), and of the soil and curbs on the footpads.
         let applied_work = match quadrature {

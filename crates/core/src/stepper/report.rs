@@ -101,7 +101,7 @@ fn predict_correct(
     dt: f64,
     old: &VehicleState,
 ) -> Result<f64, RunError> {
-    let slosh = state.mechanisms.slosh.is_some();
+    let slosh = model.mechanisms.slosh.is_some();
     // 3. predictor, c = 0 (eqs. 22-23); the footpads off the surface too (eqs. 16-18)
     let inertial = model.inertial;
     for p in state.pads.iter_mut() {
