@@ -18,6 +18,10 @@ use touchdown_scenario::Scenario;
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) command: Command,
+    /// No progress bars on standard error (they are drawn only when it is a terminal, for
+    /// `campaign`, `boundary`, `validate --protocol cv` and `precision`).
+    #[arg(long, short, global = true)]
+    pub(crate) quiet: bool,
 }
 
 #[derive(Subcommand)]

@@ -44,7 +44,9 @@ fn main() -> std::process::ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    match run(Cli::parse()) {
+    let cli = Cli::parse();
+    QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
+    match run(cli) {
         Ok(Verdict::Pass) => std::process::ExitCode::SUCCESS,
         Ok(Verdict::Fail) => std::process::ExitCode::from(VERDICT_FAILED),
         Err(e) => {
@@ -86,17 +88,45 @@ pub fn warn(sc: &Scenario) {
     }
 }
 
-/// A progress bar of `len` steps on standard error, hidden when standard error is not a
-/// terminal (a pipe, a log file, CI).
-pub fn progress_bar(len: u64, message: &'static str) -> indicatif::ProgressBar {
+/// Whether `--quiet` was given: no progress bars.
+static QUIET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// A progress bar of `len` steps of `unit` (a plural noun: "landings") on standard error, with
+/// the rate and, when `len` is known (non-zero), the time left; a counter with the rate and the
+/// time spent when it is not. Hidden when standard error is not a terminal (a pipe, a log file,
+/// CI) or with `--quiet`.
+pub fn progress_bar(len: u64, unit: &'static str) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressStyle};
     use std::io::IsTerminal;
-    if std::io::stderr().is_terminal() {
-        let b = indicatif::ProgressBar::new(len);
-        b.set_message(message);
-        b
-    } else {
-        indicatif::ProgressBar::hidden()
+    if QUIET.load(std::sync::atomic::Ordering::Relaxed) || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
     }
+    let (bar, template) = if len > 0 {
+        (
+            ProgressBar::new(len),
+            "[{elapsed_precise}] {wide_bar} {human_pos}/{human_len} {prefix} · {rate} · {eta} left",
+        )
+    } else {
+        (
+            ProgressBar::new_spinner(),
+            "{spinner} [{elapsed_precise}] {human_pos} {prefix} · {rate}",
+        )
+    };
+    if let Ok(style) = ProgressStyle::with_template(template) {
+        // The rate to a tenth (not indicatif's four decimals), or the time each takes when
+        // fewer than one a second finish.
+        let rate = |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+            let _ = match s.per_sec() {
+                r if r >= 1.0 => write!(w, "{r:.1}/s"),
+                r if r > 0.0 => write!(w, "{:.1} s each", 1.0 / r),
+                _ => write!(w, "—"),
+            };
+        };
+        bar.set_style(style.with_key("rate", rate));
+    }
+    bar.set_prefix(unit);
+    bar.enable_steady_tick(std::time::Duration::from_millis(250));
+    bar
 }
 
 /// The verdict of a command with one: `Fail` only if it failed and the user did not ask for

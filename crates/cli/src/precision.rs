@@ -30,18 +30,28 @@ pub fn precision(
     eprintln!("computing the converged reference ...");
     let sc = load(scenario, set)?.1;
     warn(&sc);
+    let planned: usize = (methods.iter())
+        .filter(|m| sc.applicable_engines.contains(&m.engine()))
+        .map(|m| rungs.unwrap_or(usize::MAX).min(m.ladder().len()))
+        .sum();
+    let bar = crate::progress_bar(planned as u64, "rungs");
     let study =
         precision::work_precision_resolved(scenario, &sc, &methods, rungs, repeats, |rung| {
-            eprintln!(
-                "  {} {}: {}",
-                rung.method.name(),
-                precision::setting_label(rung.method, rung.value),
-                match (&rung.measured, &rung.failure) {
-                    (Some(m), _) => format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
-                    (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
-                }
-            );
+            bar.suspend(|| {
+                eprintln!(
+                    "  {} {}: {}",
+                    rung.method.name(),
+                    precision::setting_label(rung.method, rung.value),
+                    match (&rung.measured, &rung.failure) {
+                        (Some(m), _) =>
+                            format!("stroke error {:.3} %", 100.0 * m.errors.max_stroke),
+                        (None, f) => format!("failed: {}", f.as_deref().unwrap_or("?")),
+                    }
+                )
+            });
+            bar.inc(1);
         })?;
+    bar.finish_and_clear();
     let mut options = serde_json::json!({
         "engines": engines,
         "repeats": repeats,

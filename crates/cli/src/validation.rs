@@ -159,7 +159,8 @@ fn facts_text(o: &mut String, facts: &[facts::FactCheck]) {
 /// `touchdown validate --protocol cv`: whether the target is met.
 pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
     let paths = Paths::new(root);
-    eprintln!("cross-validating: 8 folds and the fit to every row (about 690,000 landings: several hours on 2 cores in a release build) ...");
+    eprintln!("cross-validating: 8 folds and the fit to every row (about {} landings: several hours on 2 cores in a release build) ...", cross_validation::LANDINGS_ABOUT);
+    let bar = crate::progress_bar(cross_validation::LANDINGS_ABOUT, "landings");
     // With --out, finished work is kept under it, so that a stopped run resumes: the key names
     // this program and every file it reads, so work of another build or other data is redone.
     let checkpoint = match out {
@@ -167,18 +168,23 @@ pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<boo
             let exe = std::env::current_exe().context("cannot find this program's file")?;
             let key = checkpoint::key_of(&[exe, root.join("reference"), root.join("scenarios")])?;
             let c = Checkpoint::new(&dir.join("cross-validation.checkpoint"), key)?;
-            let kept = c.kept();
-            if kept > 0 {
-                eprintln!(
-                    "resuming: {kept} finished units of this run kept in {}",
-                    c.dir().display()
-                );
+            let (units, landings) = c.kept();
+            if units > 0 {
+                bar.suspend(|| {
+                    eprintln!(
+                        "resuming: {units} finished units of this run ({landings} landings) kept in {}",
+                        c.dir().display()
+                    )
+                });
+                bar.inc(landings as u64);
+                bar.reset_eta();
             }
             Some(c)
         }
         None => None,
     };
-    let cv = cross_validation::cross_validate(&paths, checkpoint.as_ref())?;
+    let cv = cross_validation::cross_validate(&paths, checkpoint.as_ref(), &|| bar.inc(1))?;
+    bar.finish_and_clear();
     let settings = serde_json::json!({ "protocol": "cv" });
     let text = Document::new("cross-validation", None, &settings, &cv).pretty();
     if let Some(dir) = out {

@@ -852,6 +852,40 @@ fn a_campaign_streams_json_lines_then_its_statistics_and_draws_its_plots() {
     );
 }
 
+/// Long commands draw their progress on a terminal's standard error, with the rate and the
+/// time left, and nothing when standard error is not a terminal or with `--quiet`. The terminal
+/// is a pseudo-terminal from `script` (util-linux, in every Debian).
+#[test]
+fn a_campaign_shows_its_progress_on_a_terminal_only() {
+    let on_terminal = |extra: &str| {
+        let command = format!(
+            "{} campaign scenarios/campaigns/small.toml{extra} > /dev/null",
+            env!("CARGO_BIN_EXE_touchdown")
+        );
+        let out = Command::new("script")
+            .args(["-qec", &command, "/dev/null"])
+            .current_dir(root())
+            .output()
+            .expect("`script` runs (Debian package bsdutils)");
+        assert!(out.status.success(), "{out:?}");
+        String::from_utf8_lossy(&out.stdout).replace('\r', "\n")
+    };
+    let shown = on_terminal("");
+    let bar = shown
+        .lines()
+        .find(|l| l.contains("/24 landings · "))
+        .unwrap_or_else(|| panic!("no progress bar in {shown:?}"));
+    assert!(bar.ends_with(" left") || bar.contains(" left "), "{bar:?}");
+    assert!(!on_terminal(" --quiet").contains("landings"));
+    let piped = touchdown(&["campaign", "scenarios/campaigns/small.toml"]);
+    assert!(piped.status.success());
+    assert!(
+        piped.stderr.is_empty(),
+        "{:?}",
+        String::from_utf8_lossy(&piped.stderr)
+    );
+}
+
 #[test]
 fn campaign_arguments_are_checked_by_name() {
     let expect = |args: &[&str], says: &str| {

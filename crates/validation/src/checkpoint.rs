@@ -48,17 +48,18 @@ impl Checkpoint {
         &self.dir
     }
 
-    /// How many units of this run the folder holds.
-    pub fn kept(&self) -> usize {
-        std::fs::read_dir(&self.dir)
-            .map(|entries| {
-                entries
-                    .filter_map(Result::ok)
-                    .filter(|e| e.path().extension().is_some_and(|x| x == "toml"))
-                    .filter(|e| self.read::<toml::Value>(&e.path()).is_some())
-                    .count()
+    /// How many units of this run the folder holds, and the landings they ran.
+    pub fn kept(&self) -> (usize, usize) {
+        let Ok(entries) = std::fs::read_dir(&self.dir) else {
+            return (0, 0);
+        };
+        entries
+            .filter_map(Result::ok)
+            .filter(|e| e.path().extension().is_some_and(|x| x == "toml"))
+            .filter_map(|e| self.read::<toml::Value>(&e.path()))
+            .fold((0, 0), |(units, landings), (_, n)| {
+                (units + 1, landings + n)
             })
-            .unwrap_or(0)
     }
 
     /// Removes the folder, once the whole result is written.
@@ -196,7 +197,7 @@ mod tests {
         for (p, q) in kept.0.x.iter().zip(&x) {
             assert_eq!(p.to_bits(), q.to_bits());
         }
-        assert_eq!(a.kept(), 1);
+        assert_eq!(a.kept().0, 1);
         // Another key computes again.
         let b = Checkpoint::new(dir.path(), "b").unwrap();
         let other = b

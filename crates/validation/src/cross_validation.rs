@@ -737,12 +737,19 @@ pub fn cross_validate_with(
     })
 }
 
+/// How many landings a whole cross-validation lands, about: 687,528 in the run of
+/// `docs/validation/cross-validation.json` (its `landings`); the fits' iterations vary with the
+/// model, so a run lands about as many, not exactly.
+pub const LANDINGS_ABOUT: u64 = 690_000;
+
 /// Cross-validates the 1/6-scale model on the core over Table I
 /// (`reference/cross-validation-protocol.toml`), its finished work kept in `checkpoint` if
-/// one is given ([`cross_validate_with`]).
+/// one is given ([`cross_validate_with`]); `landed` is called after each landing (for a
+/// progress bar: about [`LANDINGS_ABOUT`] in all).
 pub fn cross_validate(
     paths: &Paths,
     checkpoint: Option<&Checkpoint>,
+    landed: &(dyn Fn() + Sync),
 ) -> Result<CrossValidation, ValidationError> {
     let protocol: CvProtocol = reference::read(&paths.reference("cross-validation-protocol.toml"))?;
     let two_row: Protocol = reference::read(&paths.reference("calibration-protocol.toml"))?;
@@ -756,7 +763,12 @@ pub fn cross_validate(
         .map(|r| r.id)
         .filter(|id| !two_row.rows.contains(id))
         .collect();
-    let mut cv = cross_validate_with(&table.row, &protocol, &held_out, &model, checkpoint)?;
+    let counted = |row: &Row, x: &[f64]| {
+        let stroke = model(row, x);
+        landed();
+        stroke
+    };
+    let mut cv = cross_validate_with(&table.row, &protocol, &held_out, &counted, checkpoint)?;
     cv.facts = facts::check(paths, &overrides(&fields, &cv.full_fit.value))?.checks;
     cv.landings += 1;
     Ok(cv)
@@ -924,7 +936,7 @@ mod tests {
             }
         };
         assert!(cross_validate_with(&table, &p, &[1], &dying, Some(&checkpoint)).is_err());
-        let kept = checkpoint.kept();
+        let (kept, kept_landings) = checkpoint.kept();
         assert!(kept > 0, "some units finished before the kill");
         // ... resumes from what it kept, landing fewer, to the same result and count.
         let resumed_calls = std::sync::atomic::AtomicUsize::new(0);
@@ -936,9 +948,12 @@ mod tests {
         assert_eq!(resumed, whole);
         let landed = resumed_calls.load(std::sync::atomic::Ordering::Relaxed);
         assert!(landed < whole.landings, "{landed} of {}", whole.landings);
+        // The kept units' landings and the resumed run's make the whole run's (what a resumed
+        // run's progress starts from).
+        assert_eq!(kept_landings + landed, whole.landings);
         // Units of another run's key are not taken.
         let other = Checkpoint::new(dir.path(), "another program").unwrap();
-        assert_eq!(other.kept(), 0);
+        assert_eq!(other.kept(), (0, 0));
     }
 
     #[test]

@@ -336,7 +336,7 @@ fn cross_validation_of_the_core_end_to_end() {
     protocol.samples = 2;
     std::fs::write(&file, toml::to_string(&protocol).unwrap()).unwrap();
 
-    let cv = cross_validation::cross_validate(&paths, None).unwrap();
+    let cv = cross_validation::cross_validate(&paths, None, &|| {}).unwrap();
     let ids: Vec<u32> = cv.folds.iter().map(|f| f.held_out).collect();
     assert_eq!(ids, (1..=8).collect::<Vec<_>>());
     let table: TableI = reference::read(&paths.reference("table-i.toml")).unwrap();
