@@ -79,21 +79,24 @@ fn one_shard_or_four_in_any_order_on_any_threads_write_the_same_bytes() {
     let tmp = tempfile::tempdir().unwrap();
     let campaign = Campaign::load(small()).unwrap();
     let whole = tmp.path().join("whole");
-    run(&campaign, None, Some(1), Some(&whole), |_| ()).unwrap();
+    run(&campaign, None, Some(1), Some(&whole), false, |_| ()).unwrap();
     let mut parts = Vec::new();
     for k in [3, 1, 4, 2] {
         let dir = tmp.path().join(format!("shard-{k}"));
         let shard = Shard { index: k, count: 4 };
-        run(&campaign, Some(shard), Some(2), Some(&dir), |_| ()).unwrap();
+        run(&campaign, Some(shard), Some(2), Some(&dir), false, |_| ()).unwrap();
         parts.push(dir);
     }
     let merged = tmp.path().join("merged");
     let refs: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
-    merge(&refs, &merged).unwrap();
+    merge(&refs, &merged, |_| ()).unwrap();
     assert_same_files(&whole, &merged);
     // The landings come in order whatever finished first, and the history asked for is kept.
     let mut seen = Vec::new();
-    run(&campaign, None, Some(2), None, |r| seen.push(r[0].clone())).unwrap();
+    run(&campaign, None, Some(2), None, false, |r| {
+        seen.push(r[0].clone())
+    })
+    .unwrap();
     assert_eq!(seen, (0..24).map(Cell::Integer).collect::<Vec<_>>());
     assert!(whole.join("histories/landing-3.csv").is_file());
 }
@@ -105,7 +108,7 @@ fn added_landings_leave_the_first_ones_unchanged() {
     small_with(&file, 16);
     let extended = tmp.path().join("extended");
     let c16 = Campaign::load(&file).unwrap();
-    run(&c16, None, None, Some(&extended), |_| ()).unwrap();
+    run(&c16, None, None, Some(&extended), false, |_| ()).unwrap();
     touchdown_campaign::add(&c16, &extended, 8, None, |_| ()).unwrap();
     small_with(&file, 24);
     let at_once = tmp.path().join("at-once");
@@ -114,6 +117,7 @@ fn added_landings_leave_the_first_ones_unchanged() {
         None,
         None,
         Some(&at_once),
+        false,
         |_| (),
     )
     .unwrap();
@@ -131,7 +135,7 @@ fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
     let campaign = Campaign::load(small()).unwrap();
     let refused = |out: &Path, shard: Option<Shard>, says: &str| {
         let mut landed = 0;
-        match run(&campaign, shard, None, Some(out), |_| landed += 1) {
+        match run(&campaign, shard, None, Some(out), false, |_| landed += 1) {
             Err(CampaignError::Store { path, message }) => {
                 assert_eq!(path, out.display().to_string());
                 assert!(message.contains(says), "{message}");
@@ -152,7 +156,7 @@ fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
         "keep"
     );
     let whole = tmp.path().join("whole");
-    run(&campaign, None, None, Some(&whole), |_| ()).unwrap();
+    run(&campaign, None, None, Some(&whole), false, |_| ()).unwrap();
     let copy = tmp.path().join("copy");
     touchdown_campaign::folder::copy_tree(&whole, &copy).unwrap();
     refused(
@@ -168,7 +172,7 @@ fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
     std::fs::write(held.dir().join("landings.jsonl"), "cut").unwrap();
     drop(held);
     assert_same_files(&whole, &copy);
-    run(&campaign, None, None, Some(&whole), |_| ()).unwrap();
+    run(&campaign, None, None, Some(&whole), false, |_| ()).unwrap();
     assert_same_files(&whole, &copy);
     assert!(!tmp.path().join("whole.partial").exists());
     // A merge into one of its own parts.
@@ -180,24 +184,104 @@ fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
                 Some(Shard { index: k, count: 2 }),
                 None,
                 Some(&dir),
+                false,
                 |_| (),
             )
             .unwrap();
             dir
         })
         .collect();
-    merge(&[&parts[0], &parts[1]], &parts[0]).unwrap();
+    merge(&[&parts[0], &parts[1]], &parts[0], |_| ()).unwrap();
     assert_same_files(&parts[0], &whole);
     assert!(matches!(
-        merge(&[&parts[1]], &foreign),
+        merge(&[&parts[1]], &foreign, |_| ()),
         Err(CampaignError::Mismatch(_)) | Err(CampaignError::Store { .. })
     ));
+}
+
+/// What a run killed part-way leaves in `<out>.partial` is resumed from (`--resume`) to the same
+/// bytes as an uninterrupted run: a last record cut short mid-line is dropped and landed again,
+/// and a Parquet file cut short while a row group was being written is written again. (The
+/// command line's `a_campaign_killed_at_any_moment_resumes_to_the_same_bytes` kills real
+/// processes at ten moments.)
+#[test]
+fn a_run_stopped_mid_record_or_mid_row_group_resumes_to_the_same_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    let whole = tmp.path().join("whole");
+    run(&campaign, None, None, Some(&whole), false, |_| ()).unwrap();
+    let read = |name: &str| std::fs::read(whole.join(name)).unwrap();
+    let (manifest, jsonl, parquet) = (
+        read("manifest.json"),
+        read("landings.jsonl"),
+        read("landings.parquet"),
+    );
+    // The run's identity, as a run writes it when it starts: the manifest it will write.
+    let run_file = &manifest[..manifest.len() - 1];
+    let line_ends: Vec<usize> = (jsonl.iter().enumerate())
+        .filter(|(_, b)| **b == b'\n')
+        .map(|(i, _)| i + 1)
+        .collect();
+    let stopped = [
+        // Killed while writing record 11: ten whole lines and half of one.
+        (
+            jsonl[..line_ends[9] + (line_ends[10] - line_ends[9]) / 2].to_vec(),
+            None,
+        ),
+        // Killed while writing the Parquet file's row group: every record, half the file.
+        (jsonl.clone(), Some(parquet[..parquet.len() / 2].to_vec())),
+    ];
+    for (k, (records, columns)) in stopped.into_iter().enumerate() {
+        let out = tmp.path().join(format!("stopped-{k}"));
+        let partial = tmp.path().join(format!("stopped-{k}.partial"));
+        // The kept landings' histories were written as they finished (the one asked for is of
+        // landing 3).
+        touchdown_campaign::folder::copy_tree(&whole.join("histories"), &partial.join("histories"))
+            .unwrap();
+        std::fs::write(partial.join("run.json"), run_file).unwrap();
+        std::fs::write(partial.join("landings.jsonl"), records).unwrap();
+        if let Some(columns) = columns {
+            std::fs::write(partial.join("landings.parquet"), columns).unwrap();
+        }
+        let mut seen = Vec::new();
+        run(&campaign, None, None, Some(&out), true, |r| {
+            seen.push(r[0].clone())
+        })
+        .unwrap();
+        assert_same_files(&whole, &out);
+        assert!(!partial.exists());
+        // Every record is handed on once, in order, the kept ones first.
+        assert_eq!(seen, (0..24).map(Cell::Integer).collect::<Vec<_>>());
+    }
+    // The kept records are taken, not landed again: one altered before the resume stays so.
+    let text = String::from_utf8(jsonl[..line_ends[9]].to_vec()).unwrap();
+    let altered = {
+        let (first, rest) = text.split_once('\n').unwrap();
+        let mut record: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(first).unwrap();
+        record.insert("peak_specific_force_m_s2".into(), 1234.5.into());
+        format!("{}\n{rest}", serde_json::Value::Object(record))
+    };
+    let out = tmp.path().join("altered");
+    let partial = tmp.path().join("altered.partial");
+    touchdown_campaign::folder::copy_tree(&whole.join("histories"), &partial.join("histories"))
+        .unwrap();
+    std::fs::write(partial.join("run.json"), run_file).unwrap();
+    std::fs::write(partial.join("landings.jsonl"), &altered).unwrap();
+    run(&campaign, None, None, Some(&out), true, |_| ()).unwrap();
+    let resumed = std::fs::read_to_string(out.join("landings.jsonl")).unwrap();
+    assert!(
+        resumed.starts_with(&altered),
+        "the kept records were landed again"
+    );
+    assert_eq!(resumed.len() - altered.len(), jsonl.len() - line_ends[9]);
 }
 
 #[test]
 fn the_values_applied_are_the_values_drawn_and_reach_the_model() {
     let campaign = Campaign::load(small()).unwrap();
-    let (_, rows, _) = run(&campaign, None, None, None, |_| ()).unwrap();
+    let mut rows = Vec::new();
+    run(&campaign, None, None, None, false, |r| rows.push(r.clone())).unwrap();
     let n = campaign.dispersions.len();
     let mut references = std::collections::BTreeSet::new();
     for (i, row) in rows.iter().enumerate() {
@@ -262,7 +346,8 @@ fn an_outcome_decided_by_one_input_has_its_analytic_probability() {
     }
     let v_star = 0.5 * (lo + hi);
     let p = Normal::standard().cdf((15.0 - v_star) / 3.0);
-    let (_, rows, stats) = run(&campaign, None, None, None, |_| ()).unwrap();
+    let mut rows = Vec::new();
+    let (_, stats) = run(&campaign, None, None, None, false, |r| rows.push(r.clone())).unwrap();
     let outs = rows
         .iter()
         .filter(|r| r.contains(&Cell::Text("stroke_out".into())))
@@ -393,13 +478,14 @@ fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
             Some(Shard { index: k, count: n }),
             None,
             Some(&dir),
+            false,
             |_| (),
         )
         .unwrap();
         dir
     };
     let (a, b, c) = (part(1, 2, "a"), part(1, 3, "b"), part(3, 3, "c"));
-    let message = |parts: &[&Path]| match merge(parts, &tmp.path().join("out")) {
+    let message = |parts: &[&Path]| match merge(parts, &tmp.path().join("out"), |_| ()) {
         Err(CampaignError::Mismatch(m)) => m,
         other => panic!("expected a refusal, got {other:?}"),
     };
@@ -418,12 +504,15 @@ fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
         Some(Shard { index: 2, count: 2 }),
         None,
         Some(&d),
+        false,
         |_| (),
     )
     .unwrap();
     assert!(message(&[&a, &d]).contains("campaign (its SHA-256)"));
     // A record no landing could have written (an outcome of another name, or none) is
-    // refused by file and line: the counts would no longer add up.
+    // refused by file and line, in parts that otherwise merge: the counts would no longer add
+    // up.
+    let middle = part(2, 3, "middle");
     let e = tmp.path().join("e");
     std::fs::create_dir(&e).unwrap();
     for name in [
@@ -448,7 +537,7 @@ fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
     ] {
         assert_ne!(tampered, jsonl);
         std::fs::write(e.join("landings.jsonl"), &tampered).unwrap();
-        match merge(&[&a, &e], &tmp.path().join("out")) {
+        match merge(&[&b, &middle, &e], &tmp.path().join("out"), |_| ()) {
             Err(CampaignError::Store { path, message }) => {
                 assert!(path.ends_with("landings.jsonl:1"), "{path}");
                 assert!(message.contains(says), "{message}");
@@ -471,7 +560,7 @@ fn without_failure(text: &str) -> String {
 fn the_parquet_records_read_back_in_pandas_polars_and_duckdb() {
     let tmp = tempfile::tempdir().unwrap();
     let campaign = Campaign::load(small()).unwrap();
-    run(&campaign, None, None, Some(tmp.path()), |_| ()).unwrap();
+    run(&campaign, None, None, Some(tmp.path()), false, |_| ()).unwrap();
     let out = std::process::Command::new(python())
         .arg(root().join("python/tests/campaign_read.py"))
         .arg(tmp.path())
@@ -506,7 +595,11 @@ fn a_mujoco_campaign_lands_as_single_runs_do() {
     )
     .unwrap();
     let campaign = Campaign::load(&file).unwrap();
-    let (manifest, rows, _) = run(&campaign, None, Some(2), None, |_| ()).unwrap();
+    let mut rows = Vec::new();
+    let (manifest, _) = run(&campaign, None, Some(2), None, false, |r| {
+        rows.push(r.clone())
+    })
+    .unwrap();
     let strokes: Vec<usize> = (0..4)
         .map(|leg| {
             let name = format!("leg{}.primary.stroke_m", leg + 1);

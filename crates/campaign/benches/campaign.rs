@@ -64,7 +64,11 @@ fn overhead(c: &mut Criterion) {
     for threads in [1, 2] {
         g.bench_function(format!("64 landings on {threads} thread(s)"), |b| {
             b.iter(|| {
-                black_box(run_range(&campaign, 0..64, Some(threads), None, |_| ()).expect("runs"))
+                run_range(&campaign, 0..64, Some(threads), None, |row| {
+                    black_box(row);
+                    Ok(())
+                })
+                .expect("runs")
             })
         });
     }

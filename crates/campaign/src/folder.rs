@@ -79,6 +79,36 @@ impl Staging {
     /// Starts building the folder that will replace `out`: refused while another process
     /// builds it. What a killed run left in `<out>.partial` is cleared.
     pub fn begin(out: &Path) -> Result<Staging, CampaignError> {
+        let staging = Staging::open(out)?;
+        staging.clear()?;
+        Ok(staging)
+    }
+
+    /// Goes on building the folder that will replace `out`, with what a stopped run left in
+    /// `<out>.partial` (nothing if none did): refused while another process builds it.
+    pub fn resume(out: &Path) -> Result<Staging, CampaignError> {
+        Staging::open(out)
+    }
+
+    /// Removes everything the folder being built holds.
+    pub fn clear(&self) -> Result<(), CampaignError> {
+        let lock_path = self.dir.join(LOCK);
+        for entry in std::fs::read_dir(&self.dir).map_err(|e| io(&self.dir, e))? {
+            let path = entry.map_err(|e| io(&self.dir, e))?.path();
+            if path != lock_path {
+                let removed = if path.is_dir() {
+                    std::fs::remove_dir_all(&path)
+                } else {
+                    std::fs::remove_file(&path)
+                };
+                removed.map_err(|e| io(&path, e))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `<out>.partial`, created if missing, locked.
+    fn open(out: &Path) -> Result<Staging, CampaignError> {
         let (dir, replaced) = (beside(out, PARTIAL)?, beside(out, REPLACED)?);
         if replaced.exists() {
             return Err(CampaignError::Store {
@@ -106,17 +136,6 @@ impl Staging {
                 })
             }
             Err(std::fs::TryLockError::Error(e)) => return Err(io(&lock_path, e)),
-        }
-        for entry in std::fs::read_dir(&dir).map_err(|e| io(&dir, e))? {
-            let path = entry.map_err(|e| io(&dir, e))?.path();
-            if path != lock_path {
-                let removed = if path.is_dir() {
-                    std::fs::remove_dir_all(&path)
-                } else {
-                    std::fs::remove_file(&path)
-                };
-                removed.map_err(|e| io(&path, e))?;
-            }
         }
         Ok(Staging {
             out: out.to_path_buf(),

@@ -3,7 +3,7 @@
 
 use crate::distribution::{scores, Value};
 use crate::folder::{self, Staging};
-use crate::record::{self, Column, Row};
+use crate::record::{self, Row};
 use crate::spec::Campaign;
 use crate::statistics::Statistics;
 use crate::store::{self, Manifest, Part};
@@ -204,29 +204,32 @@ fn read_back(
 }
 
 /// Runs the landings `range` on `threads` threads (all the machine's with `None`), handing each
-/// record to `each` in landing order as soon as it and every earlier one have finished; the
-/// records, in order. The first landing (in order) whose engine cannot be set up stops the run.
+/// record to `each` in landing order as soon as it and every earlier one have finished (the
+/// records are not kept). The first landing (in order) whose engine cannot be set up, or the
+/// first error of `each` (a record that cannot be written), stops the run.
 pub fn run_range(
     campaign: &Campaign,
     range: Range<u64>,
     threads: Option<usize>,
     histories: Option<&Path>,
-    mut each: impl FnMut(&Row),
-) -> Result<Vec<Row>, CampaignError> {
+    mut each: impl FnMut(&Row) -> Result<(), CampaignError>,
+) -> Result<(), CampaignError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
         .build()
         .map_err(|e| CampaignError::Threads(e.to_string()))?;
     let cancel = AtomicBool::new(false);
     let (tx, rx) = std::sync::mpsc::channel::<(u64, Result<Row, CampaignError>)>();
-    let mut rows = Vec::with_capacity((range.end - range.start) as usize);
     let mut failure: Option<(u64, CampaignError)> = None;
     std::thread::scope(|s| {
         let work = range.clone();
         let cancel = &cancel;
         s.spawn(move || {
             pool.install(|| {
-                work.into_par_iter().for_each_with(tx, |tx, i| {
+                // Landings are taken in order (`par_bridge` hands the next one to whichever
+                // thread is free), so the records waiting for an earlier one stay about as
+                // many as the threads: a split range would let a thread run far ahead.
+                work.into_iter().par_bridge().for_each_with(tx, |tx, i| {
                     if cancel.load(Ordering::Relaxed) {
                         return;
                     }
@@ -238,6 +241,7 @@ pub fn run_range(
                 })
             })
         });
+        // Records finished out of order wait here for the earlier ones.
         let mut pending = BTreeMap::new();
         let mut next = range.start;
         for (i, r) in rx {
@@ -245,8 +249,12 @@ pub fn run_range(
                 Ok(row) => {
                     pending.insert(i, row);
                     while let Some(row) = pending.remove(&next) {
-                        each(&row);
-                        rows.push(row);
+                        if failure.is_none() {
+                            if let Err(e) = each(&row) {
+                                cancel.store(true, Ordering::Relaxed);
+                                failure = Some((next, e));
+                            }
+                        }
                         next += 1;
                     }
                 }
@@ -260,22 +268,31 @@ pub fn run_range(
     });
     match failure {
         Some((_, e)) => Err(e),
-        None => Ok(rows),
+        None => Ok(()),
     }
 }
 
-/// Runs a campaign, or one shard of it, writing its files into `out` when given; `each` sees
-/// every record in landing order. Returns the manifest, the records and their statistics.
-/// `out` must be new, empty, or this very part of this campaign (which is replaced): it is
-/// checked before any landing runs, and written only when every landing has (module
-/// [`crate::folder`]).
+/// The name of the file, in a campaign folder being built, that names the run building it: the
+/// manifest the folder will have, so that `--resume` goes on only with the same run.
+const RUN_FILE: &str = "run.json";
+
+/// Runs a campaign, or one shard of it, writing its files into `out` when given (else into a
+/// temporary folder, removed at the end); `each` sees every record in landing order. Returns
+/// the manifest and the statistics. `out` must be new, empty, or this very part of this
+/// campaign (which is replaced): it is checked before any landing runs. The folder is built
+/// beside `out` (module [`crate::folder`]), each record written as its landing finishes, and
+/// takes the place of `out` only when complete. With `resume`, a run of this same part by this
+/// same build that was stopped (killed, out of time, out of disk) goes on from the records it
+/// wrote, which `each` sees first; the result is the same, byte for byte, as an uninterrupted
+/// run's. Memory does not grow with the number of landings.
 pub fn run(
     campaign: &Campaign,
     shard: Option<Shard>,
     threads: Option<usize>,
     out: Option<&Path>,
-    each: impl FnMut(&Row),
-) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
+    resume: bool,
+    mut each: impl FnMut(&Row),
+) -> Result<(Manifest, Statistics), CampaignError> {
     let range = shard.map_or(0..campaign.landings, |s| s.range(campaign.landings));
     let columns = record::columns(campaign);
     let part = Part {
@@ -283,14 +300,15 @@ pub fn run(
         end_landing: range.end,
         shard: shard.map(|s| s.to_string()),
     };
-    let staging = match out {
+    let manifest = Manifest::new(campaign, campaign.landings, part.clone(), &columns);
+    let scratch;
+    let (staging, dir) = match out {
         Some(dir) => {
-            let fresh = Manifest::new(campaign, campaign.landings, part.clone(), &columns);
             folder::check_out(dir, |held| {
-                held.same_campaign(&fresh).map_err(|m| {
+                held.same_campaign(&manifest).map_err(|m| {
                     format!("holds another campaign's landings ({m}): name a new or empty folder")
                 })?;
-                if held.part != part || held.landings != fresh.landings {
+                if held.part != part || held.landings != manifest.landings {
                     return Err(format!(
                         "holds landings {} to {} of {} of this campaign, this run writes {} to {} of {}: name a new or empty folder (or extend a finished campaign with --add)",
                         held.part.first_landing,
@@ -298,51 +316,110 @@ pub fn run(
                         held.landings,
                         part.first_landing,
                         part.end_landing.saturating_sub(1),
-                        fresh.landings
+                        manifest.landings
                     ));
                 }
                 Ok(())
             })?;
-            Some(Staging::begin(dir)?)
+            let staging = if resume {
+                Staging::resume(dir)?
+            } else {
+                Staging::begin(dir)?
+            };
+            let dir = staging.dir().to_path_buf();
+            (Some(staging), dir)
         }
-        None => None,
+        None => {
+            scratch = tempfile::tempdir().map_err(|e| CampaignError::Store {
+                path: std::env::temp_dir().display().to_string(),
+                message: format!("cannot create a temporary folder: {e}"),
+            })?;
+            (None, scratch.path().to_path_buf())
+        }
     };
     let histories = staging.as_ref().map(|s| s.dir().join("histories"));
-    let rows = run_range(campaign, range, threads, histories.as_deref(), each)?;
-    finish(campaign, campaign.landings, part, &columns, rows, staging)
+    // The same run stopped here before: its records are kept; anything else is cleared.
+    let resumed = match &staging {
+        Some(staging) if resume => match std::fs::read_to_string(dir.join(RUN_FILE)) {
+            Ok(text) if text == store::pretty(&manifest) => Some(store::Journal::resume(
+                &dir,
+                &columns,
+                range.start,
+                &mut each,
+            )?),
+            _ => {
+                staging.clear()?;
+                None
+            }
+        },
+        _ => None,
+    };
+    let (mut journal, done) = match resumed {
+        Some(kept) => kept,
+        None => {
+            write_file(&dir.join(RUN_FILE), &store::pretty(&manifest))?;
+            (store::Journal::create(&dir, &columns)?, 0)
+        }
+    };
+    run_range(
+        campaign,
+        range.start + done..range.end,
+        threads,
+        histories.as_deref(),
+        |row| {
+            journal.append(row)?;
+            each(row);
+            Ok(())
+        },
+    )?;
+    finish(&dir, journal, &manifest, staging)
 }
 
-/// The manifest and statistics of `rows`, written into the folder being built, which then
-/// takes its place, when there is one.
+/// Writes `text` to the file at `path`.
+fn write_file(path: &Path, text: &str) -> Result<(), CampaignError> {
+    std::fs::write(path, text).map_err(|e| CampaignError::Store {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// Completes the folder `dir` whose records `journal` holds (the Parquet file, the statistics,
+/// the manifest last: [`store::complete`]), which then takes the place of the folder it is
+/// built for, when there is one.
 fn finish(
-    campaign: &Campaign,
-    landings: u64,
-    part: Part,
-    columns: &[Column],
-    rows: Vec<Row>,
+    dir: &Path,
+    journal: store::Journal,
+    manifest: &Manifest,
     staging: Option<Staging>,
-) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
-    let manifest = Manifest::new(campaign, landings, part, columns);
-    let statistics = Statistics::of(columns, &rows, campaign.confidence);
+) -> Result<(Manifest, Statistics), CampaignError> {
+    journal.close()?;
+    let statistics = store::complete(dir, manifest)?;
+    // Kept until the folder is complete, so that a run stopped while completing it resumes.
+    let run_file = dir.join(RUN_FILE);
+    if run_file.exists() {
+        std::fs::remove_file(&run_file).map_err(|e| CampaignError::Store {
+            path: run_file.display().to_string(),
+            message: e.to_string(),
+        })?;
+    }
     if let Some(staging) = staging {
-        store::write_all(staging.dir(), &manifest, &rows, &statistics)?;
         staging.commit()?;
     }
-    Ok((manifest, rows, statistics))
+    Ok((manifest.clone(), statistics))
 }
 
 /// Adds `more` landings to the finished campaign in `dir` (written by a run or a merge of the
 /// same campaign file), without changing the landings it holds: landings n..n+more are run and
 /// the folder replaced, when they have all run, by the one the campaign would have written had
-/// it planned n + more from the start.
+/// it planned n + more from the start. `each` sees the added records.
 pub fn add(
     campaign: &Campaign,
     dir: &Path,
     more: u64,
     threads: Option<usize>,
-    each: impl FnMut(&Row),
-) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
-    let (old, mut rows) = store::read_dir(dir)?;
+    mut each: impl FnMut(&Row),
+) -> Result<(Manifest, Statistics), CampaignError> {
+    let old = store::read_manifest(dir)?;
     let columns = record::columns(campaign);
     let fresh = Manifest::new(campaign, old.landings, old.part.clone(), &columns);
     fresh.same_campaign(&old).map_err(|m| {
@@ -368,37 +445,55 @@ pub fn add(
             ))
         })?;
     let staging = Staging::begin(dir)?;
-    let histories = staging.dir().join("histories");
+    let building = staging.dir().to_path_buf();
+    let mut journal = store::Journal::create(&building, &columns)?;
+    let kept = store::for_each_record(&dir.join("landings.jsonl"), &columns, 0, |row| {
+        journal.append(&row)
+    })?;
+    if kept != old.landings {
+        return Err(CampaignError::Store {
+            path: dir.join("landings.jsonl").display().to_string(),
+            message: format!("holds {kept} landings, its manifest {}", old.landings),
+        });
+    }
+    let histories = building.join("histories");
     if dir.join("histories").is_dir() {
         folder::copy_tree(&dir.join("histories"), &histories)?;
     }
-    rows.extend(run_range(
+    run_range(
         campaign,
         old.landings..total,
         threads,
         Some(&histories),
-        each,
-    )?);
+        |row| {
+            journal.append(row)?;
+            each(row);
+            Ok(())
+        },
+    )?;
     let part = Part {
         first_landing: 0,
         end_landing: total,
         shard: None,
     };
-    finish(campaign, total, part, &columns, rows, Some(staging))
+    let manifest = Manifest::new(campaign, total, part, &columns);
+    finish(&building, journal, &manifest, Some(staging))
 }
 
 /// Merges the campaign folders `parts` (shards of one campaign, run by one build) into `out`:
 /// refused unless they are parts of the same campaign and together hold each of its landings
-/// once. The result is the folder the whole campaign run at once writes, byte for byte; returns
-/// its manifest, records and statistics. `out` may be one of the parts or an earlier merge of
-/// the same campaign (it is replaced when the merge is complete), or a new or empty folder.
+/// once. The result is the folder the whole campaign run at once writes, byte for byte; `each`
+/// sees every record in order as it is copied; returns the manifest and statistics. `out` may
+/// be one of the parts or an earlier merge of the same campaign (it is replaced when the merge
+/// is complete), or a new or empty folder. The records are streamed, never held.
 pub fn merge(
     parts: &[&Path],
     out: &Path,
-) -> Result<(Manifest, Vec<Row>, Statistics), CampaignError> {
-    let mut read: Vec<(Manifest, Vec<Row>)> = parts
+    mut each: impl FnMut(&Row),
+) -> Result<(Manifest, Statistics), CampaignError> {
+    let mut read: Vec<(Manifest, &Path)> = parts
         .iter()
-        .map(|p| store::read_dir(p))
+        .map(|p| store::read_manifest(p).map(|m| (m, *p)))
         .collect::<Result<_, _>>()?;
     let Some((first, _)) = read.first() else {
         return Err(CampaignError::Mismatch(
@@ -406,7 +501,7 @@ pub fn merge(
         ));
     };
     let first = first.clone();
-    for ((m, _), path) in read.iter().zip(parts) {
+    for (m, path) in &read {
         first.same_campaign(m).map_err(|e| {
             CampaignError::Mismatch(format!(
                 "{} and {}: {e}",
@@ -453,22 +548,36 @@ pub fn merge(
             first.landings - 1
         )));
     }
-    let rows: Vec<Row> = read.into_iter().flat_map(|(_, r)| r).collect();
     let mut manifest = first;
     manifest.part = Part {
         first_landing: 0,
         end_landing: manifest.landings,
         shard: None,
     };
-    let statistics = Statistics::of(&manifest.columns, &rows, manifest.confidence);
     let staging = Staging::begin(out)?;
-    for part in parts {
-        let histories = part.join("histories");
+    let building = staging.dir().to_path_buf();
+    let mut journal = store::Journal::create(&building, &manifest.columns)?;
+    for (m, path) in &read {
+        let file = path.join("landings.jsonl");
+        let n = store::for_each_record(&file, &manifest.columns, m.part.first_landing, |row| {
+            journal.append(&row)?;
+            each(&row);
+            Ok(())
+        })?;
+        if n != m.part.end_landing - m.part.first_landing {
+            return Err(CampaignError::Store {
+                path: file.display().to_string(),
+                message: format!(
+                    "expected landings {} to {} in order, one per line",
+                    m.part.first_landing,
+                    m.part.end_landing.saturating_sub(1)
+                ),
+            });
+        }
+        let histories = path.join("histories");
         if histories.is_dir() {
-            folder::copy_tree(&histories, &staging.dir().join("histories"))?;
+            folder::copy_tree(&histories, &building.join("histories"))?;
         }
     }
-    store::write_all(staging.dir(), &manifest, &rows, &statistics)?;
-    staging.commit()?;
-    Ok((manifest, rows, statistics))
+    finish(&building, journal, &manifest, Some(staging))
 }

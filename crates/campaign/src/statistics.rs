@@ -4,7 +4,7 @@
 //! percentiles of the strokes against their capacities and of the peak loads
 //! (docs/campaigns.md, "Statistics").
 
-use crate::record::{Cell, Column, Failure, Kind, Row, Status};
+use crate::record::{Cell, Column, Failure, Kind, Status};
 use serde::Serialize;
 use statrs::distribution::{Beta, ContinuousCDF};
 use touchdown_sampling::percentile;
@@ -134,36 +134,47 @@ pub fn zero_failure_landings(reliability: f64, confidence: f64) -> u64 {
 const RELIABILITIES: [f64; 4] = [0.9, 0.95, 0.99, 0.999];
 
 impl Statistics {
-    /// The statistics of `rows` (records with `columns`) at confidence `confidence`.
-    pub fn of(columns: &[Column], rows: &[Row], confidence: f64) -> Statistics {
+    /// The statistics of `n` records with `columns` at confidence `confidence`, the cells of
+    /// column `i` (in landing order) given by `column(i)`: asked for one column at a time, so
+    /// that one column is held at a time, never the records.
+    pub fn from_columns<E>(
+        columns: &[Column],
+        n: u64,
+        confidence: f64,
+        mut column: impl FnMut(usize) -> Result<Vec<Cell>, E>,
+    ) -> Result<Statistics, E> {
         let index = |name: &str| columns.iter().position(|c| c.name == name);
-        fn text(row: &Row, i: Option<usize>) -> &str {
-            match i.map(|i| &row[i]) {
-                Some(Cell::Text(s)) => s,
-                _ => "",
-            }
-        }
-        let (outcome, failure, outs) = (index("outcome"), index("failure"), index("stroke_outs"));
-        let n = rows.len() as u64;
-        let count_of = |col: Option<usize>, name: &str| {
-            rows.iter().filter(|r| text(r, col) == name).count() as u64
+        let mut texts = |name: &str| -> Result<Vec<String>, E> {
+            Ok(match index(name) {
+                Some(i) => column(i)?
+                    .into_iter()
+                    .map(|c| match c {
+                        Cell::Text(s) => s,
+                        _ => String::new(),
+                    })
+                    .collect(),
+                None => vec![String::new(); n as usize],
+            })
         };
-        let counts = |col: Option<usize>, names: &mut dyn Iterator<Item = &'static str>| {
+        let (outcome, failure, outs) =
+            (texts("outcome")?, texts("failure")?, texts("stroke_outs")?);
+        let counts = |texts: &[String], names: &mut dyn Iterator<Item = &'static str>| {
             names
                 .map(|name| Count {
                     name: name.into(),
-                    landings: count_of(col, name),
+                    landings: texts.iter().filter(|t| *t == name).count() as u64,
                 })
                 .collect::<Vec<_>>()
         };
-        let outcomes = counts(outcome, &mut Status::ALL.iter().map(|s| s.name()));
-        let failures = counts(failure, &mut Failure::ALL.iter().map(|f| f.name()));
+        let outcomes = counts(&outcome, &mut Status::ALL.iter().map(|s| s.name()));
+        let failures = counts(&failure, &mut Failure::ALL.iter().map(|f| f.name()));
         let mut struts = std::collections::BTreeMap::<String, u64>::new();
-        for r in rows {
-            for s in text(r, outs).split(',').filter(|s| !s.is_empty()) {
+        for t in &outs {
+            for s in t.split(',').filter(|s| !s.is_empty()) {
                 *struts.entry(s.to_string()).or_default() += 1;
             }
         }
+        drop((failure, outs));
         let proportion = |k: u64| Proportion {
             landings: k,
             fraction: if n == 0 { 0.0 } else { k as f64 / n as f64 },
@@ -177,66 +188,64 @@ impl Statistics {
         };
         let stable = landings_of(&outcomes, Status::Stable.name());
         let within = landings_of(&failures, Failure::None.name());
-        let percentiles = columns
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| {
-                c.name.ends_with("stroke_of_capacity")
-                    || c.name.ends_with("force_n")
-                    || c.name == "peak_specific_force_m_s2"
-                    || c.name == "min_stability_distance_m"
-            })
-            .filter_map(|(i, c)| {
-                let mut v: Vec<f64> = rows
-                    .iter()
-                    .filter_map(|r| match r[i] {
-                        Cell::Float(x) => Some(x),
-                        _ => None,
-                    })
-                    .collect();
-                if v.is_empty() {
-                    return None;
-                }
-                v.sort_by(f64::total_cmp);
-                Some(Percentiles {
-                    column: c.name.clone(),
-                    landings: v.len() as u64,
-                    p50: percentile(&v, 0.5),
-                    p90: percentile(&v, 0.9),
-                    p99: percentile(&v, 0.99),
-                    max: v[v.len() - 1],
+        let mut percentiles = Vec::new();
+        for (i, c) in columns.iter().enumerate() {
+            let measured = c.name.ends_with("stroke_of_capacity")
+                || c.name.ends_with("force_n")
+                || c.name == "peak_specific_force_m_s2"
+                || c.name == "min_stability_distance_m";
+            if !measured {
+                continue;
+            }
+            let mut v: Vec<f64> = column(i)?
+                .into_iter()
+                .filter_map(|c| match c {
+                    Cell::Float(x) => Some(x),
+                    _ => None,
                 })
-            })
-            .collect();
-        let stable_indicator: Vec<f64> = rows
+                .collect();
+            if v.is_empty() {
+                continue;
+            }
+            v.sort_by(f64::total_cmp);
+            percentiles.push(Percentiles {
+                column: c.name.clone(),
+                landings: v.len() as u64,
+                p50: percentile(&v, 0.5),
+                p90: percentile(&v, 0.9),
+                p99: percentile(&v, 0.99),
+                max: v[v.len() - 1],
+            });
+        }
+        let stable_indicator: Vec<f64> = outcome
             .iter()
-            .map(|r| f64::from(u8::from(text(r, outcome) == Status::Stable.name())))
+            .map(|t| f64::from(u8::from(t == Status::Stable.name())))
             .collect();
-        let mut influence: Vec<Influence> = columns
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| c.name.starts_with("applied.") && c.kind == Kind::Float)
-            .map(|(i, c)| {
-                let x: Vec<f64> = rows
-                    .iter()
-                    .map(|r| match r[i] {
-                        Cell::Float(x) => x,
-                        _ => 0.0,
-                    })
-                    .collect();
-                Influence {
-                    column: c.name.clone(),
-                    correlation_with_stable: correlation(&x, &stable_indicator),
-                }
-            })
-            .collect();
+        drop(outcome);
+        let mut influence = Vec::new();
+        for (i, c) in columns.iter().enumerate() {
+            if !(c.name.starts_with("applied.") && c.kind == Kind::Float) {
+                continue;
+            }
+            let x: Vec<f64> = column(i)?
+                .into_iter()
+                .map(|c| match c {
+                    Cell::Float(x) => x,
+                    _ => 0.0,
+                })
+                .collect();
+            influence.push(Influence {
+                column: c.name.clone(),
+                correlation_with_stable: correlation(&x, &stable_indicator),
+            });
+        }
         influence.sort_by(|a, b| {
             b.correlation_with_stable
                 .abs()
                 .total_cmp(&a.correlation_with_stable.abs())
                 .then_with(|| a.column.cmp(&b.column))
         });
-        Statistics {
+        Ok(Statistics {
             landings: n,
             confidence,
             outcomes,
@@ -256,7 +265,7 @@ impl Statistics {
                 .collect(),
             percentiles,
             influence,
-        }
+        })
     }
 }
 

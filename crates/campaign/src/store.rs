@@ -1,6 +1,11 @@
 //! A campaign's files (docs/campaigns.md, "Output"): `manifest.json` (what computed the
 //! landings and which), `landings.jsonl` (a record per line, in landing order),
 //! `landings.parquet` (the same records in columns) and `statistics.json`.
+//!
+//! Nothing holds the records: `landings.jsonl` is written a line at a time as the landings
+//! finish (the [`Journal`], which a stopped run resumes from), the Parquet file is written from
+//! it a row group at a time, and the statistics are computed from the Parquet file a column at
+//! a time ([`complete`]); the manifest is written last.
 
 use crate::record::{Cell, Column, Kind, Row};
 use crate::spec::Campaign;
@@ -11,14 +16,16 @@ use parquet::file::properties::WriterProperties;
 use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::Type;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
+use std::io::{BufRead, Write};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// The manifest's format name.
 pub const FORMAT: &str = "touchdown-campaign/1";
 
-/// Landings per Parquet row group.
-const ROW_GROUP: usize = 65_536;
+/// Landings per Parquet row group: the records held while the Parquet file is written (about
+/// 3 kB each, so about 25 MB).
+const ROW_GROUP: usize = 8_192;
 
 /// The landings a part of a campaign holds: `first..end`, and the shard that ran them.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -159,54 +166,188 @@ pub fn json_line(columns: &[Column], row: &Row) -> String {
     s
 }
 
-/// Reads the records of `landings.jsonl` back (`file` names it in errors).
-pub fn read_json_lines(
-    file: &str,
-    text: &str,
+/// A file-system error on `path`.
+fn io_error(path: &Path, e: impl std::fmt::Display) -> CampaignError {
+    CampaignError::Store {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    }
+}
+
+/// The record of one line of `landings.jsonl` (`at` names the file and line in errors).
+fn parse_line(
+    at: &dyn Fn() -> String,
+    line: &str,
     columns: &[Column],
-) -> Result<Vec<Row>, CampaignError> {
-    text.lines()
-        .enumerate()
-        .map(|(n, line)| {
-            let err = |message: String| CampaignError::Store {
-                path: format!("{file}:{}", n + 1),
-                message,
-            };
-            let object: serde_json::Map<String, serde_json::Value> =
-                serde_json::from_str(line).map_err(|e| err(format!("not a record: {e}")))?;
-            if let Some(key) = object
-                .keys()
-                .find(|k| !columns.iter().any(|c| &c.name == *k))
-            {
-                return Err(err(format!("unknown column {key:?}")));
-            }
-            let row: Row = columns
-                .iter()
-                .map(|c| {
-                    let v = object.get(&c.name);
-                    Ok(match (c.kind, v) {
-                        (_, None) => Cell::Missing,
-                        (Kind::Integer, Some(v)) if v.is_i64() => {
-                            Cell::Integer(v.as_i64().unwrap_or_default())
-                        }
-                        (Kind::Float, Some(v)) if v.is_number() => {
-                            Cell::Float(v.as_f64().unwrap_or_default())
-                        }
-                        (Kind::Text, Some(serde_json::Value::String(s))) => Cell::Text(s.clone()),
-                        (Kind::Flag, Some(serde_json::Value::Bool(b))) => Cell::Flag(*b),
-                        (kind, Some(v)) => {
-                            return Err(err(format!(
-                                "column {:?}: expected {kind:?}, got {v}",
-                                c.name
-                            )))
-                        }
-                    })
-                })
-                .collect::<Result<_, _>>()?;
-            crate::record::check(columns, &row).map_err(err)?;
-            Ok(row)
+) -> Result<Row, CampaignError> {
+    let err = |message: String| CampaignError::Store {
+        path: at(),
+        message,
+    };
+    let object: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_str(line).map_err(|e| err(format!("not a record: {e}")))?;
+    if let Some(key) = object
+        .keys()
+        .find(|k| !columns.iter().any(|c| &c.name == *k))
+    {
+        return Err(err(format!("unknown column {key:?}")));
+    }
+    let row: Row = columns
+        .iter()
+        .map(|c| {
+            let v = object.get(&c.name);
+            Ok(match (c.kind, v) {
+                (_, None) => Cell::Missing,
+                (Kind::Integer, Some(v)) if v.is_i64() => {
+                    Cell::Integer(v.as_i64().unwrap_or_default())
+                }
+                (Kind::Float, Some(v)) if v.is_number() => {
+                    Cell::Float(v.as_f64().unwrap_or_default())
+                }
+                (Kind::Text, Some(serde_json::Value::String(s))) => Cell::Text(s.clone()),
+                (Kind::Flag, Some(serde_json::Value::Bool(b))) => Cell::Flag(*b),
+                (kind, Some(v)) => {
+                    return Err(err(format!(
+                        "column {:?}: expected {kind:?}, got {v}",
+                        c.name
+                    )))
+                }
+            })
         })
-        .collect()
+        .collect::<Result<_, _>>()?;
+    crate::record::check(columns, &row).map_err(err)?;
+    Ok(row)
+}
+
+/// Hands each record of the `landings.jsonl` at `path` to `f`, in order, reading a line at a
+/// time; the records must be landings `first`, `first + 1`, ... Returns how many there were.
+pub fn for_each_record(
+    path: &Path,
+    columns: &[Column],
+    first: u64,
+    mut f: impl FnMut(Row) -> Result<(), CampaignError>,
+) -> Result<u64, CampaignError> {
+    let file = std::fs::File::open(path).map_err(|e| {
+        io_error(
+            path,
+            format!("{e} (expected a campaign folder written by `touchdown campaign --out`)"),
+        )
+    })?;
+    let mut reader = std::io::BufReader::new(file);
+    let mut line = String::new();
+    let mut n = 0u64;
+    loop {
+        line.clear();
+        if reader.read_line(&mut line).map_err(|e| io_error(path, e))? == 0 {
+            return Ok(n);
+        }
+        let at = || format!("{}:{}", path.display(), n + 1);
+        let row = parse_line(&at, line.trim_end_matches('\n'), columns)?;
+        if row[0] != Cell::Integer((first + n) as i64) {
+            return Err(CampaignError::Store {
+                path: at(),
+                message: format!("expected landing {}, one per line in order", first + n),
+            });
+        }
+        f(row)?;
+        n += 1;
+    }
+}
+
+/// The length of `file` up to and including its last newline (0 without one), read back from
+/// its end a block at a time.
+fn end_of_last_line(file: &std::fs::File) -> std::io::Result<u64> {
+    use std::io::{Read, Seek, SeekFrom};
+    let mut file = file;
+    let mut end = file.metadata()?.len();
+    let mut block = vec![0u8; 65_536];
+    while end > 0 {
+        let start = end.saturating_sub(block.len() as u64);
+        let part = &mut block[..(end - start) as usize];
+        file.seek(SeekFrom::Start(start))?;
+        file.read_exact(part)?;
+        if let Some(i) = part.iter().rposition(|b| *b == b'\n') {
+            return Ok(start + i as u64 + 1);
+        }
+        end = start;
+    }
+    Ok(0)
+}
+
+/// `landings.jsonl` being written, a record per line as the landings finish, each line handed
+/// to the system as soon as it is written: a run killed at any moment leaves every finished
+/// line but the one being written, which [`Journal::resume`] drops.
+pub struct Journal {
+    path: PathBuf,
+    file: std::fs::File,
+    columns: Vec<Column>,
+    line: String,
+}
+
+impl Journal {
+    /// A new, empty `landings.jsonl` in `dir` for records with `columns`.
+    pub fn create(dir: &Path, columns: &[Column]) -> Result<Journal, CampaignError> {
+        let path = dir.join("landings.jsonl");
+        let file = std::fs::File::create(&path).map_err(|e| io_error(&path, e))?;
+        Ok(Journal {
+            path,
+            file,
+            columns: columns.to_vec(),
+            line: String::new(),
+        })
+    }
+
+    /// The `landings.jsonl` a stopped run left in `dir`, its records those of landings `first`
+    /// on, each handed to `kept`: the complete lines are kept and a last line cut short by the
+    /// stop is dropped. Returns it, ready for the next landing, and the records it holds.
+    pub fn resume(
+        dir: &Path,
+        columns: &[Column],
+        first: u64,
+        mut kept: impl FnMut(&Row),
+    ) -> Result<(Journal, u64), CampaignError> {
+        let path = dir.join("landings.jsonl");
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .open(&path)
+            .map_err(|e| io_error(&path, e))?;
+        // Only whole lines count: a run stopped mid-line wrote no newline after its last one.
+        let whole = end_of_last_line(&file).map_err(|e| io_error(&path, e))?;
+        file.set_len(whole).map_err(|e| io_error(&path, e))?;
+        let n = for_each_record(&path, columns, first, |row| {
+            kept(&row);
+            Ok(())
+        })?;
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| io_error(&path, e))?;
+        Ok((
+            Journal {
+                path,
+                file,
+                columns: columns.to_vec(),
+                line: String::new(),
+            },
+            n,
+        ))
+    }
+
+    /// Writes one record's line.
+    pub fn append(&mut self, row: &Row) -> Result<(), CampaignError> {
+        self.line.clear();
+        self.line.push_str(&json_line(&self.columns, row));
+        self.line.push('\n');
+        self.file
+            .write_all(self.line.as_bytes())
+            .map_err(|e| io_error(&self.path, e))
+    }
+
+    /// Ends the writing: everything written reaches the disk.
+    pub fn close(self) -> Result<(), CampaignError> {
+        self.file.sync_all().map_err(|e| io_error(&self.path, e))
+    }
 }
 
 /// The Parquet schema of the records: every column optional but `landing`.
@@ -238,33 +379,60 @@ fn schema(columns: &[Column]) -> Result<Type, parquet::errors::ParquetError> {
         .build()
 }
 
-/// Writes the records as Parquet at `path`: uncompressed, row groups of 65,536 landings,
-/// deterministic (same records, same bytes).
-pub fn write_parquet(path: &Path, columns: &[Column], rows: &[Row]) -> Result<(), CampaignError> {
-    let err = |e: &dyn std::fmt::Display| CampaignError::Store {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    };
-    let file = std::fs::File::create(path).map_err(|e| err(&e))?;
-    let props = Arc::new(
-        WriterProperties::builder()
-            .set_created_by(format!("touchdown {}", env!("CARGO_PKG_VERSION")))
-            .build(),
-    );
-    let schema = Arc::new(schema(columns).map_err(|e| err(&e))?);
-    let mut writer = SerializedFileWriter::new(file, schema, props).map_err(|e| err(&e))?;
-    for group in rows.chunks(ROW_GROUP) {
-        let mut rg = writer.next_row_group().map_err(|e| err(&e))?;
+/// The Parquet file of the records being written, a row group at a time: uncompressed, row
+/// groups of [`ROW_GROUP`] landings counted from the part's first, deterministic (same records,
+/// same bytes).
+struct Parquet {
+    path: PathBuf,
+    writer: SerializedFileWriter<std::fs::File>,
+    columns: Vec<Column>,
+    group: Vec<Row>,
+}
+
+impl Parquet {
+    /// A new Parquet file at `path` for records with `columns`.
+    fn create(path: &Path, columns: &[Column]) -> Result<Parquet, CampaignError> {
+        let file = std::fs::File::create(path).map_err(|e| io_error(path, e))?;
+        let props = Arc::new(
+            WriterProperties::builder()
+                .set_created_by(format!("touchdown {}", env!("CARGO_PKG_VERSION")))
+                .build(),
+        );
+        let schema = Arc::new(schema(columns).map_err(|e| io_error(path, e))?);
+        let writer =
+            SerializedFileWriter::new(file, schema, props).map_err(|e| io_error(path, e))?;
+        Ok(Parquet {
+            path: path.to_path_buf(),
+            writer,
+            columns: columns.to_vec(),
+            group: Vec::with_capacity(ROW_GROUP),
+        })
+    }
+
+    /// Adds a record, writing the row group when it is full.
+    fn push(&mut self, row: Row) -> Result<(), CampaignError> {
+        self.group.push(row);
+        if self.group.len() == ROW_GROUP {
+            self.write_group()?;
+        }
+        Ok(())
+    }
+
+    /// Writes the records held as a row group.
+    fn write_group(&mut self) -> Result<(), CampaignError> {
+        let path = self.path.clone();
+        let err = |e: &dyn std::fmt::Display| io_error(&path, e);
+        let mut rg = self.writer.next_row_group().map_err(|e| err(&e))?;
         let mut i = 0;
         while let Some(mut col) = rg.next_column().map_err(|e| err(&e))? {
-            let cells = group.iter().map(|r| &r[i]);
-            let required = columns[i].name == "landing";
+            let cells = self.group.iter().map(|r| &r[i]);
+            let required = self.columns[i].name == "landing";
             let levels: Vec<i16> = cells
                 .clone()
                 .map(|c| i16::from(!matches!(c, Cell::Missing)))
                 .collect();
             let defs = (!required).then_some(levels.as_slice());
-            match columns[i].kind {
+            match self.columns[i].kind {
                 Kind::Integer => {
                     let v: Vec<i64> = cells
                         .filter_map(|c| match c {
@@ -307,39 +475,92 @@ pub fn write_parquet(path: &Path, columns: &[Column], rows: &[Row]) -> Result<()
             i += 1;
         }
         rg.close().map_err(|e| err(&e))?;
+        self.group.clear();
+        Ok(())
     }
-    writer.close().map_err(|e| err(&e))?;
-    Ok(())
+
+    /// Writes the last row group and the file's footer.
+    fn close(mut self) -> Result<(), CampaignError> {
+        if !self.group.is_empty() {
+            self.write_group()?;
+        }
+        self.writer.close().map_err(|e| io_error(&self.path, e))?;
+        Ok(())
+    }
 }
 
-/// Writes a campaign's files into `dir`: the manifest, the records (JSON Lines and Parquet)
-/// and their statistics.
-pub fn write_all(
-    dir: &Path,
-    manifest: &Manifest,
-    rows: &[Row],
-    statistics: &Statistics,
-) -> Result<(), CampaignError> {
+/// The cells of column `i` (of `columns`) of every record of the Parquet file at `path`, in
+/// order: one column held at a time.
+pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell>, CampaignError> {
+    use parquet::column::reader::get_typed_column_reader;
+    use parquet::file::reader::{FileReader, SerializedFileReader};
+    let err = |e: &dyn std::fmt::Display| io_error(path, e);
+    let file = std::fs::File::open(path).map_err(|e| err(&e))?;
+    let reader = SerializedFileReader::new(file).map_err(|e| err(&e))?;
+    let mut cells = Vec::new();
+    for g in 0..reader.num_row_groups() {
+        let group = reader.get_row_group(g).map_err(|e| err(&e))?;
+        let n = group.metadata().num_rows() as usize;
+        let column = group.get_column_reader(i).map_err(|e| err(&e))?;
+        let mut defs: Vec<i16> = Vec::with_capacity(n);
+        // Present where the definition level is 1 (the required `landing` has none: all are).
+        macro_rules! read {
+            ($type:ty, $cell:expr) => {{
+                let mut values = Vec::with_capacity(n);
+                get_typed_column_reader::<$type>(column)
+                    .read_records(n, Some(&mut defs), None, &mut values)
+                    .map_err(|e| err(&e))?;
+                let mut values = values.into_iter();
+                for k in 0..n {
+                    let present = defs.get(k).is_none_or(|d| *d == 1);
+                    cells.push(match (present, present.then(|| values.next()).flatten()) {
+                        (true, Some(v)) => $cell(v),
+                        _ => Cell::Missing,
+                    });
+                }
+            }};
+        }
+        match columns[i].kind {
+            Kind::Integer => read!(Int64Type, Cell::Integer),
+            Kind::Float => read!(DoubleType, Cell::Float),
+            Kind::Text => read!(ByteArrayType, |v: ByteArray| Cell::Text(
+                v.as_utf8().unwrap_or_default().to_string()
+            )),
+            Kind::Flag => read!(BoolType, Cell::Flag),
+        }
+    }
+    Ok(cells)
+}
+
+/// Completes the campaign folder `dir` whose `landings.jsonl` is written (and closed): its
+/// Parquet file (from the records, a row group at a time), its statistics (from the Parquet
+/// file, a column at a time) and, last, its manifest. Returns the statistics.
+pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Statistics, CampaignError> {
+    let columns = &manifest.columns;
+    let parquet_path = dir.join("landings.parquet");
+    let mut parquet = Parquet::create(&parquet_path, columns)?;
+    let landings = for_each_record(
+        &dir.join("landings.jsonl"),
+        columns,
+        manifest.part.first_landing,
+        |row| parquet.push(row),
+    )?;
+    parquet.close()?;
+    let statistics = Statistics::from_columns(columns, landings, manifest.confidence, |i| {
+        read_column(&parquet_path, columns, i)
+    })?;
     let write = |name: &str, text: String| {
         let path = dir.join(name);
-        std::fs::write(&path, text).map_err(|e| CampaignError::Store {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        })
+        let file = std::fs::File::create(&path).map_err(|e| io_error(&path, e))?;
+        let mut file = std::io::BufWriter::new(file);
+        file.write_all(text.as_bytes())
+            .and_then(|()| file.flush())
+            .and_then(|()| file.get_ref().sync_all())
+            .map_err(|e| io_error(&path, e))
     };
-    std::fs::create_dir_all(dir).map_err(|e| CampaignError::Store {
-        path: dir.display().to_string(),
-        message: e.to_string(),
-    })?;
+    write("statistics.json", pretty(&statistics) + "\n")?;
     write("manifest.json", pretty(manifest) + "\n")?;
-    let mut lines = String::new();
-    for r in rows {
-        lines.push_str(&json_line(&manifest.columns, r));
-        lines.push('\n');
-    }
-    write("landings.jsonl", lines)?;
-    write_parquet(&dir.join("landings.parquet"), &manifest.columns, rows)?;
-    write("statistics.json", pretty(statistics) + "\n")
+    Ok(statistics)
 }
 
 /// Pretty JSON of a value made of plain numbers and strings.
@@ -372,28 +593,4 @@ pub fn read_manifest(dir: &Path) -> Result<Manifest, CampaignError> {
         });
     }
     Ok(manifest)
-}
-
-/// Reads the manifest and records of a campaign folder.
-pub fn read_dir(dir: &Path) -> Result<(Manifest, Vec<Row>), CampaignError> {
-    let manifest = read_manifest(dir)?;
-    let file = dir.join("landings.jsonl").display().to_string();
-    let rows = read_json_lines(&file, &read_file(dir, "landings.jsonl")?, &manifest.columns)?;
-    let span = manifest.part.end_landing - manifest.part.first_landing;
-    let indices_ok = rows.len() as u64 == span
-        && rows
-            .iter()
-            .zip(manifest.part.first_landing..)
-            .all(|(r, i)| r[0] == Cell::Integer(i as i64));
-    if !indices_ok {
-        return Err(CampaignError::Store {
-            path: file,
-            message: format!(
-                "expected landings {} to {} in order, one per line",
-                manifest.part.first_landing,
-                manifest.part.end_landing.saturating_sub(1)
-            ),
-        });
-    }
-    Ok((manifest, rows))
 }

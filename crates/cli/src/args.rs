@@ -364,6 +364,12 @@ pub(crate) struct CampaignArgs {
     /// Add M landings to the finished campaign in --out, leaving its landings unchanged.
     #[arg(long, value_name = "M")]
     pub(crate) add: Option<u64>,
+    /// Go on with the run of this campaign (or shard) into --out that was stopped (killed, out
+    /// of time, out of disk), from the records it wrote in DIR.partial: the folder ends as an
+    /// uninterrupted run's, byte for byte. Starts afresh when there is nothing of this run to
+    /// resume.
+    #[arg(long, requires = "out", conflicts_with = "add")]
+    pub(crate) resume: bool,
     /// Threads that land (default: one per core); the records do not depend on it.
     #[arg(long, value_name = "N")]
     pub(crate) threads: Option<usize>,

@@ -29,6 +29,8 @@ pub struct Options<'a> {
     pub threads: Option<usize>,
     /// The campaign's folder.
     pub out: Option<&'a Path>,
+    /// Go on with a stopped run into `out`.
+    pub resume: bool,
     /// Whether to draw the plots into `out`.
     pub plot: bool,
 }
@@ -41,6 +43,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         add,
         threads,
         out,
+        resume,
         plot,
     } = options;
     let campaign = Campaign::load(file)?;
@@ -70,12 +73,12 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
             unwritten = outln!("{}", store::json_line(&columns, row)).err();
         }
     };
-    let (manifest, rows, statistics) = match add {
+    let (manifest, statistics) = match add {
         Some(more) => {
             let dir = out.context("--add: name the finished campaign's folder with --out")?;
             touchdown_campaign::add(&campaign, dir, more, threads, &mut each)?
         }
-        None => touchdown_campaign::run::run(&campaign, shard, threads, out, &mut each)?,
+        None => touchdown_campaign::run::run(&campaign, shard, threads, out, resume, &mut each)?,
     };
     bar.finish_and_clear();
     if let Some(e) = unwritten {
@@ -84,7 +87,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
     if let (true, Some(dir)) = (plot, out) {
         let boundary = dir.join("boundary.json");
         let _ = std::fs::remove_file(&boundary);
-        if let Some(json) = base_boundary(&campaign, &manifest, &rows, &statistics)? {
+        if let Some(json) = base_boundary(&campaign, dir, &manifest, &statistics)? {
             std::fs::write(&boundary, json)
                 .with_context(|| format!("cannot write {}", boundary.display()))?;
         }
@@ -100,8 +103,8 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
 /// base values: beside a campaign that disperses them, a reference, not a dividing line.
 fn base_boundary(
     campaign: &Campaign,
+    dir: &Path,
     manifest: &Manifest,
-    rows: &[Row],
     statistics: &Statistics,
 ) -> Result<Option<String>> {
     use touchdown_validation::boundary::{search_engines, Settings};
@@ -130,16 +133,21 @@ fn base_boundary(
     if !(top.contains(&vv_col.as_str()) && top.contains(&vh_col.as_str())) {
         return Ok(None);
     }
-    let index = |name: &str| manifest.columns.iter().position(|c| c.name == name);
-    let values = |i: Option<usize>| -> Vec<f64> {
-        rows.iter()
-            .filter_map(|r| match i.map(|i| &r[i]) {
-                Some(touchdown_campaign::record::Cell::Float(x)) => Some(*x),
+    // The two columns, read from the campaign's Parquet file one at a time.
+    let values = |name: &str| -> Result<Vec<f64>> {
+        let Some(i) = manifest.columns.iter().position(|c| c.name == name) else {
+            return Ok(Vec::new());
+        };
+        let cells = store::read_column(&dir.join("landings.parquet"), &manifest.columns, i)?;
+        Ok(cells
+            .into_iter()
+            .filter_map(|c| match c {
+                touchdown_campaign::record::Cell::Float(x) => Some(x),
                 _ => None,
             })
-            .collect()
+            .collect())
     };
-    let (vv, vh) = (values(index(&vv_col)), values(index(&vh_col)));
+    let (vv, vh) = (values(&vv_col)?, values(&vh_col)?);
     let span = |v: &[f64]| {
         v.iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
@@ -184,11 +192,21 @@ fn base_boundary(
 /// `touchdown campaign merge DIR... --out DIR`.
 pub fn merge(parts: &[PathBuf], out: &Path, output: Output) -> Result<()> {
     let parts: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
-    let (manifest, rows, statistics) = touchdown_campaign::merge(&parts, out)?;
-    if output == Output::JsonLines {
-        for row in &rows {
-            outln!("{}", store::json_line(&manifest.columns, row))?;
+    // The first error writing the records ends the command once the merge is complete.
+    // The records' columns are the parts' (the merge refuses parts whose manifests differ).
+    let columns = (parts.first())
+        .and_then(|p| store::read_manifest(p).ok())
+        .map(|m| m.columns)
+        .unwrap_or_default();
+    let mut unwritten = None;
+    let each = |row: &Row| {
+        if output == Output::JsonLines && unwritten.is_none() {
+            unwritten = outln!("{}", store::json_line(&columns, row)).err();
         }
+    };
+    let (manifest, statistics) = touchdown_campaign::merge(&parts, out, each)?;
+    if let Some(e) = unwritten {
+        return Err(e);
     }
     report(&manifest, &statistics, output)
 }

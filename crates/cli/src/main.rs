@@ -295,6 +295,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                         add: args.add,
                         threads: args.threads,
                         out: args.out.as_deref(),
+                        resume: args.resume,
                         plot: args.plot,
                     },
                     output(args.format),

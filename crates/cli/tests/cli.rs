@@ -1494,3 +1494,124 @@ fn view_writes_the_same_page_twice_and_refuses_bad_arguments() {
         "nothing is written on a refusal"
     );
 }
+
+/// Every file under `dir` with its bytes, by path relative to `dir`.
+fn files_of(dir: &Path) -> std::collections::BTreeMap<PathBuf, Vec<u8>> {
+    let mut files = std::collections::BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                let bytes = std::fs::read(&path).unwrap();
+                files.insert(path.strip_prefix(dir).unwrap().to_path_buf(), bytes);
+            }
+        }
+    }
+    files
+}
+
+/// A copy of the TN D-3117-style campaign with `landings` landings, its base scenario named by
+/// its full path, written into `dir`.
+fn d3117_with(dir: &Path, landings: u64) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("scenarios/campaigns/lm-1-6-d3117.toml"))
+        .unwrap()
+        .replace("landings = 3000", &format!("landings = {landings}"))
+        .replace(
+            "scenario = \"../table-i-2-2-vv8.toml\"",
+            &format!(
+                "scenario = {:?}",
+                root().join("scenarios/table-i-2-2-vv8.toml")
+            ),
+        );
+    std::fs::create_dir_all(dir).unwrap();
+    let file = dir.join("campaign.toml");
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+/// A campaign killed (SIGKILL) at any moment and continued with `--resume` into the same
+/// folder ends byte for byte as an uninterrupted run, and a killed run never leaves a folder
+/// that looks complete. Ten kill points spread over the run (its start-up, its landings, the
+/// writing of its Parquet file and statistics) by a fixed low-discrepancy sequence.
+#[test]
+fn a_campaign_killed_at_any_moment_resumes_to_the_same_bytes() {
+    let dir = temp("resume");
+    let file = d3117_with(&dir, 120);
+    let file = file.to_str().unwrap();
+    let whole = dir.join("whole");
+    let started = std::time::Instant::now();
+    let out = touchdown(&["campaign", file, "--out", whole.to_str().unwrap()]);
+    assert!(out.status.success(), "{out:?}");
+    let span = started.elapsed();
+    let expected = files_of(&whole);
+    for k in 0..10 {
+        let killed = dir.join(format!("killed-{k}"));
+        // Fractions 0.05 to 1.15 of the uninterrupted run's time, in a scrambled order.
+        let fraction = 0.05 + 1.1 * ((k as f64 * 0.618_034) % 1.0);
+        let mut child = Command::new(env!("CARGO_BIN_EXE_touchdown"))
+            .args(["campaign", file, "--out", killed.to_str().unwrap()])
+            .current_dir(root())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(span.mul_f64(fraction));
+        let _ = child.kill(); // SIGKILL
+        child.wait().unwrap();
+        // Either nothing is there yet, or the run had finished: a complete folder.
+        if killed.exists() {
+            assert_eq!(
+                files_of(&killed),
+                expected,
+                "kill {k} left a folder that differs"
+            );
+        }
+        let out = touchdown(&[
+            "campaign",
+            file,
+            "--out",
+            killed.to_str().unwrap(),
+            "--resume",
+        ]);
+        assert!(out.status.success(), "kill {k}: {out:?}");
+        assert!(
+            files_of(&killed) == expected,
+            "kill {k} at {fraction:.2} of the run: the resumed folder differs"
+        );
+        assert!(!dir.join(format!("killed-{k}.partial")).exists());
+    }
+}
+
+/// A campaign that cannot write its records (here a file-size limit, as a full disk would)
+/// ends with an error naming the file and a non-zero status, and leaves no folder that looks
+/// complete.
+#[test]
+fn a_campaign_that_cannot_write_ends_with_the_path_and_claims_nothing() {
+    let dir = temp("full");
+    let file = d3117_with(&dir, 120);
+    let out_dir = dir.join("out");
+    // `ulimit -f` in 512-byte blocks: 64 blocks, 32 kB, about ten records. SIGXFSZ ignored (as
+    // `trap` leaves it for the program), so that a write past the limit fails with EFBIG.
+    let command = format!(
+        "trap '' XFSZ; ulimit -f 64; exec {} campaign {} --out {}",
+        env!("CARGO_BIN_EXE_touchdown"),
+        file.display(),
+        out_dir.display()
+    );
+    let out = Command::new("sh")
+        .args(["-c", &command])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    // The first file past the limit (a history or the records), in the folder being built.
+    assert!(
+        stderr.contains("out.partial/") && stderr.contains("File too large"),
+        "the error names the file: {stderr}"
+    );
+    assert!(!out_dir.exists(), "nothing claimed complete");
+}

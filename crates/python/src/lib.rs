@@ -402,8 +402,8 @@ fn run_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, out_dir: &str) -> P
         .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))?;
     py.detach(|| {
         let c = Campaign::load(campaign)?;
-        touchdown_campaign::run::run(&c, Some(shard), None, Some(Path::new(out_dir)), |_| ())
-            .map(|_| ())
+        let out = Some(Path::new(out_dir));
+        touchdown_campaign::run::run(&c, Some(shard), None, out, false, |_| ()).map(|_| ())
     })
     .map_err(|e| campaign_error(py, &e))?;
     Ok(out_dir.to_string())
@@ -416,7 +416,7 @@ fn run_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, out_dir: &str) -> P
 fn merge(py: Python<'_>, parts: Vec<String>, out_dir: &str) -> PyResult<String> {
     py.detach(|| {
         let parts: Vec<&Path> = parts.iter().map(Path::new).collect();
-        touchdown_campaign::merge(&parts, Path::new(out_dir)).map(|_| ())
+        touchdown_campaign::merge(&parts, Path::new(out_dir), |_| ()).map(|_| ())
     })
     .map_err(|e| campaign_error(py, &e))?;
     Ok(out_dir.to_string())
