@@ -867,7 +867,10 @@ impl std::str::FromStr for Engine {
         Engine::ALL
             .into_iter()
             .find(|e| e.name() == s)
-            .ok_or_else(|| format!("unknown engine {s:?}; expected core, rapier or mujoco"))
+            .ok_or_else(|| {
+                let names: Vec<&str> = Engine::ALL.iter().map(|e| e.name()).collect();
+                format!("unknown engine {s:?}; expected one of {}", names.join(", "))
+            })
     }
 }
 
