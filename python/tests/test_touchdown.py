@@ -205,6 +205,37 @@ def test_a_shard_whose_worker_dies_is_run_again(tmp_path):
     assert (campaign.shard_dir(out, 2, 4) / "landings.parquet").exists()
 
 
+def test_a_shard_killed_part_way_resumes_to_the_command_lines_bytes(tmp_path):
+    """A shard's process killed part-way (SIGKILL, as a lost Dask worker) leaves the records it
+    finished; the next attempt (`run_shard_atomically`, as a retried task) goes on from them and
+    ends with the command line's shard, byte for byte."""
+    import signal
+    import time
+
+    file = str(ROOT / "scenarios" / "campaigns" / "lm-1-6-d3117.toml")
+    cli = tmp_path / "cli"
+    subprocess.run([TOUCHDOWN, "campaign", file, "--shard", "1/4", "--out", cli], capture_output=True, check=True)
+    out = tmp_path / "dask"
+    final = campaign.shard_dir(out, 1, 4)
+    records = final.with_name(final.name + ".partial") / "landings.jsonl"
+    code = f"from touchdown import campaign; campaign.run_shard_atomically({file!r}, 1, 4, {str(out)!r})"
+    attempt = subprocess.Popen([sys.executable, "-c", code])
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and not (records.exists() and records.stat().st_size > 0):
+        time.sleep(0.01)
+    time.sleep(0.3)
+    attempt.send_signal(signal.SIGKILL)
+    attempt.wait()
+    assert not final.exists(), "the shard (750 landings) finished before the kill"
+    kept = records.read_bytes()
+    kept = kept[: kept.rfind(b"\n") + 1]
+    assert kept.count(b"\n") > 0
+    assert campaign.run_shard_atomically(file, 1, 4, str(out)) == str(final)
+    for name in FILES:
+        assert (final / name).read_bytes() == (cli / name).read_bytes(), name
+    assert (final / "landings.jsonl").read_bytes().startswith(kept)
+
+
 def test_the_history_as_a_pandas_or_polars_frame():
     arrays = touchdown.run(SCENARIO)["history"]
     pandas_frame = touchdown.run(SCENARIO, frame="pandas")["history"]

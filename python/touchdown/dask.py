@@ -10,7 +10,7 @@
 Each task runs one shard in its worker's process with the Rust landing code and writes the
 shard's folder (only paths and numbers cross processes); a shard whose folder exists is done,
 so a campaign interrupted and resumed recomputes only the missing shards, and a task lost with
-its worker is run again. The shards are merged with the campaign's own merge: the result is
+its worker is run again, going on from the records its shard had written. The shards are merged with the campaign's own merge: the result is
 byte for byte that of `touchdown campaign FILE --out DIR` on one machine.
 """
 

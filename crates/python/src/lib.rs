@@ -394,16 +394,24 @@ fn boundary(
 }
 
 /// Runs shard `k` of `n` of the campaign file `campaign` into `out_dir` exactly as
-/// `touchdown campaign CAMPAIGN --shard K/N --out OUT_DIR` does; returns `out_dir`.
+/// `touchdown campaign CAMPAIGN --shard K/N --out OUT_DIR [--resume]` does; returns `out_dir`.
 #[pyfunction]
-fn run_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, out_dir: &str) -> PyResult<String> {
+#[pyo3(signature = (campaign, k, n, out_dir, resume = false))]
+fn run_shard(
+    py: Python<'_>,
+    campaign: &str,
+    k: u64,
+    n: u64,
+    out_dir: &str,
+    resume: bool,
+) -> PyResult<String> {
     let shard: Shard = format!("{k}/{n}")
         .parse()
         .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))?;
     py.detach(|| {
         let c = Campaign::load(campaign)?;
         let out = Some(Path::new(out_dir));
-        touchdown_campaign::run::run(&c, Some(shard), None, out, false, |_| ()).map(|_| ())
+        touchdown_campaign::run::run(&c, Some(shard), None, out, resume, |_| ()).map(|_| ())
     })
     .map_err(|e| campaign_error(py, &e))?;
     Ok(out_dir.to_string())
