@@ -24,14 +24,6 @@ pub struct Staging {
     _lock: File,
 }
 
-/// A file-system error on `path`.
-fn io(path: &Path, e: std::io::Error) -> CampaignError {
-    CampaignError::Store {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    }
-}
-
 /// `out` with `.suffix` added to its name.
 fn beside(out: &Path, suffix: &str) -> Result<PathBuf, CampaignError> {
     let name = out.file_name().ok_or_else(|| CampaignError::Store {
@@ -63,7 +55,7 @@ pub fn check_out(
         ));
     }
     let empty = std::fs::read_dir(out)
-        .map_err(|e| io(out, e))?
+        .map_err(|e| CampaignError::store(out, e))?
         .next()
         .is_none();
     if empty {
@@ -93,15 +85,17 @@ impl Staging {
     /// Removes everything the folder being built holds.
     pub fn clear(&self) -> Result<(), CampaignError> {
         let lock_path = self.dir.join(LOCK);
-        for entry in std::fs::read_dir(&self.dir).map_err(|e| io(&self.dir, e))? {
-            let path = entry.map_err(|e| io(&self.dir, e))?.path();
+        for entry in std::fs::read_dir(&self.dir).map_err(|e| CampaignError::store(&self.dir, e))? {
+            let path = entry
+                .map_err(|e| CampaignError::store(&self.dir, e))?
+                .path();
             if path != lock_path {
                 let removed = if path.is_dir() {
                     std::fs::remove_dir_all(&path)
                 } else {
                     std::fs::remove_file(&path)
                 };
-                removed.map_err(|e| io(&path, e))?;
+                removed.map_err(|e| CampaignError::store(&path, e))?;
             }
         }
         Ok(())
@@ -121,9 +115,9 @@ impl Staging {
                 ),
             });
         }
-        std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
+        std::fs::create_dir_all(&dir).map_err(|e| CampaignError::store(&dir, e))?;
         let lock_path = dir.join(LOCK);
-        let lock = File::create(&lock_path).map_err(|e| io(&lock_path, e))?;
+        let lock = File::create(&lock_path).map_err(|e| CampaignError::store(&lock_path, e))?;
         match lock.try_lock() {
             Ok(()) => {}
             Err(std::fs::TryLockError::WouldBlock) => {
@@ -135,7 +129,7 @@ impl Staging {
                     ),
                 })
             }
-            Err(std::fs::TryLockError::Error(e)) => return Err(io(&lock_path, e)),
+            Err(std::fs::TryLockError::Error(e)) => return Err(CampaignError::store(&lock_path, e)),
         }
         Ok(Staging {
             out: out.to_path_buf(),
@@ -152,30 +146,32 @@ impl Staging {
     /// The complete folder takes the place of `out` (the previous one, if any, is deleted).
     pub fn commit(self) -> Result<(), CampaignError> {
         let lock_path = self.dir.join(LOCK);
-        std::fs::remove_file(&lock_path).map_err(|e| io(&lock_path, e))?;
+        std::fs::remove_file(&lock_path).map_err(|e| CampaignError::store(&lock_path, e))?;
         if self.out.exists() {
             let replaced = beside(&self.out, REPLACED)?;
-            std::fs::rename(&self.out, &replaced).map_err(|e| io(&self.out, e))?;
-            std::fs::rename(&self.dir, &self.out).map_err(|e| io(&self.dir, e))?;
-            std::fs::remove_dir_all(&replaced).map_err(|e| io(&replaced, e))
+            std::fs::rename(&self.out, &replaced)
+                .map_err(|e| CampaignError::store(&self.out, e))?;
+            std::fs::rename(&self.dir, &self.out)
+                .map_err(|e| CampaignError::store(&self.dir, e))?;
+            std::fs::remove_dir_all(&replaced).map_err(|e| CampaignError::store(&replaced, e))
         } else {
-            std::fs::rename(&self.dir, &self.out).map_err(|e| io(&self.dir, e))
+            std::fs::rename(&self.dir, &self.out).map_err(|e| CampaignError::store(&self.dir, e))
         }
     }
 }
 
 /// Copies the folder tree `from` into `to` (created), file by file.
 pub fn copy_tree(from: &Path, to: &Path) -> Result<(), CampaignError> {
-    std::fs::create_dir_all(to).map_err(|e| io(to, e))?;
-    for entry in std::fs::read_dir(from).map_err(|e| io(from, e))? {
-        let path = entry.map_err(|e| io(from, e))?.path();
+    std::fs::create_dir_all(to).map_err(|e| CampaignError::store(to, e))?;
+    for entry in std::fs::read_dir(from).map_err(|e| CampaignError::store(from, e))? {
+        let path = entry.map_err(|e| CampaignError::store(from, e))?.path();
         let Some(name) = path.file_name() else {
             continue;
         };
         if path.is_dir() {
             copy_tree(&path, &to.join(name))?;
         } else {
-            std::fs::copy(&path, to.join(name)).map_err(|e| io(&path, e))?;
+            std::fs::copy(&path, to.join(name)).map_err(|e| CampaignError::store(&path, e))?;
         }
     }
     Ok(())

@@ -76,6 +76,14 @@ pub enum CampaignError {
 }
 
 impl CampaignError {
+    /// What went wrong (`e`) reading or writing the file or folder at `path`.
+    pub fn store(path: &std::path::Path, e: impl std::fmt::Display) -> Self {
+        CampaignError::Store {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        }
+    }
+
     /// A field error of the campaign file `file`.
     pub fn field(file: &str, field: impl Into<String>, message: impl Into<String>) -> Self {
         CampaignError::Field {

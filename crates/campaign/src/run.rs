@@ -330,9 +330,9 @@ pub fn run(
             (Some(staging), dir)
         }
         None => {
-            scratch = tempfile::tempdir().map_err(|e| CampaignError::Store {
-                path: std::env::temp_dir().display().to_string(),
-                message: format!("cannot create a temporary folder: {e}"),
+            scratch = tempfile::tempdir().map_err(|e| {
+                let message = format!("cannot create a temporary folder: {e}");
+                CampaignError::store(&std::env::temp_dir(), message)
             })?;
             (None, scratch.path().to_path_buf())
         }
@@ -357,7 +357,9 @@ pub fn run(
     let (mut journal, done) = match resumed {
         Some(kept) => kept,
         None => {
-            write_file(&dir.join(RUN_FILE), &store::pretty(&manifest))?;
+            let run_file = dir.join(RUN_FILE);
+            std::fs::write(&run_file, store::pretty(&manifest))
+                .map_err(|e| CampaignError::store(&run_file, e))?;
             (store::Journal::create(&dir, &columns)?, 0)
         }
     };
@@ -372,15 +374,7 @@ pub fn run(
             Ok(())
         },
     )?;
-    finish(&dir, journal, &manifest, staging)
-}
-
-/// Writes `text` to the file at `path`.
-fn write_file(path: &Path, text: &str) -> Result<(), CampaignError> {
-    std::fs::write(path, text).map_err(|e| CampaignError::Store {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    })
+    finish(&dir, journal, manifest, staging)
 }
 
 /// Completes the folder `dir` whose records `journal` holds (the Parquet file, the statistics,
@@ -389,23 +383,20 @@ fn write_file(path: &Path, text: &str) -> Result<(), CampaignError> {
 fn finish(
     dir: &Path,
     journal: store::Journal,
-    manifest: &Manifest,
+    manifest: Manifest,
     staging: Option<Staging>,
 ) -> Result<(Manifest, Statistics), CampaignError> {
     journal.close()?;
-    let statistics = store::complete(dir, manifest)?;
+    let statistics = store::complete(dir, &manifest)?;
     // Kept until the folder is complete, so that a run stopped while completing it resumes.
     let run_file = dir.join(RUN_FILE);
     if run_file.exists() {
-        std::fs::remove_file(&run_file).map_err(|e| CampaignError::Store {
-            path: run_file.display().to_string(),
-            message: e.to_string(),
-        })?;
+        std::fs::remove_file(&run_file).map_err(|e| CampaignError::store(&run_file, e))?;
     }
     if let Some(staging) = staging {
         staging.commit()?;
     }
-    Ok((manifest.clone(), statistics))
+    Ok((manifest, statistics))
 }
 
 /// Adds `more` landings to the finished campaign in `dir` (written by a run or a merge of the
@@ -477,7 +468,7 @@ pub fn add(
         shard: None,
     };
     let manifest = Manifest::new(campaign, total, part, &columns);
-    finish(&building, journal, &manifest, Some(staging))
+    finish(&building, journal, manifest, Some(staging))
 }
 
 /// Merges the campaign folders `parts` (shards of one campaign, run by one build) into `out`:
@@ -579,5 +570,5 @@ pub fn merge(
             folder::copy_tree(&histories, &building.join("histories"))?;
         }
     }
-    finish(&building, journal, &manifest, Some(staging))
+    finish(&building, journal, manifest, Some(staging))
 }

@@ -166,14 +166,6 @@ pub fn json_line(columns: &[Column], row: &Row) -> String {
     s
 }
 
-/// A file-system error on `path`.
-fn io_error(path: &Path, e: impl std::fmt::Display) -> CampaignError {
-    CampaignError::Store {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    }
-}
-
 /// The record of one line of `landings.jsonl` (`at` names the file and line in errors).
 fn parse_line(
     at: &dyn Fn() -> String,
@@ -228,7 +220,7 @@ pub fn for_each_record(
     mut f: impl FnMut(Row) -> Result<(), CampaignError>,
 ) -> Result<u64, CampaignError> {
     let file = std::fs::File::open(path).map_err(|e| {
-        io_error(
+        CampaignError::store(
             path,
             format!("{e} (expected a campaign folder written by `touchdown campaign --out`)"),
         )
@@ -238,7 +230,11 @@ pub fn for_each_record(
     let mut n = 0u64;
     loop {
         line.clear();
-        if reader.read_line(&mut line).map_err(|e| io_error(path, e))? == 0 {
+        if reader
+            .read_line(&mut line)
+            .map_err(|e| CampaignError::store(path, e))?
+            == 0
+        {
             return Ok(n);
         }
         let at = || format!("{}:{}", path.display(), n + 1);
@@ -288,7 +284,7 @@ impl Journal {
     /// A new, empty `landings.jsonl` in `dir` for records with `columns`.
     pub fn create(dir: &Path, columns: &[Column]) -> Result<Journal, CampaignError> {
         let path = dir.join("landings.jsonl");
-        let file = std::fs::File::create(&path).map_err(|e| io_error(&path, e))?;
+        let file = std::fs::File::create(&path).map_err(|e| CampaignError::store(&path, e))?;
         Ok(Journal {
             path,
             file,
@@ -311,10 +307,11 @@ impl Journal {
             .read(true)
             .write(true)
             .open(&path)
-            .map_err(|e| io_error(&path, e))?;
+            .map_err(|e| CampaignError::store(&path, e))?;
         // Only whole lines count: a run stopped mid-line wrote no newline after its last one.
-        let whole = end_of_last_line(&file).map_err(|e| io_error(&path, e))?;
-        file.set_len(whole).map_err(|e| io_error(&path, e))?;
+        let whole = end_of_last_line(&file).map_err(|e| CampaignError::store(&path, e))?;
+        file.set_len(whole)
+            .map_err(|e| CampaignError::store(&path, e))?;
         let n = for_each_record(&path, columns, first, |row| {
             kept(&row);
             Ok(())
@@ -322,7 +319,7 @@ impl Journal {
         let file = std::fs::OpenOptions::new()
             .append(true)
             .open(&path)
-            .map_err(|e| io_error(&path, e))?;
+            .map_err(|e| CampaignError::store(&path, e))?;
         Ok((
             Journal {
                 path,
@@ -341,12 +338,14 @@ impl Journal {
         self.line.push('\n');
         self.file
             .write_all(self.line.as_bytes())
-            .map_err(|e| io_error(&self.path, e))
+            .map_err(|e| CampaignError::store(&self.path, e))
     }
 
     /// Ends the writing: everything written reaches the disk.
     pub fn close(self) -> Result<(), CampaignError> {
-        self.file.sync_all().map_err(|e| io_error(&self.path, e))
+        self.file
+            .sync_all()
+            .map_err(|e| CampaignError::store(&self.path, e))
     }
 }
 
@@ -392,15 +391,15 @@ struct Parquet {
 impl Parquet {
     /// A new Parquet file at `path` for records with `columns`.
     fn create(path: &Path, columns: &[Column]) -> Result<Parquet, CampaignError> {
-        let file = std::fs::File::create(path).map_err(|e| io_error(path, e))?;
+        let file = std::fs::File::create(path).map_err(|e| CampaignError::store(path, e))?;
         let props = Arc::new(
             WriterProperties::builder()
                 .set_created_by(format!("touchdown {}", env!("CARGO_PKG_VERSION")))
                 .build(),
         );
-        let schema = Arc::new(schema(columns).map_err(|e| io_error(path, e))?);
-        let writer =
-            SerializedFileWriter::new(file, schema, props).map_err(|e| io_error(path, e))?;
+        let schema = Arc::new(schema(columns).map_err(|e| CampaignError::store(path, e))?);
+        let writer = SerializedFileWriter::new(file, schema, props)
+            .map_err(|e| CampaignError::store(path, e))?;
         Ok(Parquet {
             path: path.to_path_buf(),
             writer,
@@ -421,7 +420,7 @@ impl Parquet {
     /// Writes the records held as a row group.
     fn write_group(&mut self) -> Result<(), CampaignError> {
         let path = self.path.clone();
-        let err = |e: &dyn std::fmt::Display| io_error(&path, e);
+        let err = |e: &dyn std::fmt::Display| CampaignError::store(&path, e);
         let mut rg = self.writer.next_row_group().map_err(|e| err(&e))?;
         let mut i = 0;
         while let Some(mut col) = rg.next_column().map_err(|e| err(&e))? {
@@ -484,7 +483,9 @@ impl Parquet {
         if !self.group.is_empty() {
             self.write_group()?;
         }
-        self.writer.close().map_err(|e| io_error(&self.path, e))?;
+        self.writer
+            .close()
+            .map_err(|e| CampaignError::store(&self.path, e))?;
         Ok(())
     }
 }
@@ -494,7 +495,7 @@ impl Parquet {
 pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell>, CampaignError> {
     use parquet::column::reader::get_typed_column_reader;
     use parquet::file::reader::{FileReader, SerializedFileReader};
-    let err = |e: &dyn std::fmt::Display| io_error(path, e);
+    let err = |e: &dyn std::fmt::Display| CampaignError::store(path, e);
     let file = std::fs::File::open(path).map_err(|e| err(&e))?;
     let reader = SerializedFileReader::new(file).map_err(|e| err(&e))?;
     let mut cells = Vec::new();
@@ -513,10 +514,8 @@ pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell
                 let mut values = values.into_iter();
                 for k in 0..n {
                     let present = defs.get(k).is_none_or(|d| *d == 1);
-                    cells.push(match (present, present.then(|| values.next()).flatten()) {
-                        (true, Some(v)) => $cell(v),
-                        _ => Cell::Missing,
-                    });
+                    let value = if present { values.next() } else { None };
+                    cells.push(value.map_or(Cell::Missing, $cell));
                 }
             }};
         }
@@ -551,12 +550,12 @@ pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Statistics, CampaignE
     })?;
     let write = |name: &str, text: String| {
         let path = dir.join(name);
-        let file = std::fs::File::create(&path).map_err(|e| io_error(&path, e))?;
+        let file = std::fs::File::create(&path).map_err(|e| CampaignError::store(&path, e))?;
         let mut file = std::io::BufWriter::new(file);
         file.write_all(text.as_bytes())
             .and_then(|()| file.flush())
             .and_then(|()| file.get_ref().sync_all())
-            .map_err(|e| io_error(&path, e))
+            .map_err(|e| CampaignError::store(&path, e))
     };
     write("statistics.json", pretty(&statistics) + "\n")?;
     write("manifest.json", pretty(manifest) + "\n")?;

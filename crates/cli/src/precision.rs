@@ -32,7 +32,7 @@ pub fn precision(
     warn(&sc);
     let planned: usize = (methods.iter())
         .filter(|m| sc.applicable_engines.contains(&m.engine()))
-        .map(|m| rungs.unwrap_or(usize::MAX).min(m.ladder().len()))
+        .map(|m| m.rungs(rungs).len())
         .sum();
     let bar = crate::progress_bar(planned as u64, "rungs");
     let study =

@@ -92,6 +92,12 @@ impl Method {
         }
     }
 
+    /// The rungs a study measures: the ladder's first `rungs` (all of them with `None`).
+    pub fn rungs(self, rungs: Option<usize>) -> &'static [f64] {
+        let ladder = self.ladder();
+        &ladder[..rungs.unwrap_or(ladder.len()).min(ladder.len())]
+    }
+
     /// The scenario `sc` set to the rung `value` of this method.
     pub fn apply(
         self,
@@ -550,9 +556,7 @@ pub fn work_precision_resolved(
         .collect();
     let mut all = Vec::new();
     for &method in &methods {
-        let ladder = method.ladder();
-        let ladder = &ladder[..rungs.unwrap_or(ladder.len()).min(ladder.len())];
-        let mut measured: Vec<Rung> = ladder
+        let mut measured: Vec<Rung> = (method.rungs(rungs))
             .iter()
             .map(|&value| {
                 let rung = measure(path, sc, &reference.run, method, value, repeats);
