@@ -136,7 +136,7 @@ fn quaternion_attitude_goes_through_theta_y_90_degrees() {
     let omega = 5.0;
     let (sn, cs) = (omega * s.t_end_s).sin_cos();
     let expected = Matrix3::new(cs, 0.0, sn, 0.0, 1.0, 0.0, -sn, 0.0, cs);
-    let t_bi = touchdown_frames::t_bi(&sim.vehicle().theta);
+    let t_bi = touchdown_frames::t_bi(&sim.vehicle().euler.theta);
     assert!((t_bi - expected).abs().max() < 1e-9, "{t_bi} vs {expected}");
     assert!((sim.vehicle().omega - Vector3::new(0.0, omega, 0.0)).norm() < 1e-12);
 }

@@ -23,7 +23,7 @@ impl State {
         let state = StateAtStop {
             position_m: v.position.into(),
             velocity_m_s: v.velocity.into(),
-            euler_angles_rad: Some(v.theta.into()),
+            euler_angles_rad: Some(v.euler.theta.into()),
             angular_velocity_rad_s: v.omega_inertial().into(),
         };
         Divergence::new(self.t, law, leg, message, state).into()
@@ -61,7 +61,7 @@ impl State {
             v.position,
             v.velocity,
             v.acceleration,
-            v.theta,
+            v.euler.theta,
             v.theta_dot,
             v.theta_ddot,
         ]

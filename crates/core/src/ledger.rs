@@ -143,14 +143,26 @@ impl State {
         now - model.footpad0
     }
 
-    /// Elastic energy stored in the gear's honeycombs now, J.
+    /// Elastic energy stored in the gear's honeycombs now, J. A gear carrying its footpad was
+    /// evaluated at these strokes, and its honeycomb forces are the laws' at them with the
+    /// committed memories ([`touchdown_laws::GearLaws::stored_energy_at`]); a rigid footpad's
+    /// gear off the surface carries no force and its laws are evaluated.
     fn stored_energy(&self, model: &Model) -> f64 {
         (0..model.legs.len())
             .map(|i| {
-                let g = &self.gear[i];
-                model
-                    .laws
-                    .stored_energy(g.primary_stroke, g.secondary_stroke, &self.memory[i])
+                let (g, laws) = (&self.gear[i], &model.laws);
+                let (c, s) = (g.primary_stroke, g.secondary_stroke);
+                if model.inertial || self.pads[i].state == ContactState::Contact {
+                    let e = laws.stored_energy_at(c, s, g.fcp, g.fc_secondary);
+                    debug_assert_eq!(
+                        e.to_bits(),
+                        laws.stored_energy(c, s, &self.memory[i]).to_bits(),
+                        "leg {i}: the evaluated forces are the laws' at the committed memory"
+                    );
+                    e
+                } else {
+                    laws.stored_energy(c, s, &self.memory[i])
+                }
             })
             .sum()
     }

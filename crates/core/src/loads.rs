@@ -11,7 +11,7 @@ use crate::stiction::{held_friction, Held};
 use crate::surface::{ContactState, Footpad};
 use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
-use touchdown_frames::{euler_acceleration, GIMBAL_LOCK_COS};
+use touchdown_frames::GIMBAL_LOCK_COS;
 use touchdown_record::{Law, RunError};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::schema::{Arrangement, AttitudeForm};
@@ -195,7 +195,7 @@ impl State {
     ) -> Result<(), RunError> {
         let euler = model.integrator.attitude == AttitudeForm::Euler;
         // θy stays within ±90° unless it crossed the singularity (cos θy < 0 beyond).
-        if euler && v.theta.y.cos() < GIMBAL_LOCK_COS {
+        if euler && v.euler.cos.y < GIMBAL_LOCK_COS {
             return Err(self.diverged(v,
                 "Euler-angle singularity: θy reached or crossed ±90° (eqs. 5 and 9a divide by cos θy); integrator.attitude = \"quaternion\" (schemes rk4, dopri5) goes through it".into(),
                 Law::Kinematics,
@@ -205,7 +205,7 @@ impl State {
         v.acceleration = model.mass.linear_acceleration(&loads.force, &model.gravity);
         v.omega_dot = model.mass.angular_acceleration(&loads.torque, &v.omega);
         if euler {
-            v.theta_ddot = euler_acceleration(&v.theta, &v.theta_dot, &v.omega, &v.omega_dot);
+            v.theta_ddot = (v.euler).euler_acceleration(&v.theta_dot, &v.omega, &v.omega_dot);
         }
         v.slosh_q_ddot = (model.mechanisms).slosh_acceleration(&self.mechanisms, v); // eq. (109), corrected
         Ok(())

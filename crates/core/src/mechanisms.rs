@@ -143,7 +143,7 @@ impl Mechanisms {
         let attitude = Attitude {
             position: &v.position,
             t_bi: &v.t_bi,
-            theta: &v.theta,
+            theta: &v.euler.theta,
             omega: &v.omega,
         };
         let mut out = p.loads(t, first_contact, &attitude, state.nozzle_crush); // eqs. (72)-(73), (80)-(81)

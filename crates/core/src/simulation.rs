@@ -17,7 +17,7 @@ use crate::summation::SumOrder;
 use crate::surface::Footpad;
 use crate::vehicle::VehicleState;
 use nalgebra::{UnitQuaternion, Vector2, Vector3};
-use touchdown_frames::gravity_inertial;
+use touchdown_frames::{gravity_inertial, EulerTrig};
 use touchdown_laws::{GearLaws, GearMemory};
 use touchdown_record::{
     EnergyLedger, EnergyReport, Extremes, Landing, PadView, Progress, RunError, Sample,
@@ -62,7 +62,7 @@ impl Simulation {
             position: init.position,
             velocity: init.velocity,
             acceleration: Vector3::zeros(),
-            theta: init.theta,
+            euler: EulerTrig::new(&init.theta),
             theta_dot: Vector3::zeros(),
             theta_ddot: Vector3::zeros(),
             omega: init.omega,
@@ -277,7 +277,7 @@ impl Landing for Simulation {
         out.t = p.t;
         out.position = v.position;
         out.velocity = v.velocity;
-        out.theta = v.theta;
+        out.theta = v.euler.theta;
         out.omega = v.omega;
         out.pitch_rate = v.omega_inertial().x;
         for (((slot, g), pad), memory) in (out.legs.iter_mut().zip(&p.gear))

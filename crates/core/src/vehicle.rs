@@ -5,7 +5,7 @@
 
 use crate::integrator::{self, Ode};
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector2, Vector3};
-use touchdown_frames::{t_be, t_eb, GIMBAL_LOCK_COS};
+use touchdown_frames::{EulerTrig, GIMBAL_LOCK_COS};
 use touchdown_scenario::schema::AttitudeForm;
 
 /// Rigid-vehicle state (inertial frame; Euler angles relative to the surface frame).
@@ -17,8 +17,8 @@ pub struct VehicleState {
     pub velocity: Vector3<f64>,
     /// Centre-of-mass acceleration, m/s² (including gravity).
     pub acceleration: Vector3<f64>,
-    /// Euler angles θ, rad.
-    pub theta: Vector3<f64>,
+    /// Euler angles θ, rad, with their sines and cosines (set with T_BI, used by eqs. 5-9).
+    pub euler: EulerTrig,
     /// Euler rates θ̇, rad/s.
     pub theta_dot: Vector3<f64>,
     /// Euler accelerations θ̈, rad/s².
@@ -43,18 +43,18 @@ pub struct VehicleState {
 impl VehicleState {
     /// Sets θ (and T_BI, ω = T_EB·θ̇, eq. 6).
     pub(crate) fn set_attitude(&mut self, theta: Vector3<f64>, theta_dot: Vector3<f64>) {
-        self.theta = theta;
+        self.euler = EulerTrig::new(&theta);
         self.theta_dot = theta_dot;
-        self.t_bi = touchdown_frames::t_bi(&theta);
-        self.omega = t_eb(&theta) * theta_dot; // eq. (6)
+        self.t_bi = self.euler.t_bi();
+        self.omega = self.euler.t_eb() * theta_dot; // eq. (6)
     }
 
     /// Sets θ and ω (rad, rad/s), with θ̇ = T_BE·ω (eq. 7) and T_BI.
     fn set_euler(&mut self, theta: Vector3<f64>, omega: Vector3<f64>) {
-        self.theta = theta;
+        self.euler = EulerTrig::new(&theta);
         self.omega = omega;
-        self.t_bi = touchdown_frames::t_bi(&theta);
-        self.theta_dot = t_be(&theta) * omega; // eq. (7)
+        self.t_bi = self.euler.t_bi();
+        self.theta_dot = self.euler.t_be() * omega; // eq. (7)
     }
 
     /// Sets the attitude from a quaternion `q` (normalised here) and ω (rad/s); θ is read from
@@ -64,11 +64,11 @@ impl VehicleState {
         self.quaternion = q.into_inner();
         self.omega = omega;
         self.t_bi = q.to_rotation_matrix().into_inner();
-        self.theta = touchdown_frames::euler_from_t_bi(&self.t_bi);
-        self.theta_dot = if self.theta.y.cos().abs() < GIMBAL_LOCK_COS {
+        self.euler = EulerTrig::new(&touchdown_frames::euler_from_t_bi(&self.t_bi));
+        self.theta_dot = if self.euler.cos.y.abs() < GIMBAL_LOCK_COS {
             Vector3::zeros()
         } else {
-            t_be(&self.theta) * omega
+            self.euler.t_be() * omega
         };
     }
 
@@ -77,7 +77,7 @@ impl VehicleState {
         Ode {
             position: self.position,
             velocity: self.velocity,
-            theta: self.theta,
+            theta: self.euler.theta,
             quaternion: self.quaternion,
             omega: self.omega,
             slosh_q: self.slosh_q,

@@ -1,6 +1,7 @@
 //! Euler-angle kinematics, eqs. (5)-(9): body rates and Euler-angle rates, and the Euler-angle
 //! accelerations from the body angular acceleration.
 
+use crate::frames::EulerTrig;
 use nalgebra::{Matrix3, Vector3};
 
 /// |cos θy| below which the Euler-angle kinematics are declared singular (θy → ±90°, eqs. 5
@@ -10,8 +11,11 @@ pub const GIMBAL_LOCK_COS: f64 = 1e-6;
 
 /// T_BE, body rates → Euler rates, eq. (5). Angles in rad.
 pub fn t_be(theta: &Vector3<f64>) -> Matrix3<f64> {
-    let (sy, cy) = theta.y.sin_cos();
-    let (sz, cz) = theta.z.sin_cos();
+    t_be_of(theta.y.sin_cos(), theta.z.sin_cos())
+}
+
+/// T_BE (eq. 5) from the sine and cosine of θy and of θz.
+fn t_be_of((sy, cy): (f64, f64), (sz, cz): (f64, f64)) -> Matrix3<f64> {
     Matrix3::new(
         cz / cy,
         -sz / cy,
@@ -28,30 +32,52 @@ pub fn t_be(theta: &Vector3<f64>) -> Matrix3<f64> {
 /// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6); also maps the Euler-angle deviations
 /// to body attitude errors in eq. (77). Angles in rad.
 pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
-    let (sy, cy) = theta.y.sin_cos();
-    let (sz, cz) = theta.z.sin_cos();
+    t_eb_of(theta.y.sin_cos(), theta.z.sin_cos())
+}
+
+/// T_EB (eq. 6) from the sine and cosine of θy and of θz.
+fn t_eb_of((sy, cy): (f64, f64), (sz, cz): (f64, f64)) -> Matrix3<f64> {
     Matrix3::new(cy * cz, sz, 0.0, -cy * sz, cz, 0.0, sy, 0.0, 1.0) // eq. (6)
 }
 
-/// Euler-angle accelerations θ̈ from the body angular acceleration ω̇, eqs. (9a)-(9c), which
-/// expand the corrected eq. (8), θ̈ = T_BE·ω̇ + (dT_BE/dt)·ω (the printed eq. 8 lacks T_BE on
-/// ω̇; docs/errata.md). `theta_dot` = θ̇, `omega` = ω, `omega_dot` = ω̇ (rad, rad/s, rad/s²).
-pub fn euler_acceleration(
-    theta: &Vector3<f64>,
-    theta_dot: &Vector3<f64>,
-    omega: &Vector3<f64>,
-    omega_dot: &Vector3<f64>,
-) -> Vector3<f64> {
-    let (sy, cy) = theta.y.sin_cos();
-    let (sz, cz) = theta.z.sin_cos();
-    let (td_x, td_y, td_z) = (theta_dot.x, theta_dot.y, theta_dot.z);
-    // eq. (9a)
-    let tdd_x = (omega_dot.x * cz - omega_dot.y * sz - 2.0 * td_z * td_y + td_y * omega.z) / cy;
-    // eq. (9b), as reprinted in the equations-of-motion section (the first printing has ω̈y)
-    let tdd_y = omega_dot.x * sz + omega_dot.y * cz + td_z * td_x * cy;
-    // eq. (9c), uses θ̈x
-    let tdd_z = -tdd_x * sy - td_x * td_y * cy + omega_dot.z;
-    Vector3::new(tdd_x, tdd_y, tdd_z)
+impl EulerTrig {
+    /// (sin θy, cos θy) and (sin θz, cos θz).
+    fn yz(&self) -> ((f64, f64), (f64, f64)) {
+        ((self.sin.y, self.cos.y), (self.sin.z, self.cos.z))
+    }
+
+    /// T_BE, eq. (5): [`t_be`] at θ.
+    pub fn t_be(&self) -> Matrix3<f64> {
+        let (y, z) = self.yz();
+        t_be_of(y, z)
+    }
+
+    /// T_EB, eq. (6): [`t_eb`] at θ.
+    pub fn t_eb(&self) -> Matrix3<f64> {
+        let (y, z) = self.yz();
+        t_eb_of(y, z)
+    }
+
+    /// Euler-angle accelerations θ̈ at θ from the body angular acceleration ω̇, eqs. (9a)-(9c),
+    /// which expand the corrected eq. (8), θ̈ = T_BE·ω̇ + (dT_BE/dt)·ω (the printed eq. 8 lacks
+    /// T_BE on ω̇; docs/errata.md). `theta_dot` = θ̇, `omega` = ω, `omega_dot` = ω̇ (rad/s,
+    /// rad/s, rad/s²).
+    pub fn euler_acceleration(
+        &self,
+        theta_dot: &Vector3<f64>,
+        omega: &Vector3<f64>,
+        omega_dot: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        let ((sy, cy), (sz, cz)) = self.yz();
+        let (td_x, td_y, td_z) = (theta_dot.x, theta_dot.y, theta_dot.z);
+        // eq. (9a)
+        let tdd_x = (omega_dot.x * cz - omega_dot.y * sz - 2.0 * td_z * td_y + td_y * omega.z) / cy;
+        // eq. (9b), as reprinted in the equations-of-motion section (the first printing has ω̈y)
+        let tdd_y = omega_dot.x * sz + omega_dot.y * cz + td_z * td_x * cy;
+        // eq. (9c), uses θ̈x
+        let tdd_z = -tdd_x * sy - td_x * td_y * cy + omega_dot.z;
+        Vector3::new(tdd_x, tdd_y, tdd_z)
+    }
 }
 
 #[cfg(test)]
@@ -94,7 +120,7 @@ mod tests {
         let t0 = 0.37;
         let thdd = (th(t0 + h) - th(t0) * 2.0 + th(t0 - h)) / (h * h);
         let omega_dot = (om(t0 + h) - om(t0 - h)) / (2.0 * h);
-        let analytic = euler_acceleration(&th(t0), &thd(t0), &om(t0), &omega_dot);
+        let analytic = EulerTrig::new(&th(t0)).euler_acceleration(&thd(t0), &om(t0), &omega_dot);
         assert!((thdd - analytic).norm() < 1e-5, "{thdd} vs {analytic}");
     }
 }

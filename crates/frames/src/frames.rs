@@ -9,13 +9,21 @@ use nalgebra::{Matrix3, Vector3};
 
 /// Rotation about X by `a` rad (active).
 pub fn rot_x(a: f64) -> Matrix3<f64> {
-    let (s, c) = a.sin_cos();
+    rot_x_of(a.sin_cos())
+}
+
+/// Rotation about X by the angle of sine and cosine `(s, c)`.
+fn rot_x_of((s, c): (f64, f64)) -> Matrix3<f64> {
     Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
 }
 
 /// Rotation about Y by `a` rad (active).
 pub fn rot_y(a: f64) -> Matrix3<f64> {
-    let (s, c) = a.sin_cos();
+    rot_y_of(a.sin_cos())
+}
+
+/// Rotation about Y by the angle of sine and cosine `(s, c)`.
+fn rot_y_of((s, c): (f64, f64)) -> Matrix3<f64> {
     Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
 }
 
@@ -26,12 +34,21 @@ pub fn rot_y(a: f64) -> Matrix3<f64> {
 /// report's 1-2-1 and 2-2 gears are their own mirror images exactly (docs/errata.md,
 /// "Decisions at rounding level").
 pub fn rot_z(a: f64) -> Matrix3<f64> {
+    rot_z_with(a, None)
+}
+
+/// [`rot_z`], with the sine and cosine of `a` itself given if they are known: they are those of
+/// the rest when `a` is less than half a quarter turn (the rest is `a`, bit for bit).
+fn rot_z_with(a: f64, sin_cos: Option<(f64, f64)>) -> Matrix3<f64> {
     let quarters = (a / std::f64::consts::FRAC_PI_2).round();
     let mut rest = a - quarters * std::f64::consts::FRAC_PI_2;
     if rest.abs() <= 4.0 * f64::EPSILON * a.abs() {
         rest = 0.0;
     }
-    let (s0, c0) = rest.sin_cos();
+    let (s0, c0) = match sin_cos {
+        Some(sc) if rest.to_bits() == a.to_bits() => sc,
+        _ => rest.sin_cos(),
+    };
     let (s, c) = match quarters.rem_euclid(4.0) as u8 {
         0 => (s0, c0),
         1 => (c0, -s0),
@@ -56,7 +73,39 @@ pub fn t_gi(alpha: f64) -> Matrix3<f64> {
 /// then θz about Z_B'', i.e. Rx(θx)·Ry(θy)·Rz(θz) (equal to the printed GO** matrix; coded
 /// as the product to avoid transcription sign errors). Angles in rad.
 pub fn t_bi(theta: &Vector3<f64>) -> Matrix3<f64> {
-    rot_x(theta.x) * rot_y(theta.y) * rot_z(theta.z) // eq. (3)
+    EulerTrig::new(theta).t_bi()
+}
+
+/// The Euler angles θ (rad) with their sines and cosines, computed once for every matrix of
+/// eqs. (3), (5), (6) and (9) at that attitude: each matrix is the one its own function
+/// computes, bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EulerTrig {
+    /// θ, rad.
+    pub theta: Vector3<f64>,
+    /// sin θx, sin θy, sin θz.
+    pub sin: Vector3<f64>,
+    /// cos θx, cos θy, cos θz.
+    pub cos: Vector3<f64>,
+}
+
+impl EulerTrig {
+    /// The sines and cosines of `theta` (rad).
+    pub fn new(theta: &Vector3<f64>) -> EulerTrig {
+        let [x, y, z] = [theta.x, theta.y, theta.z].map(f64::sin_cos);
+        EulerTrig {
+            theta: *theta,
+            sin: Vector3::new(x.0, y.0, z.0),
+            cos: Vector3::new(x.1, y.1, z.1),
+        }
+    }
+
+    /// T_BI, eq. (3): [`t_bi`] at θ.
+    pub fn t_bi(&self) -> Matrix3<f64> {
+        let (s, c) = (&self.sin, &self.cos);
+        rot_x_of((s.x, c.x)) * rot_y_of((s.y, c.y)) * rot_z_with(self.theta.z, Some((s.z, c.z)))
+        // eq. (3)
+    }
 }
 
 /// Euler angles (θx, θy, θz), rad, of a body → inertial rotation matrix: the inverse of
@@ -79,6 +128,45 @@ pub fn gravity_inertial(g: f64, alpha: f64) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_attitude_s_matrices_are_those_of_their_own_functions_bit_for_bit() {
+        // Quarter turns, their neighbours, signed zeros and large angles: EulerTrig computes
+        // every sine once, and must give the very matrices eqs. (3), (5), (6) give alone.
+        let q = std::f64::consts::FRAC_PI_2;
+        let angles = [
+            0.0,
+            -0.0,
+            1e-300,
+            0.3,
+            -1.2,
+            q,
+            -q,
+            2.0 * q,
+            3.0 * q,
+            q * (1.0 + 1e-15),
+            0.5 * q,
+            0.5 * q + 1e-16,
+            7.0,
+            -40.0,
+        ];
+        for &x in &angles {
+            for &y in &angles[..6] {
+                for &z in &angles {
+                    let theta = Vector3::new(x, y, z);
+                    let e = EulerTrig::new(&theta);
+                    let bits = |m: Matrix3<f64>| m.map(f64::to_bits);
+                    assert_eq!(
+                        bits(e.t_bi()),
+                        bits(rot_x(x) * rot_y(y) * rot_z(z)),
+                        "{theta}"
+                    );
+                    assert_eq!(bits(e.t_be()), bits(crate::t_be(&theta)), "{theta}");
+                    assert_eq!(bits(e.t_eb()), bits(crate::t_eb(&theta)), "{theta}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn quarter_turns_about_z_are_exact() {

@@ -14,5 +14,7 @@
 pub mod euler;
 pub mod frames;
 
-pub use euler::{euler_acceleration, t_be, t_eb, GIMBAL_LOCK_COS};
-pub use frames::{euler_from_t_bi, gravity_inertial, rot_x, rot_y, rot_z, t_bi, t_gi, t_ig};
+pub use euler::{t_be, t_eb, GIMBAL_LOCK_COS};
+pub use frames::{
+    euler_from_t_bi, gravity_inertial, rot_x, rot_y, rot_z, t_bi, t_gi, t_ig, EulerTrig,
+};

@@ -68,11 +68,17 @@ impl PrimaryStrutLaw {
     /// what the extension stop would return.
     #[inline]
     pub fn stored_energy(&self, c: f64, memory: PrimaryMemory) -> f64 {
+        self.stored_energy_at(c, self.stroke_force(c, memory))
+    }
+
+    /// [`PrimaryStrutLaw::stored_energy`] at compression stroke `c` (m) where the law gives
+    /// the force `f` ([`PrimaryStrutLaw::stroke_force`], N, compression positive).
+    #[inline]
+    pub fn stored_energy_at(&self, c: f64, f: f64) -> f64 {
         if c >= 0.0 {
-            self.honeycomb.stored_energy(c, memory.compression)
+            self.honeycomb.stored_energy_at(c, f)
         } else {
-            let f = -self.stroke_force(c, memory);
-            self.honeycomb.stop.stored_energy(0.0, -c, f)
+            self.honeycomb.stop.stored_energy(0.0, -c, -f)
         }
     }
 
@@ -324,12 +330,24 @@ impl GearLaws {
     /// Elastic energy stored in the gear's honeycombs and stops (recoverable), J, at primary
     /// compression stroke `c` and secondary strokes `s`, m.
     pub fn stored_energy(&self, c: f64, s: [f64; 2], memory: &GearMemory) -> f64 {
+        let h = &self.secondary.honeycomb;
+        let fc = [0, 1].map(|j| h.force(s[j], memory.secondary[j]));
+        self.stored_energy_at(c, s, self.primary.stroke_force(c, memory.primary), fc)
+    }
+
+    /// [`GearLaws::stored_energy`] where the laws give the primary's honeycomb force `fcp`
+    /// ([`PrimaryStrutLaw::stroke_force`], N) and the secondaries' `fc` (N, tension positive):
+    /// the gear state of an evaluation at these strokes holds them, and committing the strokes
+    /// it evaluated does not change them (a stroke at or past x_max lies on the virgin curve
+    /// before and after).
+    #[inline]
+    pub fn stored_energy_at(&self, c: f64, s: [f64; 2], fcp: f64, fc: [f64; 2]) -> f64 {
         let secondary: f64 = s
             .into_iter()
-            .zip(&memory.secondary)
-            .map(|(s, m)| self.secondary.honeycomb.stored_energy(s, *m))
+            .zip(fc)
+            .map(|(s, f)| self.secondary.honeycomb.stored_energy_at(s, f))
             .sum();
-        self.primary.stored_energy(c, memory.primary) + secondary
+        self.primary.stored_energy_at(c, fcp) + secondary
     }
 
     /// Builds and checks the laws of a scenario's gear. Stage tables out of order, and a bearing

@@ -422,7 +422,13 @@ impl Honeycomb {
     /// of the last plateau load F_c.
     #[inline]
     pub fn stored_energy(&self, x: f64, memory: CrushMemory) -> f64 {
-        let f = self.force(x, memory);
+        self.stored_energy_at(x, self.force(x, memory))
+    }
+
+    /// [`Honeycomb::stored_energy`] at stroke `x` (m) where the law gives the force `f` (N):
+    /// a caller that has the force need not evaluate the law again.
+    #[inline]
+    pub fn stored_energy_at(&self, x: f64, f: f64) -> f64 {
         let cap = self.curve.capacity();
         if x > cap {
             let fc = self.curve.force(cap);
@@ -499,10 +505,17 @@ impl DoubleActingHoneycomb {
     /// Recoverable elastic energy at stroke `s`, J.
     #[inline]
     pub fn stored_energy(&self, s: f64, memory: DoubleActingMemory) -> f64 {
+        self.stored_energy_at(s, self.force(s, memory))
+    }
+
+    /// [`DoubleActingHoneycomb::stored_energy`] at stroke `s` (m, tension positive) where the
+    /// law gives the force `f` (N, tension positive).
+    #[inline]
+    pub fn stored_energy_at(&self, s: f64, f: f64) -> f64 {
         if s >= 0.0 {
-            self.tension.stored_energy(s, memory.tension)
+            self.tension.stored_energy_at(s, f)
         } else {
-            self.compression.stored_energy(-s, memory.compression)
+            self.compression.stored_energy_at(-s, -f)
         }
     }
 

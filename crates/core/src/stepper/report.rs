@@ -111,7 +111,7 @@ fn predict_correct(
     }
     let mut pred = *old;
     (pred.position, pred.velocity) = predict(old.position, old.velocity, old.acceleration, dt);
-    let (theta, theta_dot) = predict(old.theta, old.theta_dot, old.theta_ddot, dt);
+    let (theta, theta_dot) = predict(old.euler.theta, old.theta_dot, old.theta_ddot, dt);
     pred.set_attitude(theta, theta_dot);
     if slosh {
         (pred.slosh_q, pred.slosh_q_dot) =
@@ -138,7 +138,7 @@ fn predict_correct(
         dt,
     );
     let (theta, theta_dot) = correct(
-        old.theta,
+        old.euler.theta,
         old.theta_dot,
         old.theta_ddot,
         pred.theta_ddot,
