@@ -62,9 +62,13 @@ def read_statistics(folder):
 
 
 def read_manifest(folder):
-    """DIR/manifest.json: {"name" (the campaign's), "engine"}."""
+    """DIR/manifest.json: {"name" (the campaign's), "engine" (its one engine: the plots draw a
+    campaign on one engine)}."""
     manifest = json.loads((folder / "manifest.json").read_text())
-    return {"name": manifest["campaign_name"], "engine": manifest["engine"]}
+    engines = manifest["engines"]
+    if len(engines) != 1:
+        raise SystemExit(f"{folder}: a paired campaign ({', '.join(engines)}): these plots draw a campaign on one engine")
+    return {"name": manifest["campaign_name"], "engine": engines[0]}
 
 
 def read_boundary(path, x, y):

@@ -379,3 +379,31 @@ def test_the_worked_example_regenerates_its_data(tmp_path):
     committed = ROOT / "docs" / "python" / "dispersion-study.json"
     assert (tmp_path / "dispersion-study.json").read_bytes() == committed.read_bytes()
     assert (tmp_path / "dispersion-study.png").stat().st_size > 10_000
+
+
+def test_a_paired_campaigns_records_line_up_engine_by_engine(tmp_path):
+    """A paired campaign (core and rapier, three landings run 0.2 s) read back as one frame
+    with a block per engine, and as one frame per engine under the single-engine names; an
+    engine it did not land on is refused by name."""
+    text = (ROOT / "scenarios" / "campaigns" / "small.toml").read_text()
+    text = text.replace('scenario = "../', f'scenario = "{ROOT / "scenarios"}/')
+    text = text.replace('engine = "core"', 'engines = ["core", "rapier"]').replace("landings = 24", "landings = 3")
+    text = text.replace(
+        "\n[[correlation]]",
+        '\n[[dispersion]]\nfield = "integrator.t_end"\nunit = "s"\ndistribution = "list"\nvalues = [0.2]\n\n[[correlation]]',
+        1,
+    )
+    text = text.replace("histories = [3]", "histories = []")
+    file = tmp_path / "paired.toml"
+    file.write_text(text)
+    out = tmp_path / "out"
+    subprocess.run([TOUCHDOWN, "campaign", file, "--out", out], capture_output=True, check=True)
+    both = campaign.records(out)
+    assert list(both["landing"]) == [0, 1, 2]
+    assert {"core.outcome", "rapier.outcome", "rapier.leg1.primary.stroke_m"} <= set(both.columns)
+    core, rapier = campaign.records(out, "core"), campaign.records(out, "rapier")
+    assert list(core.columns) == list(rapier.columns)
+    assert "leg1.primary.stroke_m" in core.columns and "outcome" in core.columns
+    assert (rapier["leg1.primary.stroke_m"] == both["rapier.leg1.primary.stroke_m"]).all()
+    with pytest.raises(ValueError, match="landed on core, rapier"):
+        campaign.records(out, "mujoco")

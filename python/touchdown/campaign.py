@@ -2,7 +2,7 @@
 
 from os import PathLike
 from pathlib import Path
-from typing import Iterable, Union
+from typing import Iterable, Optional, Union
 
 from . import _native
 
@@ -43,3 +43,29 @@ def run_shard_atomically(campaign: str, k: int, n: int, out_dir: str) -> str:
         final.parent.mkdir(parents=True, exist_ok=True)
         run_shard(campaign, k, n, final, resume=True)
     return str(final)
+
+
+def records(folder: Union[str, PathLike], engine: Optional[str] = None):
+    """The records of the finished campaign folder `folder` as a pandas DataFrame, one row a
+    landing (`landings.parquet`, read by pyarrow). A paired campaign's rows hold a block of
+    columns per engine (`core.outcome`, `rapier.leg1.primary.stroke_m`, ...; docs/campaigns.md,
+    "Paired campaigns"): with `engine`, the landing, the values applied and that engine's block
+    under the names a campaign on one engine uses (`outcome`, `leg1.primary.stroke_m`), so
+    that two engines' frames line up row by row. An engine the campaign did not land on is a
+    ValueError naming those it did."""
+    import json
+
+    import pandas as pd
+
+    folder = Path(folder)
+    frame = pd.read_parquet(folder / "landings.parquet")
+    if engine is None:
+        return frame
+    engines = json.loads((folder / "manifest.json").read_text())["engines"]
+    if engine not in engines:
+        raise ValueError(f"engine {engine!r}: the campaign in {folder} landed on {', '.join(engines)}")
+    if len(engines) == 1:
+        return frame
+    prefix = f"{engine}."
+    kept = [c for c in frame.columns if c == "landing" or c.startswith("applied.") or c.startswith(prefix)]
+    return frame[kept].rename(columns=lambda c: c[len(prefix):] if c.startswith(prefix) else c)

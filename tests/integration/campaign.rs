@@ -74,22 +74,32 @@ fn small_with(path: &Path, landings: u64) {
     std::fs::write(path, text).unwrap();
 }
 
+/// `campaign` run as `order.len()` shards in the order `order` (on two threads each) into
+/// folders under `tmp`, and merged: the merged folder.
+fn sharded(campaign: &Campaign, tmp: &Path, order: &[u64]) -> PathBuf {
+    let mut parts = Vec::new();
+    for &k in order {
+        let dir = tmp.join(format!("shard-{k}"));
+        let shard = Shard {
+            index: k,
+            count: order.len() as u64,
+        };
+        run(campaign, Some(shard), Some(2), Some(&dir), false, |_| ()).unwrap();
+        parts.push(dir);
+    }
+    let merged = tmp.join("merged");
+    let refs: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
+    merge(&refs, &merged, |_| ()).unwrap();
+    merged
+}
+
 #[test]
 fn one_shard_or_four_in_any_order_on_any_threads_write_the_same_bytes() {
     let tmp = tempfile::tempdir().unwrap();
     let campaign = Campaign::load(small()).unwrap();
     let whole = tmp.path().join("whole");
     run(&campaign, None, Some(1), Some(&whole), false, |_| ()).unwrap();
-    let mut parts = Vec::new();
-    for k in [3, 1, 4, 2] {
-        let dir = tmp.path().join(format!("shard-{k}"));
-        let shard = Shard { index: k, count: 4 };
-        run(&campaign, Some(shard), Some(2), Some(&dir), false, |_| ()).unwrap();
-        parts.push(dir);
-    }
-    let merged = tmp.path().join("merged");
-    let refs: Vec<&Path> = parts.iter().map(PathBuf::as_path).collect();
-    merge(&refs, &merged, |_| ()).unwrap();
+    let merged = sharded(&campaign, tmp.path(), &[3, 1, 4, 2]);
     assert_same_files(&whole, &merged);
     // The landings come in order whatever finished first, and the history asked for is kept.
     let mut seen = Vec::new();
@@ -331,7 +341,7 @@ fn an_outcome_decided_by_one_input_has_its_analytic_probability() {
             .base
             .with(&[("touchdown.vertical_velocity", toml::Value::Float(-vv))])
             .unwrap();
-        let s = touchdown_registry::land(campaign.engine, &file, &sc, &mut (), None).unwrap();
+        let s = touchdown_registry::land(campaign.engines[0], &file, &sc, &mut (), None).unwrap();
         !s.past_capacity.is_empty()
     };
     let (mut lo, mut hi) = (5.0, 25.0);
@@ -359,8 +369,8 @@ fn an_outcome_decided_by_one_input_has_its_analytic_probability() {
         "V* = {v_star:.3} ft/s, p = {p:.4}: {outs} stroke-outs of 400, expected {low} to {high}"
     );
     // Every landing that did not stroke out is stable; the bound is below the fraction.
-    assert_eq!(stats.stable_within_capacity.landings, 400 - outs);
-    assert!(stats.stable_within_capacity.lower_bound < 1.0 - p + 0.05);
+    assert_eq!(stats.first().stable_within_capacity.landings, 400 - outs);
+    assert!(stats.first().stable_within_capacity.lower_bound < 1.0 - p + 0.05);
 }
 
 fn refused(text: &str) -> String {
@@ -447,6 +457,17 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "field `record.histories`: landing 24 is not in the campaign",
         ),
         ("engine = \"core\"", "engine = \"bullet\"", "field `engine`"),
+        (
+            "engine = \"core\"",
+            "engine = \"core\"\nengines = [\"core\", \"rapier\"]",
+            "field `engines`: name the engines either with `engine` (one) or with `engines`",
+        ),
+        (
+            "engine = \"core\"",
+            "engines = [\"core\", \"core\"]",
+            "field `engines`: core is named twice",
+        ),
+        ("engine = \"core\"", "engines = []", "field `engines`: expected at least one"),
         (
             "log_std_dev = 0.4",
             "log_std_dev = 1e300",
@@ -615,7 +636,8 @@ fn a_mujoco_campaign_lands_as_single_runs_do() {
             .base
             .with(&campaign.overrides(&draws(&campaign, i as u64)))
             .unwrap();
-        let alone = touchdown_registry::land(campaign.engine, &file, &sc, &mut (), None).unwrap();
+        let alone =
+            touchdown_registry::land(campaign.engines[0], &file, &sc, &mut (), None).unwrap();
         for (leg, col) in strokes.iter().enumerate() {
             assert_eq!(
                 row[*col],
@@ -712,4 +734,105 @@ fn mutated_campaign_files_are_refused_by_name_or_land_cleanly() {
             Ok(())
         })
         .unwrap();
+}
+
+/// A paired copy of the small campaign: `landings` landings on the core and rapier, each run
+/// 0.2 s (a one-value list), at `path`.
+fn paired_with(path: &Path, landings: u64) {
+    small_with(path, landings);
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("engine = \"core\"", "engines = [\"core\", \"rapier\"]");
+    let t_end = "\n[[dispersion]]\nfield = \"integrator.t_end\"\nunit = \"s\"\ndistribution = \"list\"\nvalues = [0.2]\n";
+    let text = text.replacen("\n[[correlation]]", &format!("{t_end}\n[[correlation]]"), 1);
+    std::fs::write(path, text).unwrap();
+}
+
+#[test]
+fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagree() {
+    use touchdown_scenario::schema::Engine;
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("paired.toml");
+    paired_with(&file, 6);
+    let campaign = Campaign::load(&file).unwrap();
+    assert_eq!(campaign.engines, [Engine::Core, Engine::Rapier]);
+    // The same bytes whole or in two shards merged, on one thread or two.
+    let whole = tmp.path().join("whole");
+    let mut rows = Vec::new();
+    let (manifest, _) = run(&campaign, None, Some(1), Some(&whole), false, |r| {
+        rows.push(r.clone())
+    })
+    .unwrap();
+    let merged = sharded(&campaign, tmp.path(), &[2, 1]);
+    assert_same_files(&whole, &merged);
+    for engine in ["core", "rapier"] {
+        assert!(whole
+            .join(format!("histories/{engine}/landing-3.csv"))
+            .is_file());
+    }
+    // One record a landing, a block per engine, each block what a single run of that engine
+    // measures.
+    let column = |name: &str| {
+        manifest
+            .columns
+            .iter()
+            .position(|c| c.name == name)
+            .unwrap()
+    };
+    let mut differ = 0;
+    for (i, row) in rows.iter().enumerate() {
+        let sc = campaign
+            .base
+            .with(&campaign.overrides(&draws(&campaign, i as u64)))
+            .unwrap();
+        for engine in [Engine::Core, Engine::Rapier] {
+            let alone = touchdown_registry::land(engine, &file, &sc, &mut (), None).unwrap();
+            for leg in 0..4 {
+                let name = format!("{}.leg{}.primary.stroke_m", engine.name(), leg + 1);
+                assert_eq!(
+                    row[column(&name)],
+                    Cell::Float(alone.max_primary_stroke_m[leg]),
+                    "landing {i}: {name}"
+                );
+            }
+        }
+        differ += usize::from(row[column("core.outcome")] != row[column("rapier.outcome")]);
+    }
+    // The pair's statistics count what the records show; every landing it lists is written as
+    // the scenario that ran it.
+    let text = std::fs::read_to_string(whole.join("statistics.json")).unwrap();
+    let stats: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let pair = &stats["pairs"][0];
+    assert_eq!(pair["engines"], serde_json::json!(["core", "rapier"]));
+    assert_eq!(pair["disagreement"]["landings"], serde_json::json!(differ));
+    assert_eq!(stats["engines"][1]["engine"], "rapier");
+    let worst = pair["worst"].as_array().unwrap();
+    assert!(!worst.is_empty());
+    for w in worst {
+        let landing = w["landing"].as_u64().unwrap();
+        let written =
+            touchdown_scenario::Scenario::load(whole.join(w["scenario_file"].as_str().unwrap()))
+                .unwrap();
+        let ran = campaign
+            .base
+            .with(&campaign.overrides(&draws(&campaign, landing)))
+            .unwrap();
+        assert_eq!(written.sha256(), ran.sha256(), "landing {landing}");
+    }
+    // `--engines` makes another campaign of the same file; an engine named twice is refused.
+    let single = Campaign::load(small()).unwrap();
+    let identity = single.identity.clone();
+    let paired = single
+        .with_engines(vec![Engine::Core, Engine::Rapier], "--engines")
+        .unwrap();
+    assert!(paired.paired() && paired.identity != identity);
+    let twice = Campaign::load(small())
+        .unwrap()
+        .with_engines(vec![Engine::Rapier, Engine::Rapier], "--engines")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        twice.contains("field `--engines`: rapier is named twice"),
+        "{twice}"
+    );
 }

@@ -45,7 +45,7 @@ fn overhead(c: &mut Criterion) {
         b.iter(|| {
             for sc in &scenarios {
                 let _ = black_box(touchdown_registry::land(
-                    campaign.engine,
+                    campaign.engines[0],
                     &campaign.scenario_path,
                     sc,
                     &mut (),

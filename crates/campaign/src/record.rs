@@ -9,6 +9,7 @@ use crate::spec::Campaign;
 use serde::{Deserialize, Serialize};
 use touchdown_record::capacity::SECONDARY_NAMES;
 use touchdown_record::{Outcome, RunError, Summary};
+use touchdown_scenario::schema::Engine;
 
 /// What a column holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -151,7 +152,8 @@ impl Failure {
     }
 }
 
-/// The columns of a campaign's records, in order.
+/// The columns of a campaign's records, in order: the landing, the values applied, then what
+/// each engine measured ([`prefix`]).
 pub fn columns(campaign: &Campaign) -> Vec<Column> {
     let col = |name: String, kind| Column { name, kind };
     let mut c = vec![col("landing".into(), Kind::Integer)];
@@ -163,8 +165,37 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
         };
         c.push(col(format!("applied.{}", d.column), kind));
     }
+    for engine in &campaign.engines {
+        engine_columns(
+            &prefix(campaign, *engine),
+            campaign.base_scenario.legs.len(),
+            &mut c,
+        );
+    }
+    c
+}
+
+/// What starts the names of an engine's columns: nothing in a campaign on one engine
+/// (`outcome`), the engine's name in a paired one (`core.outcome`, `rapier.outcome`).
+pub fn prefix(campaign: &Campaign, engine: Engine) -> String {
+    if campaign.paired() {
+        format!("{}.", engine.name())
+    } else {
+        String::new()
+    }
+}
+
+/// The columns of one engine's measurements of a landing of a vehicle with `legs` legs, their
+/// names after `prefix`, appended to `c`.
+fn engine_columns(prefix: &str, legs: usize, c: &mut Vec<Column>) {
+    let mut col = |name: String, kind| {
+        c.push(Column {
+            name: format!("{prefix}{name}"),
+            kind,
+        })
+    };
     for name in ["outcome", "failure", "stroke_outs"] {
-        c.push(col(name.into(), Kind::Text));
+        col(name.into(), Kind::Text);
     }
     for name in [
         "decision_time_s",
@@ -176,42 +207,54 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
         "energy_residual_j",
         "energy_scale_j",
     ] {
-        c.push(col(name.into(), Kind::Float));
+        col(name.into(), Kind::Float);
     }
-    for leg in 1..=campaign.base_scenario.legs.len() {
+    for leg in 1..=legs {
         for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
-            c.push(col(format!("leg{leg}.primary.{name}"), Kind::Float));
+            col(format!("leg{leg}.primary.{name}"), Kind::Float);
         }
         // Each leg's primary, then each secondary (3-1, 4-1) in compression and in tension.
         for s in SECONDARY_NAMES {
             for side in ["compression", "tension"] {
                 for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
-                    c.push(col(
-                        format!("leg{leg}.secondary_{s}.{side}.{name}"),
-                        Kind::Float,
-                    ));
+                    col(format!("leg{leg}.secondary_{s}.{side}.{name}"), Kind::Float);
                 }
             }
         }
     }
-    c.push(col("stop.time_s".into(), Kind::Float));
-    c.push(col("stop.law".into(), Kind::Text));
-    c.push(col("stop.leg".into(), Kind::Integer));
-    c.push(col("stop.message".into(), Kind::Text));
-    c.push(col("refusal.file".into(), Kind::Text));
-    c.push(col("refusal.field".into(), Kind::Text));
-    c.push(col("refusal.message".into(), Kind::Text));
-    c
+    col("stop.time_s".into(), Kind::Float);
+    col("stop.law".into(), Kind::Text);
+    col("stop.leg".into(), Kind::Integer);
+    col("stop.message".into(), Kind::Text);
+    col("refusal.file".into(), Kind::Text);
+    col("refusal.field".into(), Kind::Text);
+    col("refusal.message".into(), Kind::Text);
 }
 
 /// A landing's record: one cell per column of [`columns`].
 pub type Row = Vec<Cell>;
 
-/// Whether a record read back from a file is one a landing could have written: its `outcome`
-/// one of [`Status`]'s names and its `failure` one of [`Failure`]'s, both present (the
-/// statistics count every landing once by each). `Err` says which column holds what.
+/// Whether a record read back from a file is one a landing could have written: each engine's
+/// `outcome` one of [`Status`]'s names and its `failure` one of [`Failure`]'s, both present
+/// (the statistics count every landing once by each). `Err` says which column holds what.
 pub fn check(columns: &[Column], row: &Row) -> Result<(), String> {
+    let prefixes: Vec<&str> = columns
+        .iter()
+        .filter_map(|c| c.name.strip_suffix("outcome"))
+        .collect();
+    if prefixes.is_empty() {
+        return Err("no `outcome` column: every record has one per engine".into());
+    }
+    for p in prefixes {
+        check_block(columns, row, p)?;
+    }
+    Ok(())
+}
+
+/// [`check`] of the block of columns named after `prefix`.
+fn check_block(columns: &[Column], row: &Row, prefix: &str) -> Result<(), String> {
     let named = |column: &str, names: &[&str]| {
+        let column = format!("{prefix}{column}");
         let cell = columns
             .iter()
             .position(|c| c.name == column)
@@ -232,18 +275,27 @@ pub fn check(columns: &[Column], row: &Row) -> Result<(), String> {
     named("failure", &Failure::ALL.map(Failure::name))
 }
 
-/// The record of landing `landing` that ran with the values `applied` and ended with `result`:
-/// the summary of a landing that completed, or why it did not.
+/// The record of landing `landing` that ran with the values `applied` and ended on each of the
+/// campaign's engines with `results` (in the campaign's order): the summary of a landing that
+/// completed, or why it did not.
 pub fn row(
     campaign: &Campaign,
     landing: u64,
     applied: &[Value],
-    result: Result<&Summary, &RunError>,
+    results: &[Result<&Summary, &RunError>],
 ) -> Row {
     let legs = campaign.base_scenario.legs.len();
-    let mut r: Row = Vec::with_capacity(16 + applied.len() + legs * 15);
+    let mut r: Row = Vec::with_capacity(1 + applied.len() + results.len() * (18 + legs * 15));
     r.push(Cell::Integer(landing as i64));
     r.extend(applied.iter().map(Cell::from));
+    for result in results {
+        block(&mut r, legs, *result);
+    }
+    r
+}
+
+/// One engine's cells of a record ([`engine_columns`]), appended to `r`.
+fn block(r: &mut Row, legs: usize, result: Result<&Summary, &RunError>) {
     let measured = result.ok();
     let (status, failure, stroke_outs) = match result {
         Ok(s) => {
@@ -289,20 +341,20 @@ pub fn row(
                     s.max_primary_stroke_m[leg],
                     caps.primary.stroke_m,
                     s.peak_primary_force_n[leg],
-                    &mut r,
+                    r,
                 );
                 for j in 0..2 {
                     strut(
                         s.max_secondary_compression_m[leg][j],
                         caps.secondary_compression.stroke_m,
                         s.peak_secondary_compression_force_n[leg][j],
-                        &mut r,
+                        r,
                     );
                     strut(
                         s.max_secondary_tension_m[leg][j],
                         caps.secondary_tension.stroke_m,
                         s.peak_secondary_tension_force_n[leg][j],
-                        &mut r,
+                        r,
                     );
                 }
             }
@@ -335,7 +387,6 @@ pub fn row(
         }
         _ => r.extend(std::iter::repeat_n(Cell::Missing, 3)),
     }
-    r
 }
 
 /// The law's name as its serde name (`primary_honeycomb`).

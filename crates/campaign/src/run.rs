@@ -3,9 +3,9 @@
 
 use crate::distribution::{scores, Value};
 use crate::folder::{self, Staging};
+use crate::paired::Report;
 use crate::record::{self, Row};
 use crate::spec::Campaign;
-use crate::statistics::Statistics;
 use crate::store::{self, Manifest, Part};
 use crate::CampaignError;
 use rayon::prelude::*;
@@ -72,65 +72,67 @@ pub fn draws(campaign: &Campaign, landing: u64) -> Vec<Value> {
         .collect()
 }
 
-/// One landing: drawn, resolved, read back, landed; its record. `histories` is the folder for
-/// the histories the campaign asks for. An engine that cannot be set up stops the campaign.
+/// One landing: drawn, resolved, read back, landed on each of the campaign's engines; its
+/// record. `histories` is the folder for the histories the campaign asks for (a paired
+/// campaign's in a folder per engine). An engine that cannot be set up stops the campaign.
 pub fn land(
     campaign: &Campaign,
     landing: u64,
     histories: Option<&Path>,
 ) -> Result<Row, CampaignError> {
     let drawn = draws(campaign, landing);
+    let refused_by_all = |applied: &[Value], e: ScenarioError| {
+        let refused = RunError::Refused(e);
+        let results = vec![Err(&refused); campaign.engines.len()];
+        record::row(campaign, landing, applied, &results)
+    };
     let sc = match campaign
         .base
         .with(&campaign.overrides(&drawn))
         .and_then(|sc| same_legs(campaign, sc))
     {
         Ok(sc) => sc,
-        Err(e) => {
-            return Ok(record::row(
-                campaign,
-                landing,
-                &drawn,
-                Err(&RunError::Refused(e)),
-            ))
-        }
+        Err(e) => return Ok(refused_by_all(&drawn, e)),
     };
     let applied = read_back(campaign, landing, &sc)?;
-    if let Err(e) = touchdown_registry::require(campaign.engine, &sc) {
-        return Ok(record::row(
-            campaign,
-            landing,
-            &applied,
-            Err(&RunError::Refused(e)),
-        ));
-    }
     let history_dir = histories.filter(|_| campaign.histories.contains(&landing));
-    let result = match history_dir {
-        Some(dir) => land_with_history(campaign, landing, &sc, dir)?,
-        None => touchdown_registry::land_reusing_runner(
-            campaign.engine,
-            &campaign.scenario_path,
-            &sc,
-            &mut (),
-            None,
-        ),
-    };
-    match result {
-        Err(f) if matches!(f.error, RunError::Setup(_)) => Err(CampaignError::Engine(Box::new(f))),
-        r => Ok(record::row(
-            campaign,
-            landing,
-            &applied,
-            r.as_ref().map_err(|f| &f.error),
-        )),
+    let mut results = Vec::with_capacity(campaign.engines.len());
+    for &engine in &campaign.engines {
+        if let Err(e) = touchdown_registry::require(engine, &sc) {
+            results.push(Err(RunError::Refused(e)));
+            continue;
+        }
+        let dir = history_dir.map(|d| match campaign.paired() {
+            true => d.join(engine.name()),
+            false => d.to_path_buf(),
+        });
+        let result = match dir {
+            Some(dir) => land_with_history(campaign, engine, landing, &sc, &dir)?,
+            None => touchdown_registry::land_reusing_runner(
+                engine,
+                &campaign.scenario_path,
+                &sc,
+                &mut (),
+                None,
+            ),
+        };
+        match result {
+            Err(f) if matches!(f.error, RunError::Setup(_)) => {
+                return Err(CampaignError::Engine(Box::new(f)))
+            }
+            r => results.push(r.map_err(|f| f.error)),
+        }
     }
+    let results: Vec<_> = results.iter().map(Result::as_ref).collect();
+    Ok(record::row(campaign, landing, &applied, &results))
 }
 
-/// A landing whose history is kept: `dir/landing-N.csv` (the MuJoCo runner writes its own
-/// files into `dir/landing-N/`). A history that cannot be written is an error of the
+/// A landing on `engine` whose history is kept: `dir/landing-N.csv` (the MuJoCo runner writes
+/// its own files into `dir/landing-N/`). A history that cannot be written is an error of the
 /// campaign's folder (`Err`), not of the engine.
 fn land_with_history(
     campaign: &Campaign,
+    engine: Engine,
     landing: u64,
     sc: &Scenario,
     dir: &Path,
@@ -140,11 +142,11 @@ fn land_with_history(
         message,
     };
     std::fs::create_dir_all(dir).map_err(|e| store(dir, e.to_string()))?;
-    if campaign.engine == Engine::Mujoco {
+    if engine == Engine::Mujoco {
         let own = dir.join(format!("landing-{landing}"));
         std::fs::create_dir_all(&own).map_err(|e| store(&own, e.to_string()))?;
         return Ok(touchdown_registry::land_reusing_runner(
-            campaign.engine,
+            engine,
             &campaign.scenario_path,
             sc,
             &mut (),
@@ -155,7 +157,7 @@ fn land_with_history(
     let mut history =
         Some(History::create(&path, sc.legs.len()).map_err(|e| store(&path, e.to_string()))?);
     let summary = touchdown_registry::land_reusing_runner(
-        campaign.engine,
+        engine,
         &campaign.scenario_path,
         sc,
         &mut history,
@@ -292,7 +294,7 @@ pub fn run(
     out: Option<&Path>,
     resume: bool,
     mut each: impl FnMut(&Row),
-) -> Result<(Manifest, Statistics), CampaignError> {
+) -> Result<(Manifest, Report), CampaignError> {
     let range = shard.map_or(0..campaign.landings, |s| s.range(campaign.landings));
     let columns = record::columns(campaign);
     let part = Part {
@@ -385,7 +387,7 @@ fn finish(
     journal: store::Journal,
     manifest: Manifest,
     staging: Option<Staging>,
-) -> Result<(Manifest, Statistics), CampaignError> {
+) -> Result<(Manifest, Report), CampaignError> {
     journal.close()?;
     let statistics = store::complete(dir, &manifest)?;
     // Kept until the folder is complete, so that a run stopped while completing it resumes.
@@ -409,7 +411,7 @@ pub fn add(
     more: u64,
     threads: Option<usize>,
     mut each: impl FnMut(&Row),
-) -> Result<(Manifest, Statistics), CampaignError> {
+) -> Result<(Manifest, Report), CampaignError> {
     let old = store::read_manifest(dir)?;
     let columns = record::columns(campaign);
     let fresh = Manifest::new(campaign, old.landings, old.part.clone(), &columns);
@@ -481,7 +483,7 @@ pub fn merge(
     parts: &[&Path],
     out: &Path,
     mut each: impl FnMut(&Row),
-) -> Result<(Manifest, Statistics), CampaignError> {
+) -> Result<(Manifest, Report), CampaignError> {
     let mut read: Vec<(Manifest, &Path)> = parts
         .iter()
         .map(|p| store::read_manifest(p).map(|m| (m, *p)))

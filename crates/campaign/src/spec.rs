@@ -25,8 +25,10 @@ struct CampaignFile {
     #[serde(default)]
     description: String,
     scenario: String,
-    #[serde(default = "core")]
-    engine: Engine,
+    #[serde(default)]
+    engine: Option<Engine>,
+    #[serde(default)]
+    engines: Option<Vec<Engine>>,
     landings: u64,
     seed: u64,
     #[serde(default = "default_confidence")]
@@ -37,10 +39,6 @@ struct CampaignFile {
     dispersions: Vec<DispersionFile>,
     #[serde(default, rename = "correlation")]
     correlations: Vec<CorrelationFile>,
-}
-
-fn core() -> Engine {
-    Engine::Core
 }
 
 fn default_confidence() -> f64 {
@@ -136,8 +134,9 @@ pub struct Campaign {
     pub base: ScenarioBase,
     /// The base scenario resolved with no dispersion.
     pub base_scenario: Scenario,
-    /// The engine every landing runs on.
-    pub engine: Engine,
+    /// The engines every landing runs on, in the file's order: one, or several for a paired
+    /// campaign (each landing's draws landed on each; docs/campaigns.md, "Paired campaigns").
+    pub engines: Vec<Engine>,
     /// Landings planned.
     pub landings: u64,
     /// The seed of every landing's stream.
@@ -215,8 +214,17 @@ impl Campaign {
                 format!("the base scenario {}: {e}", scenario_path.display()),
             )
         })?;
-        touchdown_registry::require(spec.engine, &base_scenario)
-            .map_err(|e| err("engine", format!("{e}")))?;
+        let (engines, engines_field) = match (spec.engine, spec.engines) {
+            (Some(_), Some(_)) => return Err(err(
+                "engines",
+                "name the engines either with `engine` (one) or with `engines` (a list), not both"
+                    .into(),
+            )),
+            (Some(e), None) => (vec![e], "engine"),
+            (None, Some(list)) => (list, "engines"),
+            (None, None) => (vec![Engine::Core], "engine"),
+        };
+        check_engines(&engines, &base_scenario).map_err(|m| err(engines_field, m))?;
         let mut dispersions = Vec::with_capacity(spec.dispersions.len());
         for (i, d) in spec.dispersions.into_iter().enumerate() {
             let d = dispersion(&format!("dispersion[{i}]"), d, &base_scenario)
@@ -257,7 +265,7 @@ impl Campaign {
             scenario_path,
             base,
             base_scenario,
-            engine: spec.engine,
+            engines,
             landings: spec.landings,
             seed: spec.seed,
             confidence: spec.confidence,
@@ -270,6 +278,30 @@ impl Campaign {
 }
 
 impl Campaign {
+    /// The same campaign landed on `engines` instead of the file's (`--engines`): refused,
+    /// naming `argument`, unless they are distinct engines the base scenario lists as
+    /// applicable. Its identity names the engines, so that its parts and merges are not taken
+    /// for the file's.
+    pub fn with_engines(
+        mut self,
+        engines: Vec<Engine>,
+        argument: &str,
+    ) -> Result<Campaign, CampaignError> {
+        check_engines(&engines, &self.base_scenario)
+            .map_err(|m| CampaignError::field(&self.file, argument, m))?;
+        let names: Vec<&str> = engines.iter().map(|e| e.name()).collect();
+        self.identity =
+            crate::sha256_hex(format!("{} engines {}", self.identity, names.join(",")).as_bytes());
+        self.engines = engines;
+        Ok(self)
+    }
+
+    /// Whether the landings are paired across several engines (their records hold a block of
+    /// columns per engine).
+    pub fn paired(&self) -> bool {
+        self.engines.len() > 1
+    }
+
     /// The overrides that set each dispersed field to its value in `values` (one per
     /// dispersion, in order), for [`ScenarioBase::with`].
     pub fn overrides<'a>(&'a self, values: &[Value]) -> Vec<(&'a str, toml::Value)> {
@@ -279,6 +311,20 @@ impl Campaign {
             .map(|(d, v)| (d.field.as_str(), v.to_toml()))
             .collect()
     }
+}
+
+/// Checks a campaign's engines: at least one, none twice, each one the base scenario can run on.
+fn check_engines(engines: &[Engine], base: &Scenario) -> Result<(), String> {
+    if engines.is_empty() {
+        return Err("expected at least one engine".into());
+    }
+    for (i, e) in engines.iter().enumerate() {
+        if engines[..i].contains(e) {
+            return Err(format!("{e} is named twice: expected distinct engines"));
+        }
+        touchdown_registry::require(*e, base).map_err(|m| m.to_string())?;
+    }
+    Ok(())
 }
 
 /// SHA-256 (hex) of the campaign table without `landings`, written back as TOML (keys in

@@ -111,6 +111,31 @@ pub fn correlation(x: &[f64], y: &[f64]) -> f64 {
     }
 }
 
+/// The correlation of each numeric applied value with `indicator` (one per landing), the
+/// strongest first (ties by name); the cells of column `i` given by `column(i)`.
+pub fn correlations<E>(
+    columns: &[Column],
+    indicator: &[f64],
+    column: &mut impl FnMut(usize) -> Result<Vec<Cell>, E>,
+) -> Result<Vec<(String, f64)>, E> {
+    let mut out = Vec::new();
+    for (i, c) in columns.iter().enumerate() {
+        if !(c.name.starts_with("applied.") && c.kind == Kind::Float) {
+            continue;
+        }
+        let x: Vec<f64> = column(i)?
+            .into_iter()
+            .map(|c| match c {
+                Cell::Float(x) => x,
+                _ => 0.0,
+            })
+            .collect();
+        out.push((c.name.clone(), correlation(&x, indicator)));
+    }
+    out.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()).then_with(|| a.0.cmp(&b.0)));
+    Ok(out)
+}
+
 /// The one-sided Clopper-Pearson lower bound on a probability from `k` successes in `n`
 /// trials at confidence `confidence`: the p with P(X ≥ k | p) = 1 − confidence, the
 /// (1 − confidence) quantile of Beta(k, n − k + 1); 0 when k = 0.
@@ -134,16 +159,21 @@ pub fn zero_failure_landings(reliability: f64, confidence: f64) -> u64 {
 const RELIABILITIES: [f64; 4] = [0.9, 0.95, 0.99, 0.999];
 
 impl Statistics {
-    /// The statistics of `n` records with `columns` at confidence `confidence`, the cells of
+    /// The statistics of `n` records with `columns` at confidence `confidence`, of the engine
+    /// whose columns' names start with `prefix` ([`crate::record::prefix`]), the cells of
     /// column `i` (in landing order) given by `column(i)`: asked for one column at a time, so
     /// that one column is held at a time, never the records.
     pub fn from_columns<E>(
         columns: &[Column],
         n: u64,
         confidence: f64,
+        prefix: &str,
         mut column: impl FnMut(usize) -> Result<Vec<Cell>, E>,
     ) -> Result<Statistics, E> {
-        let index = |name: &str| columns.iter().position(|c| c.name == name);
+        let index = |name: &str| {
+            let name = format!("{prefix}{name}");
+            columns.iter().position(|c| c.name == name)
+        };
         let mut texts = |name: &str| -> Result<Vec<String>, E> {
             Ok(match index(name) {
                 Some(i) => column(i)?
@@ -190,10 +220,14 @@ impl Statistics {
         let within = landings_of(&failures, Failure::None.name());
         let mut percentiles = Vec::new();
         for (i, c) in columns.iter().enumerate() {
-            let measured = c.name.ends_with("stroke_of_capacity")
-                || c.name.ends_with("force_n")
-                || c.name == "peak_specific_force_m_s2"
-                || c.name == "min_stability_distance_m";
+            let Some(name) = c.name.strip_prefix(prefix) else {
+                continue;
+            };
+            let measured = !name.starts_with("applied.")
+                && (name.ends_with("stroke_of_capacity")
+                    || name.ends_with("force_n")
+                    || name == "peak_specific_force_m_s2"
+                    || name == "min_stability_distance_m");
             if !measured {
                 continue;
             }
@@ -222,29 +256,13 @@ impl Statistics {
             .map(|t| f64::from(u8::from(t == Status::Stable.name())))
             .collect();
         drop(outcome);
-        let mut influence = Vec::new();
-        for (i, c) in columns.iter().enumerate() {
-            if !(c.name.starts_with("applied.") && c.kind == Kind::Float) {
-                continue;
-            }
-            let x: Vec<f64> = column(i)?
-                .into_iter()
-                .map(|c| match c {
-                    Cell::Float(x) => x,
-                    _ => 0.0,
-                })
-                .collect();
-            influence.push(Influence {
-                column: c.name.clone(),
-                correlation_with_stable: correlation(&x, &stable_indicator),
-            });
-        }
-        influence.sort_by(|a, b| {
-            b.correlation_with_stable
-                .abs()
-                .total_cmp(&a.correlation_with_stable.abs())
-                .then_with(|| a.column.cmp(&b.column))
-        });
+        let influence = correlations(columns, &stable_indicator, &mut column)?
+            .into_iter()
+            .map(|(column, correlation_with_stable)| Influence {
+                column,
+                correlation_with_stable,
+            })
+            .collect();
         Ok(Statistics {
             landings: n,
             confidence,

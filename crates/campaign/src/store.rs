@@ -7,6 +7,7 @@
 //! it a row group at a time, and the statistics are computed from the Parquet file a column at
 //! a time ([`complete`]); the manifest is written last.
 
+use crate::paired::{self, Disagreement, EngineStatistics, Pair, Paired, Report};
 use crate::record::{Cell, Column, Kind, Row};
 use crate::spec::Campaign;
 use crate::statistics::Statistics;
@@ -55,14 +56,17 @@ pub struct Manifest {
     pub campaign_name: String,
     /// SHA-256 of the campaign without its landing count.
     pub campaign_sha256: String,
-    /// The engine.
-    pub engine: String,
+    /// The engines, in the campaign's order (several for a paired campaign).
+    pub engines: Vec<String>,
     /// The seed.
     pub seed: u64,
     /// The confidence of the statistics' lower bounds.
     pub confidence: f64,
     /// Landings of the whole campaign.
     pub landings: u64,
+    /// The scenario field each `applied.*` column holds, in the columns' order.
+    #[serde(default)]
+    pub dispersed_fields: Vec<String>,
     /// The base scenario file, as the campaign names it.
     pub base_scenario_file: String,
     /// SHA-256 of the resolved base scenario.
@@ -85,10 +89,15 @@ impl Manifest {
             campaign_file: campaign.file.clone(),
             campaign_name: campaign.name.clone(),
             campaign_sha256: campaign.identity.clone(),
-            engine: campaign.engine.name().into(),
+            engines: campaign.engines.iter().map(|e| e.name().into()).collect(),
             seed: campaign.seed,
             confidence: campaign.confidence,
             landings,
+            dispersed_fields: campaign
+                .dispersions
+                .iter()
+                .map(|d| d.field.clone())
+                .collect(),
             base_scenario_file: campaign.scenario_path.display().to_string(),
             base_scenario_sha256: campaign.base_scenario.sha256(),
             base_scenario: campaign.base_scenario.to_toml(),
@@ -118,7 +127,6 @@ impl Manifest {
                 &self.campaign_sha256,
                 &other.campaign_sha256,
             ),
-            ("engine", &self.engine, &other.engine),
             (
                 "base scenario (its SHA-256)",
                 &self.base_scenario_sha256,
@@ -129,6 +137,13 @@ impl Manifest {
             if a != b {
                 return Err(format!("{what}: {a} against {b}"));
             }
+        }
+        if self.engines != other.engines {
+            return Err(format!(
+                "engines: {} against {}",
+                self.engines.join(", "),
+                other.engines.join(", ")
+            ));
         }
         if self.columns != other.columns {
             return Err("the records' columns differ".into());
@@ -533,8 +548,10 @@ pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell
 
 /// Completes the campaign folder `dir` whose `landings.jsonl` is written (and closed): its
 /// Parquet file (from the records, a row group at a time), its statistics (from the Parquet
-/// file, a column at a time) and, last, its manifest. Returns the statistics.
-pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Statistics, CampaignError> {
+/// file, a column at a time; a paired campaign's also each pair's, and the landings they list
+/// as standalone scenario files in `disagreements/`) and, last, its manifest. Returns the
+/// statistics.
+pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Report, CampaignError> {
     let columns = &manifest.columns;
     let parquet_path = dir.join("landings.parquet");
     let mut parquet = Parquet::create(&parquet_path, columns)?;
@@ -545,9 +562,46 @@ pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Statistics, CampaignE
         |row| parquet.push(row),
     )?;
     parquet.close()?;
-    let statistics = Statistics::from_columns(columns, landings, manifest.confidence, |i| {
-        read_column(&parquet_path, columns, i)
-    })?;
+    let mut read = |i| read_column(&parquet_path, columns, i);
+    let confidence = manifest.confidence;
+    let statistics = if manifest.engines.len() < 2 {
+        Report::One(Statistics::from_columns(
+            columns, landings, confidence, "", &mut read,
+        )?)
+    } else {
+        let names: Vec<&str> = manifest.engines.iter().map(String::as_str).collect();
+        let prefixes: Vec<String> = names.iter().map(|e| format!("{e}.")).collect();
+        let mut engines = Vec::with_capacity(names.len());
+        for (engine, prefix) in names.iter().zip(&prefixes) {
+            engines.push(EngineStatistics {
+                engine: engine.to_string(),
+                statistics: Statistics::from_columns(
+                    columns, landings, confidence, prefix, &mut read,
+                )?,
+            });
+        }
+        let mut pairs = Vec::new();
+        for a in 0..names.len() {
+            for b in a + 1..names.len() {
+                pairs.push(paired::pair(
+                    columns,
+                    landings,
+                    confidence,
+                    [names[a], names[b]],
+                    [&prefixes[a], &prefixes[b]],
+                    &mut read,
+                    &|l| format!("{DISAGREEMENTS}/landing-{l}.toml"),
+                )?);
+            }
+        }
+        write_disagreements(dir, manifest, &pairs)?;
+        Report::Paired(Paired {
+            landings,
+            confidence,
+            engines,
+            pairs,
+        })
+    };
     let write = |name: &str, text: String| {
         let path = dir.join(name);
         let file = std::fs::File::create(&path).map_err(|e| CampaignError::store(&path, e))?;
@@ -560,6 +614,58 @@ pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Statistics, CampaignE
     write("statistics.json", pretty(&statistics) + "\n")?;
     write("manifest.json", pretty(manifest) + "\n")?;
     Ok(statistics)
+}
+
+/// The folder of a paired campaign's listed disagreements, as scenario files.
+pub const DISAGREEMENTS: &str = "disagreements";
+
+/// Writes each landing `pairs` list as the standalone scenario that ran it (the resolved base
+/// of the manifest with the values applied): `DISAGREEMENTS/landing-N.toml`.
+fn write_disagreements(
+    dir: &Path,
+    manifest: &Manifest,
+    pairs: &[Pair],
+) -> Result<(), CampaignError> {
+    let listed: std::collections::BTreeMap<u64, &Disagreement> = pairs
+        .iter()
+        .flat_map(|p| &p.worst)
+        .map(|w| (w.landing, w))
+        .collect();
+    if listed.is_empty() {
+        return Ok(());
+    }
+    let base_file = &manifest.base_scenario_file;
+    let base = touchdown_scenario::ScenarioBase::from_toml(base_file, &manifest.base_scenario)
+        .map_err(|e| CampaignError::store(Path::new(base_file), e))?;
+    let folder = dir.join(DISAGREEMENTS);
+    std::fs::create_dir_all(&folder).map_err(|e| CampaignError::store(&folder, e))?;
+    for (landing, w) in listed {
+        let applied = manifest
+            .columns
+            .iter()
+            .filter(|c| c.name.starts_with("applied."))
+            .map(|c| w.applied.get(&c.name));
+        let overrides: Vec<(&str, toml::Value)> = manifest
+            .dispersed_fields
+            .iter()
+            .zip(applied)
+            .filter_map(|(field, v)| {
+                let v = match v? {
+                    serde_json::Value::Bool(b) => toml::Value::Boolean(*b),
+                    serde_json::Value::String(s) => toml::Value::String(s.clone()),
+                    serde_json::Value::Number(x) => toml::Value::Float(x.as_f64()?),
+                    _ => return None,
+                };
+                Some((field.as_str(), v))
+            })
+            .collect();
+        let path = dir.join(&w.scenario_file);
+        let sc = base
+            .with(&overrides)
+            .map_err(|e| CampaignError::store(&path, format!("landing {landing}: {e}")))?;
+        std::fs::write(&path, sc.to_toml()).map_err(|e| CampaignError::store(&path, e))?;
+    }
+    Ok(())
 }
 
 /// Pretty JSON of a value made of plain numbers and strings.

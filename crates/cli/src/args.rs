@@ -373,6 +373,11 @@ pub(crate) struct CampaignArgs {
     /// Threads that land (default: one per core); the records do not depend on it.
     #[arg(long, value_name = "N")]
     pub(crate) threads: Option<usize>,
+    /// Land every landing's draws on each of these engines, comma-separated, instead of the
+    /// campaign file's `engine`/`engines`: with several, a paired campaign (a block of columns
+    /// per engine, and the statistics of each pair; docs/campaigns.md, "Paired campaigns").
+    #[arg(long, value_delimiter = ',', value_parser = str::parse::<Engine>)]
+    pub(crate) engines: Option<Vec<Engine>>,
     /// Also draw outcomes.png (every landing over the two dispersed inputs most correlated
     /// with a stable landing) and strokes.png (strokes against capacities) into --out, from
     /// the records there (matplotlib, in the project's Python environment).

@@ -4,10 +4,12 @@
 use crate::{out, outln};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
+use touchdown_campaign::paired::{Pair, Report};
 use touchdown_campaign::record::Row;
 use touchdown_campaign::store::{self, Manifest};
 use touchdown_campaign::{Campaign, Shard, Statistics};
 use touchdown_compare::report::text_table;
+use touchdown_scenario::schema::Engine;
 
 /// How a campaign reports on standard output.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -27,6 +29,8 @@ pub struct Options<'a> {
     pub add: Option<u64>,
     /// Threads (default: one per core).
     pub threads: Option<usize>,
+    /// The engines to land on instead of the file's (`--engines`).
+    pub engines: Option<Vec<Engine>>,
     /// The campaign's folder.
     pub out: Option<&'a Path>,
     /// Go on with a stopped run into `out`.
@@ -42,11 +46,18 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         shard,
         add,
         threads,
+        engines,
         out,
         resume,
         plot,
     } = options;
-    let campaign = Campaign::load(file)?;
+    let mut campaign = Campaign::load(file)?;
+    if let Some(engines) = engines {
+        campaign = campaign.with_engines(engines, "--engines")?;
+    }
+    if plot && campaign.paired() {
+        anyhow::bail!("--plot draws a campaign on one engine; a paired campaign's plots are not drawn yet (its statistics.json holds each pair's disagreements)");
+    }
     crate::warn(&campaign.base_scenario);
     if threads == Some(0) {
         anyhow::bail!("--threads: expected at least 1 thread");
@@ -87,7 +98,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
     if let (true, Some(dir)) = (plot, out) {
         let boundary = dir.join("boundary.json");
         let _ = std::fs::remove_file(&boundary);
-        if let Some(json) = base_boundary(&campaign, dir, &manifest, &statistics)? {
+        if let Some(json) = base_boundary(&campaign, dir, &manifest, statistics.first())? {
             std::fs::write(&boundary, json)
                 .with_context(|| format!("cannot write {}", boundary.display()))?;
         }
@@ -169,7 +180,7 @@ fn base_boundary(
         scan_step: None,
     };
     let vvs: Vec<f64> = (0..=6).map(|k| v0 + (v1 - v0) * k as f64 / 6.0).collect();
-    let engine = campaign.engine;
+    let engine = campaign.engines[0];
     let base = touchdown_scenario::ScenarioBase::load(&campaign.scenario_path)?;
     eprintln!("the engine's boundary of the base configuration, for the plot ...");
     let points = search_engines(&base, &[], &vvs, settings, &[engine], &[], &|| (), &|_| ())?;
@@ -211,7 +222,7 @@ pub fn merge(parts: &[PathBuf], out: &Path, output: Output) -> Result<()> {
     report(&manifest, &statistics, output)
 }
 
-fn report(manifest: &Manifest, statistics: &Statistics, output: Output) -> Result<()> {
+fn report(manifest: &Manifest, statistics: &Report, output: Output) -> Result<()> {
     match output {
         Output::JsonLines => outln!(
             "{}",
@@ -227,9 +238,28 @@ fn percent(x: f64) -> String {
     format!("{:.2} %", 100.0 * x)
 }
 
-/// The statistics as text.
-pub fn text(m: &Manifest, s: &Statistics) -> String {
-    let mut t = String::new();
+/// The statistics as text: of the one engine, or of each engine of a paired campaign and of
+/// each pair.
+pub fn text(m: &Manifest, report: &Report) -> String {
+    let mut t = header(m);
+    match report {
+        Report::One(s) => t += &engine_text(s),
+        Report::Paired(p) => {
+            for e in &p.engines {
+                t += &format!("== {} ==\n", e.engine);
+                t += &engine_text(&e.statistics);
+                t += "\n";
+            }
+            for pair in &p.pairs {
+                t += &pair_text(pair, p.landings, p.confidence);
+            }
+        }
+    }
+    t
+}
+
+/// What ran: the campaign, its base scenario, engines, seed and landings.
+fn header(m: &Manifest) -> String {
     let part = match &m.part.shard {
         Some(k) => format!(
             "shard {k}: landings {} to {} of {}",
@@ -239,10 +269,24 @@ pub fn text(m: &Manifest, s: &Statistics) -> String {
         ),
         None => format!("{} landings", m.landings),
     };
-    t += &format!(
-        "campaign: {} ({})\nbase scenario: {}\nengine: {}   seed: {}   {part}\n\n",
-        m.campaign_name, m.campaign_file, m.base_scenario_file, m.engine, m.seed
-    );
+    format!(
+        "campaign: {} ({})\nbase scenario: {}\n{}: {}   seed: {}   {part}\n\n",
+        m.campaign_name,
+        m.campaign_file,
+        m.base_scenario_file,
+        if m.engines.len() > 1 {
+            "engines (paired)"
+        } else {
+            "engine"
+        },
+        m.engines.join(", "),
+        m.seed
+    )
+}
+
+/// One engine's statistics as text.
+fn engine_text(s: &Statistics) -> String {
+    let mut t = String::new();
     let c = percent(s.confidence);
     t += &format!(
         "P(stable landing) = {} ({} of {}); lower bound at {c} confidence (one-sided Clopper-Pearson): {}\n",
@@ -318,4 +362,81 @@ pub fn text(m: &Manifest, s: &Statistics) -> String {
         }),
     );
     t
+}
+
+/// What a pair of engines says of each other, as text.
+fn pair_text(p: &Pair, landings: u64, confidence: f64) -> String {
+    let [a, b] = &p.engines;
+    let d = &p.disagreement;
+    let mut t = format!("== {a} against {b} (B = {b}, A = {a}) ==\n");
+    t += &format!(
+        "outcomes disagree on {} of {landings} landings: {}; {} interval (two-sided Clopper-Pearson): {} to {}\n",
+        d.landings,
+        percent(d.fraction),
+        percent(confidence),
+        percent(d.lower),
+        percent(d.upper)
+    );
+    t += &format!(
+        "stable on {a} only: {}; on {b} only: {}; McNemar's exact test of equal P(stable): p = {:.4}\n",
+        p.stable_on_a_only, p.stable_on_b_only, p.mcnemar_p_value
+    );
+    t += "\npaired differences B − A over the landings both measured (primaries and the stability\ndistance; statistics.json has every secondary)\n";
+    let shown = p
+        .differences
+        .iter()
+        .filter(|x| !x.column.contains(".secondary_"));
+    t += &text_table(
+        &[
+            "quantity (unit in its name)",
+            "landings",
+            "p05",
+            "p50",
+            "p95",
+            "max |B − A|",
+        ],
+        &[1, 2, 3, 4, 5],
+        shown.map(|x| {
+            vec![
+                x.column.clone(),
+                x.landings.to_string(),
+                format!("{:+.4}", x.p05),
+                format!("{:+.4}", x.p50),
+                format!("{:+.4}", x.p95),
+                format!("{:.4}", x.max_abs),
+            ]
+        }),
+    );
+    t += "\ndispersed inputs by their correlation with disagreement (point-biserial)\n";
+    t += &text_table(
+        &["input (unit in its name)", "correlation"],
+        &[1],
+        p.influence.iter().map(|i| {
+            vec![
+                i.column.trim_start_matches("applied.").to_string(),
+                format!("{:+.3}", i.correlation_with_disagreement),
+            ]
+        }),
+    );
+    t += "\nthe landings that disagree most (differing outcomes first, then the largest stroke difference)\n";
+    t += &text_table(
+        &[
+            "landing",
+            &format!("{a} / {b}"),
+            "largest |ΔS| m",
+            "strut",
+            "scenario file",
+        ],
+        &[0, 2],
+        p.worst.iter().map(|w| {
+            vec![
+                w.landing.to_string(),
+                format!("{} / {}", w.outcomes[0], w.outcomes[1]),
+                format!("{:.4}", w.largest_stroke_difference_m),
+                w.strut.clone(),
+                w.scenario_file.clone(),
+            ]
+        }),
+    );
+    t + "\n"
 }

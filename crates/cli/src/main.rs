@@ -294,6 +294,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                         shard: args.shard,
                         add: args.add,
                         threads: args.threads,
+                        engines: args.engines,
                         out: args.out.as_deref(),
                         resume: args.resume,
                         plot: args.plot,

@@ -895,8 +895,20 @@ fn campaign_arguments_are_checked_by_name() {
         assert!(stderr.contains(says), "{args:?}: {stderr}");
     };
     let small = "scenarios/campaigns/small.toml";
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 8] = [
         (&["--shard", "5/4"], "expected K/N with 1 ≤ K ≤ N"),
+        (
+            &["--engines", "core,core"],
+            "scenarios/campaigns/small.toml: field `--engines`: core is named twice",
+        ),
+        (
+            &["--engines", "core,bullet"],
+            "invalid value 'bullet' for '--engines",
+        ),
+        (
+            &["--engines", "core,rapier", "--out", "x", "--plot"],
+            "--plot draws a campaign on one engine",
+        ),
         (
             &["--plot"],
             "the following required arguments were not provided:\n  --out <DIR>",

@@ -1,0 +1,435 @@
+//! The statistics of a paired campaign (docs/campaigns.md, "Paired campaigns"): every landing's
+//! draws landed on several engines, each engine's statistics, and between each pair of engines
+//! what a reviewer needs: how often their outcomes disagree (with its exact binomial interval),
+//! McNemar's exact test of the difference in P(stable), the paired differences of every strut's
+//! maximum stroke and of the minimum stability distance, which inputs go with disagreement, and
+//! the landings that disagree most.
+
+use crate::record::{Cell, Column, Status};
+use crate::statistics::{correlations, Statistics};
+use serde::Serialize;
+use statrs::distribution::{Beta, Binomial, ContinuousCDF, DiscreteCDF};
+use touchdown_sampling::percentile;
+
+/// How many of the landings that disagree most each pair lists.
+pub const WORST: usize = 10;
+
+/// A campaign's statistics: of its one engine, or of each engine of a paired campaign and of
+/// each pair.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Report {
+    /// A campaign on one engine.
+    One(Statistics),
+    /// A paired campaign.
+    Paired(Paired),
+}
+
+impl Report {
+    /// The statistics of the first engine (the only one of a campaign on one engine).
+    pub fn first(&self) -> &Statistics {
+        match self {
+            Report::One(s) => s,
+            Report::Paired(p) => &p.engines[0].statistics,
+        }
+    }
+}
+
+/// The statistics of a paired campaign.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Paired {
+    /// Landings (each landed on every engine).
+    pub landings: u64,
+    /// Confidence of the bounds and intervals, in (0, 1).
+    pub confidence: f64,
+    /// Each engine's statistics, in the campaign's order.
+    pub engines: Vec<EngineStatistics>,
+    /// Each pair of engines, in the campaign's order (first with second, first with third, ...).
+    pub pairs: Vec<Pair>,
+}
+
+/// One engine's statistics in a paired campaign (its percentiles name its own columns).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EngineStatistics {
+    /// The engine.
+    pub engine: String,
+    /// Its statistics.
+    #[serde(flatten)]
+    pub statistics: Statistics,
+}
+
+/// A proportion with its two-sided exact (Clopper-Pearson) interval.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Interval {
+    /// Landings counted.
+    pub landings: u64,
+    /// Their fraction of the campaign.
+    pub fraction: f64,
+    /// The interval's lower end at the campaign's confidence.
+    pub lower: f64,
+    /// Its upper end.
+    pub upper: f64,
+}
+
+/// What two engines' landings of the same draws say of each other.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Pair {
+    /// The two engines, A then B.
+    pub engines: [String; 2],
+    /// Landings whose outcomes differ (`stable` against `unstable`, a run stopped on one
+    /// engine only, ...).
+    pub disagreement: Interval,
+    /// Landings stable on A and not on B.
+    pub stable_on_a_only: u64,
+    /// Landings stable on B and not on A.
+    pub stable_on_b_only: u64,
+    /// McNemar's exact two-sided p-value of P(stable) being the same on both engines: the
+    /// probability, with each discordant landing equally likely to be stable on either, of a
+    /// split at least as uneven as the one seen (1 with no discordant landing).
+    pub mcnemar_p_value: f64,
+    /// Percentiles of the differences B − A of each strut's maximum stroke and of the minimum
+    /// stability distance, over the landings both engines measured.
+    pub differences: Vec<Difference>,
+    /// Each numeric input's correlation with disagreement (the indicator of differing
+    /// outcomes), the strongest first.
+    pub influence: Vec<DisagreementInfluence>,
+    /// The landings that disagree most: those whose outcomes differ first, then the largest
+    /// difference of a strut's maximum stroke ([`WORST`] at most).
+    pub worst: Vec<Disagreement>,
+}
+
+/// Percentiles of a paired difference B − A.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Difference {
+    /// The measurement (its column's name without the engine, its unit in its name).
+    pub column: String,
+    /// Landings both engines measured.
+    pub landings: u64,
+    /// 5th percentile.
+    pub p05: f64,
+    /// Median.
+    pub p50: f64,
+    /// 95th percentile.
+    pub p95: f64,
+    /// Largest |B − A|.
+    pub max_abs: f64,
+}
+
+/// How strongly an input goes with the engines disagreeing.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DisagreementInfluence {
+    /// The applied value's column.
+    pub column: String,
+    /// Its correlation with disagreement (point-biserial), in [−1, 1]; 0 when either is
+    /// constant.
+    pub correlation_with_disagreement: f64,
+}
+
+/// A landing on which two engines disagree.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Disagreement {
+    /// The landing.
+    pub landing: u64,
+    /// Its outcome on A and on B.
+    pub outcomes: [String; 2],
+    /// The largest |B − A| of a strut's maximum stroke, m (0 when neither measured one).
+    pub largest_stroke_difference_m: f64,
+    /// That strut's column (without the engine), empty when none.
+    pub strut: String,
+    /// The values applied, by column.
+    pub applied: serde_json::Map<String, serde_json::Value>,
+    /// The landing as a standalone scenario file in the campaign's folder.
+    pub scenario_file: String,
+}
+
+/// The two-sided exact (Clopper-Pearson) interval of a probability from `k` successes in `n`
+/// trials at confidence `confidence`: [B(α/2; k, n − k + 1), B(1 − α/2; k + 1, n − k)], α = 1 −
+/// confidence, with 0 and 1 at k = 0 and k = n.
+pub fn clopper_pearson_interval(k: u64, n: u64, confidence: f64) -> (f64, f64) {
+    let alpha = 1.0 - confidence;
+    let (k_, n_) = (k as f64, n as f64);
+    let lower = match Beta::new(k_, n_ - k_ + 1.0) {
+        Ok(b) if k > 0 => b.inverse_cdf(alpha / 2.0),
+        _ => 0.0,
+    };
+    let upper = match Beta::new(k_ + 1.0, n_ - k_) {
+        Ok(b) if k < n => b.inverse_cdf(1.0 - alpha / 2.0),
+        _ => 1.0,
+    };
+    (lower, upper)
+}
+
+/// McNemar's exact two-sided p-value from the discordant counts `b` and `c`:
+/// min(1, 2·P(X ≤ min(b, c))) for X ~ Binomial(b + c, ½); 1 when b + c = 0.
+pub fn mcnemar_exact(b: u64, c: u64) -> f64 {
+    let m = b + c;
+    match Binomial::new(0.5, m) {
+        Ok(x) if m > 0 => (2.0 * x.cdf(b.min(c))).min(1.0),
+        _ => 1.0,
+    }
+}
+
+/// The measurements whose paired differences a pair reports: each strut's maximum stroke and
+/// the minimum stability distance (column names without the engine).
+fn compared(name: &str) -> bool {
+    name.ends_with(".stroke_m") || name == "min_stability_distance_m"
+}
+
+/// The statistics of the pair of engines whose columns start with `prefixes` (A, B) among
+/// `columns` of `n` landings, the cells of column `i` given by `column(i)` (one column held at
+/// a time, plus a few numbers a landing); `scenario_file(landing)` names where a listed
+/// landing's scenario is written.
+pub fn pair<E>(
+    columns: &[Column],
+    n: u64,
+    confidence: f64,
+    engines: [&str; 2],
+    prefixes: [&str; 2],
+    column: &mut impl FnMut(usize) -> Result<Vec<Cell>, E>,
+    scenario_file: &dyn Fn(u64) -> String,
+) -> Result<Pair, E> {
+    let index = |prefix: &str, name: &str| {
+        let name = format!("{prefix}{name}");
+        columns.iter().position(|c| c.name == name)
+    };
+    let text = |c: Cell| match c {
+        Cell::Text(s) => s,
+        _ => String::new(),
+    };
+    let mut outcomes = [Vec::new(), Vec::new()];
+    for (o, prefix) in outcomes.iter_mut().zip(prefixes) {
+        if let Some(i) = index(prefix, "outcome") {
+            *o = column(i)?.into_iter().map(text).collect();
+        }
+    }
+    let stable = |t: &String| t == Status::Stable.name();
+    let (mut a_only, mut b_only) = (0, 0);
+    let disagree: Vec<bool> = (0..n as usize)
+        .map(|i| {
+            let (a, b) = (&outcomes[0][i], &outcomes[1][i]);
+            match (stable(a), stable(b)) {
+                (true, false) => a_only += 1,
+                (false, true) => b_only += 1,
+                _ => {}
+            }
+            a != b
+        })
+        .collect();
+    let k = disagree.iter().filter(|d| **d).count() as u64;
+    let (lower, upper) = clopper_pearson_interval(k, n, confidence);
+    // Each landing's largest stroke difference and its strut, for the worst landings.
+    let mut largest = vec![(0.0f64, usize::MAX); n as usize];
+    let mut differences = Vec::new();
+    for (i, c) in columns.iter().enumerate() {
+        let Some(name) = c.name.strip_prefix(prefixes[0]) else {
+            continue;
+        };
+        if name.starts_with("applied.") || !compared(name) {
+            continue;
+        }
+        let Some(j) = index(prefixes[1], name) else {
+            continue;
+        };
+        let (a, b) = (column(i)?, column(j)?);
+        let mut d: Vec<f64> = Vec::new();
+        for (landing, (a, b)) in a.into_iter().zip(b).enumerate() {
+            if let (Cell::Float(a), Cell::Float(b)) = (a, b) {
+                d.push(b - a);
+                let slot = &mut largest[landing];
+                if name.ends_with(".stroke_m") && (b - a).abs() > slot.0 {
+                    *slot = ((b - a).abs(), i);
+                }
+            }
+        }
+        if d.is_empty() {
+            continue;
+        }
+        let max_abs = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        d.sort_by(f64::total_cmp);
+        differences.push(Difference {
+            column: name.to_string(),
+            landings: d.len() as u64,
+            p05: percentile(&d, 0.05),
+            p50: percentile(&d, 0.5),
+            p95: percentile(&d, 0.95),
+            max_abs,
+        });
+    }
+    let indicator: Vec<f64> = disagree.iter().map(|d| f64::from(u8::from(*d))).collect();
+    let influence = correlations(columns, &indicator, column)?
+        .into_iter()
+        .map(
+            |(column, correlation_with_disagreement)| DisagreementInfluence {
+                column,
+                correlation_with_disagreement,
+            },
+        )
+        .collect();
+    // The worst: differing outcomes first, then the largest stroke difference, then in order.
+    let mut order: Vec<usize> = (0..n as usize)
+        .filter(|i| disagree[*i] || largest[*i].0 > 0.0)
+        .collect();
+    order.sort_by(|x, y| {
+        (disagree[*y].cmp(&disagree[*x]))
+            .then_with(|| largest[*y].0.total_cmp(&largest[*x].0))
+            .then_with(|| x.cmp(y))
+    });
+    order.truncate(WORST);
+    let mut worst: Vec<Disagreement> = order
+        .iter()
+        .map(|&i| Disagreement {
+            landing: i as u64,
+            outcomes: [outcomes[0][i].clone(), outcomes[1][i].clone()],
+            largest_stroke_difference_m: largest[i].0,
+            strut: columns
+                .get(largest[i].1)
+                .and_then(|c| c.name.strip_prefix(prefixes[0]))
+                .unwrap_or_default()
+                .to_string(),
+            applied: serde_json::Map::new(),
+            scenario_file: scenario_file(i as u64),
+        })
+        .collect();
+    for (i, c) in columns.iter().enumerate() {
+        if !c.name.starts_with("applied.") || worst.is_empty() {
+            continue;
+        }
+        let cells = column(i)?;
+        for w in &mut worst {
+            let value = match &cells[w.landing as usize] {
+                Cell::Float(x) => serde_json::json!(x),
+                Cell::Integer(x) => serde_json::json!(x),
+                Cell::Text(s) => serde_json::json!(s),
+                Cell::Flag(b) => serde_json::json!(b),
+                Cell::Missing => serde_json::Value::Null,
+            };
+            w.applied.insert(c.name.clone(), value);
+        }
+    }
+    Ok(Pair {
+        engines: engines.map(str::to_string),
+        disagreement: Interval {
+            landings: k,
+            fraction: if n == 0 { 0.0 } else { k as f64 / n as f64 },
+            lower,
+            upper,
+        },
+        stable_on_a_only: a_only,
+        stable_on_b_only: b_only,
+        mcnemar_p_value: mcnemar_exact(a_only, b_only),
+        differences,
+        influence,
+        worst,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::record::Kind;
+
+    /// C(n, i)/2ⁿ summed term by term.
+    fn binomial_half_cdf(k: u64, n: u64) -> f64 {
+        let mut term = 0.5f64.powi(n as i32);
+        let mut sum = term;
+        for i in 1..=k {
+            term *= (n - i + 1) as f64 / i as f64;
+            sum += term;
+        }
+        sum
+    }
+
+    #[test]
+    fn mcnemar_is_the_exact_sign_test_of_the_discordant_landings() {
+        // 2 against 9: 2·P(X ≤ 2), X ~ B(11, ½) = 2·67/2048.
+        assert!((mcnemar_exact(2, 9) - 2.0 * 67.0 / 2048.0).abs() < 1e-12);
+        assert!((mcnemar_exact(9, 2) - mcnemar_exact(2, 9)).abs() < 1e-15);
+        for (b, c) in [(0u64, 7u64), (3, 3), (10, 25), (40, 31)] {
+            let exact = (2.0 * binomial_half_cdf(b.min(c), b + c)).min(1.0);
+            assert!((mcnemar_exact(b, c) - exact).abs() < 1e-9, "{b} {c}");
+        }
+        assert_eq!(mcnemar_exact(0, 0), 1.0);
+        assert_eq!(mcnemar_exact(5, 5), 1.0);
+    }
+
+    #[test]
+    fn the_exact_interval_has_its_textbook_ends() {
+        // k = 0: upper end 1 − (α/2)^(1/n); k = n: lower end (α/2)^(1/n).
+        let (lo, hi) = clopper_pearson_interval(0, 30, 0.95);
+        assert_eq!(lo, 0.0);
+        assert!((hi - (1.0 - 0.025f64.powf(1.0 / 30.0))).abs() < 1e-9);
+        let (lo, hi) = clopper_pearson_interval(30, 30, 0.95);
+        assert!((lo - 0.025f64.powf(1.0 / 30.0)).abs() < 1e-9);
+        assert_eq!(hi, 1.0);
+        // 5 of 20 at 95 %: the published interval 0.0866 to 0.4910.
+        let (lo, hi) = clopper_pearson_interval(5, 20, 0.95);
+        assert!(
+            (lo - 0.0866).abs() < 5e-4 && (hi - 0.4910).abs() < 5e-4,
+            "{lo} {hi}"
+        );
+    }
+
+    fn col(name: &str, kind: Kind) -> Column {
+        Column {
+            name: name.into(),
+            kind,
+        }
+    }
+
+    #[test]
+    fn a_pair_counts_its_disagreements_and_lists_the_worst_first() {
+        let columns = vec![
+            col("landing", Kind::Integer),
+            col("applied.v_m_s", Kind::Float),
+            col("core.outcome", Kind::Text),
+            col("core.leg1.primary.stroke_m", Kind::Float),
+            col("rapier.outcome", Kind::Text),
+            col("rapier.leg1.primary.stroke_m", Kind::Float),
+        ];
+        let t = |s: &str| Cell::Text(s.into());
+        let cells: Vec<Vec<Cell>> = vec![
+            (0..4).map(Cell::Integer).collect(),
+            [1.0, 2.0, 3.0, 4.0].map(Cell::Float).to_vec(),
+            vec![t("stable"), t("stable"), t("unstable"), t("stable")],
+            [0.10, 0.20, 0.30, 0.40].map(Cell::Float).to_vec(),
+            vec![t("stable"), t("unstable"), t("unstable"), t("stable")],
+            vec![
+                Cell::Float(0.10),
+                Cell::Float(0.25),
+                Cell::Missing,
+                Cell::Float(0.50),
+            ],
+        ];
+        let p = pair(
+            &columns,
+            4,
+            0.95,
+            ["core", "rapier"],
+            ["core.", "rapier."],
+            &mut |i| Ok::<_, ()>(cells[i].clone()),
+            &|l| format!("disagreements/landing-{l}.toml"),
+        )
+        .unwrap();
+        assert_eq!(p.disagreement.landings, 1);
+        assert_eq!((p.stable_on_a_only, p.stable_on_b_only), (1, 0));
+        assert!((p.mcnemar_p_value - 1.0).abs() < 1e-12);
+        let d = &p.differences[0];
+        assert_eq!(
+            (d.column.as_str(), d.landings),
+            ("leg1.primary.stroke_m", 3)
+        );
+        assert!((d.max_abs - 0.10).abs() < 1e-12);
+        // Landing 1 disagrees on its outcome; then landing 3 (0.10 m) before landing 0 (0 m,
+        // not listed).
+        let listed: Vec<u64> = p.worst.iter().map(|w| w.landing).collect();
+        assert_eq!(listed, [1, 3]);
+        assert_eq!(
+            p.worst[0].outcomes,
+            ["stable".to_string(), "unstable".into()]
+        );
+        assert_eq!(p.worst[0].strut, "leg1.primary.stroke_m");
+        assert_eq!(p.worst[0].applied["applied.v_m_s"], serde_json::json!(2.0));
+        assert_eq!(p.worst[1].scenario_file, "disagreements/landing-3.toml");
+        assert!(p.influence[0].correlation_with_disagreement.abs() > 0.0);
+    }
+}
