@@ -819,6 +819,39 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
             .unwrap();
         assert_eq!(written.sha256(), ran.sha256(), "landing {landing}");
     }
+    // The multi-fidelity estimate reads this folder with 12 core landings of the same draws.
+    let low = tmp.path().join("low");
+    let core_alone = Campaign::load(&file)
+        .unwrap()
+        .with_engines(vec![Engine::Core], "--engines")
+        .unwrap();
+    run(&core_alone, None, Some(2), Some(&low), false, |_| ()).unwrap();
+    touchdown_campaign::add(&core_alone, &low, 6, Some(2), |_| ()).unwrap();
+    let mf = touchdown_campaign::fidelity::from_folders(&whole, &low, Some(100.0)).unwrap();
+    assert_eq!(
+        (mf.low_engine.as_str(), mf.high_engine.as_str()),
+        ("core", "rapier")
+    );
+    assert_eq!((mf.paired_landings, mf.low_landings), (6, 12));
+    let rapier_stable = rows
+        .iter()
+        .filter(|r| r[column("rapier.outcome")] == Cell::Text("stable".into()))
+        .count();
+    assert_eq!(mf.stable.high_alone, rapier_stable as f64 / 6.0);
+    let other = tmp.path().join("other");
+    run(
+        &Campaign::load(small()).unwrap(),
+        None,
+        Some(2),
+        Some(&other),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    let refused = touchdown_campaign::fidelity::from_folders(&whole, &other, None)
+        .unwrap_err()
+        .to_string();
+    assert!(refused.contains("dispersed fields differs"), "{refused}");
     // `--engines` makes another campaign of the same file; an engine named twice is refused.
     let single = Campaign::load(small()).unwrap();
     let identity = single.identity.clone();
@@ -834,5 +867,59 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
     assert!(
         twice.contains("field `--engines`: rapier is named twice"),
         "{twice}"
+    );
+}
+
+/// The multi-fidelity interval's coverage, measured: the 1,000 paired core/MuJoCo landings of
+/// `lm-1-6-d3117-paired` (tests/data/fidelity/d3117-core-mujoco-stable.csv, from
+/// docs/campaigns/d3117-paired-mujoco.txt's run) taken as the population, whose MuJoCo P(stable)
+/// is known; 400 seeds each draw 2,000 landings from it with replacement, the first 200 paired,
+/// and the 95 % interval must cover the truth as often as stated, within three binomial
+/// standard errors of 400 trials. The variance reduction is what the engines' correlation
+/// allows (ρ ≈ 0.5: 1/(1 − 0.9·ρ²) ≈ 1.3).
+#[test]
+fn the_multi_fidelity_interval_covers_a_known_probability_as_stated() {
+    use touchdown_campaign::fidelity::estimate;
+    let text =
+        std::fs::read_to_string(root().join("tests/data/fidelity/d3117-core-mujoco-stable.csv"))
+            .unwrap();
+    let rows: Vec<(bool, bool)> = text
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<&str> = l.split(',').collect();
+            (v[1] == "1", v[2] == "1")
+        })
+        .collect();
+    assert_eq!(rows.len(), 1000);
+    let truth = rows.iter().filter(|r| r.1).count() as f64 / 1000.0;
+    // SplitMix64: a seeded stream without a dependency.
+    let mut state: u64 = 20261127;
+    let mut next = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    let (seeds, n, m) = (400, 200, 2000);
+    let (mut covered, mut reduction) = (0, 0.0);
+    for _ in 0..seeds {
+        let drawn: Vec<(bool, bool)> = (0..m).map(|_| rows[(next() % 1000) as usize]).collect();
+        let high: Vec<bool> = drawn[..n].iter().map(|r| r.1).collect();
+        let low_all: Vec<bool> = drawn.iter().map(|r| r.0).collect();
+        let e = estimate(&high, &low_all[..n], &low_all, 0.95, None).unwrap();
+        covered += usize::from(e.lower <= truth && truth <= e.upper);
+        reduction += e.variance_reduction / seeds as f64;
+    }
+    let coverage = covered as f64 / seeds as f64;
+    let sigma = (0.95f64 * 0.05 / seeds as f64).sqrt();
+    assert!(
+        (coverage - 0.95).abs() <= 3.0 * sigma,
+        "coverage {coverage} over {seeds} seeds"
+    );
+    assert!(
+        (1.2..1.5).contains(&reduction),
+        "mean variance reduction {reduction}"
     );
 }

@@ -10,12 +10,14 @@
 //! | [`distribution`] | the distributions' quantile functions and each landing's random stream |
 //! | [`record`] | a landing's record: the values applied (read back), its outcome and failure mode, its strokes, loads and margins |
 //! | [`statistics`] | P(stable) with its Clopper-Pearson lower bound, the zero-failure sizes, counts, percentiles |
+//! | [`fidelity`] | a multi-fidelity (control-variate) estimate of a probability on an expensive engine from a paired campaign and a larger one on a cheap engine |
 //! | [`paired`] | a paired campaign's statistics: each engine's, and between engines the disagreement rate, McNemar's test, paired differences, the worst landings |
 //! | [`store`] | the manifest, `landings.jsonl`, `landings.parquet`, `statistics.json` |
 //! | [`folder`] | the campaign's folder: built beside `--out`, locked, exchanged when complete |
 //! | [`run`] | landings in parallel, shards, merges and extensions |
 
 pub mod distribution;
+pub mod fidelity;
 pub mod folder;
 pub mod paired;
 pub mod record;

@@ -400,6 +400,26 @@ pub(crate) enum CampaignAction {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+    /// Estimate P(stable) on an expensive engine from a paired campaign of it with a cheap
+    /// engine and a larger campaign of the same draws on the cheap engine alone: a
+    /// multi-fidelity (control-variate) estimate with its interval (docs/campaigns.md,
+    /// "Multi-fidelity estimate").
+    Estimate {
+        /// The paired campaign's folder (two engines, e.g. `--engines core,rapier`).
+        #[arg(long, value_name = "DIR")]
+        paired: PathBuf,
+        /// The folder of the same campaign on the cheap engine alone (`--engines core`), with
+        /// at least as many landings (`--add` more).
+        #[arg(long, value_name = "DIR")]
+        low: PathBuf,
+        /// The cost of a landing on the expensive engine over one on the cheap engine, for the
+        /// variance reduction at equal cost (docs/performance.md, "Paired campaigns").
+        #[arg(long, value_name = "R")]
+        cost_ratio: Option<f64>,
+        /// Output format: text, or the estimate as JSON.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
 }
 
 /// `--set FIELD=VALUE`, on every command that takes a scenario.

@@ -4,6 +4,7 @@
 use crate::{out, outln};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
+use touchdown_campaign::fidelity::MultiFidelity;
 use touchdown_campaign::paired::{Pair, Report};
 use touchdown_campaign::record::Row;
 use touchdown_campaign::store::{self, Manifest};
@@ -439,4 +440,63 @@ fn pair_text(p: &Pair, landings: u64, confidence: f64) -> String {
         }),
     );
     t + "\n"
+}
+
+/// `touchdown campaign estimate --paired DIR --low DIR`: the multi-fidelity estimate of the
+/// expensive engine's probabilities (docs/campaigns.md, "Multi-fidelity estimate").
+pub fn estimate(paired: &Path, low: &Path, cost_ratio: Option<f64>, json: bool) -> Result<()> {
+    if let Some(r) = cost_ratio.filter(|r| !(r.is_finite() && *r > 0.0)) {
+        anyhow::bail!("--cost-ratio: expected a positive number, got {r}");
+    }
+    let e = touchdown_campaign::fidelity::from_folders(paired, low, cost_ratio)?;
+    if json {
+        outln!("{}", serde_json::to_string_pretty(&e)?)?;
+    } else {
+        out!("{}", estimate_text(&e))?;
+    }
+    Ok(())
+}
+
+/// A multi-fidelity estimate as text.
+fn estimate_text(e: &MultiFidelity) -> String {
+    let mut t = format!(
+        "multi-fidelity estimate on {high}: {n} landings paired with {low}, {m} on {low} alone (the same draws)\n\n",
+        high = e.high_engine,
+        low = e.low_engine,
+        n = e.paired_landings,
+        m = e.low_landings
+    );
+    let c = percent(e.confidence);
+    let interval = |[a, b]: [f64; 2]| format!("{} to {}", percent(a), percent(b));
+    let rows = [
+        ("P(stable)", &e.stable),
+        ("P(stable within capacity)", &e.stable_within_capacity),
+    ];
+    t += &text_table(
+        &[
+            "",
+            &format!("{} alone", e.high_engine),
+            &format!("its {c} interval (Wilson)"),
+            "estimate",
+            &format!("its {c} interval"),
+            "ρ",
+            "variance reduction",
+            "at equal cost",
+        ],
+        &[1, 3, 5, 6, 7],
+        rows.iter().map(|(name, x)| {
+            vec![
+                name.to_string(),
+                percent(x.high_alone),
+                interval(x.high_alone_interval),
+                percent(x.estimate),
+                interval([x.lower, x.upper]),
+                format!("{:.3}", x.correlation),
+                format!("{:.2}", x.variance_reduction),
+                x.variance_reduction_at_equal_cost
+                    .map_or("(give --cost-ratio)".into(), |r| format!("{r:.2}")),
+            ]
+        }),
+    );
+    t + "\nThe variance reduction is the high engine alone's variance over the estimate's at the same number of\nhigh landings; at equal cost, against the high engine alone given the cost of the low landings\n(--cost-ratio: a high landing's cost over a low one's).\n"
 }

@@ -288,6 +288,15 @@ fn run(cli: Cli) -> Result<Verdict> {
                 (Some(CampaignAction::Merge { parts, out, format }), _) => {
                     campaign::merge(&parts, &out, output(format))
                 }
+                (
+                    Some(CampaignAction::Estimate {
+                        paired,
+                        low,
+                        cost_ratio,
+                        format,
+                    }),
+                    _,
+                ) => campaign::estimate(&paired, &low, cost_ratio, matches!(format, Format::Json)),
                 (None, Some(file)) => campaign::run(
                     &file,
                     campaign::Options {

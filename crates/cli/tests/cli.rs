@@ -930,6 +930,23 @@ fn campaign_arguments_are_checked_by_name() {
     );
     let empty = temp("merge-empty");
     std::fs::create_dir_all(&empty).unwrap();
+    let e = empty.to_str().unwrap();
+    expect(
+        &["campaign", "estimate", "--paired", e, "--low", e],
+        "manifest.json: No such file or directory",
+    );
+    expect(
+        &[
+            "campaign",
+            "estimate",
+            "--paired",
+            e,
+            "--low",
+            e,
+            "--cost-ratio=0",
+        ],
+        "--cost-ratio: expected a positive number, got 0",
+    );
     expect(
         &["campaign", "merge", empty.to_str().unwrap(), "--out", "x"],
         "expected a campaign folder written by `touchdown campaign --out`",
