@@ -85,6 +85,18 @@ def write_csv(path, header, rows):
         w.writerows(rows)
 
 
+def finish_scatter(fig, ax, inputs, correlation, what, title, path):
+    """Labels the scatter of landings over the two `inputs` (columns) with each one's
+    `correlation` with `what`, titles it and writes it to `path`."""
+    for axis, column in zip((ax.set_xlabel, ax.set_ylabel), inputs):
+        axis(f"{column.removeprefix('applied.')}  (correlation with {what} {correlation[column]:+.2f})")
+    ax.set_title(title, fontsize=10)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="landings", title_fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def main(folder, out):
     folder, out = Path(folder), Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -118,14 +130,7 @@ def main(folder, out):
             b = read_boundary(boundary, x, y)
             if b["points"]:
                 ax.plot(*zip(*b["points"]), "k-", lw=1.8, label=f"{b['engine']} boundary of the base\nconfiguration (boundary.json)")
-        corr = dict(stats["influence"])
-        ax.set_xlabel(f"{x.removeprefix('applied.')}  (correlation with stable {corr[x]:+.2f})")
-        ax.set_ylabel(f"{y.removeprefix('applied.')}  (correlation with stable {corr[y]:+.2f})")
-        ax.set_title(title, fontsize=10)
-        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="landings", title_fontsize=8)
-        ax.grid(alpha=0.3)
-        fig.savefig(out / "outcomes.png", dpi=120)
-        plt.close(fig)
+        finish_scatter(fig, ax, (x, y), dict(stats["influence"]), "stable", title, out / "outcomes.png")
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=False)
     bins = []

@@ -380,9 +380,15 @@ pub(crate) struct CampaignArgs {
     pub(crate) engines: Option<Vec<Engine>>,
     /// Also draw outcomes.png (every landing over the two dispersed inputs most correlated
     /// with a stable landing) and strokes.png (strokes against capacities) into --out, from
-    /// the records there (matplotlib, in the project's Python environment).
+    /// the records there (matplotlib, in the project's Python environment); for a paired
+    /// campaign, disagreement.png and differences.png of its first pair of engines.
     #[arg(long, requires = "out")]
     pub(crate) plot: bool,
+    /// With a paired campaign: also write the K landings its first pair lists as disagreeing
+    /// most as pages that play every engine side by side, --out/views/landing-N.html (as
+    /// `touchdown view` writes them).
+    #[arg(long, value_name = "K", requires = "out")]
+    pub(crate) view: Option<usize>,
 }
 
 #[derive(Subcommand)]

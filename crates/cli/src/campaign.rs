@@ -38,6 +38,8 @@ pub struct Options<'a> {
     pub resume: bool,
     /// Whether to draw the plots into `out`.
     pub plot: bool,
+    /// How many of a paired campaign's worst landings to write as pages into `out/views`.
+    pub view: Option<usize>,
 }
 
 /// `touchdown campaign FILE`: runs the campaign (or a shard of it, or landings added to the
@@ -51,13 +53,14 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         out,
         resume,
         plot,
+        view,
     } = options;
     let mut campaign = Campaign::load(file)?;
     if let Some(engines) = engines {
         campaign = campaign.with_engines(engines, "--engines")?;
     }
-    if plot && campaign.paired() {
-        anyhow::bail!("--plot draws a campaign on one engine; a paired campaign's plots are not drawn yet (its statistics.json holds each pair's disagreements)");
+    if view.is_some() && !campaign.paired() {
+        anyhow::bail!("--view: a campaign on one engine has no disagreements to watch; name several engines (--engines core,rapier)");
     }
     crate::warn(&campaign.base_scenario);
     if threads == Some(0) {
@@ -96,7 +99,12 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
     if let Some(e) = unwritten {
         return Err(e);
     }
-    if let (true, Some(dir)) = (plot, out) {
+    if let (Some(k), Some(dir), Report::Paired(p)) = (view, out, &statistics) {
+        views(&campaign, dir, &p.pairs[0], k)?;
+    }
+    if let (true, Some(dir), Report::Paired(_)) = (plot, out, &statistics) {
+        crate::plots::paired(dir)?;
+    } else if let (true, Some(dir)) = (plot, out) {
         let boundary = dir.join("boundary.json");
         let _ = std::fs::remove_file(&boundary);
         if let Some(json) = base_boundary(&campaign, dir, &manifest, statistics.first())? {
@@ -106,6 +114,22 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         crate::plots::campaign(dir)?;
     }
     report(&manifest, &statistics, output)
+}
+
+/// The first `k` landings `pair` lists as disagreeing most, each landed again on every engine of
+/// the campaign from its scenario file and written as the page that plays them,
+/// `dir/views/landing-N.html` with its trajectory file.
+fn views(campaign: &Campaign, dir: &Path, pair: &Pair, k: usize) -> Result<()> {
+    let pages = dir.join("views");
+    for w in pair.worst.iter().take(k) {
+        let path = dir.join(&w.scenario_file);
+        let sc = touchdown_scenario::Scenario::load(&path)?;
+        let interval = touchdown_view::DEFAULT_FRAME_INTERVAL;
+        let (runs, _) = touchdown_compare::watch(&path, &sc, &campaign.engines, interval)?;
+        let (_, page) = crate::view::write(&pages, (&path, &sc, &[]), &runs, interval)?;
+        eprintln!("landing {}: {}", w.landing, page.display());
+    }
+    Ok(())
 }
 
 /// The engine's stability boundary of the base configuration over the campaign's range of

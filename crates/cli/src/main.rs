@@ -307,6 +307,7 @@ fn run(cli: Cli) -> Result<Verdict> {
                         out: args.out.as_deref(),
                         resume: args.resume,
                         plot: args.plot,
+                        view: args.view,
                     },
                     output(args.format),
                 ),

@@ -37,6 +37,12 @@ pub fn campaign(dir: &Path) -> Result<()> {
     run_script("plot_campaign.py", &[dir.as_os_str(), dir.as_os_str()])
 }
 
+/// `touchdown campaign --plot` of a paired campaign: disagreement.png and differences.png
+/// (python/figures/plot_paired.py) into its folder `dir`.
+pub fn paired(dir: &Path) -> Result<()> {
+    run_script("plot_paired.py", &[dir.as_os_str(), dir.as_os_str()])
+}
+
 /// `touchdown compare --out DIR [--plot]`: the traces of `c` (run from `scenario`) as CSV, its
 /// `document` (the comparison's JSON, with every verdict) as DIR/<stem>.json, and with `plot`
 /// their overlay as DIR/<stem>.png.

@@ -906,8 +906,8 @@ fn campaign_arguments_are_checked_by_name() {
             "invalid value 'bullet' for '--engines",
         ),
         (
-            &["--engines", "core,rapier", "--out", "x", "--plot"],
-            "--plot draws a campaign on one engine",
+            &["--view", "2", "--out", "x"],
+            "--view: a campaign on one engine has no disagreements to watch",
         ),
         (
             &["--plot"],
@@ -1643,4 +1643,72 @@ fn a_campaign_that_cannot_write_ends_with_the_path_and_claims_nothing() {
         "the error names the file: {stderr}"
     );
     assert!(!out_dir.exists(), "nothing claimed complete");
+}
+
+#[test]
+fn a_paired_campaign_draws_where_its_engines_disagree_and_writes_pages_of_the_worst() {
+    let dir = temp("paired-plots");
+    std::fs::create_dir_all(&*dir).unwrap();
+    let file = dir.join("paired.toml");
+    let small = std::fs::read_to_string(root().join("scenarios/campaigns/small.toml")).unwrap();
+    let t_end = "\n[[dispersion]]\nfield = \"integrator.t_end\"\nunit = \"s\"\ndistribution = \"list\"\nvalues = [0.2]\n\n[[correlation]]";
+    let text = small
+        .replace(
+            "scenario = \"../",
+            &format!("scenario = \"{}/scenarios/", root().display()),
+        )
+        .replace("engine = \"core\"", "engines = [\"core\", \"rapier\"]")
+        .replace("landings = 24", "landings = 4")
+        .replace("histories = [3]", "histories = []")
+        .replacen("\n[[correlation]]", t_end, 1);
+    std::fs::write(&file, text).unwrap();
+    let out = dir.join("out");
+    let run = touchdown(&[
+        "campaign",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--plot",
+        "--view",
+        "2",
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    for f in [
+        "disagreement.png",
+        "disagreement.csv",
+        "differences.png",
+        "differences.csv",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    // One row a landing, each with both engines' outcomes as the records hold them.
+    let csv = std::fs::read_to_string(out.join("disagreement.csv")).unwrap();
+    let records = std::fs::read_to_string(out.join("landings.jsonl")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + records.lines().count());
+    for (row, record) in csv.lines().skip(1).zip(records.lines()) {
+        let r: serde_json::Value = serde_json::from_str(record).unwrap();
+        let expected = format!(
+            ",{},{}",
+            r["core.outcome"].as_str().unwrap(),
+            r["rapier.outcome"].as_str().unwrap()
+        );
+        assert!(row.ends_with(&expected), "{row} against {expected}");
+    }
+    // The pages of the first two landings the pair lists.
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("statistics.json")).unwrap())
+            .unwrap();
+    for w in stats["pairs"][0]["worst"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .take(2)
+    {
+        let page = out.join(format!("views/landing-{}.html", w["landing"]));
+        assert!(page.is_file(), "{} missing", page.display());
+    }
 }
