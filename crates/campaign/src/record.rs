@@ -238,9 +238,12 @@ pub type Row = Vec<Cell>;
 /// `outcome` one of [`Status`]'s names and its `failure` one of [`Failure`]'s, both present
 /// (the statistics count every landing once by each). `Err` says which column holds what.
 pub fn check(columns: &[Column], row: &Row) -> Result<(), String> {
+    // Each engine's block: `outcome` itself, or `<engine>.outcome`.
     let prefixes: Vec<&str> = columns
         .iter()
+        .filter(|c| !c.name.starts_with("applied."))
         .filter_map(|c| c.name.strip_suffix("outcome"))
+        .filter(|p| p.is_empty() || p.ends_with('.'))
         .collect();
     if prefixes.is_empty() {
         return Err("no `outcome` column: every record has one per engine".into());

@@ -102,9 +102,12 @@ pub fn land(
             results.push(Err(RunError::Refused(e)));
             continue;
         }
-        let dir = history_dir.map(|d| match campaign.paired() {
-            true => d.join(engine.name()),
-            false => d.to_path_buf(),
+        let dir = history_dir.map(|d| {
+            if campaign.paired() {
+                d.join(engine.name())
+            } else {
+                d.to_path_buf()
+            }
         });
         let result = match dir {
             Some(dir) => land_with_history(campaign, engine, landing, &sc, &dir)?,
