@@ -12,7 +12,7 @@
 //! Wilson's rather than the normal's because a proportion near 0 or 1 is what a landing
 //! campaign estimates, and there the normal interval undercovers.
 
-use crate::record::{Cell, Failure, Status};
+use crate::record::{prefix, Cell, Failure, Status};
 use crate::store::{self, Manifest};
 use crate::CampaignError;
 use serde::Serialize;
@@ -242,15 +242,10 @@ pub fn from_folders(
     };
     let stable = Status::Stable.name();
     let within = Failure::None.name();
+    let in_pair = |engine: &str, name: &str| format!("{}{name}", prefix(engine, p.engines.len()));
     let pairs = |column_name: &str, yes: &str| -> Result<[Vec<bool>; 3], CampaignError> {
-        let high = indicator(
-            column(paired, &p, &format!("{high_engine}.{column_name}"))?,
-            yes,
-        );
-        let low_paired = indicator(
-            column(paired, &p, &format!("{low_engine}.{column_name}"))?,
-            yes,
-        );
+        let high = indicator(column(paired, &p, &in_pair(high_engine, column_name))?, yes);
+        let low_paired = indicator(column(paired, &p, &in_pair(low_engine, column_name))?, yes);
         let low_all = indicator(column(low, &l, column_name)?, yes);
         if low_all[..n as usize] != low_paired[..] {
             return Err(refuse(format!(

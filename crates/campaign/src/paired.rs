@@ -6,9 +6,9 @@
 //! the landings that disagree most.
 
 use crate::record::{Cell, Column, Status};
-use crate::statistics::{correlations, Statistics};
+use crate::statistics::{correlations, Interval, Statistics};
 use serde::Serialize;
-use statrs::distribution::{Beta, Binomial, ContinuousCDF, DiscreteCDF};
+use statrs::distribution::{Binomial, DiscreteCDF};
 use touchdown_sampling::percentile;
 
 /// How many of the landings that disagree most each pair lists.
@@ -56,19 +56,6 @@ pub struct EngineStatistics {
     /// Its statistics.
     #[serde(flatten)]
     pub statistics: Statistics,
-}
-
-/// A proportion with its two-sided exact (Clopper-Pearson) interval.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Interval {
-    /// Landings counted.
-    pub landings: u64,
-    /// Their fraction of the campaign.
-    pub fraction: f64,
-    /// The interval's lower end at the campaign's confidence.
-    pub lower: f64,
-    /// Its upper end.
-    pub upper: f64,
 }
 
 /// What two engines' landings of the same draws say of each other.
@@ -142,23 +129,6 @@ pub struct Disagreement {
     pub scenario_file: String,
 }
 
-/// The two-sided exact (Clopper-Pearson) interval of a probability from `k` successes in `n`
-/// trials at confidence `confidence`: [B(α/2; k, n − k + 1), B(1 − α/2; k + 1, n − k)], α = 1 −
-/// confidence, with 0 and 1 at k = 0 and k = n.
-pub fn clopper_pearson_interval(k: u64, n: u64, confidence: f64) -> (f64, f64) {
-    let alpha = 1.0 - confidence;
-    let (k_, n_) = (k as f64, n as f64);
-    let lower = match Beta::new(k_, n_ - k_ + 1.0) {
-        Ok(b) if k > 0 => b.inverse_cdf(alpha / 2.0),
-        _ => 0.0,
-    };
-    let upper = match Beta::new(k_ + 1.0, n_ - k_) {
-        Ok(b) if k < n => b.inverse_cdf(1.0 - alpha / 2.0),
-        _ => 1.0,
-    };
-    (lower, upper)
-}
-
 /// McNemar's exact two-sided p-value from the discordant counts `b` and `c`:
 /// min(1, 2·P(X ≤ min(b, c))) for X ~ Binomial(b + c, ½); 1 when b + c = 0.
 pub fn mcnemar_exact(b: u64, c: u64) -> f64 {
@@ -216,7 +186,6 @@ pub fn pair<E>(
         })
         .collect();
     let k = disagree.iter().filter(|d| **d).count() as u64;
-    let (lower, upper) = clopper_pearson_interval(k, n, confidence);
     // Each landing's largest stroke difference and its strut, for the worst landings.
     let mut largest = vec![(0.0f64, usize::MAX); n as usize];
     let mut differences = Vec::new();
@@ -308,12 +277,7 @@ pub fn pair<E>(
     }
     Ok(Pair {
         engines: engines.map(str::to_string),
-        disagreement: Interval {
-            landings: k,
-            fraction: if n == 0 { 0.0 } else { k as f64 / n as f64 },
-            lower,
-            upper,
-        },
+        disagreement: Interval::of(k, n, confidence),
         stable_on_a_only: a_only,
         stable_on_b_only: b_only,
         mcnemar_p_value: mcnemar_exact(a_only, b_only),
@@ -350,23 +314,6 @@ mod tests {
         }
         assert_eq!(mcnemar_exact(0, 0), 1.0);
         assert_eq!(mcnemar_exact(5, 5), 1.0);
-    }
-
-    #[test]
-    fn the_exact_interval_has_its_textbook_ends() {
-        // k = 0: upper end 1 − (α/2)^(1/n); k = n: lower end (α/2)^(1/n).
-        let (lo, hi) = clopper_pearson_interval(0, 30, 0.95);
-        assert_eq!(lo, 0.0);
-        assert!((hi - (1.0 - 0.025f64.powf(1.0 / 30.0))).abs() < 1e-9);
-        let (lo, hi) = clopper_pearson_interval(30, 30, 0.95);
-        assert!((lo - 0.025f64.powf(1.0 / 30.0)).abs() < 1e-9);
-        assert_eq!(hi, 1.0);
-        // 5 of 20 at 95 %: the published interval 0.0866 to 0.4910.
-        let (lo, hi) = clopper_pearson_interval(5, 20, 0.95);
-        assert!(
-            (lo - 0.0866).abs() < 5e-4 && (hi - 0.4910).abs() < 5e-4,
-            "{lo} {hi}"
-        );
     }
 
     fn col(name: &str, kind: Kind) -> Column {

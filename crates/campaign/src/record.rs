@@ -9,7 +9,6 @@ use crate::spec::Campaign;
 use serde::{Deserialize, Serialize};
 use touchdown_record::capacity::SECONDARY_NAMES;
 use touchdown_record::{Outcome, RunError, Summary};
-use touchdown_scenario::schema::Engine;
 
 /// What a column holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -167,7 +166,7 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
     }
     for engine in &campaign.engines {
         engine_columns(
-            &prefix(campaign, *engine),
+            &prefix(engine.name(), campaign.engines.len()),
             campaign.base_scenario.legs.len(),
             &mut c,
         );
@@ -175,11 +174,12 @@ pub fn columns(campaign: &Campaign) -> Vec<Column> {
     c
 }
 
-/// What starts the names of an engine's columns: nothing in a campaign on one engine
-/// (`outcome`), the engine's name in a paired one (`core.outcome`, `rapier.outcome`).
-pub fn prefix(campaign: &Campaign, engine: Engine) -> String {
-    if campaign.paired() {
-        format!("{}.", engine.name())
+/// What starts the names of the columns of `engine` (its name) in a campaign on `engines`
+/// engines: nothing on one (`outcome`), the engine's name and a dot on several, a paired
+/// campaign (`core.outcome`, `rapier.outcome`).
+pub fn prefix(engine: &str, engines: usize) -> String {
+    if engines > 1 {
+        format!("{engine}.")
     } else {
         String::new()
     }

@@ -30,6 +30,42 @@ pub struct Proportion {
     pub lower_bound: f64,
 }
 
+/// A proportion with its two-sided exact (Clopper-Pearson) interval.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Interval {
+    /// Landings counted.
+    pub landings: u64,
+    /// Their fraction of the campaign.
+    pub fraction: f64,
+    /// The interval's lower end at the campaign's confidence.
+    pub lower: f64,
+    /// Its upper end.
+    pub upper: f64,
+}
+
+impl Interval {
+    /// The fraction of `k` landings in `n` with its interval at `confidence`
+    /// ([`clopper_pearson_interval`]).
+    pub fn of(k: u64, n: u64, confidence: f64) -> Interval {
+        let (lower, upper) = clopper_pearson_interval(k, n, confidence);
+        Interval {
+            landings: k,
+            fraction: fraction(k, n),
+            lower,
+            upper,
+        }
+    }
+}
+
+/// `k` landings' fraction of `n` (0 of none).
+fn fraction(k: u64, n: u64) -> f64 {
+    if n == 0 {
+        0.0
+    } else {
+        k as f64 / n as f64
+    }
+}
+
 /// Landings a campaign needs to show a reliability at the campaign's confidence with no
 /// failure at all: n = ⌈ln(1 − C)/ln R⌉.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -149,6 +185,19 @@ pub fn clopper_pearson_lower(k: u64, n: u64, confidence: f64) -> f64 {
     }
 }
 
+/// The two-sided exact (Clopper-Pearson) interval of a probability from `k` successes in `n`
+/// trials at confidence `confidence`: each end the one-sided bound at (1 + confidence)/2, the
+/// upper one that of the failures, [L(k, n), 1 − L(n − k, n)] with L
+/// [`clopper_pearson_lower`] (that is [B(α/2; k, n − k + 1), B(1 − α/2; k + 1, n − k)], α = 1
+/// − confidence, with 0 and 1 at k = 0 and k = n).
+pub fn clopper_pearson_interval(k: u64, n: u64, confidence: f64) -> (f64, f64) {
+    let one_sided = 0.5 + confidence / 2.0;
+    (
+        clopper_pearson_lower(k, n, one_sided),
+        1.0 - clopper_pearson_lower(n.saturating_sub(k), n, one_sided),
+    )
+}
+
 /// Landings that show reliability `reliability` at confidence `confidence` with no failure:
 /// the least n with Rⁿ ≤ 1 − C.
 pub fn zero_failure_landings(reliability: f64, confidence: f64) -> u64 {
@@ -207,7 +256,7 @@ impl Statistics {
         drop((failure, outs));
         let proportion = |k: u64| Proportion {
             landings: k,
-            fraction: if n == 0 { 0.0 } else { k as f64 / n as f64 },
+            fraction: fraction(k, n),
             lower_bound: clopper_pearson_lower(k, n, confidence),
         };
         let landings_of = |counts: &[Count], name: &str| {
@@ -339,6 +388,23 @@ mod tests {
             (clopper_pearson_lower(1, 20, 0.9) - (1.0 - 0.9f64.powf(1.0 / 20.0))).abs() < 1e-12
         );
         assert_eq!(clopper_pearson_lower(0, 50, 0.95), 0.0);
+    }
+
+    #[test]
+    fn the_exact_interval_has_its_textbook_ends() {
+        // k = 0: upper end 1 − (α/2)^(1/n); k = n: lower end (α/2)^(1/n).
+        let (lo, hi) = clopper_pearson_interval(0, 30, 0.95);
+        assert_eq!(lo, 0.0);
+        assert!((hi - (1.0 - 0.025f64.powf(1.0 / 30.0))).abs() < 1e-9);
+        let (lo, hi) = clopper_pearson_interval(30, 30, 0.95);
+        assert!((lo - 0.025f64.powf(1.0 / 30.0)).abs() < 1e-9);
+        assert_eq!(hi, 1.0);
+        // 5 of 20 at 95 %: the published interval 0.0866 to 0.4910.
+        let (lo, hi) = clopper_pearson_interval(5, 20, 0.95);
+        assert!(
+            (lo - 0.0866).abs() < 5e-4 && (hi - 0.4910).abs() < 5e-4,
+            "{lo} {hi}"
+        );
     }
 
     #[test]

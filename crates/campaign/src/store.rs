@@ -8,7 +8,7 @@
 //! a time ([`complete`]); the manifest is written last.
 
 use crate::paired::{self, Disagreement, EngineStatistics, Pair, Paired, Report};
-use crate::record::{Cell, Column, Kind, Row};
+use crate::record::{prefix, Cell, Column, Kind, Row};
 use crate::spec::Campaign;
 use crate::statistics::Statistics;
 use crate::CampaignError;
@@ -570,7 +570,7 @@ pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Report, CampaignError
         )?)
     } else {
         let names: Vec<&str> = manifest.engines.iter().map(String::as_str).collect();
-        let prefixes: Vec<String> = names.iter().map(|e| format!("{e}.")).collect();
+        let prefixes: Vec<String> = names.iter().map(|e| prefix(e, names.len())).collect();
         let mut engines = Vec::with_capacity(names.len());
         for (engine, prefix) in names.iter().zip(&prefixes) {
             engines.push(EngineStatistics {

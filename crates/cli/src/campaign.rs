@@ -341,16 +341,11 @@ fn engine_text(s: &Statistics) -> String {
                 .map(|f| vec!["stroked out".into(), f.name.clone(), f.landings.to_string()]),
         );
     t += &text_table(&["", "", "landings"], &[2], counts);
-    t += "\ndispersed inputs by their correlation with a stable landing (point-biserial)\n";
-    t += &text_table(
-        &["input (unit in its name)", "correlation"],
-        &[1],
-        s.influence.iter().map(|i| {
-            vec![
-                i.column.trim_start_matches("applied.").to_string(),
-                format!("{:+.3}", i.correlation_with_stable),
-            ]
-        }),
+    t += &influence_table(
+        "a stable landing",
+        s.influence
+            .iter()
+            .map(|i| (i.column.as_str(), i.correlation_with_stable)),
     );
     t += &format!("\nlandings to show a reliability with no failure at {c} confidence\n");
     t += &text_table(
@@ -387,6 +382,23 @@ fn engine_text(s: &Statistics) -> String {
         }),
     );
     t
+}
+
+/// The dispersed inputs (applied columns) with their correlation with `what`, strongest first,
+/// as a titled table.
+fn influence_table<'a>(what: &str, rows: impl Iterator<Item = (&'a str, f64)>) -> String {
+    let title = format!("\ndispersed inputs by their correlation with {what} (point-biserial)\n");
+    title
+        + &text_table(
+            &["input (unit in its name)", "correlation"],
+            &[1],
+            rows.map(|(column, r)| {
+                vec![
+                    column.trim_start_matches("applied.").to_string(),
+                    format!("{r:+.3}"),
+                ]
+            }),
+        )
 }
 
 /// What a pair of engines says of each other, as text.
@@ -432,16 +444,11 @@ fn pair_text(p: &Pair, landings: u64, confidence: f64) -> String {
             ]
         }),
     );
-    t += "\ndispersed inputs by their correlation with disagreement (point-biserial)\n";
-    t += &text_table(
-        &["input (unit in its name)", "correlation"],
-        &[1],
-        p.influence.iter().map(|i| {
-            vec![
-                i.column.trim_start_matches("applied.").to_string(),
-                format!("{:+.3}", i.correlation_with_disagreement),
-            ]
-        }),
+    t += &influence_table(
+        "disagreement",
+        p.influence
+            .iter()
+            .map(|i| (i.column.as_str(), i.correlation_with_disagreement)),
     );
     t += "\nthe landings that disagree most (differing outcomes first, then the largest stroke difference)\n";
     t += &text_table(
