@@ -146,37 +146,46 @@ fn compared(name: &str) -> bool {
 }
 
 /// The statistics of the pair of engines whose columns start with `prefixes` (A, B) among
-/// `columns` of `n` landings, the cells of column `i` given by `column(i)` (one column held at
-/// a time, plus a few numbers a landing); `scenario_file(landing)` names where a listed
-/// landing's scenario is written.
+/// `columns` of `n` landings, `column(i, visit)` calling `visit` with each cell of column `i`
+/// in landing order (what is kept: two columns of numbers at a time and a few numbers a
+/// landing, about 50 bytes a landing); `scenario_file(landing)` names where a listed landing's
+/// scenario is written.
 pub fn pair<E>(
     columns: &[Column],
     n: u64,
     confidence: f64,
     engines: [&str; 2],
     prefixes: [&str; 2],
-    column: &mut impl FnMut(usize) -> Result<Vec<Cell>, E>,
+    column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
     scenario_file: &dyn Fn(u64) -> String,
 ) -> Result<Pair, E> {
     let index = |prefix: &str, name: &str| {
         let name = format!("{prefix}{name}");
         columns.iter().position(|c| c.name == name)
     };
-    let text = |c: Cell| match c {
-        Cell::Text(s) => s,
-        _ => String::new(),
-    };
+    // Each landing's outcome on each engine, as its place in `Status::ALL` (`NONE`: no outcome).
+    const NONE: u8 = u8::MAX;
+    let name = |code: u8| Status::ALL.get(usize::from(code)).map_or("", |s| s.name());
     let mut outcomes = [Vec::new(), Vec::new()];
     for (o, prefix) in outcomes.iter_mut().zip(prefixes) {
-        if let Some(i) = index(prefix, "outcome") {
-            *o = column(i)?.into_iter().map(text).collect();
+        match index(prefix, "outcome") {
+            Some(i) => column(i, &mut |c| {
+                o.push(match c {
+                    Cell::Text(t) => Status::ALL
+                        .iter()
+                        .position(|s| s.name() == t)
+                        .map_or(NONE, |k| k as u8),
+                    _ => NONE,
+                })
+            })?,
+            None => *o = vec![NONE; n as usize],
         }
     }
-    let stable = |t: &String| t == Status::Stable.name();
+    let stable = |code: u8| name(code) == Status::Stable.name();
     let (mut a_only, mut b_only) = (0, 0);
     let disagree: Vec<bool> = (0..n as usize)
         .map(|i| {
-            let (a, b) = (&outcomes[0][i], &outcomes[1][i]);
+            let (a, b) = (outcomes[0][i], outcomes[1][i]);
             match (stable(a), stable(b)) {
                 (true, false) => a_only += 1,
                 (false, true) => b_only += 1,
@@ -199,22 +208,30 @@ pub fn pair<E>(
         let Some(j) = index(prefixes[1], name) else {
             continue;
         };
-        let (a, b) = (column(i)?, column(j)?);
-        let mut d: Vec<f64> = Vec::new();
-        for (landing, (a, b)) in a.into_iter().zip(b).enumerate() {
-            if let (Cell::Float(a), Cell::Float(b)) = (a, b) {
+        let mut a: Vec<Option<f64>> = Vec::with_capacity(n as usize);
+        column(i, &mut |c| {
+            a.push(match c {
+                Cell::Float(x) => Some(x),
+                _ => None,
+            })
+        })?;
+        let mut d: Vec<f64> = Vec::with_capacity(n as usize);
+        let mut landing = 0;
+        column(j, &mut |b| {
+            if let (Some(Some(a)), Cell::Float(b)) = (a.get(landing), b) {
                 d.push(b - a);
                 let slot = &mut largest[landing];
                 if name.ends_with(".stroke_m") && (b - a).abs() > slot.0 {
                     *slot = ((b - a).abs(), i);
                 }
             }
-        }
+            landing += 1;
+        })?;
         if d.is_empty() {
             continue;
         }
         let max_abs = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        d.sort_by(f64::total_cmp);
+        d.sort_unstable_by(f64::total_cmp); // in place; equal values have equal bits
         differences.push(Difference {
             column: name.to_string(),
             landings: d.len() as u64,
@@ -248,7 +265,7 @@ pub fn pair<E>(
         .iter()
         .map(|&i| Disagreement {
             landing: i as u64,
-            outcomes: [outcomes[0][i].clone(), outcomes[1][i].clone()],
+            outcomes: [name(outcomes[0][i]).into(), name(outcomes[1][i]).into()],
             largest_stroke_difference_m: largest[i].0,
             strut: columns
                 .get(largest[i].1)
@@ -263,17 +280,20 @@ pub fn pair<E>(
         if !c.name.starts_with("applied.") || worst.is_empty() {
             continue;
         }
-        let cells = column(i)?;
-        for w in &mut worst {
-            let value = match &cells[w.landing as usize] {
-                Cell::Float(x) => serde_json::json!(x),
-                Cell::Integer(x) => serde_json::json!(x),
-                Cell::Text(s) => serde_json::json!(s),
-                Cell::Flag(b) => serde_json::json!(b),
-                Cell::Missing => serde_json::Value::Null,
-            };
-            w.applied.insert(c.name.clone(), value);
-        }
+        let mut landing = 0;
+        column(i, &mut |cell| {
+            for w in worst.iter_mut().filter(|w| w.landing == landing) {
+                let value = match &cell {
+                    Cell::Float(x) => serde_json::json!(x),
+                    Cell::Integer(x) => serde_json::json!(x),
+                    Cell::Text(s) => serde_json::json!(s),
+                    Cell::Flag(b) => serde_json::json!(b),
+                    Cell::Missing => serde_json::Value::Null,
+                };
+                w.applied.insert(c.name.clone(), value);
+            }
+            landing += 1;
+        })?;
     }
     Ok(Pair {
         engines: engines.map(str::to_string),
@@ -353,7 +373,10 @@ mod tests {
             0.95,
             ["core", "rapier"],
             ["core.", "rapier."],
-            &mut |i| Ok::<_, ()>(cells[i].clone()),
+            &mut |i, visit: &mut dyn FnMut(Cell)| {
+                cells[i].iter().cloned().for_each(visit);
+                Ok::<_, ()>(())
+            },
             &|l| format!("disagreements/landing-{l}.toml"),
         )
         .unwrap();

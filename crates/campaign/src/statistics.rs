@@ -148,24 +148,25 @@ pub fn correlation(x: &[f64], y: &[f64]) -> f64 {
 }
 
 /// The correlation of each numeric applied value with `indicator` (one per landing), the
-/// strongest first (ties by name); the cells of column `i` given by `column(i)`.
+/// strongest first (ties by name); `column(i, visit)` calls `visit` with each cell of column
+/// `i`, in landing order.
 pub fn correlations<E>(
     columns: &[Column],
     indicator: &[f64],
-    column: &mut impl FnMut(usize) -> Result<Vec<Cell>, E>,
+    column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
 ) -> Result<Vec<(String, f64)>, E> {
     let mut out = Vec::new();
     for (i, c) in columns.iter().enumerate() {
         if !(c.name.starts_with("applied.") && c.kind == Kind::Float) {
             continue;
         }
-        let x: Vec<f64> = column(i)?
-            .into_iter()
-            .map(|c| match c {
+        let mut x: Vec<f64> = Vec::with_capacity(indicator.len());
+        column(i, &mut |c| {
+            x.push(match c {
                 Cell::Float(x) => x,
                 _ => 0.0,
             })
-            .collect();
+        })?;
         out.push((c.name.clone(), correlation(&x, indicator)));
     }
     out.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()).then_with(|| a.0.cmp(&b.0)));
@@ -209,51 +210,69 @@ const RELIABILITIES: [f64; 4] = [0.9, 0.95, 0.99, 0.999];
 
 impl Statistics {
     /// The statistics of `n` records with `columns` at confidence `confidence`, of the engine
-    /// whose columns' names start with `prefix` ([`crate::record::prefix`]), the cells of
-    /// column `i` (in landing order) given by `column(i)`: asked for one column at a time, so
-    /// that one column is held at a time, never the records.
+    /// whose columns' names start with `prefix` ([`crate::record::prefix`]); `column(i, visit)`
+    /// calls `visit` with each cell of column `i`, in landing order. What is kept of the
+    /// records is counts, one number a landing (stable or not) and one column of numbers at a
+    /// time (its percentiles and correlations): 16 bytes a landing.
     pub fn from_columns<E>(
         columns: &[Column],
         n: u64,
         confidence: f64,
         prefix: &str,
-        mut column: impl FnMut(usize) -> Result<Vec<Cell>, E>,
+        column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
     ) -> Result<Statistics, E> {
         let index = |name: &str| {
             let name = format!("{prefix}{name}");
             columns.iter().position(|c| c.name == name)
         };
-        let mut texts = |name: &str| -> Result<Vec<String>, E> {
-            Ok(match index(name) {
-                Some(i) => column(i)?
-                    .into_iter()
-                    .map(|c| match c {
-                        Cell::Text(s) => s,
-                        _ => String::new(),
-                    })
-                    .collect(),
-                None => vec![String::new(); n as usize],
-            })
+        // Calls `each` with the text of column `name` of every landing ("" where it is missing
+        // or the column is absent).
+        let mut texts = |name: &str, each: &mut dyn FnMut(&str)| -> Result<(), E> {
+            match index(name) {
+                Some(i) => column(i, &mut |c| match c {
+                    Cell::Text(s) => each(&s),
+                    _ => each(""),
+                }),
+                None => {
+                    (0..n).for_each(|_| each(""));
+                    Ok(())
+                }
+            }
         };
-        let (outcome, failure, outs) =
-            (texts("outcome")?, texts("failure")?, texts("stroke_outs")?);
-        let counts = |texts: &[String], names: &mut dyn Iterator<Item = &'static str>| {
+        let count = |names: &[&'static str], landings: &[u64]| {
             names
-                .map(|name| Count {
-                    name: name.into(),
-                    landings: texts.iter().filter(|t| *t == name).count() as u64,
+                .iter()
+                .zip(landings)
+                .map(|(name, landings)| Count {
+                    name: (*name).into(),
+                    landings: *landings,
                 })
                 .collect::<Vec<_>>()
         };
-        let outcomes = counts(&outcome, &mut Status::ALL.iter().map(|s| s.name()));
-        let failures = counts(&failure, &mut Failure::ALL.iter().map(|f| f.name()));
+        let status_names = Status::ALL.map(Status::name);
+        let mut landings = [0; Status::ALL.len()];
+        let mut stable_indicator: Vec<f64> = Vec::with_capacity(n as usize);
+        texts("outcome", &mut |t| {
+            if let Some(k) = status_names.iter().position(|s| *s == t) {
+                landings[k] += 1;
+            }
+            stable_indicator.push(f64::from(u8::from(t == Status::Stable.name())));
+        })?;
+        let outcomes = count(&status_names, &landings);
+        let failure_names = Failure::ALL.map(Failure::name);
+        let mut landings = [0; Failure::ALL.len()];
+        texts("failure", &mut |t| {
+            if let Some(k) = failure_names.iter().position(|s| *s == t) {
+                landings[k] += 1;
+            }
+        })?;
+        let failures = count(&failure_names, &landings);
         let mut struts = std::collections::BTreeMap::<String, u64>::new();
-        for t in &outs {
+        texts("stroke_outs", &mut |t| {
             for s in t.split(',').filter(|s| !s.is_empty()) {
                 *struts.entry(s.to_string()).or_default() += 1;
             }
-        }
-        drop((failure, outs));
+        })?;
         let proportion = |k: u64| Proportion {
             landings: k,
             fraction: fraction(k, n),
@@ -280,17 +299,18 @@ impl Statistics {
             if !measured {
                 continue;
             }
-            let mut v: Vec<f64> = column(i)?
-                .into_iter()
-                .filter_map(|c| match c {
-                    Cell::Float(x) => Some(x),
-                    _ => None,
-                })
-                .collect();
+            let mut v: Vec<f64> = Vec::with_capacity(n as usize);
+            column(i, &mut |c| {
+                if let Cell::Float(x) = c {
+                    v.push(x)
+                }
+            })?;
             if v.is_empty() {
                 continue;
             }
-            v.sort_by(f64::total_cmp);
+            // Unstable: values equal under total_cmp have the same bits, so the order is the same, and
+            // it sorts in place.
+            v.sort_unstable_by(f64::total_cmp);
             percentiles.push(Percentiles {
                 column: c.name.clone(),
                 landings: v.len() as u64,
@@ -300,12 +320,7 @@ impl Statistics {
                 max: v[v.len() - 1],
             });
         }
-        let stable_indicator: Vec<f64> = outcome
-            .iter()
-            .map(|t| f64::from(u8::from(t == Status::Stable.name())))
-            .collect();
-        drop(outcome);
-        let influence = correlations(columns, &stable_indicator, &mut column)?
+        let influence = correlations(columns, &stable_indicator, column)?
             .into_iter()
             .map(|(column, correlation_with_stable)| Influence {
                 column,

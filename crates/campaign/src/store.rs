@@ -508,12 +508,25 @@ impl Parquet {
 /// The cells of column `i` (of `columns`) of every record of the Parquet file at `path`, in
 /// order: one column held at a time.
 pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell>, CampaignError> {
+    let mut cells = Vec::new();
+    visit_column(path, columns, i, &mut |c| cells.push(c))?;
+    Ok(cells)
+}
+
+/// Calls `visit` with the cell of column `i` (of `columns`) of every record of the Parquet
+/// file at `path`, in order, reading a row group at a time: what the caller keeps is all that
+/// is held of the column.
+pub fn visit_column(
+    path: &Path,
+    columns: &[Column],
+    i: usize,
+    visit: &mut dyn FnMut(Cell),
+) -> Result<(), CampaignError> {
     use parquet::column::reader::get_typed_column_reader;
     use parquet::file::reader::{FileReader, SerializedFileReader};
     let err = |e: &dyn std::fmt::Display| CampaignError::store(path, e);
     let file = std::fs::File::open(path).map_err(|e| err(&e))?;
     let reader = SerializedFileReader::new(file).map_err(|e| err(&e))?;
-    let mut cells = Vec::new();
     for g in 0..reader.num_row_groups() {
         let group = reader.get_row_group(g).map_err(|e| err(&e))?;
         let n = group.metadata().num_rows() as usize;
@@ -530,7 +543,7 @@ pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell
                 for k in 0..n {
                     let present = defs.get(k).is_none_or(|d| *d == 1);
                     let value = if present { values.next() } else { None };
-                    cells.push(value.map_or(Cell::Missing, $cell));
+                    visit(value.map_or(Cell::Missing, $cell));
                 }
             }};
         }
@@ -543,7 +556,7 @@ pub fn read_column(path: &Path, columns: &[Column], i: usize) -> Result<Vec<Cell
             Kind::Flag => read!(BoolType, Cell::Flag),
         }
     }
-    Ok(cells)
+    Ok(())
 }
 
 /// Completes the campaign folder `dir` whose `landings.jsonl` is written (and closed): its
@@ -562,7 +575,7 @@ pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Report, CampaignError
         |row| parquet.push(row),
     )?;
     parquet.close()?;
-    let mut read = |i| read_column(&parquet_path, columns, i);
+    let mut read = |i, visit: &mut dyn FnMut(Cell)| visit_column(&parquet_path, columns, i, visit);
     let confidence = manifest.confidence;
     let statistics = if manifest.engines.len() < 2 {
         Report::One(Statistics::from_columns(
