@@ -111,6 +111,10 @@ def merge(out: Path, shards: int) -> Path:
     folder = out / "merge"
     shutil.rmtree(folder, ignore_errors=True)
     parts = [str(shards_of.shard_dir(out / "dask", k, shards)) for k in range(1, shards + 1)]
+    missing = [p for p in parts if not Path(p).is_dir()]
+    if missing:
+        sys.exit(f"--routes merge: {missing[0]} is missing: the route merges the shards the dask route "
+                 f"wrote with the same --shards ({len(missing)} of {shards} missing); run --routes dask first")
     wall, peak = timed([touchdown(), "campaign", "merge", "--quiet", "--out", str(folder), *parts], out)
     print(f"merge of {shards} shards: {wall:.1f} s wall, peak resident {peak:.1f} MB")
     return folder
