@@ -239,34 +239,32 @@ impl Statistics {
                 }
             }
         };
-        let count = |names: &[&'static str], landings: &[u64]| {
-            names
+        // The landings whose column `name` holds each of `names`; `each` also sees every text.
+        let mut counts = |name: &str,
+                          names: &[&'static str],
+                          each: &mut dyn FnMut(&str)|
+         -> Result<Vec<Count>, E> {
+            let mut landings = vec![0; names.len()];
+            texts(name, &mut |t| {
+                if let Some(k) = names.iter().position(|s| *s == t) {
+                    landings[k] += 1;
+                }
+                each(t);
+            })?;
+            Ok(names
                 .iter()
                 .zip(landings)
                 .map(|(name, landings)| Count {
                     name: (*name).into(),
-                    landings: *landings,
+                    landings,
                 })
-                .collect::<Vec<_>>()
+                .collect())
         };
-        let status_names = Status::ALL.map(Status::name);
-        let mut landings = [0; Status::ALL.len()];
         let mut stable_indicator: Vec<f64> = Vec::with_capacity(n as usize);
-        texts("outcome", &mut |t| {
-            if let Some(k) = status_names.iter().position(|s| *s == t) {
-                landings[k] += 1;
-            }
-            stable_indicator.push(f64::from(u8::from(t == Status::Stable.name())));
+        let outcomes = counts("outcome", &Status::ALL.map(Status::name), &mut |t| {
+            stable_indicator.push(f64::from(u8::from(t == Status::Stable.name())))
         })?;
-        let outcomes = count(&status_names, &landings);
-        let failure_names = Failure::ALL.map(Failure::name);
-        let mut landings = [0; Failure::ALL.len()];
-        texts("failure", &mut |t| {
-            if let Some(k) = failure_names.iter().position(|s| *s == t) {
-                landings[k] += 1;
-            }
-        })?;
-        let failures = count(&failure_names, &landings);
+        let failures = counts("failure", &Failure::ALL.map(Failure::name), &mut |_| {})?;
         let mut struts = std::collections::BTreeMap::<String, u64>::new();
         texts("stroke_outs", &mut |t| {
             for s in t.split(',').filter(|s| !s.is_empty()) {
