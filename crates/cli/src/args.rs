@@ -199,8 +199,8 @@ pub(crate) enum Command {
         /// Which protocol: `two-row` (reference/calibration-protocol.toml: the calibrated
         /// scenarios against the rows they were not fitted to) or `cv` (reference/
         /// cross-validation-protocol.toml: leave-one-out over every row, what the rows
-        /// determine, an interval on every prediction; about 690,000 landings, several hours
-        /// on 2 cores, release).
+        /// determine, an interval on every prediction; about 2.4 million landings, about 5
+        /// hours on 2 cores, release).
         #[arg(long, value_enum, default_value_t = ValidationProtocol::TwoRow)]
         protocol: ValidationProtocol,
         /// Output format.
