@@ -212,7 +212,17 @@ pub struct Channel {
     pub pass: bool,
 }
 
+/// The unit of a channel that counts struts (past their capacity): its values are whole
+/// numbers.
+const STRUT_COUNT: &str = "struts";
+
 impl Channel {
+    /// Whether `a`, `b` and `absolute_difference` count struts rather than measure a quantity
+    /// (the text reports print them as whole numbers).
+    pub fn counts(&self) -> bool {
+        self.unit == STRUT_COUNT
+    }
+
     /// The channel as the text reports name it ("primary stroke leg 1", "secondary stroke leg
     /// 2 3-1", "energy: viscous").
     pub fn name(&self) -> String {
@@ -455,7 +465,7 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
     let d = past_capacity_difference(sa, sb);
     channels.push(values(
         About::default(),
-        "struts",
+        STRUT_COUNT,
         (past_a as f64, past_b as f64),
         d,
         &PAST_CAPACITY,

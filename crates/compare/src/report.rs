@@ -67,13 +67,21 @@ pub fn text(c: &ScenarioComparison) -> String {
             p.outcome_b,
             p.worst()
         );
-        let value = |v: Option<f64>| v.map_or_else(|| "-".to_string(), sig3);
         let rows = p.channels.iter().map(|ch| {
+            // a count is a whole number, not a measurement to three figures
+            let number = |x: f64| {
+                if ch.counts() {
+                    format!("{x:.0}")
+                } else {
+                    sig3(x)
+                }
+            };
+            let value = |v: Option<f64>| v.map_or_else(|| "-".to_string(), number);
             vec![
                 ch.name(),
                 value(ch.a),
                 value(ch.b),
-                sig3(ch.absolute_difference),
+                number(ch.absolute_difference),
                 ch.unit.to_string(),
                 with_unit(ch.difference, ch.difference_unit),
                 with_unit(ch.tolerance, ch.difference_unit),
