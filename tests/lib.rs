@@ -175,3 +175,28 @@ pub fn fuzz_runner(default_cases: u32) -> (proptest::test_runner::TestRunner, u3
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes);
     (TestRunner::new_with_rng(config, rng), cases, seed)
 }
+
+/// Checks that each of the first `count` rebounds' `rises` (m, heights of the apexes above the
+/// rest height, in order) after the first is at most `bound(before, first)` (m) and that the
+/// fourth is below 5 % of the first: the bouncing of a landing on end stops dies out.
+pub fn assert_rebounds_fall(
+    label: &str,
+    rises: &[f64],
+    count: usize,
+    bound: impl Fn(f64, f64) -> f64,
+) {
+    assert!(rises.len() >= count.max(4), "{label}: rises {rises:?} m");
+    for k in 1..count {
+        let most = bound(rises[k - 1], rises[0]);
+        assert!(
+            rises[k] <= most,
+            "{label}: rebound {k} rose {} m after {} m (at most {most} m)",
+            rises[k],
+            rises[k - 1]
+        );
+    }
+    assert!(
+        rises[3] < 0.05 * rises[0],
+        "{label}: still bouncing {rises:?}"
+    );
+}

@@ -239,6 +239,7 @@ kind = "rigid"
 slope = 0.0
 hole = 0.0
 obstacle = -1.0
+spike_depth = 0.0
 friction = 0.0
 "#;
 
@@ -457,4 +458,63 @@ fn a_plastic_stop_lands_on_the_core_and_is_refused_where_unresolved() {
         refused.contains("stop_restitution") && refused.contains("[0.1, 1]"),
         "{refused}"
     );
+}
+
+/// The heights of the centre of mass's apexes after the first contact of `sc` on the core, and
+/// its height at the end, m.
+fn rebound_apexes(sc: &Scenario) -> (Vec<f64>, f64) {
+    struct Apexes(touchdown_record::Sample, Vec<f64>, f64);
+    impl Observer<Simulation> for Apexes {
+        fn observe(&mut self, sim: &Simulation) {
+            let vz_before = self.0.velocity.z;
+            sim.sample(&mut self.0);
+            if vz_before > 0.0 && self.0.velocity.z <= 0.0 {
+                self.1.push(self.0.position.z);
+            }
+            self.2 = self.0.position.z;
+        }
+    }
+    let mut watch = Apexes(
+        touchdown_record::Sample::new(sc.legs.len()),
+        Vec::new(),
+        0.0,
+    );
+    Simulation::new(sc).unwrap().run(&mut watch).unwrap();
+    (watch.1, watch.2)
+}
+
+/// End stops dissipate at every hit (docs/errata.md, "End stops — a coefficient of restitution
+/// at every hit"): `stroke-out` dropped at 20 ft/s and run to 3 s bottoms its four primaries and
+/// bounces. With e = 0.5 each rebound's rise above the final rest height is at most e² of the
+/// one before plus 5 % of the first (the honeycombs' elastic rebound triangles come back at
+/// every hit), and the bouncing dies out; with e = 0 the stops return nothing, and the one
+/// rise is no more than the four primaries' rebound triangles 4·F_c²/(2·K_B) lift.
+#[test]
+fn stroke_out_rebounds_lose_their_stops_energy_at_every_hit() {
+    for e in [0.5, 0.0] {
+        let sc = variant(
+            "stroke-out.toml",
+            &format!("stroke-out-e{e}"),
+            &format!(
+                "[integrator]\nt_end = 3.0\n[primary_strut.compression]\nstop_restitution = {e}\n"
+            ),
+        );
+        let (apexes, rest) = rebound_apexes(&sc);
+        let rises: Vec<f64> = apexes.iter().map(|z| z - rest).collect();
+        assert!(rises.len() >= 2, "e = {e}: apexes {apexes:?}");
+        if e > 0.0 {
+            let bound = |before: f64, first: f64| e * e * before + 0.05 * first;
+            touchdown_tests::assert_rebounds_fall(&format!("e = {e}"), &rises, rises.len(), bound);
+        } else {
+            let laws = touchdown_laws::GearLaws::from_scenario(&sc).unwrap();
+            let h = &laws.primary.honeycomb;
+            let fc = h.curve.force(h.curve.capacity());
+            let triangles = 4.0 * fc * fc / (2.0 * h.backoff_rate);
+            let lift = triangles / (sc.vehicle.mass * sc.vehicle.gravity);
+            assert!(
+                rises[0] <= lift && rises[1] < 0.1 * rises[0],
+                "e = 0: rises {rises:?} m, the rebound triangles lift {lift} m"
+            );
+        }
+    }
 }

@@ -983,7 +983,10 @@ fn a_campaign_of_descent_and_horizontal_speeds_plots_the_engines_boundary() {
         serde_json::from_str(&std::fs::read_to_string(plots.join("boundary.json")).unwrap())
             .unwrap();
     let points = b["points"].as_array().unwrap();
-    assert!(points.len() >= 5, "{b}");
+    // The base configuration overturns within 30 ft/s up to about 8 ft/s of descent (four of
+    // the search's descent speeds; docs/python.md has the same landing's boundary): each is a
+    // point of the plot.
+    assert!(points.len() >= 4, "{b}");
     for p in points {
         let vh = p["applied.touchdown.horizontal_velocity[1]_ft_s"]
             .as_f64()

@@ -63,8 +63,8 @@ impl State {
             return Ok(false);
         }
         let pad = &mut self.pads[i];
-        if pad.walled && pad.position.z > plane + s.obstacle {
-            pad.walled = false; // above its obstacle's wall
+        if pad.walled && pad.position.z > plane + s.hold_height() {
+            pad.walled = false; // above its obstacle's wall, or its spikes out of the ground
         }
         let pad = *pad;
         // Decisions at rounding level: a footpad within the contact tolerance of its plane
@@ -182,6 +182,22 @@ impl State {
         } else {
             a
         }
+    }
+
+    /// The lateral force of footpad `i`'s restraint (its obstacle's wall or its spikes) on it
+    /// at the accepted state, N (magnitude): while it is held ([`Footpad::walled`]), in contact
+    /// or off the surface, the lateral force that keeps it from moving sideways, the in-plane
+    /// part of its gear's, curbs' and weight's; zero once it is free.
+    pub(crate) fn restraint_force(&self, model: &Model, i: usize) -> f64 {
+        let pad = &self.pads[i];
+        // The report's rigid footpad off the surface moves with its gear: nothing holds it.
+        let rigid_off = !model.inertial && pad.state != ContactState::Contact;
+        if !pad.walled || rigid_off {
+            return 0.0;
+        }
+        let curbs = Vector3::new(pad.curb_xy.x, pad.curb_xy.y, 0.0);
+        let f = self.vehicle.t_bi * self.gear[i].fp + curbs + model.footpad_mass * model.gravity;
+        f.xy().norm()
     }
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99

@@ -257,7 +257,7 @@ pub fn relax(
 ) -> Option<Relaxed> {
     let p = &laws.primary.honeycomb;
     let c = primary_stroke.clamp(
-        -p.stop.slack(memory.primary.extension.max_stroke),
+        -p.stop.slack(memory.primary.extension_depth),
         p.permanent_set(memory.primary.compression),
     );
     let h = &laws.secondary.honeycomb;

@@ -153,7 +153,7 @@ impl State {
                 let (g, laws) = (&self.gear[i], &model.laws);
                 let (c, s) = (g.primary_stroke, g.secondary_stroke);
                 if model.inertial || self.pads[i].state == ContactState::Contact {
-                    let e = laws.stored_energy_at(c, s, g.fcp, g.fc_secondary);
+                    let e = laws.stored_energy_at(c, s, g.fcp, g.fc_secondary, &self.memory[i]);
                     debug_assert_eq!(
                         e.to_bits(),
                         laws.stored_energy(c, s, &self.memory[i]).to_bits(),

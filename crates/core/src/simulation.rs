@@ -280,9 +280,10 @@ impl Landing for Simulation {
         out.theta = v.euler.theta;
         out.omega = v.omega;
         out.pitch_rate = v.omega_inertial().x;
-        for (((slot, g), pad), memory) in (out.legs.iter_mut().zip(&p.gear))
+        for (i, (((slot, g), pad), memory)) in (out.legs.iter_mut().zip(&p.gear))
             .zip(&p.pads)
             .zip(&p.memory)
+            .enumerate()
         {
             slot.primary_stroke = g.primary_stroke;
             slot.primary_force = g.f2p;
@@ -292,6 +293,7 @@ impl Landing for Simulation {
                 .laws
                 .stop_forces(g.primary_stroke, g.secondary_stroke, memory);
             slot.pad_position = pad.position;
+            slot.restraint_force = p.restraint_force(m, i);
             slot.contact = pad.state.code();
         }
         out.stability_distance

@@ -32,7 +32,7 @@ impl PrimaryStrutLaw {
         if c >= 0.0 {
             self.honeycomb.force(c, memory.compression)
         } else {
-            -self.honeycomb.stop.force(-c, memory.extension.max_stroke)
+            -self.honeycomb.stop.force(-c, memory.extension_depth)
         }
     }
 
@@ -53,7 +53,7 @@ impl PrimaryStrutLaw {
     pub fn branch(&self, c: f64, memory: PrimaryMemory) -> (Branch, f64) {
         if c < 0.0 {
             let stop = &self.honeycomb.stop;
-            let rate = if -c >= memory.extension.max_stroke {
+            let rate = if -c >= memory.extension_depth {
                 stop.rate
             } else {
                 stop.unloading_rate()
@@ -68,40 +68,40 @@ impl PrimaryStrutLaw {
     /// what the extension stop would return.
     #[inline]
     pub fn stored_energy(&self, c: f64, memory: PrimaryMemory) -> f64 {
-        self.stored_energy_at(c, self.stroke_force(c, memory))
+        self.stored_energy_at(c, self.stroke_force(c, memory), memory)
     }
 
     /// [`PrimaryStrutLaw::stored_energy`] at compression stroke `c` (m) where the law gives
-    /// the force `f` ([`PrimaryStrutLaw::stroke_force`], N, compression positive).
+    /// the force `f` ([`PrimaryStrutLaw::stroke_force`], N, compression positive) with the
+    /// committed `memory`.
     #[inline]
-    pub fn stored_energy_at(&self, c: f64, f: f64) -> f64 {
+    pub fn stored_energy_at(&self, c: f64, f: f64, memory: PrimaryMemory) -> f64 {
         if c >= 0.0 {
-            self.honeycomb.stored_energy_at(c, f)
+            self.honeycomb.stored_energy_at(c, f, memory.compression)
         } else {
-            self.honeycomb.stop.stored_energy(0.0, -c, -f)
+            self.honeycomb.stop.returned_energy(-c, -f)
         }
     }
 
-    /// Commits an accepted compression stroke `c` (m): the honeycomb's x_max, or the extension
-    /// stop's deepest extension.
+    /// Commits an accepted compression stroke `c` (m): the honeycomb's memory (its x_max only
+    /// grows in compression; its stop's engagement ends below the capacity), and the extension
+    /// stop's engagement ([`Stop::commit`](crate::Stop::commit)).
     #[inline]
     pub fn commit(&self, c: f64, memory: &mut PrimaryMemory) {
-        if c >= 0.0 {
-            self.honeycomb.commit(c, &mut memory.compression);
-        } else {
-            self.honeycomb.commit(-c, &mut memory.extension);
-        }
+        self.honeycomb.commit(c, &mut memory.compression);
+        crate::Stop::commit(-c, &mut memory.extension_depth);
     }
 }
 
-/// Committed memory of a primary strut: the honeycomb's largest compression and the extension
-/// stop's largest extension past full length.
+/// Committed memory of a primary strut: the honeycomb's and the depth of the extension stop's
+/// current engagement.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PrimaryMemory {
-    /// Honeycomb memory (largest compression stroke), m.
+    /// Honeycomb memory (largest compression stroke, its bottoming stop's engagement).
     pub compression: CrushMemory,
-    /// Extension-stop memory (largest extension past the undeformed length), m.
-    pub extension: CrushMemory,
+    /// The extension stop's deepest extension past the undeformed length in its current
+    /// engagement, m (zero while it is open).
+    pub extension_depth: f64,
 }
 
 /// Secondary-strut laws: double-acting honeycomb and viscous force, tension positive.
@@ -332,22 +332,34 @@ impl GearLaws {
     pub fn stored_energy(&self, c: f64, s: [f64; 2], memory: &GearMemory) -> f64 {
         let h = &self.secondary.honeycomb;
         let fc = [0, 1].map(|j| h.force(s[j], memory.secondary[j]));
-        self.stored_energy_at(c, s, self.primary.stroke_force(c, memory.primary), fc)
+        self.stored_energy_at(
+            c,
+            s,
+            self.primary.stroke_force(c, memory.primary),
+            fc,
+            memory,
+        )
     }
 
     /// [`GearLaws::stored_energy`] where the laws give the primary's honeycomb force `fcp`
     /// ([`PrimaryStrutLaw::stroke_force`], N) and the secondaries' `fc` (N, tension positive):
     /// the gear state of an evaluation at these strokes holds them, and committing the strokes
     /// it evaluated does not change them (a stroke at or past x_max lies on the virgin curve
-    /// before and after).
+    /// before and after, and a stop's engagement ends only where it carries nothing), with
+    /// the committed `memory`.
     #[inline]
-    pub fn stored_energy_at(&self, c: f64, s: [f64; 2], fcp: f64, fc: [f64; 2]) -> f64 {
-        let secondary: f64 = s
-            .into_iter()
-            .zip(fc)
-            .map(|(s, f)| self.secondary.honeycomb.stored_energy_at(s, f))
-            .sum();
-        self.primary.stored_energy_at(c, fcp) + secondary
+    pub fn stored_energy_at(
+        &self,
+        c: f64,
+        s: [f64; 2],
+        fcp: f64,
+        fc: [f64; 2],
+        memory: &GearMemory,
+    ) -> f64 {
+        let h = &self.secondary.honeycomb;
+        let secondary = h.stored_energy_at(s[0], fc[0], memory.secondary[0])
+            + h.stored_energy_at(s[1], fc[1], memory.secondary[1]);
+        self.primary.stored_energy_at(c, fcp, memory.primary) + secondary
     }
 
     /// Builds and checks the laws of a scenario's gear. Stage tables out of order, and a bearing

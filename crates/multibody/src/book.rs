@@ -196,7 +196,7 @@ impl GearBook {
         let walls = (sc.surface.pads.iter())
             .map(|p| {
                 p.locked()
-                    .then(|| ObstacleWall::new(p.obstacle, sc.footpad.mass, primary_rate, dt))
+                    .then(|| ObstacleWall::new(p.hold_height(), sc.footpad.mass, primary_rate, dt))
             })
             .collect();
         let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
@@ -644,6 +644,7 @@ impl GearBook {
             slot.secondary_force = f.secondary();
             slot.stop_force = self.laws.stop_forces(k.c, k.s, &self.memory[i]);
             slot.pad_position = k.footpad;
+            slot.restraint_force = self.wall_forces[i].norm();
             slot.contact = match (c.in_contact, c.first_contact) {
                 (true, _) => 1,
                 (false, Some(_)) => 2,

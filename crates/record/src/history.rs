@@ -65,7 +65,7 @@ const BODY_COLUMNS: [&str; 14] = [
 ];
 
 /// The columns of each leg N, `legN_` and one of these.
-const LEG_COLUMNS: [&str; 13] = [
+const LEG_COLUMNS: [&str; 14] = [
     "primary_stroke_m",
     "primary_force_n",
     "sec31_stroke_m",
@@ -78,6 +78,7 @@ const LEG_COLUMNS: [&str; 13] = [
     "pad_x_m",
     "pad_y_m",
     "pad_z_m",
+    "restraint_force_n",
     "contact",
 ];
 
@@ -189,6 +190,7 @@ impl<W: Write> History<W> {
                 g.pad_position.x,
                 g.pad_position.y,
                 g.pad_position.z,
+                g.restraint_force,
             ] {
                 row.push(num(x));
             }
@@ -367,7 +369,8 @@ pub fn read(path: &Path, mut each: impl FnMut(&Sample)) -> Result<usize, History
             leg.secondary_force = [num(c[3])?, num(c[5])?];
             leg.stop_force = [num(c[6])?, num(c[7])?, num(c[8])?];
             leg.pad_position = Vector3::new(num(c[9])?, num(c[10])?, num(c[11])?);
-            leg.contact = record[c[12]].parse::<u8>().map_err(|_| bad(c[12]))?;
+            leg.restraint_force = num(c[12])?;
+            leg.contact = record[c[13]].parse::<u8>().map_err(|_| bad(c[13]))?;
         }
         for (sd, &c) in sample.stability_distance.iter_mut().zip(&walls) {
             *sd = if record[c].is_empty() {

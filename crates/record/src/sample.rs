@@ -20,6 +20,10 @@ pub struct LegSample {
     pub stop_force: [f64; 3],
     /// Footpad position (ball joint), inertial, m.
     pub pad_position: Vector3<f64>,
+    /// The lateral force of the footpad's restraint (an obstacle's wall or its spikes) on it,
+    /// N (magnitude): zero for a footpad that slides, and once it has risen above the wall
+    /// or out of the ground (docs/engines.md, "The footpad's lateral restraint").
+    pub restraint_force: f64,
     /// Contact state: 0 never touched, 1 in contact, 2 left the surface.
     pub contact: u8,
 }

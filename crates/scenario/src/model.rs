@@ -232,8 +232,12 @@ pub struct PadSurface {
     /// HOLE_n, m: the local plane is Z = −hole.
     pub hole: f64,
     /// OBST_n, m: > 0 a wall this high holds the footpad laterally after contact (the
-    /// rigid footpad: while in contact); ≤ 0 sliding.
+    /// rigid footpad: while in contact); ≤ 0 none.
     pub obstacle: f64,
+    /// Spikes' engagement depth, m: > 0 the footpad is held laterally after contact while it
+    /// is within this depth of its plane; 0 none. At most one of `obstacle` and `spike_depth`
+    /// is positive.
+    pub spike_depth: f64,
     /// U_n, sliding friction coefficient.
     pub friction: f64,
 }
@@ -243,9 +247,18 @@ impl PadSurface {
     pub fn plane(&self) -> f64 {
         -self.hole
     }
-    /// Whether the footpad is locked laterally after contact (OBST > 0).
+    /// Whether the footpad is locked laterally after contact (OBST > 0, or spikes).
     pub fn locked(&self) -> bool {
-        self.obstacle > 0.0
+        self.hold_height() > 0.0
+    }
+    /// The height above its plane up to which a landed footpad is held laterally, m: its
+    /// obstacle's wall (OBST > 0) or its spikes' engagement depth; ≤ 0 where it slides.
+    pub fn hold_height(&self) -> f64 {
+        if self.obstacle > 0.0 {
+            self.obstacle
+        } else {
+            self.spike_depth
+        }
     }
 }
 

@@ -159,6 +159,7 @@ pub const RANGES: &[Range] = &[
     usual(deg("surface.slope", O(-90.0), O(90.0), "a slope strictly between a wall and a wall; the report's are up to 15°"), -45.0, 45.0),
     row("surface.hole", "m", C(-100.0), C(100.0), "a depression (> 0) or a bump (< 0) under a footpad, within 100 m"),
     row("surface.obstacle", "m", C(-1e3), C(1e3), "a lock height (> 0) or sliding (≤ 0), within 1 km"),
+    row("surface.spike_depth", "m", C(0.0), C(1.0), "an engagement depth of spikes (> 0) or none (0), within 1 m"),
     usual(row("surface.friction", "", C(0.0), C(10.0), "a friction coefficient; above about 2 a footpad is in effect locked (surface.obstacle)"), 0.0, 2.0),
     row("surface.soil.k1", "Pa", C(0.0), C(1e10), "bearing strength: loose regolith about 1e4 Pa, rock about 1e8 Pa"),
     row("surface.soil.k2", "Pa/m", C(0.0), C(1e12), "strength gradient, up to rock over a millimetre"),

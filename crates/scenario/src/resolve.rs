@@ -512,6 +512,44 @@ pub(crate) fn resolve(
     let slope = c.si("surface.slope", sf.slope, u.angle())?;
     let hole = c.per_pad("surface.hole", &sf.hole, n)?;
     let obstacle = c.per_pad("surface.obstacle", &sf.obstacle, n)?;
+    let spike = c.per_pad("surface.spike_depth", &sf.spike_depth, n)?;
+    for i in 0..n {
+        if spike[i] < 0.0 {
+            return Err(c.err(
+                &format!("surface.spike_depth[{i}]"),
+                format!(
+                    "expected an engagement depth ≥ 0 (0: no spikes), got {}",
+                    short(spike[i])
+                ),
+            ));
+        }
+        if spike[i] > 0.0 && obstacle[i] > 0.0 {
+            return Err(c.err(
+                &format!("surface.spike_depth[{i}]"),
+                "a footpad held by an obstacle's wall (surface.obstacle > 0) has no spikes too: give one of the two",
+            ));
+        }
+    }
+    // Spikes lock a footpad as an obstacle does: neither goes with soil or curbs.
+    if let Some(i) = spike.iter().position(|s| *s > 0.0) {
+        if sf.kind == schema::SurfaceKind::Soil {
+            return Err(c.err(
+                &format!("surface.spike_depth[{i}]"),
+                "spikes are not part of the soil model (the report omits them there); give spike_depth = 0",
+            ));
+        }
+    }
+    if let Some(curb) =
+        (sf.curbs.iter()).find(|k| (1..=n).contains(&k.leg) && spike[k.leg - 1] > 0.0)
+    {
+        return Err(c.err(
+            &format!("surface.spike_depth[{}]", curb.leg - 1),
+            format!(
+                "leg {}'s footpad is held by spikes and has a curb (surface.curbs): curbs apply to sliding footpads; give spike_depth = 0 there",
+                curb.leg
+            ),
+        ));
+    }
     let friction = c.per_pad("surface.friction", &sf.friction, n)?;
     if let Some(i) = friction.iter().position(|f| *f < 0.0) {
         return Err(c.err(
@@ -524,11 +562,13 @@ pub(crate) fn resolve(
     }
     let hole_si = c.each_si("surface.hole", &hole, u.length())?;
     let obstacle_si = c.each_si("surface.obstacle", &obstacle, u.length())?;
+    let spike_si = c.each_si("surface.spike_depth", &spike, u.length())?;
     let friction = c.each_si("surface.friction", &friction, 1.0)?;
     let pads = (0..n)
         .map(|i| model::PadSurface {
             hole: hole_si[i],
             obstacle: obstacle_si[i],
+            spike_depth: spike_si[i],
             friction: friction[i],
         })
         .collect();

@@ -398,6 +398,11 @@ pub enum Detached {
     Inertial,
 }
 
+/// Zero for every footpad: no obstacle, no spikes.
+fn none_per_pad() -> PerPad {
+    PerPad::All(0.0)
+}
+
 /// A per-footpad value: one number for every footpad, or a list with one per leg.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(
@@ -455,9 +460,16 @@ pub struct Surface {
     /// HOLE_n: depth of the local surface plane below Z = 0 under each footpad (> 0 is a
     /// depression); length.
     pub hole: PerPad,
-    /// OBST_n: > 0 locks the footpad laterally after contact until it rises OBST above its
-    /// plane; ≤ 0 lets it slide with Coulomb friction; length.
+    /// OBST_n: > 0 an obstacle's wall this high holds the footpad laterally after contact
+    /// until it rises OBST above its plane (fig. 17); ≤ 0 none (default); length.
+    #[serde(default = "none_per_pad")]
     pub obstacle: PerPad,
+    /// Spikes under the footpad that penetrate the surface (the 1/6-scale model's, on
+    /// plywood): > 0 holds the footpad laterally from its landing while it is within this
+    /// engagement depth of its plane, and lets it go when it lifts out; 0 none (default);
+    /// length. A footpad held by neither slides with Coulomb friction.
+    #[serde(default = "none_per_pad")]
+    pub spike_depth: PerPad,
     /// U_n: sliding friction coefficient; dimensionless.
     pub friction: PerPad,
     /// What keeps a footpad in contact (default `gear_force`).

@@ -365,6 +365,59 @@ fn a_vehicle_loaded_as_a_landing_says_so() {
     }
 }
 
+/// Spikes (`surface.spike_depth`) hold a footpad as an obstacle does, up to their engagement
+/// depth: one restraint a footpad, none on soil nor beside a curb, no negative depth; each
+/// refusal names the spike field of the leg.
+#[test]
+fn spikes_are_one_restraint_a_footpad_on_a_rigid_surface() {
+    let folder = scratch("spikes");
+    let dir = folder.path();
+    let spiked = extending(
+        dir,
+        "spiked.toml",
+        &scenario("fig-25-26.toml"),
+        "[surface]\nobstacle = 0.0\nspike_depth = 0.02\n",
+    );
+    let pad = Scenario::load(&spiked).unwrap().surface.pads[2];
+    assert!(pad.locked() && pad.obstacle <= 0.0);
+    assert!((pad.hold_height() - 0.02 * crate::units::FOOT).abs() < 1e-15);
+    for (extra, field, says) in [
+        ("[surface]\nspike_depth = 0.02\n", "surface.spike_depth[0]", "has no spikes too"),
+        ("[surface]\nobstacle = 0.0\nspike_depth = -0.01\n", "surface.spike_depth[0]", "≥ 0"),
+        (
+            "[surface]\nspike_depth = [0.0, 0.0, 0.02, 0.0]\nobstacle = 0.0\n[[surface.curbs]]\nleg = 3\ndistance = 0.3\nangle = 0.0\nfriction = 0.0\n",
+            "surface.spike_depth[2]",
+            "curbs apply to sliding footpads",
+        ),
+    ] {
+        let file = extending(dir, "refused.toml", &scenario("fig-25-26.toml"), extra);
+        let (_, f, message) = field_error(Scenario::load(&file));
+        assert_eq!(f, field, "{extra}: {message}");
+        assert!(message.contains(says), "{extra}: {message}");
+    }
+    let soil = extending(
+        dir,
+        "soil.toml",
+        &scenario("soil-drop.toml"),
+        "[surface]\nspike_depth = 0.01\n",
+    );
+    let (_, f, message) = field_error(Scenario::load(&soil));
+    assert_eq!(f, "surface.spike_depth[0]", "{message}");
+    // A landing with neither slides.
+    let free = extending(
+        dir,
+        "free.toml",
+        &scenario("fig-25-26.toml"),
+        "[surface]\nobstacle = 0.0\n",
+    );
+    assert!(Scenario::load(&free)
+        .unwrap()
+        .surface
+        .pads
+        .iter()
+        .all(|p| !p.locked()));
+}
+
 #[test]
 fn a_missing_field_is_named_by_its_own_path() {
     let value = resolved(&scenario("flat-drop.toml"));

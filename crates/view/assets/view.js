@@ -662,12 +662,13 @@
     });
   }
 
-  /** Obstacles: a footpad locked laterally once it touches (obstacle_m > 0), marked by a ring
-   * on its local ground around where it touches, with short teeth (their height is a mark, not
-   * the obstacle's: the legend gives that). */
+  /** Obstacles and spikes: a footpad held laterally once it touches (obstacle_m > 0, or
+   * spike_depth_m > 0), marked by a ring on its local ground around where it touches, with
+   * short teeth (their height is a mark, not the obstacle's nor the spikes': the legend gives
+   * that). */
   function drawObstacles(view, ctx, model) {
     model.ground.forEach((ground, k) => {
-      if (!(ground.obstacle_m > 0)) return;
+      if (!(ground.obstacle_m > 0) && !(ground.spike_depth_m > 0)) return;
       const [x, y] = model.padSites[k], r = 1.5 * model.padRadius[k];
       const z = -Math.max(ground.hole_m, 0), tooth = 0.4 * model.padRadius[k];
       ctx.beginPath();
@@ -1128,12 +1129,14 @@
     };
     const step = model.grid.step;
     $("legend-grid").lastChild.textContent = `ground, grid lines every ${step >= 1 ? `${formatTick(step)} m` : `${formatTick(100 * step)} cm`}`;
-    const holes = legsWith("hole_m"), obstacles = legsWith("obstacle_m");
+    const holes = legsWith("hole_m"), obstacles = legsWith("obstacle_m"), spikes = legsWith("spike_depth_m");
     const curbs = model.engines.flatMap((e) => e.curbs.map((c) => c.leg));
     $("legend-hole").hidden = holes.length === 0;
     $("legend-hole").lastChild.textContent = `hole, local ground lowered (${sizes(holes)} deep)`;
     $("legend-obstacle").hidden = obstacles.length === 0;
     $("legend-obstacle").lastChild.textContent = `obstacle, locks the footpad once it touches (${sizes(obstacles)} high)`;
+    $("legend-spikes").hidden = spikes.length === 0;
+    $("legend-spikes").lastChild.textContent = `spikes, hold the footpad while they are in the ground (${sizes(spikes)} deep)`;
     $("legend-curb").hidden = curbs.length === 0;
     const curbLegs = [...new Set(curbs)].sort((a, b) => a - b);
     $("legend-curb").lastChild.textContent = `curb, ticks on its side (${curbLegs.length > 1 ? "legs" : "leg"} ${curbLegs.join(", ")})`;

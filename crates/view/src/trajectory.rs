@@ -86,6 +86,8 @@ pub struct PadGround {
     pub hole_m: f64,
     /// OBST: > 0, the footpad is locked laterally by an obstacle this high once it touches, m.
     pub obstacle_m: f64,
+    /// > 0: spikes hold the footpad laterally while it is within this depth of its plane, m.
+    pub spike_depth_m: f64,
     /// U, the sliding friction coefficient.
     pub friction: f64,
 }
@@ -119,6 +121,7 @@ impl Scene {
                     .map(|p| PadGround {
                         hole_m: p.hole,
                         obstacle_m: p.obstacle,
+                        spike_depth_m: p.spike_depth,
                         friction: p.friction,
                     })
                     .collect(),

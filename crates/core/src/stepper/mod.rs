@@ -159,6 +159,9 @@ pub(crate) const PAD_MODE_STEP: f64 = 0.5;
 pub(crate) fn limit_step(model: &Model, state: &State, mut dt: f64) -> f64 {
     let it = &model.integrator;
     let v = &state.vehicle;
+    for i in 0..model.legs.len() {
+        dt = dt.min(state.plastic_stop_step(model, i).max(it.dt_min));
+    }
     for (i, (p, s)) in state.pads.iter().zip(&model.surfaces).enumerate() {
         if p.state == ContactState::Contact {
             continue;
@@ -184,7 +187,52 @@ pub(crate) fn limit_step(model: &Model, state: &State, mut dt: f64) -> f64 {
     dt.min(it.t_end - state.t).max(f64::MIN_POSITIVE)
 }
 
+/// ω·Δt of an engaged plastic stop's loading mode on the footpad mass: a plastic stop (e = 0)
+/// releases its load at once at its deepest point, and the step that straddles that point
+/// gives back about ½·(ω·Δt)² of the energy E the stop holds (the trapezoid over a force that
+/// vanishes within the step), 0.5 % here (docs/errata.md, "End stops — a coefficient of
+/// restitution at every hit", "The plastic stop").
+pub(crate) const PLASTIC_STOP_STEP: f64 = 0.1;
+
+/// The release error ½·E·(ω·Δt)² that needs no shorter step, as a fraction of the vehicle's
+/// kinetic energy at first contact: a footpad resting on a plastic stop holds nearly nothing.
+pub(crate) const PLASTIC_STOP_ERROR: f64 = 1e-6;
+
 impl State {
+    /// The longest step that resolves the release of an engaged plastic stop of leg `i`, s:
+    /// ω·Δt at most [`PLASTIC_STOP_STEP`] (ω² = K_so/PMASS), or the larger ω·Δt whose release
+    /// error ½·E·(ω·Δt)² is [`PLASTIC_STOP_ERROR`] of the touchdown kinetic energy, E =
+    /// F²/(2·K_so) the stop's energy at its force F at the accepted state; unbounded when no
+    /// plastic stop is engaged.
+    pub(crate) fn plastic_stop_step(&self, model: &Model, i: usize) -> f64 {
+        let (g, laws) = (&self.gear[i], &model.laws);
+        let (p, sec) = (&laws.primary.honeycomb, &laws.secondary.honeycomb);
+        let side = |s: f64| {
+            if s >= 0.0 {
+                &sec.tension
+            } else {
+                &sec.compression
+            }
+        };
+        let stops = [
+            &p.stop,
+            &side(g.secondary_stroke[0]).stop,
+            &side(g.secondary_stroke[1]).stop,
+        ];
+        let forces = laws.stop_forces(g.primary_stroke, g.secondary_stroke, &self.memory[i]);
+        let tolerance = PLASTIC_STOP_ERROR * self.stability.initial_kinetic_energy();
+        let mut dt = f64::INFINITY;
+        for (stop, f) in stops.into_iter().zip(forces) {
+            if stop.restitution > 0.0 || f == 0.0 {
+                continue;
+            }
+            let held = f * f / (2.0 * stop.rate);
+            let omega_dt = PLASTIC_STOP_STEP.max((2.0 * tolerance / held).sqrt());
+            dt = dt.min(omega_dt * (model.footpad_mass / stop.rate).sqrt());
+        }
+        dt
+    }
+
     /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
     /// [`PAD_MODE_STEP`]/ω with ω² = (k_2P + k_31 + k_41)/PMASS, each strut's rate the slope of
     /// the branch of its law it is on at the accepted state (the sum bounds the largest
