@@ -174,20 +174,32 @@ impl State {
         v: &VehicleState,
         g: &GearState,
     ) -> Vector3<f64> {
-        let pad = &self.pads[i];
-        let curbs = Vector3::new(pad.curb_xy.x, pad.curb_xy.y, 0.0);
-        let a = (v.t_bi * g.fp + curbs) / model.footpad_mass + model.gravity;
-        if pad.walled {
+        let a = self.free_pad_acceleration(model, i, v, g);
+        if self.pads[i].walled {
             Vector3::new(0.0, 0.0, a.z)
         } else {
             a
         }
     }
 
+    /// The acceleration footpad `i` off the surface would have with nothing holding it
+    /// laterally: its gear's and its curbs' forces on it over its mass, plus gravity, m/s².
+    fn free_pad_acceleration(
+        &self,
+        model: &Model,
+        i: usize,
+        v: &VehicleState,
+        g: &GearState,
+    ) -> Vector3<f64> {
+        let pad = &self.pads[i];
+        let curbs = Vector3::new(pad.curb_xy.x, pad.curb_xy.y, 0.0);
+        (v.t_bi * g.fp + curbs) / model.footpad_mass + model.gravity
+    }
+
     /// The lateral force of footpad `i`'s restraint (its obstacle's wall or its spikes) on it
     /// at the accepted state, N (magnitude): while it is held ([`Footpad::walled`]), in contact
-    /// or off the surface, the lateral force that keeps it from moving sideways, the in-plane
-    /// part of its gear's, curbs' and weight's; zero once it is free.
+    /// or off the surface, the lateral force that keeps it from moving sideways, PMASS times
+    /// the in-plane part of its free acceleration; zero once it is free.
     pub(crate) fn restraint_force(&self, model: &Model, i: usize) -> f64 {
         let pad = &self.pads[i];
         // The report's rigid footpad off the surface moves with its gear: nothing holds it.
@@ -195,9 +207,8 @@ impl State {
         if !pad.walled || rigid_off {
             return 0.0;
         }
-        let curbs = Vector3::new(pad.curb_xy.x, pad.curb_xy.y, 0.0);
-        let f = self.vehicle.t_bi * self.gear[i].fp + curbs + model.footpad_mass * model.gravity;
-        f.xy().norm()
+        let free = self.free_pad_acceleration(model, i, &self.vehicle, &self.gear[i]);
+        model.footpad_mass * free.xy().norm()
     }
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99

@@ -207,6 +207,10 @@ impl State {
     pub(crate) fn plastic_stop_step(&self, model: &Model, i: usize) -> f64 {
         let (g, laws) = (&self.gear[i], &model.laws);
         let (p, sec) = (&laws.primary.honeycomb, &laws.secondary.honeycomb);
+        let plastic = |h: &touchdown_laws::Honeycomb| h.stop.restitution == 0.0;
+        if !(plastic(p) || plastic(&sec.tension) || plastic(&sec.compression)) {
+            return f64::INFINITY; // every step of a landing whose stops all give something back
+        }
         let side = |s: f64| {
             if s >= 0.0 {
                 &sec.tension
