@@ -11,7 +11,9 @@ use crate::model::{self, Scenario};
 use crate::overrides::{field_at, set_path, set_path_creating};
 use crate::ranges;
 use crate::read::{load_merged, parse, Merged};
-use crate::resolve::{resolve_integrator, resolve_layers, resolve_mujoco, resolve_rapier};
+use crate::resolve::{
+    resolve_integrator, resolve_layers, resolve_mujoco, resolve_rapier, resolve_touchdown,
+};
 use crate::schema::{self};
 use crate::units::Units;
 use crate::Warning;
@@ -242,12 +244,11 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Rapier),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.rapier);
-        let c = Check::new(&self.layers);
-        let rapier = resolve_rapier(&c, &self.file.engines.rapier, &self.units())?;
-        let warnings = c.into_warnings();
-        self.rapier = rapier;
-        self.replace_warnings("engines.rapier.", warnings);
-        Ok(self)
+        self.rechecked(
+            "engines.rapier.",
+            |c, f, u| resolve_rapier(c, &f.engines.rapier, u),
+            |s, v| s.rapier = v,
+        )
     }
 
     /// The scenario with its integrator settings changed by `change` (file units, as in the
@@ -258,12 +259,26 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Integrator),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.integrator);
-        let c = Check::new(&self.layers);
-        let integrator = resolve_integrator(&c, &self.file.integrator, &self.units())?;
-        let warnings = c.into_warnings();
-        self.integrator = integrator;
-        self.replace_warnings("integrator.", warnings);
-        Ok(self)
+        self.rechecked(
+            "integrator.",
+            |c, f, u| resolve_integrator(c, &f.integrator, u),
+            |s, v| s.integrator = v,
+        )
+    }
+
+    /// The scenario with its touchdown conditions changed by `change` (file units, as in the
+    /// file), checked as the file's own would be; the resolved scenario written out shows the
+    /// new values.
+    pub fn with_touchdown(
+        mut self,
+        change: impl FnOnce(&mut schema::Touchdown),
+    ) -> Result<Scenario, ScenarioError> {
+        change(&mut self.file.touchdown);
+        self.rechecked(
+            "touchdown.",
+            |c, f, u| resolve_touchdown(c, &f.touchdown, u),
+            |s, v| s.touchdown = v,
+        )
     }
 
     /// The scenario with its MuJoCo settings changed by `change` (command-line flags), checked
@@ -273,11 +288,26 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Mujoco),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.engines.mujoco);
+        self.rechecked(
+            "engines.mujoco.",
+            |c, f, u| resolve_mujoco(c, &f.engines.mujoco, u),
+            |s, v| s.mujoco = v,
+        )
+    }
+
+    /// The table under `prefix` resolved again from the file by `resolve` and stored by
+    /// `store`, its warnings replacing the old ones.
+    fn rechecked<T>(
+        mut self,
+        prefix: &str,
+        resolve: impl FnOnce(&Check, &schema::ScenarioFile, &Units) -> Result<T, ScenarioError>,
+        store: impl FnOnce(&mut Scenario, T),
+    ) -> Result<Scenario, ScenarioError> {
         let c = Check::new(&self.layers);
-        let mujoco = resolve_mujoco(&c, &self.file.engines.mujoco, &self.units())?;
+        let value = resolve(&c, &self.file, &self.units())?;
         let warnings = c.into_warnings();
-        self.mujoco = mujoco;
-        self.replace_warnings("engines.mujoco.", warnings);
+        store(&mut self, value);
+        self.replace_warnings(prefix, warnings);
         Ok(self)
     }
 

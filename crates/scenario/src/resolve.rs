@@ -152,6 +152,35 @@ pub(crate) fn resolve_mujoco(
     })
 }
 
+/// The touchdown conditions, SI, checked.
+pub(crate) fn resolve_touchdown(
+    c: &Check,
+    td: &schema::Touchdown,
+    u: &Units,
+) -> Result<model::Touchdown, ScenarioError> {
+    let vh = td.horizontal_velocity;
+    let mut velocity_g = Vector3::zeros();
+    for (i, v) in vh.iter().enumerate() {
+        velocity_g[i] = c.finite_si(
+            &format!("touchdown.horizontal_velocity[{i}]"),
+            *v,
+            u.velocity(),
+        )?;
+    }
+    velocity_g.z = c.finite_si(
+        "touchdown.vertical_velocity",
+        td.vertical_velocity,
+        u.velocity(),
+    )?;
+    Ok(model::Touchdown {
+        attitude: c.vec3("touchdown.attitude", td.attitude, u.angle())?,
+        attitude_reference: td.attitude_reference,
+        velocity_g,
+        body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
+        clearance: c.non_negative_si("touchdown.clearance", td.clearance, u.length())?,
+    })
+}
+
 /// The integrator settings, SI, checked.
 pub(crate) fn resolve_integrator(
     c: &Check,
@@ -590,28 +619,7 @@ pub(crate) fn resolve(
         pads,
         release: sf.release,
     };
-    let td = &file.touchdown;
-    let vh = td.horizontal_velocity;
-    let mut velocity_g = Vector3::zeros();
-    for (i, v) in vh.iter().enumerate() {
-        velocity_g[i] = c.finite_si(
-            &format!("touchdown.horizontal_velocity[{i}]"),
-            *v,
-            u.velocity(),
-        )?;
-    }
-    velocity_g.z = c.finite_si(
-        "touchdown.vertical_velocity",
-        td.vertical_velocity,
-        u.velocity(),
-    )?;
-    let touchdown = model::Touchdown {
-        attitude: c.vec3("touchdown.attitude", td.attitude, u.angle())?,
-        attitude_reference: td.attitude_reference,
-        velocity_g,
-        body_rates: c.vec3("touchdown.body_rates", td.body_rates, u.angular_rate())?,
-        clearance: c.non_negative_si("touchdown.clearance", td.clearance, u.length())?,
-    };
+    let touchdown = resolve_touchdown(&c, &file.touchdown, &u)?;
     let integrator = resolve_integrator(&c, &file.integrator, &u)?;
     let st = &file.stability;
     let frac = c.positive(
