@@ -80,6 +80,10 @@ LEG_TOLERANCE_M = 1.0e-4
 NEUTRAL = "0.3"
 C_PASS = "#d9f0d3"
 C_FAIL = "#f4c7c3"
+C_NOT_DETERMINED = "#e6e6e6"
+# A verdict as the figures write it and colour it.
+VERDICT_WORDS = {"pass": "PASS", "fail": "FAIL", "not_determined": "NOT DETERMINED"}
+VERDICT_COLOURS = {"pass": C_PASS, "fail": C_FAIL, "not_determined": C_NOT_DETERMINED}
 
 
 def engine_name(engine: str) -> str:
@@ -135,21 +139,23 @@ def channel_key(ch: dict) -> str:
 def read_comparison_verdicts(path: Path) -> dict:
     """The verdicts of the comparison's document (`<stem>.json`, a line of `touchdown compare
     --format json`, docs/schemas/compare.schema.json) as {"scenario": its name, "pairs": [{"a",
-    "b", "pass", "outcome_agrees", "channels": {key (channel_key): {"difference", "tolerance",
-    "pass"}}}], "units": {key: the unit of its difference and tolerance}}."""
+    "b", "verdict", "outcome_agrees", "channels": {key (channel_key): {"difference", "tolerance",
+    "verdict"}}}], "units": {key: the unit of its difference and tolerance}}; a verdict is "pass",
+    "fail" or "not_determined" (rounding decides it: docs/engines.md, "Rounding-decided
+    channels")."""
     entry = json.loads(path.read_text())
     pairs, units = [], {}
     for p in entry["pairs"]:
         channels = {}
         for ch in p["channels"]:
             key = channel_key(ch)
-            channels[key] = {"difference": ch["difference"], "tolerance": ch["tolerance"], "pass": ch["pass"]}
+            channels[key] = {"difference": ch["difference"], "tolerance": ch["tolerance"], "verdict": ch["verdict"]}
             units[key] = ch["difference_unit"]
         pairs.append(
             {
                 "a": p["a"],
                 "b": p["b"],
-                "pass": p["pass"],
+                "verdict": p["verdict"],
                 "outcome_agrees": p["outcome_agrees"],
                 "channels": channels,
             }
@@ -328,8 +334,8 @@ def verdict_table(ax, verdicts: dict | None, channels: list[tuple[str, str]], le
                 row_colours.append("white")
             else:
                 unit = verdicts["units"].get(name, "")
-                row.append(f"{'PASS' if ch['pass'] else 'FAIL'} {verdict_value(ch['difference'], unit)}")
-                row_colours.append(C_PASS if ch["pass"] else C_FAIL)
+                row.append(f"{VERDICT_WORDS[ch['verdict']]} {verdict_value(ch['difference'], unit)}")
+                row_colours.append(VERDICT_COLOURS[ch["verdict"]])
         text.append(row)
         colours.append(row_colours)
     lines = max(h.count("\n") + 1 for h in header)
@@ -446,17 +452,19 @@ def traces(args: argparse.Namespace) -> None:
         drawn = {name for _, _, _, channels in panels for name, _ in channels}
 
         def verdict(p) -> str:
-            """PASS, or FAIL naming the channels that fail (those not drawn marked so): a
-            failure the panels do not show is named where the reader looks first."""
-            if p["pass"]:
+            """PASS, or FAIL or NOT DETERMINED naming the channels that fail or that rounding
+            decides (those not drawn marked so): what the panels do not show is named where the
+            reader looks first."""
+            if p["verdict"] == "pass":
                 return "PASS"
-            failed = [name for name, ch in p["channels"].items() if not ch["pass"]]
+            word = VERDICT_WORDS[p["verdict"]]
+            failed = [name for name, ch in p["channels"].items() if ch["verdict"] != "pass"]
             named = [name.replace("_", " ") + ("" if name in drawn else " (not drawn)") for name in failed[:3]]
             if len(failed) > 3:
                 named.append(f"{len(failed) - 3} more")
             if not p["outcome_agrees"]:
                 named.insert(0, "outcomes differ")
-            return f"FAIL on {', '.join(named)}" if named else "FAIL"
+            return f"{word} on {', '.join(named)}" if named else word
 
         overall = "\n".join(f"{engine_name(p['a'])}–{engine_name(p['b'])} {verdict(p)}" for p in verdicts["pairs"])
         subtitle = f"every channel of the comparison (touchdown compare's text has them all):\n{overall}"

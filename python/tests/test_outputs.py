@@ -115,6 +115,11 @@ def test_run_documents(tmp_path):
     check(overturn, "run")
     assert overturn["outcome"] == "unstable" and "overturn_velocity_m_s" in overturn
     check(touchdown.run(ROOT / scenario, history=False)["summary"], "run")
+    # With the rounding ensemble: the 1-2-1 landing at 5 ft/s names its leg 2 secondaries.
+    rounded = parse(cli("run", "scenarios/table-i-1-2-1-vv5.toml", "--format", "json", "--rounding"))
+    check(rounded, "run")
+    named = {(u["leg"], u["strut"]) for u in rounded["rounding"]["undetermined"]}
+    assert named == {(2, "sec31"), (2, "sec41")}, rounded["rounding"]
 
 
 def test_compare_streams_one_document_per_scenario(tmp_path):

@@ -52,6 +52,12 @@ pub(crate) enum Command {
         /// engines.mujoco.timestep).
         #[arg(long)]
         timestep: Option<f64>,
+        /// Also land two copies with the touchdown velocity moved by one unit in the last place
+        /// across, each way, and name the maxima (and the outcome) they move by more than the
+        /// tolerance `touchdown compare` judges them by: not determined at this precision
+        /// (docs/engines.md, "Rounding-decided channels"). Three more landings.
+        #[arg(long)]
+        rounding: bool,
     },
     /// Run scenarios through several engines and report how far apart they land, channel by
     /// channel against written tolerances (docs/engines.md, "Comparing the engines").

@@ -4,10 +4,11 @@ use crate::args::{Format, Set};
 use crate::{load, out, outln, plots, settings, view, warn};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
+use touchdown_compare::metrics::Verdict;
 use touchdown_scenario::schema::Engine;
 
 /// `touchdown compare`: every scenario through every engine asked for, every pair compared;
-/// whether every pair passed on every scenario.
+/// whether no pair failed on any scenario (a pair rounding decides does not fail).
 pub fn compare(
     scenarios: &[PathBuf],
     set: &[Set],
@@ -24,7 +25,7 @@ pub fn compare(
         warn(&sc);
         let interval = watch.map(|(_, f)| f);
         let c = touchdown_compare::compare_recorded(path, &sc, &engines, interval)?;
-        passed &= c.pairs.iter().all(|p| p.pass);
+        passed &= c.pairs.iter().all(|p| p.verdict != Verdict::Fail);
         let document = touchdown_compare::report::json_line(&c, &settings);
         if let Some(dir) = out {
             plots::comparison(&c, &document, path, dir, plot)?;

@@ -4,17 +4,19 @@ use crate::args::{Format, Set};
 use crate::{load, out, outln, report, settings, warn};
 use anyhow::{Context, Result};
 use std::path::Path;
-use touchdown_record::History;
+use touchdown_compare::rounding::Determinacy;
+use touchdown_record::{History, Summary};
 use touchdown_scenario::schema::Engine;
 
 /// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
-/// summary.json, history.csv and scenario.resolved.toml in that folder.
+/// summary.json, history.csv and scenario.resolved.toml in that folder; with `rounding`, what
+/// the rounding ensemble says of it (its `rounding` field and section).
 pub fn run(
     scenario: &Path,
     set: &[Set],
     format: Format,
     (out, every): (Option<&Path>, usize),
-    (engine, timestep): (Engine, Option<f64>),
+    (engine, timestep, rounding): (Engine, Option<f64>, bool),
 ) -> Result<()> {
     if every == 0 {
         anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
@@ -66,20 +68,52 @@ pub fn run(
             report::resolved_scenario(&sc),
         )?;
     }
-    let options = match timestep {
+    let mut options = match timestep {
         Some(t) => serde_json::json!({ "timestep_s": t }),
         None => serde_json::json!({}),
     };
-    let document = summary.document(
-        &touchdown_record::ScenarioId::new(scenario.display(), &sc),
-        &settings(set, options),
-    );
+    let determinacy = if rounding {
+        options["rounding"] = true.into();
+        let ensemble = touchdown_compare::run_ensemble(engine, scenario, &sc, None)?;
+        Some(touchdown_compare::rounding::determinacy(&ensemble))
+    } else {
+        None
+    };
+    let id = touchdown_record::ScenarioId::new(scenario.display(), &sc);
+    let settings = settings(set, options);
+    let document = match &determinacy {
+        Some(d) => touchdown_record::Document::new(
+            "run",
+            Some(&id),
+            &settings,
+            &WithRounding {
+                summary: &summary,
+                rounding: d,
+            },
+        )
+        .pretty(),
+        None => summary.document(&id, &settings),
+    };
     if let Some(dir) = out {
         std::fs::write(dir.join("summary.json"), &document)?;
     }
     match format {
-        Format::Text => out!("{}", report::text(&sc, &summary, set))?,
+        Format::Text => {
+            out!("{}", report::text(&sc, &summary, set))?;
+            if let Some(d) = &determinacy {
+                out!("\n{}", touchdown_compare::report::determinacy_text(d))?;
+            }
+        }
         Format::Json => outln!("{document}")?,
     }
     Ok(())
+}
+
+/// A summary with what the rounding ensemble says of it (`touchdown run --rounding`):
+/// docs/schemas/run.schema.json's `rounding`.
+#[derive(serde::Serialize)]
+struct WithRounding<'a> {
+    #[serde(flatten)]
+    summary: &'a Summary,
+    rounding: &'a Determinacy,
 }

@@ -149,12 +149,13 @@ fn run(cli: Cli) -> Result<Verdict> {
             every,
             engine,
             timestep,
+            rounding,
         } => landing::run(
             &scenario,
             &set.set,
             format,
             (out.as_deref(), every),
-            (engine, timestep),
+            (engine, timestep, rounding),
         ),
         Command::Compare {
             scenarios,

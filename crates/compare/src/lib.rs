@@ -5,6 +5,7 @@
 //! | [`trace`] | the time series a comparison needs (vertical velocity, pitch rate), from any engine |
 //! | [`metrics`] | divergence of two engines, channel by channel, against written tolerances |
 //! | [`report`] | a scenario's comparison as text (rounded for snapshot review) and JSON |
+//! | [`rounding`] | each landing again with its touchdown velocity moved by a unit in the last place: the verdicts rounding decides |
 //! | [`plot`] | the traces behind the metrics, as CSV for `python/figures/plot_compare.py` |
 //! | [`robustness`] | the stiff and extreme catalogue: every case on every engine, classified; the largest stable steps |
 //! | [`precision`] | work-precision: every engine and scheme over a ladder of steps or tolerances against a converged reference |
@@ -17,8 +18,10 @@ pub mod plot;
 pub mod precision;
 pub mod report;
 pub mod robustness;
+pub mod rounding;
 pub mod trace;
 
+use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
 use touchdown_record::{Landing, Observer, Sample, Summary};
@@ -91,6 +94,16 @@ pub struct EngineRun {
     pub trace: Trace,
     /// Its frames for a viewer, when asked for ([`run_recorded`]).
     pub recording: Option<Recording>,
+    /// The same engine's runs of the landing's perturbed copies ([`rounding::perturbed`]): the
+    /// rest of its rounding ensemble (empty for a run alone).
+    pub perturbed: Vec<EngineRun>,
+}
+
+impl EngineRun {
+    /// The run itself, then its perturbed copies.
+    pub fn members(&self) -> Vec<&EngineRun> {
+        std::iter::once(self).chain(&self.perturbed).collect()
+    }
 }
 
 /// Collects a trace, and the frames for a viewer if asked, from any stepping engine.
@@ -164,7 +177,31 @@ pub fn run_recorded(
         summary,
         trace: tracer.sink.trace,
         recording: tracer.sink.recorder.map(Recorder::finish),
+        perturbed: Vec::new(),
     })
+}
+
+/// [`run_recorded`], with the rounding ensemble: the scenario's perturbed copies
+/// ([`rounding::perturbed`]) land on the same engine too, in parallel (collected in order: the
+/// same result whatever the thread count), into [`EngineRun::perturbed`]; only the landing as
+/// given records frames.
+pub fn run_ensemble(
+    engine: Engine,
+    path: &Path,
+    sc: &Scenario,
+    frame_interval: Option<f64>,
+) -> Result<EngineRun, CompareError> {
+    let copies = rounding::perturbed(sc)?;
+    let landings: Vec<(&Scenario, Option<f64>)> = std::iter::once((sc, frame_interval))
+        .chain(copies.iter().map(|c| (c, None)))
+        .collect();
+    let mut runs = landings
+        .par_iter()
+        .map(|(s, frames)| run_recorded(engine, path, s, *frames))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut run = runs.remove(0);
+    run.perturbed = runs;
+    Ok(run)
 }
 
 /// Checks the time between a trajectory's frames, s.
@@ -352,7 +389,7 @@ pub fn compare_recorded(
     let (applicable, not_applicable) = split_applicable(sc, engines);
     let runs = applicable
         .iter()
-        .map(|e| run_recorded(*e, path, sc, frame_interval))
+        .map(|e| run_ensemble(*e, path, sc, frame_interval))
         .collect::<Result<Vec<_>, _>>()?;
     let mut pairs = Vec::new();
     for (i, a) in runs.iter().enumerate() {

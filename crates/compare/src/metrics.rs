@@ -1,6 +1,7 @@
 //! Divergence of two engines on one landing, channel by channel, each against a tolerance
 //! written down with its reason ([`TOLERANCES`]).
 
+use crate::rounding::Spread;
 use crate::trace::Trace;
 use crate::{Engine, EngineRun};
 use serde::Serialize;
@@ -208,8 +209,46 @@ pub struct Channel {
     pub difference_unit: &'static str,
     /// The tolerance's limit, in `difference_unit`.
     pub tolerance: f64,
-    /// Whether the difference is within the tolerance.
-    pub pass: bool,
+    /// Smallest and largest difference between a member of the first engine's rounding
+    /// ensemble and one of the second's ([`crate::rounding`]), in `difference_unit`.
+    pub ensemble_difference: [f64; 2],
+    /// Smallest and largest value of the first engine over its ensemble, in `unit` (left out
+    /// of the history channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a_range: Option<[f64; 2]>,
+    /// Smallest and largest value of the second engine over its ensemble, in `unit` (left out
+    /// of the history channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b_range: Option<[f64; 2]>,
+    /// Largest difference between two members of the first engine's ensemble, then of the
+    /// second's, in `difference_unit`: how far rounding alone moves the channel.
+    pub rounding_spread: [f64; 2],
+    /// The difference against the tolerance over the ensemble.
+    pub verdict: Verdict,
+}
+
+/// A channel's or a pair's verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// Within the tolerance on every pair of ensemble members.
+    Pass,
+    /// Beyond the tolerance on every pair of ensemble members.
+    Fail,
+    /// Not determined at this precision: a change of the order of rounding flips the verdict,
+    /// or moves the channel on one engine by more than its tolerance.
+    NotDetermined,
+}
+
+impl Verdict {
+    /// As the text reports write it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Verdict::Pass => "pass",
+            Verdict::Fail => "FAIL",
+            Verdict::NotDetermined => "not determined",
+        }
+    }
 }
 
 /// The unit of a channel that counts struts (past their capacity): its values are whole
@@ -252,14 +291,18 @@ pub struct PairComparison {
     pub outcome_b: Outcome,
     /// Whether the outcomes agree.
     pub outcome_agrees: bool,
+    /// Whether each engine lands with one outcome over its rounding ensemble.
+    pub outcome_determined: bool,
     /// Every channel.
     pub channels: Vec<Channel>,
-    /// The index in `channels` of the channel furthest beyond (or nearest to) its tolerance;
-    /// left out when the outcomes disagree (the outcome is then the worst).
+    /// The index in `channels` of the channel furthest beyond (or nearest to) its tolerance,
+    /// a failing one first; left out when the outcomes disagree (the outcome is then the
+    /// worst).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub worst_channel: Option<usize>,
-    /// Whether the outcomes agree and every channel passes.
-    pub pass: bool,
+    /// A fail if the outcomes disagree on every member or a channel fails; a pass if they
+    /// agree on every member and every channel passes; not determined otherwise.
+    pub verdict: Verdict,
 }
 
 impl PairComparison {
@@ -310,7 +353,15 @@ fn channel(
         difference,
         difference_unit: t.difference_unit,
         tolerance: t.limit,
-        pass: difference <= t.limit,
+        ensemble_difference: [difference; 2],
+        a_range: values.map(|v| [v.0; 2]),
+        b_range: values.map(|v| [v.1; 2]),
+        rounding_spread: [0.0; 2],
+        verdict: if difference <= t.limit {
+            Verdict::Pass
+        } else {
+            Verdict::Fail
+        },
     }
 }
 
@@ -358,8 +409,8 @@ fn past_capacity_difference(a: &touchdown_record::Summary, b: &touchdown_record:
         .fold(0.0, f64::max)
 }
 
-/// Compares two engines' runs of the same landing.
-pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
+/// Every channel of two engines' runs of the same landing, judged on these two runs alone.
+pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
     let (sa, sb) = (&a.summary, &b.summary);
     let mut channels = Vec::new();
     for (i, (x, y)) in sa
@@ -502,27 +553,93 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
         };
         channels.push(values(about, "J", (x, y), (x - y).abs() / ke0, &ENERGY));
     }
+    channels
+}
+
+/// Compares two engines' runs of the same landing, each with its rounding ensemble
+/// ([`EngineRun::perturbed`]): a channel's verdict holds over every pair of members.
+pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
+    let mut channels = channels(a, b);
+    let mut spreads: Vec<Spread> = channels.iter().map(Spread::of).collect();
+    let key = |c: &Channel| (c.quantity, c.leg, c.strut, c.account);
+    let widen = |spreads: &mut [Spread], set: Vec<Channel>, engine: Option<usize>| {
+        for (c, s) in channels_of(&set, &channels, key).zip(spreads.iter_mut()) {
+            match engine {
+                None => s.between(c),
+                Some(e) => s.within(e, c),
+            }
+        }
+    };
+    let members = [a.members(), b.members()];
+    for (i, x) in members[0].iter().enumerate() {
+        for (j, y) in members[1].iter().enumerate() {
+            if i + j > 0 {
+                widen(&mut spreads, self::channels(x, y), None);
+            }
+        }
+    }
+    for (e, m) in members.iter().enumerate() {
+        for (i, x) in m.iter().enumerate() {
+            for y in &m[i + 1..] {
+                widen(&mut spreads, self::channels(x, y), Some(e));
+            }
+        }
+    }
+    for (c, s) in channels.iter_mut().zip(&spreads) {
+        c.ensemble_difference = s.between;
+        [c.a_range, c.b_range] = s.values;
+        c.rounding_spread = s.within;
+        c.verdict = s.verdict(c.tolerance);
+    }
+    let (sa, sb) = (&a.summary, &b.summary);
     let outcome_agrees = sa.outcome == sb.outcome;
+    let outcome_determined = members
+        .iter()
+        .all(|m| m.iter().all(|r| r.summary.outcome == m[0].summary.outcome));
     let worst_channel = if outcome_agrees {
         channels
             .iter()
             .enumerate()
             .max_by(|(_, x), (_, y)| {
-                (x.difference / x.tolerance).total_cmp(&(y.difference / y.tolerance))
+                let failing = |c: &Channel| c.verdict == Verdict::Fail;
+                (failing(x), x.difference / x.tolerance)
+                    .partial_cmp(&(failing(y), y.difference / y.tolerance))
+                    .unwrap_or(std::cmp::Ordering::Equal)
             })
             .map(|(i, _)| i)
     } else {
         None
     };
-    let pass = outcome_agrees && channels.iter().all(|c| c.pass);
+    let verdicts = channels.iter().map(|c| c.verdict);
+    let verdict = if (outcome_determined && !outcome_agrees)
+        || verdicts.clone().any(|v| v == Verdict::Fail)
+    {
+        Verdict::Fail
+    } else if !outcome_determined || verdicts.clone().any(|v| v == Verdict::NotDetermined) {
+        Verdict::NotDetermined
+    } else {
+        Verdict::Pass
+    };
     PairComparison {
         a: a.engine,
         b: b.engine,
         outcome_a: sa.outcome,
         outcome_b: sb.outcome,
         outcome_agrees,
+        outcome_determined,
         channels,
         worst_channel,
-        pass,
+        verdict,
     }
+}
+
+/// For each channel of `reference`, the channel of `set` about the same thing (`key`), if any.
+fn channels_of<'s, K: PartialEq>(
+    set: &'s [Channel],
+    reference: &'s [Channel],
+    key: impl Fn(&Channel) -> K + 's,
+) -> impl Iterator<Item = Option<&'s Channel>> + 's {
+    reference
+        .iter()
+        .map(move |c| set.iter().find(|d| key(d) == key(c)))
 }

@@ -2,8 +2,8 @@
 //! figures (and anything under 1e-6 in SI to 0, rounding noise such as a symmetric landing's
 //! pitch rate), so that it is stable across machines and fit for snapshot review.
 
-use crate::metrics::TOLERANCES;
-use crate::ScenarioComparison;
+use crate::metrics::{Verdict, TOLERANCES};
+use crate::{Engine, ScenarioComparison};
 use std::fmt::Write;
 use touchdown_record::{Document, ScenarioId};
 
@@ -59,12 +59,17 @@ pub fn text(c: &ScenarioComparison) -> String {
     for p in &c.pairs {
         let _ = writeln!(
             o,
-            "\n{} vs {}: {}; outcomes {:?} / {:?}; worst: {}",
+            "\n{} vs {}: {}; outcomes {:?} / {:?}{}; worst: {}",
             p.a.name(),
             p.b.name(),
-            if p.pass { "PASS" } else { "FAIL" },
+            p.verdict.label().to_uppercase(),
             p.outcome_a,
             p.outcome_b,
+            if p.outcome_determined {
+                ""
+            } else {
+                " (not determined at this precision)"
+            },
             p.worst()
         );
         let rows = p.channels.iter().map(|ch| {
@@ -85,7 +90,7 @@ pub fn text(c: &ScenarioComparison) -> String {
                 ch.unit.to_string(),
                 with_unit(ch.difference, ch.difference_unit),
                 with_unit(ch.tolerance, ch.difference_unit),
-                (if ch.pass { "pass" } else { "FAIL" }).to_string(),
+                ch.verdict.label().to_string(),
             ]
         });
         o.push_str(&text_table(
@@ -102,6 +107,90 @@ pub fn text(c: &ScenarioComparison) -> String {
             &[1, 2, 3, 5, 6],
             rows,
         ));
+        undetermined(&mut o, p);
+    }
+    o
+}
+
+/// The channels of a pair that rounding decides, each with its spread over the ensembles.
+fn undetermined(o: &mut String, p: &crate::metrics::PairComparison) {
+    let channels: Vec<_> = p
+        .channels
+        .iter()
+        .filter(|c| c.verdict == Verdict::NotDetermined)
+        .collect();
+    if channels.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        o,
+        "not determined at this precision (the touchdown velocity moved by {} unit in the last place across, each way):",
+        crate::rounding::CROSSWISE_ULPS[0]
+    );
+    let range = |engine: Engine, r: Option<[f64; 2]>, unit: &str| {
+        r.map(|[lo, hi]| format!("{} {}-{} {unit}, ", engine.name(), sig3(lo), sig3(hi)))
+            .unwrap_or_default()
+    };
+    for c in channels {
+        let [lo, hi] = c.ensemble_difference;
+        let u = c.difference_unit;
+        let _ = writeln!(
+            o,
+            "  {}: {}{}difference {} to {} (tolerance {}); rounding alone moves {} by {}, {} by {}",
+            c.name(),
+            range(p.a, c.a_range, c.unit),
+            range(p.b, c.b_range, c.unit),
+            with_unit(lo, u),
+            with_unit(hi, u),
+            with_unit(c.tolerance, u),
+            p.a.name(),
+            with_unit(c.rounding_spread[0], u),
+            p.b.name(),
+            with_unit(c.rounding_spread[1], u),
+        );
+    }
+}
+
+/// What the rounding ensemble says of one engine's landing, as text (`touchdown run
+/// --rounding`).
+pub fn determinacy_text(d: &crate::rounding::Determinacy) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "rounding: the landing again with its touchdown velocity moved by {} unit in the last place across, each way",
+        d.crosswise_ulps[0]
+    );
+    let _ = writeln!(
+        o,
+        "  outcome: {}",
+        if d.outcome_determined {
+            "the same on every copy"
+        } else {
+            "NOT DETERMINED at this precision (the copies differ)"
+        }
+    );
+    if d.undetermined.is_empty() {
+        let _ = writeln!(
+            o,
+            "  every maximum within the tolerance `touchdown compare` judges it by"
+        );
+        return o;
+    }
+    let _ = writeln!(
+        o,
+        "  not determined at this precision (the copies move them by more than the tolerance `touchdown compare` judges them by):"
+    );
+    for u in &d.undetermined {
+        let _ = writeln!(
+            o,
+            "    {}: {}-{} {}, moved by {} (tolerance {})",
+            u.channel,
+            sig3(u.range[0]),
+            sig3(u.range[1]),
+            u.unit,
+            with_unit(u.spread, u.difference_unit),
+            with_unit(u.tolerance, u.difference_unit)
+        );
     }
     o
 }

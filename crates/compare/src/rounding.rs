@@ -1,0 +1,282 @@
+//! Rounding-decided channels (docs/engines.md, "Rounding-decided channels"): each engine lands
+//! a scenario once as given and once for each of [`CROSSWISE_ULPS`], the touchdown velocity's
+//! X_G component moved by that many units in the last place of the touchdown speed, a change
+//! of the order of the rounding of any input. A landing that decides a maximum through an
+//! unstable symmetric state (a rocking stance, two struts on one plateau) amplifies such a
+//! change to a spread of its own; a verdict that a change of this size can flip is reported as
+//! not determined at this precision ([`Verdict::NotDetermined`]) with that spread, not as a
+//! pass or a fail.
+
+use crate::metrics::{channels, Channel, Strut, Verdict, ENERGY};
+use crate::EngineRun;
+use serde::Serialize;
+use touchdown_scenario::{Scenario, ScenarioError};
+
+/// The perturbed members of a landing's ensemble, in units in the last place of the touchdown
+/// speed added to the touchdown velocity's X_G component: one each way, so that a landing
+/// symmetric about the Y_G-Z_G plane gets both mirror images.
+pub const CROSSWISE_ULPS: [f64; 2] = [1.0, -1.0];
+
+/// One unit in the last place of `x` (the spacing of doubles at |x|); of 1 at `x` = 0.
+pub fn ulp(x: f64) -> f64 {
+    let x = if x == 0.0 { 1.0 } else { x.abs() };
+    f64::from_bits(x.to_bits() + 1) - x
+}
+
+/// The scenario `sc` with its touchdown velocity's X_G component moved by `ulps` units in the
+/// last place of the touchdown speed (file units, as the file gives the velocity).
+pub fn crosswise(sc: &Scenario, ulps: f64) -> Result<Scenario, ScenarioError> {
+    let td = &sc.file.touchdown;
+    let [vx, vy] = td.horizontal_velocity;
+    let speed = (vx * vx + vy * vy + td.vertical_velocity * td.vertical_velocity).sqrt();
+    let step = ulps * ulp(speed);
+    sc.clone()
+        .with_touchdown(|t| t.horizontal_velocity[0] += step)
+}
+
+/// The ensemble's perturbed scenarios of `sc`, one per [`CROSSWISE_ULPS`].
+pub fn perturbed(sc: &Scenario) -> Result<Vec<Scenario>, ScenarioError> {
+    CROSSWISE_ULPS.iter().map(|u| crosswise(sc, *u)).collect()
+}
+
+/// A maximum of one engine's landing that its rounding ensemble moves by more than the
+/// tolerance `touchdown compare` judges it by: not determined at this precision.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Undetermined {
+    /// The maximum as the text reports name its channel ("secondary stroke leg 2 3-1").
+    pub channel: String,
+    /// The quantity: the `quantity` of its tolerance.
+    pub quantity: &'static str,
+    /// The leg, numbered from 1 (stroke channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub leg: Option<usize>,
+    /// The strut (stroke channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strut: Option<Strut>,
+    /// The SI unit of `range`.
+    pub unit: &'static str,
+    /// Smallest and largest value over the ensemble, in `unit`.
+    pub range: [f64; 2],
+    /// Largest difference between two members, as the tolerance measures it, in
+    /// `difference_unit`.
+    pub spread: f64,
+    /// The unit of `spread` and `tolerance`: `fraction` or an SI unit.
+    pub difference_unit: &'static str,
+    /// The tolerance, in `difference_unit`.
+    pub tolerance: f64,
+}
+
+/// The maxima of `run` ([`crate::run_ensemble`]: the landing and its perturbed copies on one
+/// engine) that its members land further apart than their tolerance, in channel order. The
+/// energy accounts are totals, not maxima, and the pitch-rate histories compare two engines:
+/// neither is listed.
+pub fn undetermined(run: &EngineRun) -> Vec<Undetermined> {
+    let members = run.members();
+    let mut out: Vec<Undetermined> = Vec::new();
+    for (i, x) in members.iter().enumerate() {
+        for y in &members[i + 1..] {
+            for c in channels(x, y) {
+                let (Some(a), Some(b)) = (c.a, c.b) else {
+                    continue;
+                };
+                if c.quantity == ENERGY.quantity {
+                    continue;
+                }
+                let name = c.name();
+                match out.iter_mut().find(|u| u.channel == name) {
+                    Some(u) => {
+                        u.range = [u.range[0].min(a).min(b), u.range[1].max(a).max(b)];
+                        u.spread = u.spread.max(c.difference);
+                    }
+                    None => out.push(Undetermined {
+                        channel: name,
+                        quantity: c.quantity,
+                        leg: c.leg,
+                        strut: c.strut,
+                        unit: c.unit,
+                        range: [a.min(b), a.max(b)],
+                        spread: c.difference,
+                        difference_unit: c.difference_unit,
+                        tolerance: c.tolerance,
+                    }),
+                }
+            }
+        }
+    }
+    out.retain(|u| u.spread > u.tolerance);
+    out
+}
+
+/// What the rounding ensemble says of one engine's landing (`touchdown run --rounding`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Determinacy {
+    /// The copies' perturbations, in units in the last place of the touchdown speed added to
+    /// the touchdown velocity's X_G component ([`CROSSWISE_ULPS`]).
+    pub crosswise_ulps: [f64; 2],
+    /// Whether the landing and its copies have one outcome.
+    pub outcome_determined: bool,
+    /// The maxima not determined at this precision ([`undetermined`]).
+    pub undetermined: Vec<Undetermined>,
+}
+
+/// What the rounding ensemble `run` ([`crate::run_ensemble`]) says of its landing.
+pub fn determinacy(run: &EngineRun) -> Determinacy {
+    Determinacy {
+        crosswise_ulps: CROSSWISE_ULPS,
+        outcome_determined: run
+            .perturbed
+            .iter()
+            .all(|r| r.summary.outcome == run.summary.outcome),
+        undetermined: undetermined(run),
+    }
+}
+
+/// What the ensemble says of one channel: how far apart the engines' members land, and how far
+/// apart each engine's own members land.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Spread {
+    /// Smallest and largest difference between a member of the first engine and one of the
+    /// second, as the tolerance measures it.
+    pub between: [f64; 2],
+    /// Largest difference between two members of the same engine, as the tolerance measures
+    /// it: the first engine's, the second's.
+    pub within: [f64; 2],
+    /// Smallest and largest value of each engine over its members (`None` for a history
+    /// channel, which has no single value).
+    pub values: [Option<[f64; 2]>; 2],
+    /// Whether every pair of members has the channel (a channel that only some outcomes have,
+    /// such as the overturn velocity, exists by rounding).
+    pub everywhere: bool,
+}
+
+impl Spread {
+    /// The spread of a channel of the landings as given: nothing yet beyond it.
+    pub(crate) fn of(c: &Channel) -> Spread {
+        Spread {
+            between: [c.difference; 2],
+            within: [0.0; 2],
+            values: [c.a.map(|a| [a; 2]), c.b.map(|b| [b; 2])],
+            everywhere: true,
+        }
+    }
+
+    /// Widened by the same channel of a pair of members of the two engines (`None`: that pair
+    /// has no such channel).
+    pub(crate) fn between(&mut self, c: Option<&Channel>) {
+        let Some(c) = c else {
+            self.everywhere = false;
+            return;
+        };
+        self.between = [
+            self.between[0].min(c.difference),
+            self.between[1].max(c.difference),
+        ];
+        for (range, v) in self.values.iter_mut().zip([c.a, c.b]) {
+            if let (Some(r), Some(v)) = (range.as_mut(), v) {
+                *r = [r[0].min(v), r[1].max(v)];
+            }
+        }
+    }
+
+    /// Widened by the same channel of two members of one engine (`engine`: 0 the first, 1 the
+    /// second).
+    pub(crate) fn within(&mut self, engine: usize, c: Option<&Channel>) {
+        match c {
+            Some(c) => self.within[engine] = self.within[engine].max(c.difference),
+            None => self.everywhere = false,
+        }
+    }
+
+    /// The verdict on a channel of tolerance `limit`: a pass or a fail if every pair of members
+    /// gives it and neither engine's members are further apart than the tolerance (a value, or
+    /// for a history channel the history, that rounding alone moves by more than the tolerance
+    /// cannot be judged against it); not determined otherwise.
+    pub(crate) fn verdict(&self, limit: f64) -> Verdict {
+        let [low, high] = self.between;
+        if !self.everywhere || self.within.iter().any(|w| *w > limit) {
+            Verdict::NotDetermined
+        } else if high <= limit {
+            Verdict::Pass
+        } else if low > limit {
+            Verdict::Fail
+        } else {
+            Verdict::NotDetermined
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_unit_in_the_last_place() {
+        assert_eq!(ulp(1.0), f64::EPSILON);
+        assert_eq!(ulp(-1.0), f64::EPSILON);
+        assert_eq!(ulp(0.0), f64::EPSILON);
+        assert_eq!(ulp(4.0), 4.0 * f64::EPSILON);
+        // the next double up is x + ulp, exactly
+        let x = 12.25_f64;
+        assert_eq!(x + ulp(x), f64::from_bits(x.to_bits() + 1));
+    }
+
+    #[test]
+    fn a_copy_differs_from_its_landing_by_one_unit_in_the_last_place_on_every_engine() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios/table-i-1-2-1-vv5.toml");
+        let sc = Scenario::load(&path).unwrap();
+        let td = &sc.file.touchdown;
+        let speed = (td.horizontal_velocity[1].powi(2) + td.vertical_velocity.powi(2)).sqrt();
+        for u in CROSSWISE_ULPS {
+            let copy = crosswise(&sc, u).unwrap();
+            let vx = copy.file.touchdown.horizontal_velocity[0];
+            assert_eq!(vx, u * ulp(speed));
+            // the resolved velocity (core, rapier) carries it, in SI
+            assert!(copy.touchdown.velocity_g.x * u > 0.0);
+            assert_eq!(copy.touchdown.velocity_g.yz(), sc.touchdown.velocity_g.yz());
+            // so does the resolved file the MuJoCo runner reads, to the bit
+            let back = Scenario::from_toml("copy", &copy.to_toml()).unwrap();
+            assert_eq!(back.file.touchdown.horizontal_velocity[0], vx);
+            assert_ne!(copy.sha256(), sc.sha256());
+        }
+    }
+
+    fn spread(between: [f64; 2], within: [f64; 2]) -> Spread {
+        Spread {
+            between,
+            within,
+            values: [Some([0.0; 2]); 2],
+            everywhere: true,
+        }
+    }
+
+    #[test]
+    fn a_verdict_the_members_share_is_a_verdict() {
+        assert_eq!(
+            spread([0.01, 0.04], [0.0, 0.01]).verdict(0.05),
+            Verdict::Pass
+        );
+        assert_eq!(
+            spread([0.06, 0.09], [0.0, 0.01]).verdict(0.05),
+            Verdict::Fail
+        );
+    }
+
+    #[test]
+    fn a_verdict_rounding_can_flip_is_not_determined() {
+        // the members fall on both sides of the tolerance
+        let s = spread([0.04, 0.06], [0.0, 0.0]);
+        assert_eq!(s.verdict(0.05), Verdict::NotDetermined);
+        // an engine's own members further apart than the tolerance
+        let s = spread([0.5, 0.6], [0.07, 0.0]);
+        assert_eq!(s.verdict(0.05), Verdict::NotDetermined);
+        // a history channel too: rounding moves one engine's history by more than the tolerance
+        let mut s = spread([0.5, 0.6], [0.07, 0.0]);
+        s.values = [None; 2];
+        assert_eq!(s.verdict(0.05), Verdict::NotDetermined);
+        // a channel only some members have
+        let mut s = spread([0.0, 0.0], [0.0, 0.0]);
+        s.between(None);
+        assert_eq!(s.verdict(0.05), Verdict::NotDetermined);
+    }
+}
