@@ -145,3 +145,44 @@ fn no_decision_cuts_a_maximum_on_mujoco() {
         same_maxima(&name, &ended, &went_on, sc.integrator.t_end);
     }
 }
+
+/// Every bundled landing's end time is enough (docs/errata.md, "Stability decisions and
+/// maxima"): landed again on the core to twice its end time, no maximum moves by more than a
+/// tenth of the tolerance `touchdown compare` judges it by, measured as that tolerance measures
+/// it (the strokes, the peak pitch rate and its time, the peak vertical acceleration, the
+/// minimum stability distance, the struts past their capacity). The energy accounts go on
+/// accumulating with time and the pitch-rate histories are compared over their common span, so
+/// neither says whether a maximum is final.
+#[test]
+fn every_bundled_landing_ends_when_its_maxima_are_final() {
+    use touchdown_compare::metrics::{ENERGY, PITCH_RATE_MAX, PITCH_RATE_RMS};
+    let mut failures = vec![];
+    for (name, sc) in landings() {
+        let path = scenario(&name);
+        let mut longer = sc.clone();
+        longer.integrator.t_end *= 2.0;
+        let run = |s: &Scenario| {
+            touchdown_compare::run(Engine::Core, &path, s).unwrap_or_else(|e| panic!("{e}"))
+        };
+        let pair = touchdown_compare::metrics::compare(&run(&sc), &run(&longer));
+        let history_or_energy = [
+            ENERGY.quantity,
+            PITCH_RATE_RMS.quantity,
+            PITCH_RATE_MAX.quantity,
+        ];
+        for c in &pair.channels {
+            if !history_or_energy.contains(&c.quantity) && c.difference > 0.1 * c.tolerance {
+                failures.push(format!(
+                    "{name}: {} moves by {:.3e} {} from t_end {} s to twice that (a tenth of its tolerance is {:.3e})",
+                    c.name(),
+                    c.difference,
+                    c.difference_unit,
+                    sc.integrator.t_end,
+                    0.1 * c.tolerance
+                ));
+            }
+        }
+        assert_eq!(pair.outcome_a, pair.outcome_b, "{name}: outcome");
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
