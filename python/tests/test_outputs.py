@@ -120,6 +120,9 @@ def test_run_documents(tmp_path):
     check(rounded, "run")
     named = {(u["leg"], u["strut"]) for u in rounded["rounding"]["undetermined"]}
     assert named == {(2, "sec31"), (2, "sec41")}, rounded["rounding"]
+    from_python = touchdown.run(ROOT / "scenarios" / "table-i-1-2-1-vv5.toml", history=False, rounding=True)["summary"]
+    check(from_python, "run")
+    assert from_python["rounding"] == rounded["rounding"]
 
 
 def test_compare_streams_one_document_per_scenario(tmp_path):

@@ -63,6 +63,7 @@ def run(
     overrides: Optional[Mapping[str, Any]] = None,
     history: bool = True,
     frame: Optional[str] = None,
+    rounding: bool = False,
 ) -> dict:
     """Lands `scenario` (a scenario file's path, or its TOML text without `extends`: text spans
     lines, and a one-line string naming no file raises FileNotFoundError) on
@@ -70,10 +71,13 @@ def run(
     "touchdown.attitude[2]", to value in the file's units). Returns {"summary": dict (as
     `touchdown run --format json`, docs/schemas/run.schema.json), "history": the history (a dict of NumPy arrays, or with
     `frame="pandas"` or `"polars"` a frame of that package), or None (MuJoCo, or
-    history=False)}."""
+    history=False)}. With `rounding=True` the summary also has `rounding`, as `touchdown run
+    --rounding` gives it: the maxima that a unit in the last place of the touchdown velocity
+    moves by more than their compare tolerance (three more landings; docs/engines.md,
+    "Rounding-decided channels")."""
     if frame not in (None, "pandas", "polars"):
         raise ValueError(f'frame: expected None, "pandas" or "polars", got {frame!r}')
-    summary, csv_text = _native.run(str(scenario), engine, dict(overrides or {}), history)
+    summary, csv_text = _native.run(str(scenario), engine, dict(overrides or {}), history, rounding)
     return {
         "summary": json.loads(summary),
         "history": _history(csv_text, frame) if csv_text else None,

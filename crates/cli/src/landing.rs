@@ -4,8 +4,7 @@ use crate::args::{Format, Set};
 use crate::{load, out, outln, report, settings, warn};
 use anyhow::{Context, Result};
 use std::path::Path;
-use touchdown_compare::rounding::Determinacy;
-use touchdown_record::{History, Summary};
+use touchdown_record::History;
 use touchdown_scenario::schema::Engine;
 
 /// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
@@ -81,19 +80,8 @@ pub fn run(
     };
     let id = touchdown_record::ScenarioId::new(scenario.display(), &sc);
     let settings = settings(set, options);
-    let document = match &determinacy {
-        Some(d) => touchdown_record::Document::new(
-            "run",
-            Some(&id),
-            &settings,
-            &WithRounding {
-                summary: &summary,
-                rounding: d,
-            },
-        )
-        .pretty(),
-        None => summary.document(&id, &settings),
-    };
+    let document =
+        touchdown_compare::rounding::run_document(&summary, &id, &settings, determinacy.as_ref());
     if let Some(dir) = out {
         std::fs::write(dir.join("summary.json"), &document)?;
     }
@@ -107,13 +95,4 @@ pub fn run(
         Format::Json => outln!("{document}")?,
     }
     Ok(())
-}
-
-/// A summary with what the rounding ensemble says of it (`touchdown run --rounding`):
-/// docs/schemas/run.schema.json's `rounding`.
-#[derive(serde::Serialize)]
-struct WithRounding<'a> {
-    #[serde(flatten)]
-    summary: &'a Summary,
-    rounding: &'a Determinacy,
 }

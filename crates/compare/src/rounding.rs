@@ -131,6 +131,38 @@ pub fn determinacy(run: &EngineRun) -> Determinacy {
     }
 }
 
+/// A summary with what the rounding ensemble says of it: `rounding` of
+/// docs/schemas/run.schema.json.
+#[derive(Serialize)]
+struct WithRounding<'a> {
+    #[serde(flatten)]
+    summary: &'a touchdown_record::Summary,
+    rounding: &'a Determinacy,
+}
+
+/// The summary's document (`touchdown run --format json`, `summary.json`): with `rounding`,
+/// its `rounding` field says what the ensemble found ([`determinacy`]).
+pub fn run_document(
+    summary: &touchdown_record::Summary,
+    scenario: &touchdown_record::ScenarioId,
+    settings: &serde_json::Value,
+    rounding: Option<&Determinacy>,
+) -> String {
+    match rounding {
+        Some(d) => touchdown_record::Document::new(
+            "run",
+            Some(scenario),
+            settings,
+            &WithRounding {
+                summary,
+                rounding: d,
+            },
+        )
+        .pretty(),
+        None => summary.document(scenario, settings),
+    }
+}
+
 /// What the ensemble says of one channel: how far apart the engines' members land, and how far
 /// apart each engine's own members land.
 #[derive(Debug, Clone, Copy, PartialEq)]

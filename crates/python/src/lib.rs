@@ -231,15 +231,17 @@ fn engines(names: Vec<String>) -> PyResult<Vec<Engine>> {
 }
 
 /// Lands `scenario` (a path or TOML text) on `engine` with `overrides` (field path → value in
-/// the file's units): the summary as JSON and, with `history`, the history as CSV text.
+/// the file's units): the summary as JSON and, with `history`, the history as CSV text; with
+/// `rounding`, the summary says what the rounding ensemble found (`touchdown run --rounding`).
 #[pyfunction]
-#[pyo3(signature = (scenario, engine="core", overrides=None, history=true))]
+#[pyo3(signature = (scenario, engine="core", overrides=None, history=true, rounding=false))]
 fn run(
     py: Python<'_>,
     scenario: &str,
     engine: &str,
     overrides: Option<&Bound<'_, PyDict>>,
     history: bool,
+    rounding: bool,
 ) -> PyResult<(String, Option<String>)> {
     let engine: Engine = engine
         .parse()
@@ -268,8 +270,26 @@ fn run(
             ),
             None => None,
         };
+        let determinacy = if rounding {
+            let ensemble = touchdown_compare::run_ensemble(engine, path, &sc, None)
+                .map_err(|e| Box::new(Failed::Compare(e)))?;
+            Some(touchdown_compare::rounding::determinacy(&ensemble))
+        } else {
+            None
+        };
+        let options = if rounding {
+            json!({ "rounding": true })
+        } else {
+            json!({})
+        };
         let id = touchdown_record::ScenarioId::new(source, &sc);
-        Ok((summary.document(&id, &settings(&values, json!({}))), csv))
+        let document = touchdown_compare::rounding::run_document(
+            &summary,
+            &id,
+            &settings(&values, options),
+            determinacy.as_ref(),
+        );
+        Ok((document, csv))
     });
     result.map_err(|f| f.into_py_err(py))
 }
