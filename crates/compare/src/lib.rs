@@ -104,6 +104,13 @@ impl EngineRun {
     pub fn members(&self) -> Vec<&EngineRun> {
         std::iter::once(self).chain(&self.perturbed).collect()
     }
+
+    /// Whether the run and its perturbed copies have one outcome.
+    pub fn outcome_determined(&self) -> bool {
+        self.perturbed
+            .iter()
+            .all(|r| r.summary.outcome == self.summary.outcome)
+    }
 }
 
 /// Collects a trace, and the frames for a viewer if asked, from any stepping engine.

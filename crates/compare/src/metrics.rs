@@ -1,7 +1,7 @@
 //! Divergence of two engines on one landing, channel by channel, each against a tolerance
 //! written down with its reason ([`TOLERANCES`]).
 
-use crate::rounding::Spread;
+use crate::rounding::{own_spreads, Spread};
 use crate::trace::Trace;
 use crate::{Engine, EngineRun};
 use serde::Serialize;
@@ -256,6 +256,18 @@ impl Verdict {
 const STRUT_COUNT: &str = "struts";
 
 impl Channel {
+    /// What the channel is about: its quantity, leg, strut and energy account.
+    pub(crate) fn key(
+        &self,
+    ) -> (
+        &'static str,
+        Option<usize>,
+        Option<Strut>,
+        Option<&'static str>,
+    ) {
+        (self.quantity, self.leg, self.strut, self.account)
+    }
+
     /// Whether `a`, `b` and `absolute_difference` count struts rather than measure a quantity
     /// (the text reports print them as whole numbers).
     pub fn counts(&self) -> bool {
@@ -560,28 +572,18 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
 /// ([`EngineRun::perturbed`]): a channel's verdict holds over every pair of members.
 pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
     let mut channels = channels(a, b);
-    let mut spreads: Vec<Spread> = channels.iter().map(Spread::of).collect();
-    let key = |c: &Channel| (c.quantity, c.leg, c.strut, c.account);
-    let widen = |spreads: &mut [Spread], set: Vec<Channel>, engine: Option<usize>| {
-        for (c, s) in channels_of(&set, &channels, key).zip(spreads.iter_mut()) {
-            match engine {
-                None => s.between(c),
-                Some(e) => s.within(e, c),
-            }
-        }
-    };
-    let members = [a.members(), b.members()];
-    for (i, x) in members[0].iter().enumerate() {
-        for (j, y) in members[1].iter().enumerate() {
+    let own = [own_spreads(a), own_spreads(b)];
+    let mut spreads: Vec<Spread> = channels
+        .iter()
+        .map(|c| Spread::of(c, [&own[0], &own[1]]))
+        .collect();
+    for (i, x) in a.members().iter().enumerate() {
+        for (j, y) in b.members().iter().enumerate() {
             if i + j > 0 {
-                widen(&mut spreads, self::channels(x, y), None);
-            }
-        }
-    }
-    for (e, m) in members.iter().enumerate() {
-        for (i, x) in m.iter().enumerate() {
-            for y in &m[i + 1..] {
-                widen(&mut spreads, self::channels(x, y), Some(e));
+                let set = self::channels(x, y);
+                for (c, s) in channels.iter().zip(&mut spreads) {
+                    s.between(set.iter().find(|d| d.key() == c.key()));
+                }
             }
         }
     }
@@ -593,9 +595,7 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
     }
     let (sa, sb) = (&a.summary, &b.summary);
     let outcome_agrees = sa.outcome == sb.outcome;
-    let outcome_determined = members
-        .iter()
-        .all(|m| m.iter().all(|r| r.summary.outcome == m[0].summary.outcome));
+    let outcome_determined = a.outcome_determined() && b.outcome_determined();
     let worst_channel = if outcome_agrees {
         channels
             .iter()
@@ -631,15 +631,4 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
         worst_channel,
         verdict,
     }
-}
-
-/// For each channel of `reference`, the channel of `set` about the same thing (`key`), if any.
-fn channels_of<'s, K: PartialEq>(
-    set: &'s [Channel],
-    reference: &'s [Channel],
-    key: impl Fn(&Channel) -> K + 's,
-) -> impl Iterator<Item = Option<&'s Channel>> + 's {
-    reference
-        .iter()
-        .map(move |c| set.iter().find(|d| key(d) == key(c)))
 }

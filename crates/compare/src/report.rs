@@ -180,13 +180,14 @@ pub fn determinacy_text(d: &crate::rounding::Determinacy) -> String {
         o,
         "  not determined at this precision (the copies move them by more than the tolerance `touchdown compare` judges them by):"
     );
-    for u in &d.undetermined {
+    // every maximum listed has a range (`rounding::undetermined`)
+    for (u, [lo, hi]) in d.undetermined.iter().filter_map(|u| Some((u, u.range?))) {
         let _ = writeln!(
             o,
             "    {}: {}-{} {}, moved by {} (tolerance {})",
             u.channel,
-            sig3(u.range[0]),
-            sig3(u.range[1]),
+            sig3(lo),
+            sig3(hi),
             u.unit,
             with_unit(u.spread, u.difference_unit),
             with_unit(u.tolerance, u.difference_unit)

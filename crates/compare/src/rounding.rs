@@ -39,11 +39,11 @@ pub fn perturbed(sc: &Scenario) -> Result<Vec<Scenario>, ScenarioError> {
     CROSSWISE_ULPS.iter().map(|u| crosswise(sc, *u)).collect()
 }
 
-/// A maximum of one engine's landing that its rounding ensemble moves by more than the
-/// tolerance `touchdown compare` judges it by: not determined at this precision.
+/// How far one engine's own rounding ensemble (the landing and its perturbed copies) lands
+/// apart on one channel: its rounding spread.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Undetermined {
-    /// The maximum as the text reports name its channel ("secondary stroke leg 2 3-1").
+pub struct OwnSpread {
+    /// The channel as the text reports name it ("secondary stroke leg 2 3-1").
     pub channel: String,
     /// The quantity: the `quantity` of its tolerance.
     pub quantity: &'static str,
@@ -53,10 +53,15 @@ pub struct Undetermined {
     /// The strut (stroke channels).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub strut: Option<Strut>,
+    /// The energy account (energy channels; never among the maxima [`undetermined`] lists).
+    #[serde(skip)]
+    pub account: Option<&'static str>,
     /// The SI unit of `range`.
     pub unit: &'static str,
-    /// Smallest and largest value over the ensemble, in `unit`.
-    pub range: [f64; 2],
+    /// Smallest and largest value over the ensemble, in `unit` (`None` for a history channel,
+    /// which has no single value).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<[f64; 2]>,
     /// Largest difference between two members, as the tolerance measures it, in
     /// `difference_unit`.
     pub spread: f64,
@@ -64,47 +69,73 @@ pub struct Undetermined {
     pub difference_unit: &'static str,
     /// The tolerance, in `difference_unit`.
     pub tolerance: f64,
+    /// Whether every pair of members has the channel (one that only some outcomes have, such
+    /// as the overturn velocity, exists by rounding).
+    #[serde(skip)]
+    pub everywhere: bool,
+}
+
+impl OwnSpread {
+    /// The spread of a channel of the landing compared with itself: nothing yet.
+    fn of(c: &Channel) -> OwnSpread {
+        OwnSpread {
+            channel: c.name(),
+            quantity: c.quantity,
+            leg: c.leg,
+            strut: c.strut,
+            account: c.account,
+            unit: c.unit,
+            range: c.a.map(|a| [a; 2]),
+            spread: 0.0,
+            difference_unit: c.difference_unit,
+            tolerance: c.tolerance,
+            everywhere: true,
+        }
+    }
+
+    /// Whether `c` is about the same thing.
+    pub(crate) fn is_of(&self, c: &Channel) -> bool {
+        c.key() == (self.quantity, self.leg, self.strut, self.account)
+    }
+
+    /// Widened by the same channel of two members (`None`: that pair has no such channel).
+    fn widen(&mut self, c: Option<&Channel>) {
+        let Some(c) = c else {
+            self.everywhere = false;
+            return;
+        };
+        self.spread = self.spread.max(c.difference);
+        if let (Some(r), Some(a), Some(b)) = (self.range.as_mut(), c.a, c.b) {
+            *r = [r[0].min(a).min(b), r[1].max(a).max(b)];
+        }
+    }
+}
+
+/// Every channel's rounding spread over the members of `run` ([`crate::run_ensemble`]), in
+/// channel order.
+pub(crate) fn own_spreads(run: &EngineRun) -> Vec<OwnSpread> {
+    let members = run.members();
+    let mut own: Vec<OwnSpread> = channels(run, run).iter().map(OwnSpread::of).collect();
+    for (i, x) in members.iter().enumerate() {
+        for y in &members[i + 1..] {
+            let set = channels(x, y);
+            for o in &mut own {
+                o.widen(set.iter().find(|c| o.is_of(c)));
+            }
+        }
+    }
+    own
 }
 
 /// The maxima of `run` ([`crate::run_ensemble`]: the landing and its perturbed copies on one
 /// engine) that its members land further apart than their tolerance, in channel order. The
 /// energy accounts are totals, not maxima, and the pitch-rate histories compare two engines:
 /// neither is listed.
-pub fn undetermined(run: &EngineRun) -> Vec<Undetermined> {
-    let members = run.members();
-    let mut out: Vec<Undetermined> = Vec::new();
-    for (i, x) in members.iter().enumerate() {
-        for y in &members[i + 1..] {
-            for c in channels(x, y) {
-                let (Some(a), Some(b)) = (c.a, c.b) else {
-                    continue;
-                };
-                if c.quantity == ENERGY.quantity {
-                    continue;
-                }
-                let name = c.name();
-                match out.iter_mut().find(|u| u.channel == name) {
-                    Some(u) => {
-                        u.range = [u.range[0].min(a).min(b), u.range[1].max(a).max(b)];
-                        u.spread = u.spread.max(c.difference);
-                    }
-                    None => out.push(Undetermined {
-                        channel: name,
-                        quantity: c.quantity,
-                        leg: c.leg,
-                        strut: c.strut,
-                        unit: c.unit,
-                        range: [a.min(b), a.max(b)],
-                        spread: c.difference,
-                        difference_unit: c.difference_unit,
-                        tolerance: c.tolerance,
-                    }),
-                }
-            }
-        }
-    }
-    out.retain(|u| u.spread > u.tolerance);
-    out
+pub fn undetermined(run: &EngineRun) -> Vec<OwnSpread> {
+    own_spreads(run)
+        .into_iter()
+        .filter(|o| o.range.is_some() && o.quantity != ENERGY.quantity && o.spread > o.tolerance)
+        .collect()
 }
 
 /// What the rounding ensemble says of one engine's landing (`touchdown run --rounding`).
@@ -116,17 +147,14 @@ pub struct Determinacy {
     /// Whether the landing and its copies have one outcome.
     pub outcome_determined: bool,
     /// The maxima not determined at this precision ([`undetermined`]).
-    pub undetermined: Vec<Undetermined>,
+    pub undetermined: Vec<OwnSpread>,
 }
 
 /// What the rounding ensemble `run` ([`crate::run_ensemble`]) says of its landing.
 pub fn determinacy(run: &EngineRun) -> Determinacy {
     Determinacy {
         crosswise_ulps: CROSSWISE_ULPS,
-        outcome_determined: run
-            .perturbed
-            .iter()
-            .all(|r| r.summary.outcome == run.summary.outcome),
+        outcome_determined: run.outcome_determined(),
         undetermined: undetermined(run),
     }
 }
@@ -163,8 +191,8 @@ pub fn run_document(
     }
 }
 
-/// What the ensemble says of one channel: how far apart the engines' members land, and how far
-/// apart each engine's own members land.
+/// What the ensemble says of one channel of a pair: how far apart the engines' members land,
+/// and how far apart each engine's own members land.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Spread {
     /// Smallest and largest difference between a member of the first engine and one of the
@@ -182,39 +210,28 @@ pub(crate) struct Spread {
 }
 
 impl Spread {
-    /// The spread of a channel of the landings as given: nothing yet beyond it.
-    pub(crate) fn of(c: &Channel) -> Spread {
+    /// The spread of channel `c` of the landings as given, with each engine's own spreads
+    /// ([`own_spreads`]): nothing yet between the engines' other members.
+    pub(crate) fn of(c: &Channel, own: [&[OwnSpread]; 2]) -> Spread {
+        let mine = own.map(|o| o.iter().find(|s| s.is_of(c)));
         Spread {
             between: [c.difference; 2],
-            within: [0.0; 2],
-            values: [c.a.map(|a| [a; 2]), c.b.map(|b| [b; 2])],
-            everywhere: true,
+            within: mine.map(|m| m.map_or(0.0, |m| m.spread)),
+            values: mine.map(|m| m.and_then(|m| m.range)),
+            everywhere: mine.iter().all(|m| m.is_some_and(|m| m.everywhere)),
         }
     }
 
     /// Widened by the same channel of a pair of members of the two engines (`None`: that pair
     /// has no such channel).
     pub(crate) fn between(&mut self, c: Option<&Channel>) {
-        let Some(c) = c else {
-            self.everywhere = false;
-            return;
-        };
-        self.between = [
-            self.between[0].min(c.difference),
-            self.between[1].max(c.difference),
-        ];
-        for (range, v) in self.values.iter_mut().zip([c.a, c.b]) {
-            if let (Some(r), Some(v)) = (range.as_mut(), v) {
-                *r = [r[0].min(v), r[1].max(v)];
-            }
-        }
-    }
-
-    /// Widened by the same channel of two members of one engine (`engine`: 0 the first, 1 the
-    /// second).
-    pub(crate) fn within(&mut self, engine: usize, c: Option<&Channel>) {
         match c {
-            Some(c) => self.within[engine] = self.within[engine].max(c.difference),
+            Some(c) => {
+                self.between = [
+                    self.between[0].min(c.difference),
+                    self.between[1].max(c.difference),
+                ]
+            }
             None => self.everywhere = false,
         }
     }
