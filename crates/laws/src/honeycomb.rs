@@ -480,6 +480,17 @@ pub struct DoubleActingHoneycomb {
 }
 
 impl DoubleActingHoneycomb {
+    /// The cartridge stroke `s` (m, tension positive) loads: the tension side for s ≥ 0, the
+    /// compression side below.
+    #[inline]
+    pub fn side(&self, s: f64) -> &Honeycomb {
+        if s >= 0.0 {
+            &self.tension
+        } else {
+            &self.compression
+        }
+    }
+
     /// Force, N (tension positive), at stroke `s` (m, tension positive). Zero between the two
     /// permanent sets (J < s < E in fig. 9).
     #[inline]

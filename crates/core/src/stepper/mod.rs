@@ -211,17 +211,10 @@ impl State {
         if !(plastic(p) || plastic(&sec.tension) || plastic(&sec.compression)) {
             return f64::INFINITY; // every step of a landing whose stops all give something back
         }
-        let side = |s: f64| {
-            if s >= 0.0 {
-                &sec.tension
-            } else {
-                &sec.compression
-            }
-        };
         let stops = [
             &p.stop,
-            &side(g.secondary_stroke[0]).stop,
-            &side(g.secondary_stroke[1]).stop,
+            &sec.side(g.secondary_stroke[0]).stop,
+            &sec.side(g.secondary_stroke[1]).stop,
         ];
         let forces = laws.stop_forces(g.primary_stroke, g.secondary_stroke, &self.memory[i]);
         let tolerance = PLASTIC_STOP_ERROR * self.stability.initial_kinetic_energy();
