@@ -9,6 +9,42 @@ use crate::schema::{self, Arrangement, RcsMode};
 use crate::units::{short, Units};
 use nalgebra::Vector3;
 
+/// What holds a footpad laterally, as the file names it: an obstacle's wall
+/// (`surface.obstacle`) or spikes (`surface.spike_depth`). Neither goes with soil or beside a
+/// curb, and each refusal names the field that gives it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Hold {
+    /// The field under `[surface]`.
+    key: &'static str,
+    /// What it is, plural, for messages.
+    what: &'static str,
+}
+
+impl Hold {
+    /// The hold of a footpad with obstacle height `obstacle` and spike depth `spike` (file
+    /// units; at most one of them positive, checked before), if any.
+    pub(crate) fn of(obstacle: f64, spike: f64) -> Option<Hold> {
+        if obstacle > 0.0 {
+            Some(Hold {
+                key: "obstacle",
+                what: "obstacles",
+            })
+        } else if spike > 0.0 {
+            Some(Hold {
+                key: "spike_depth",
+                what: "spikes",
+            })
+        } else {
+            None
+        }
+    }
+
+    /// The field of footpad `i`'s hold.
+    fn field(self, i: usize) -> String {
+        format!("surface.{}[{i}]", self.key)
+    }
+}
+
 /// Primary-strut bending stiffness EI, N·m² (force·length² in the file).
 pub(crate) fn bending(
     c: &Check,
@@ -36,7 +72,7 @@ pub(crate) fn soil(
     c: &Check,
     sf: &schema::Surface,
     footpad: &model::Footpad,
-    obstacle: &[f64],
+    holds: &[Option<Hold>],
     u: &Units,
 ) -> Result<Option<model::Soil>, ScenarioError> {
     let soil = match (sf.kind, &sf.soil) {
@@ -61,10 +97,13 @@ pub(crate) fn soil(
             "expected the footpad height (length) on a soil surface: it bounds the frontal area of eq. (102)",
         ));
     }
-    if let Some(i) = obstacle.iter().position(|o| *o > 0.0) {
+    if let Some((i, h)) = (holds.iter().enumerate()).find_map(|(i, h)| Some((i, (*h)?))) {
         return Err(c.err(
-            &format!("surface.obstacle[{i}]"),
-            "obstacles are not part of the soil model (the report omits them there); give obstacle ≤ 0",
+            &h.field(i),
+            format!(
+                "{} are not part of the soil model (the report omits them there); give {} = 0",
+                h.what, h.key
+            ),
         ));
     }
     if !sf.curbs.is_empty() {
@@ -95,10 +134,10 @@ pub(crate) fn curbs(
     c: &Check,
     sf: &schema::Surface,
     footpad: &model::Footpad,
-    obstacle: &[f64],
+    holds: &[Option<Hold>],
     u: &Units,
 ) -> Result<Vec<model::Curb>, ScenarioError> {
-    let n = obstacle.len();
+    let n = holds.len();
     let mut per_leg = vec![0usize; n];
     let mut out = Vec::with_capacity(sf.curbs.len());
     for (i, curb) in sf.curbs.iter().enumerate() {
@@ -123,12 +162,12 @@ pub(crate) fn curbs(
                 ),
             ));
         }
-        if obstacle[leg] > 0.0 {
+        if let Some(h) = holds[leg] {
             return Err(c.err(
-                &f("leg"),
+                &h.field(leg),
                 format!(
-                    "leg {}'s footpad is locked by an obstacle (surface.obstacle > 0); curbs apply to sliding footpads",
-                    curb.leg
+                    "leg {}'s footpad is held by {} and has a curb (surface.curbs[{i}]): curbs apply to sliding footpads; give {} = 0 there or remove the curb",
+                    curb.leg, h.what, h.key
                 ),
             ));
         }

@@ -559,26 +559,10 @@ pub(crate) fn resolve(
             ));
         }
     }
-    // Spikes lock a footpad as an obstacle does: neither goes with soil or curbs.
-    if let Some(i) = spike.iter().position(|s| *s > 0.0) {
-        if sf.kind == schema::SurfaceKind::Soil {
-            return Err(c.err(
-                &format!("surface.spike_depth[{i}]"),
-                "spikes are not part of the soil model (the report omits them there); give spike_depth = 0",
-            ));
-        }
-    }
-    if let Some(curb) =
-        (sf.curbs.iter()).find(|k| (1..=n).contains(&k.leg) && spike[k.leg - 1] > 0.0)
-    {
-        return Err(c.err(
-            &format!("surface.spike_depth[{}]", curb.leg - 1),
-            format!(
-                "leg {}'s footpad is held by spikes and has a curb (surface.curbs): curbs apply to sliding footpads; give spike_depth = 0 there",
-                curb.leg
-            ),
-        ));
-    }
+    // What holds each footpad laterally: neither restraint goes with soil or beside a curb.
+    let holds: Vec<Option<mechanisms::Hold>> = (0..n)
+        .map(|i| mechanisms::Hold::of(obstacle[i], spike[i]))
+        .collect();
     let friction = c.per_pad("surface.friction", &sf.friction, n)?;
     if let Some(i) = friction.iter().position(|f| *f < 0.0) {
         return Err(c.err(
@@ -614,8 +598,8 @@ pub(crate) fn resolve(
     }
     let surface = model::Surface {
         slope,
-        soil: mechanisms::soil(&c, sf, &footpad, &obstacle, &u)?,
-        curbs: mechanisms::curbs(&c, sf, &footpad, &obstacle, &u)?,
+        soil: mechanisms::soil(&c, sf, &footpad, &holds, &u)?,
+        curbs: mechanisms::curbs(&c, sf, &footpad, &holds, &u)?,
         pads,
         release: sf.release,
     };
