@@ -602,9 +602,8 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
             .enumerate()
             .max_by(|(_, x), (_, y)| {
                 let failing = |c: &Channel| c.verdict == Verdict::Fail;
-                (failing(x), x.difference / x.tolerance)
-                    .partial_cmp(&(failing(y), y.difference / y.tolerance))
-                    .unwrap_or(std::cmp::Ordering::Equal)
+                (failing(x).cmp(&failing(y)))
+                    .then((x.difference / x.tolerance).total_cmp(&(y.difference / y.tolerance)))
             })
             .map(|(i, _)| i)
     } else {
