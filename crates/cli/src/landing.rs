@@ -73,8 +73,9 @@ pub fn run(
     };
     let determinacy = if rounding {
         options["rounding"] = true.into();
-        let ensemble = touchdown_compare::run_ensemble(engine, scenario, &sc, None)?;
-        Some(touchdown_compare::rounding::determinacy(&ensemble))
+        Some(touchdown_compare::rounding::determinacy(
+            engine, scenario, &sc,
+        )?)
     } else {
         None
     };

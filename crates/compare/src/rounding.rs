@@ -8,8 +8,9 @@
 //! pass or a fail.
 
 use crate::metrics::{channels, Channel, Strut, Verdict, ENERGY};
-use crate::EngineRun;
+use crate::{CompareError, Engine, EngineRun};
 use serde::Serialize;
+use std::path::Path;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// The perturbed members of a landing's ensemble, in units in the last place of the touchdown
@@ -150,13 +151,19 @@ pub struct Determinacy {
     pub undetermined: Vec<OwnSpread>,
 }
 
-/// What the rounding ensemble `run` ([`crate::run_ensemble`]) says of its landing.
-pub fn determinacy(run: &EngineRun) -> Determinacy {
-    Determinacy {
+/// What the rounding ensemble says of `sc` landed on `engine` (`path` names it in errors): the
+/// landing and its perturbed copies ([`crate::run_ensemble`]), judged on their own.
+pub fn determinacy(
+    engine: Engine,
+    path: &Path,
+    sc: &Scenario,
+) -> Result<Determinacy, CompareError> {
+    let run = crate::run_ensemble(engine, path, sc, None)?;
+    Ok(Determinacy {
         crosswise_ulps: CROSSWISE_ULPS,
         outcome_determined: run.outcome_determined(),
-        undetermined: undetermined(run),
-    }
+        undetermined: undetermined(&run),
+    })
 }
 
 /// A summary with what the rounding ensemble says of it: `rounding` of

@@ -271,9 +271,10 @@ fn run(
             None => None,
         };
         let determinacy = if rounding {
-            let ensemble = touchdown_compare::run_ensemble(engine, path, &sc, None)
-                .map_err(|e| Box::new(Failed::Compare(e)))?;
-            Some(touchdown_compare::rounding::determinacy(&ensemble))
+            Some(
+                touchdown_compare::rounding::determinacy(engine, path, &sc)
+                    .map_err(|e| Box::new(Failed::Compare(e)))?,
+            )
         } else {
             None
         };
