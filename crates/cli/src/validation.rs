@@ -506,7 +506,7 @@ pub fn sensitivity_text(table: &[ParameterSensitivity], fraction: f64) -> String
         row.extend(
             p.rows
                 .iter()
-                .map(|r| format!("{:+.1}/{:+.1}", r.minus_pct, r.plus_pct)),
+                .map(|r| format!("{}/{}", Change(r.minus_pct), Change(r.plus_pct))),
         );
         row
     });
@@ -514,5 +514,28 @@ pub fn sensitivity_text(table: &[ParameterSensitivity], fraction: f64) -> String
     o.push_str(&touchdown_compare::report::text_table(
         &header, &right, rows,
     ));
+    for p in table {
+        for r in &p.refused {
+            let _ = writeln!(
+                o,
+                "refused: {} × {}: {}",
+                p.parameter,
+                Short(r.factor),
+                r.reason
+            );
+        }
+    }
     o
+}
+
+/// A stroke change, %, or "refused" where the scaled value was refused.
+struct Change(Option<f64>);
+
+impl std::fmt::Display for Change {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            Some(c) => write!(f, "{c:+.1}"),
+            None => f.write_str("refused"),
+        }
+    }
 }

@@ -139,8 +139,10 @@ pub struct Fit {
 }
 
 /// Restarts of a fit: Nelder-Mead run again from its end point with a fresh simplex, until a
-/// restart no longer improves the objective.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// restart no longer improves the objective (a collapsed simplex is not a minimum: the strokes
+/// respond to the crush loads through thresholds, a stage reached or a footpad let go).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Restarts {
     /// Each restart's simplex: a step of this fraction of each parameter's range (towards the
     /// middle of its bounds).
@@ -149,6 +151,24 @@ pub struct Restarts {
     pub most: u32,
     /// A restart that improves the objective by less than this fraction of it ends the fit.
     pub improvement: f64,
+}
+
+impl Restarts {
+    /// Checks the settings read from `file`: every error names the file and the field.
+    pub fn check(&self, file: &str, prefix: &str) -> Result<(), ValidationError> {
+        let refuse = |field: &str, expected: &str| {
+            Err(ValidationError::Reference(format!(
+                "{file}: {prefix}{field}: expected {expected}"
+            )))
+        };
+        if !(self.simplex > 0.0 && self.simplex <= 0.5) {
+            return refuse("simplex", "a fraction in (0, 0.5]");
+        }
+        if !(self.improvement >= 0.0 && self.improvement < 1.0) {
+            return refuse("improvement", "a fraction in [0, 1)");
+        }
+        Ok(())
+    }
 }
 
 /// Fits `parameters` to `rows` (sum of squared relative stroke errors of `predict`) with
@@ -287,7 +307,16 @@ pub fn calibrate(
     let chosen = rows_of(&table, &ids)?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
     let model = table_model(paths, &chosen, &fields)?;
-    let fitted = fit(&chosen, &protocol.parameter, MAX_ITERATIONS, None, &model)?;
+    protocol
+        .restarts
+        .check("calibration-protocol.toml", "restarts.")?;
+    let fitted = fit(
+        &chosen,
+        &protocol.parameter,
+        MAX_ITERATIONS,
+        Some(protocol.restarts),
+        &model,
+    )?;
     let parameter = protocol
         .parameter
         .iter()

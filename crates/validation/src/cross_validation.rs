@@ -99,12 +99,8 @@ impl CvProtocol {
         if !(self.determined_ratio > 0.0 && self.determined_ratio < 1.0) {
             return refuse("determined_ratio", "a fraction in (0, 1)");
         }
-        if !(self.restart_simplex > 0.0 && self.restart_simplex <= 0.5) {
-            return refuse("restart_simplex", "a fraction in (0, 0.5]");
-        }
-        if !(self.restart_improvement >= 0.0 && self.restart_improvement < 1.0) {
-            return refuse("restart_improvement", "a fraction in [0, 1)");
-        }
+        self.restarts()
+            .check("cross-validation-protocol.toml", "restart_")?;
         if self.samples < 2 {
             return refuse("samples", "at least 2");
         }

@@ -133,6 +133,8 @@ pub struct FitParameter {
 pub struct Protocol {
     /// Table I row ids used for calibration.
     pub rows: Vec<u32>,
+    /// How the fit is restarted from its end point.
+    pub restarts: crate::calibrate::Restarts,
     /// Parameters fitted.
     pub parameter: Vec<FitParameter>,
 }

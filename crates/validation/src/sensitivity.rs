@@ -1,6 +1,7 @@
 //! How each estimated parameter moves each Table I stroke: every estimate is scaled by
 //! 1 ± fraction (all its fields together) and every row is rerun.
 
+use crate::calibrate::infeasible;
 use crate::reference::{self, Estimates, Paths, TableI};
 use crate::table::{run_row, stroke_in};
 use crate::ValidationError;
@@ -16,10 +17,24 @@ pub struct Response {
     /// Stroke with the parameter at its value, in (`base_m` in the JSON).
     #[serde(rename = "base_m", serialize_with = "crate::si::inches")]
     pub base_in: f64,
-    /// Relative stroke change with the parameter scaled by 1 − fraction, %.
-    pub minus_pct: f64,
-    /// Relative stroke change with the parameter scaled by 1 + fraction, %.
-    pub plus_pct: f64,
+    /// Relative stroke change with the parameter scaled by 1 − fraction, %; absent where the
+    /// scaled value is refused (the parameter's `refused`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub minus_pct: Option<f64>,
+    /// Relative stroke change with the parameter scaled by 1 + fraction, %; absent where the
+    /// scaled value is refused.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plus_pct: Option<f64>,
+}
+
+/// A scaled value the scenario loader refuses (a load-stroke table whose stages no longer crush
+/// at rising loads: FP1 scaled past the second stage's load), so no stroke is reported for it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Refusal {
+    /// The scale factor, 1 − fraction or 1 + fraction.
+    pub factor: f64,
+    /// What the loader said.
+    pub reason: String,
 }
 
 /// One estimated parameter's row of the sensitivity table.
@@ -33,6 +48,8 @@ pub struct ParameterSensitivity {
     pub unit: String,
     /// One response per Table I row.
     pub rows: Vec<Response>,
+    /// The scaled values refused, each once (empty when both are landed).
+    pub refused: Vec<Refusal>,
 }
 
 /// The sensitivity table for a relative change `fraction` (0.2 for ±20 %).
@@ -54,10 +71,11 @@ pub fn sensitivity(
         let value = Scenario::value_at(&first, &p.fields[0])?.ok_or_else(|| {
             ValidationError::Reference(format!("{}: no number at {}", first.display(), p.fields[0]))
         })?;
+        let mut refused = Vec::new();
         let jobs: Vec<(usize, f64)> = (0..table.row.len())
             .flat_map(|i| [(i, 1.0 - fraction), (i, 1.0 + fraction)])
             .collect();
-        let strokes: Vec<f64> = jobs
+        let strokes: Vec<Option<f64>> = jobs
             .par_iter()
             .map(|(i, factor)| {
                 let overrides: Vec<(&str, f64)> = p
@@ -66,9 +84,31 @@ pub fn sensitivity(
                     .map(|f| (f.as_str(), value * factor))
                     .collect();
                 let row = &table.row[*i];
-                run_row(paths, row, &overrides).map(|s| stroke_in(&s, row.strut))
+                match run_row(paths, row, &overrides) {
+                    Ok(s) => Ok(Ok(stroke_in(&s, row.strut))),
+                    Err(e) if infeasible(&e) => Ok(Err(
+                        innermost(&e).replace(&format!("{}/", paths.root.display()), "")
+                    )),
+                    Err(e) => Err(e),
+                }
             })
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<Vec<_>, _>>()?
+            .into_iter()
+            .zip(&jobs)
+            .map(|(stroke, (_, factor))| {
+                stroke
+                    .map_err(|reason| {
+                        if !refused.iter().any(|r: &Refusal| r.factor == *factor) {
+                            refused.push(Refusal {
+                                factor: *factor,
+                                reason,
+                            });
+                        }
+                    })
+                    .ok()
+            })
+            .collect();
+        let change = |stroke: Option<f64>, base: f64| stroke.map(|s| 100.0 * (s - base) / base);
         let rows = table
             .row
             .iter()
@@ -76,8 +116,8 @@ pub fn sensitivity(
             .map(|(i, r)| Response {
                 id: r.id,
                 base_in: base[i],
-                minus_pct: 100.0 * (strokes[2 * i] - base[i]) / base[i],
-                plus_pct: 100.0 * (strokes[2 * i + 1] - base[i]) / base[i],
+                minus_pct: change(strokes[2 * i], base[i]),
+                plus_pct: change(strokes[2 * i + 1], base[i]),
             })
             .collect();
         out.push(ParameterSensitivity {
@@ -86,7 +126,17 @@ pub fn sensitivity(
             unit: touchdown_scenario::ranges::lookup(&p.fields[0])
                 .map_or_else(String::new, |r| units.file_unit_of(r.unit)),
             rows,
+            refused,
         });
     }
     Ok(out)
+}
+
+/// The innermost cause of `e`: what the loader refused.
+fn innermost(e: &(dyn std::error::Error + 'static)) -> String {
+    let mut cause = e;
+    while let Some(next) = cause.source() {
+        cause = next;
+    }
+    cause.to_string()
 }
