@@ -115,12 +115,13 @@ def test_run_documents(tmp_path):
     check(overturn, "run")
     assert overturn["outcome"] == "unstable" and "overturn_velocity_m_s" in overturn
     check(touchdown.run(ROOT / scenario, history=False)["summary"], "run")
-    # With the rounding ensemble: the 1-2-1 landing at 5 ft/s names its leg 2 secondaries.
-    rounded = parse(cli("run", "scenarios/table-i-1-2-1-vv5.toml", "--format", "json", "--rounding"))
+    # With the rounding ensemble: the 2-2 landing at 6 ft/s names the uphill legs' struts it
+    # rocks back onto (docs/engines.md, "Rounding-decided channels").
+    rounded = parse(cli("run", "scenarios/table-i-2-2-vv6.toml", "--format", "json", "--rounding"))
     check(rounded, "run")
     named = {(u["leg"], u["strut"]) for u in rounded["rounding"]["undetermined"]}
-    assert named == {(2, "sec31"), (2, "sec41")}, rounded["rounding"]
-    from_python = touchdown.run(ROOT / "scenarios" / "table-i-1-2-1-vv5.toml", history=False, rounding=True)["summary"]
+    assert named == {(3, "primary"), (4, "primary"), (3, "sec31"), (4, "sec41")}, rounded["rounding"]
+    from_python = touchdown.run(ROOT / "scenarios" / "table-i-2-2-vv6.toml", history=False, rounding=True)["summary"]
     check(from_python, "run")
     assert from_python["rounding"] == rounded["rounding"]
 

@@ -113,9 +113,17 @@ fn inertial_footpads_stay_above_their_planes_and_are_only_pushed() {
 }
 
 /// The landings whose massless footpads left and landed again every 0.3-0.4 ms (250 contact
-/// changes per leg on fig-25-26, 371 on the 1-2-1 landing at 7 ft/s): with inertia each leg
-/// changes contact at most 10 times, and every spell on the surface or off it lasts at least
-/// 1 ms (the effective footpad's periods on its gear are 3.6-9.3 ms).
+/// changes per leg on fig-25-26, 371 on the 1-2-1 landing at 7 ft/s): with inertia every
+/// flight lasts at least 1 ms (the effective footpad's periods on its gear are 3.6-9.3 ms), and
+/// so does every spell on the surface but one graze a leg at most: a footpad that comes down
+/// while its gear is already turning to lift it stops in a plastic impact and leaves as soon as
+/// the surface would have to pull it. Standing on spikes that let them go, the footpads hop as
+/// the vehicle rocks, so a leg changes contact up to 26 times (leg 4 of the 1-2-1 landing at
+/// 7 ft/s, over a second; its shortest spell 1.6 ms, its shortest flight 16 ms); on
+/// `fig-25-26` the uphill footpads are on the surface 1.3, 3.2 and 0.10 ms at 0.067, 0.082 and
+/// 0.095 s (the graze: it comes down at 3.7 m/s), in flight 14.5 and 9.1 ms between. A changes
+/// list starts with a landing (every footpad starts off its surface), so its even spells are
+/// on the surface.
 #[test]
 fn inertial_footpads_land_and_leave_as_bodies() {
     for name in ["fig-25-26.toml", "table-i-1-2-1-vv7.toml"] {
@@ -125,19 +133,25 @@ fn inertial_footpads_land_and_leave_as_bodies() {
         sim.run(&mut watch).unwrap();
         for (leg, times) in watch.changes.iter().enumerate() {
             assert!(
-                times.len() <= 10,
+                times.len() <= 30,
                 "{name} leg {}: {} contact changes",
                 leg + 1,
                 times.len()
             );
-            for pair in times.windows(2) {
-                assert!(
-                    pair[1] - pair[0] >= 1e-3,
-                    "{name} leg {}: a spell of {:.3e} s from {:.5} s",
-                    leg + 1,
-                    pair[1] - pair[0],
-                    pair[0]
-                );
+            let mut grazes = 0;
+            for (k, spell) in times.windows(2).enumerate() {
+                let on_surface = k % 2 == 0;
+                if spell[1] - spell[0] < 1e-3 {
+                    grazes += 1;
+                    assert!(
+                        on_surface && grazes == 1,
+                        "{name} leg {}: a {} of {:.3e} s from {:.5} s",
+                        leg + 1,
+                        if on_surface { "second graze" } else { "flight" },
+                        spell[1] - spell[0],
+                        spell[0]
+                    );
+                }
             }
         }
     }

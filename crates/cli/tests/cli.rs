@@ -331,7 +331,7 @@ fn boundary_prints_csv_and_json() {
         "steep.toml",
         "fig-25-26.toml",
         "steep",
-        "[surface]\nkind = \"rigid\"\nslope = 26.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
+        "[surface]\nkind = \"rigid\"\nslope = 26.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nfriction = 0.0\n",
     );
     let args = |fmt: &'static str| {
         [

@@ -382,7 +382,7 @@ fn spikes_are_one_restraint_a_footpad_on_a_rigid_surface() {
     assert!(pad.locked() && pad.obstacle <= 0.0);
     assert!((pad.hold_height() - 0.02 * crate::units::FOOT).abs() < 1e-15);
     for (extra, field, says) in [
-        ("[surface]\nspike_depth = 0.02\n", "surface.spike_depth[0]", "has no spikes too"),
+        ("[surface]\nobstacle = 1.0\n", "surface.spike_depth[0]", "has no spikes too"),
         ("[surface]\nobstacle = 0.0\nspike_depth = -0.01\n", "surface.spike_depth[0]", "≥ 0"),
         (
             "[surface]\nspike_depth = [0.0, 0.0, 0.02, 0.0]\nobstacle = 0.0\n[[surface.curbs]]\nleg = 3\ndistance = 0.3\nangle = 0.0\nfriction = 0.0\n",
@@ -408,7 +408,7 @@ fn spikes_are_one_restraint_a_footpad_on_a_rigid_surface() {
         dir,
         "free.toml",
         &scenario("fig-25-26.toml"),
-        "[surface]\nobstacle = 0.0\n",
+        "[surface]\nspike_depth = 0.0\n",
     );
     assert!(Scenario::load(&free)
         .unwrap()

@@ -208,7 +208,7 @@ fn boundary_search_brackets_a_real_overturn() {
     std::fs::write(
         &tmp,
         format!(
-            "schema_version = 1\nextends = {:?}\nname = \"steep\"\n[surface]\nkind = \"rigid\"\nslope = 26.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nobstacle = 1.0\nfriction = 0.0\n",
+            "schema_version = 1\nextends = {:?}\nname = \"steep\"\n[surface]\nkind = \"rigid\"\nslope = 26.0\nhole = [0.3333, 0.3333, 0.0, 0.0]\nfriction = 0.0\n",
             base.display().to_string()
         ),
     )
