@@ -423,10 +423,14 @@ fn with_stops(e: f64) -> Scenario {
     )
 }
 
-/// A fully plastic stop (e = 0) lands on the core with its balance closed and no dearer than a
-/// stop of e = 0.1 (its unloading is a release, not a stiffness the step must resolve:
-/// `laws::honeycomb::Stop::unloading_rate`; the law itself is the limit of small restitutions,
-/// `laws::honeycomb::tests::a_plastic_stop_is_the_limit_of_small_restitutions`). The maxima of
+/// A fully plastic stop (e = 0) lands on the core with its balance closed and at most a fifth
+/// dearer than a stop of e = 0.1 (its unloading is a release, not a stiffness the step must
+/// resolve: `laws::honeycomb::Stop::unloading_rate`; the law itself is the limit of small
+/// restitutions, `laws::honeycomb::tests::a_plastic_stop_is_the_limit_of_small_restitutions`).
+/// What it costs is the approach: a step may enter a plastic stop only as far as it resolves
+/// (`plastic_stop_step` in `crates/core/src/stepper/mod.rs`), or a secondary resting at its capacity grazes the stop,
+/// loading and releasing it within one step (on spikes, 0.91 J of 573 J at the report's step
+/// without that, 0.004 J with it, in 3,938 steps against e = 0.1's 3,442). The maxima of
 /// this rocking landing are not compared across e: they move by up to 9 % between e = 0.001 and
 /// 0.01, which the landing's sensitivity, not the law, decides. The multibody engines refuse
 /// stops less elastic than `MIN_STOP_RESTITUTION` (`crates/multibody/src/step.rs`), naming the field.
@@ -446,7 +450,7 @@ fn a_plastic_stop_lands_on_the_core_and_is_refused_where_unresolved() {
         e.scale()
     );
     assert!(
-        plastic.steps <= tenth.steps,
+        plastic.steps as f64 <= 1.2 * tenth.steps as f64,
         "e = 0: {} steps, e = 0.1: {}",
         plastic.steps,
         tenth.steps
