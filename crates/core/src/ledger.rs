@@ -82,8 +82,8 @@ impl State {
         for (((a, t), b), relaxed) in steps.zip(&mut self.relaxation) {
             let l = &mut self.ledger;
             // The strokes at the end of the step, before a leaving rigid footpad's gear relaxed.
-            let (dc, ds) = std::mem::take(relaxed);
-            let c_end = b.primary_stroke + dc;
+            let r = std::mem::take(relaxed);
+            let c_end = b.primary_stroke + r.primary;
             // The force at the end of the step: the trial's (report) or the accepted state's.
             let end = match quadrature {
                 Quadrature::Trapezoid { .. } => {
@@ -94,11 +94,13 @@ impl State {
                 }
                 Quadrature::Stages { .. } => b,
             };
-            for (j, ds) in ds.into_iter().enumerate() {
+            for (j, ds) in r.secondary.into_iter().enumerate() {
                 let (fa, ft) = (a.fc_secondary[j], end.fc_secondary[j]);
                 // The honeycombs see the bending-corrected strokes; the change of the bending
-                // lengthening is work the vehicle did not do on the struts (eq. 47, lagged).
-                let dl = b.bending_lengthening[j] - a.bending_lengthening[j];
+                // lengthening is work the vehicle did not do on the struts (eq. 47, lagged), up
+                // to the end of the step: a relaxing gear's lengthening goes with its load,
+                // without work (docs/errata.md, "Contact and release").
+                let dl = b.bending_lengthening[j] + r.bending[j] - a.bending_lengthening[j];
                 l.mechanisms -= 0.5 * (fa + ft) * dl;
                 if let Quadrature::Trapezoid { .. } = quadrature {
                     let s_end = b.secondary_stroke[j] + ds;

@@ -8,7 +8,7 @@
 
 use crate::gear::{self, GearState};
 use crate::model::Model;
-use crate::state::State;
+use crate::state::{Relaxation, State};
 use crate::surface::ContactState;
 use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
@@ -120,10 +120,11 @@ impl State {
             )
         })?;
         let relaxed = self.above_plane(model, i, v, relaxed, c);
-        self.relaxation[i] = (
-            c - relaxed.primary_stroke,
-            [0, 1].map(|j| s[j] - relaxed.secondary_stroke[j]),
-        );
+        self.relaxation[i] = Relaxation {
+            primary: c - relaxed.primary_stroke,
+            secondary: [0, 1].map(|j| s[j] - relaxed.secondary_stroke[j]),
+            bending: g.bending_lengthening,
+        };
         self.gear[i].primary_stroke = relaxed.primary_stroke;
         self.gear[i].secondary_stroke = relaxed.secondary_stroke;
         self.bending_lag[i] = Vector3::zeros();

@@ -11,7 +11,7 @@ use crate::gear::GearState;
 use crate::mechanisms::{MechanismState, Mechanisms, Power};
 use crate::model::Model;
 use crate::rigid_body::MassProperties;
-use crate::state::State;
+use crate::state::{Relaxation, State};
 use crate::stepper::Schemes;
 use crate::summation::SumOrder;
 use crate::surface::Footpad;
@@ -124,7 +124,7 @@ impl Simulation {
             gear: vec![GearState::default(); n],
             mechanisms: model.mechanisms.start(scenario.vehicle.gravity),
             bending_lag: vec![Vector3::zeros(); n],
-            relaxation: vec![(0.0, [0.0; 2]); n],
+            relaxation: vec![Relaxation::default(); n],
             contact_steps: vec![0; n],
             applied_power: Power::default(),
             ledger: EnergyLedger::default(),

@@ -35,10 +35,10 @@ pub(crate) struct State {
     /// Point-1 bending displacement per leg at the last accepted state (lagged: docs/errata.md,
     /// "Eqs. (47)-(48): bending coupling"), m.
     pub(crate) bending_lag: Vec<Vector3<f64>>,
-    /// Per leg, how far the strokes went back when its rigid footpad left in this step and its
-    /// gear relaxed (primary, secondaries), m: not work of the vehicle, so the strut work of the
-    /// step is booked to the strokes before it.
-    pub(crate) relaxation: Vec<(f64, [f64; 2])>,
+    /// Per leg, how far its gear went back when its rigid footpad left in this step and the
+    /// gear relaxed: not work of the vehicle, so the strut work of the step is booked to the
+    /// strokes before it.
+    pub(crate) relaxation: Vec<Relaxation>,
     /// Per rigid footpad, the accepted states in a row it has been in contact: the adaptive
     /// scheme locates the leaving of a footpad that has stayed (a footpad that lands and is
     /// pulled off at once, as a dragged footpad of a massless gear does step after step, is not
@@ -63,4 +63,16 @@ pub(crate) struct State {
     /// Each leg's force on the vehicle (inertial axes, N) and torque about its centre of mass
     /// (body axes, N·m) at the last evaluation (reused).
     pub(crate) leg_loads: (Vec<Vector3<f64>>, Vec<Vector3<f64>>),
+}
+
+/// How far a gear went back in a step as its rigid footpad left and it relaxed
+/// ([`State::relaxation`]), each the stroke before less the stroke after, m.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Relaxation {
+    /// Primary compression stroke.
+    pub(crate) primary: f64,
+    /// Secondary strokes S31, S41 (tension positive).
+    pub(crate) secondary: [f64; 2],
+    /// The secondaries' bending lengthening λ31, λ41 (eq. 47), gone with the bending load.
+    pub(crate) bending: [f64; 2],
 }
