@@ -239,6 +239,7 @@ impl State {
             (h.curve.capacity() + h.stop.slack(m.stop_depth) - x, rate)
         };
         let c = g.primary_stroke;
+        let ((gap31, rate31), (gap41, rate41)) = (secondary(0), secondary(1));
         let approaches = [
             (
                 &p.stop,
@@ -250,8 +251,8 @@ impl State {
                 c + p.stop.slack(memory.primary.extension_depth),
                 -g.primary_rate,
             ),
-            (stops[1], secondary(0).0, secondary(0).1),
-            (stops[2], secondary(1).0, secondary(1).1),
+            (stops[1], gap31, rate31),
+            (stops[2], gap41, rate41),
         ];
         let mut dt = f64::INFINITY;
         for (stop, f) in stops.into_iter().zip(forces) {
@@ -262,11 +263,12 @@ impl State {
             let omega_dt = PLASTIC_STOP_STEP.max((2.0 * tolerance / held).sqrt());
             dt = dt.min(omega_dt * period(stop));
         }
+        // A stop already loading (gap < 0) is bounded above, by what it holds.
         for (stop, gap, rate) in approaches {
-            if stop.restitution > 0.0 || rate <= 0.0 {
+            if stop.restitution > 0.0 || rate <= 0.0 || gap < 0.0 {
                 continue;
             }
-            dt = dt.min(gap.max(0.0) / rate + PLASTIC_STOP_STEP * period(stop));
+            dt = dt.min(gap / rate + PLASTIC_STOP_STEP * period(stop));
         }
         dt
     }
