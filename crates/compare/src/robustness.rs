@@ -429,6 +429,17 @@ fn completes(
     }
 }
 
+/// The step the search of `method` on `sc` starts from, s: the multibody step the scenario
+/// states, whether or not its engine accepts it, else the engine's own ([`time_step`]).
+fn own_step(method: Method, sc: &Scenario) -> Result<f64, ScenarioError> {
+    let stated = match method {
+        Method::Rapier => sc.rapier.timestep,
+        Method::Mujoco => sc.mujoco.timestep,
+        Method::Report | Method::Rk4 | Method::Dopri5 => None,
+    };
+    stated.map_or_else(|| time_step(method.engine(), sc), Ok)
+}
+
 /// Searches the largest stable step of `method` on the case `sc` (from `path`).
 pub fn largest_stable_step(
     case: &'static str,
@@ -444,15 +455,28 @@ pub fn largest_stable_step(
         first_unstable: None,
         refused: None,
     };
-    // A method the case's own fields rule out is not a step's failure: no step would do.
-    let default =
-        match time_step(method.engine(), sc).and_then(|dt| at_step(sc, method, dt).map(|_| dt)) {
-            Ok(dt) => dt,
-            Err(e) => {
-                search.refused = Some(e.to_string());
-                return search;
-            }
-        };
+    let default = match own_step(method, sc) {
+        Ok(dt) => dt,
+        Err(e) => {
+            search.refused = Some(e.to_string());
+            return search;
+        }
+    };
+    // A method the case's own fields rule out is not a step's failure: no step of the ladder
+    // would do. A step the engine refuses for its size (a multibody step too large for the
+    // stiffest explicit strut law) is a rung that did not complete: the search goes below it.
+    if let Err(e) = at_step(sc, method, default) {
+        let mut ladder = std::iter::successors(Some(default * 0.5), |dt| Some(dt * 0.5))
+            .take_while(|&dt| dt >= STEP_SEARCH_FLOOR)
+            .chain(
+                std::iter::successors(Some(default * 2.0), |dt| Some(dt * 2.0))
+                    .take_while(|&dt| dt <= STEP_SEARCH_CEILING),
+            );
+        if !ladder.any(|dt| at_step(sc, method, dt).is_ok()) {
+            search.refused = Some(e.to_string());
+            return search;
+        }
+    }
     search.default_step_s = Some(default);
     let mut dt = default;
     match completes(case, path, sc, method, dt) {

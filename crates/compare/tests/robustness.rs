@@ -188,3 +188,25 @@ fn footpads_sinking_into_a_soft_contact_fail_the_checks() {
     let run = robustness::classify("flat-drop", &path, &sc, Engine::Rapier);
     assert_eq!(run.verdict, Verdict::Completed, "{run:?}");
 }
+
+#[test]
+fn a_multibody_step_refused_only_for_its_size_is_searched_downward() {
+    // Rates ×100 make rapier's own 20 µs step too large for the stiffest explicit strut law,
+    // a refusal when the scenario is read; the search halves it to a step that lands rather
+    // than calling rapier inapplicable (docs/robustness.md, "Largest stable step"). A short
+    // landing keeps the test fast: the refusal does not depend on the end time.
+    let case = CATALOGUE.iter().find(|c| c.name == "onset-x100").unwrap();
+    let (path, sc) = case.scenario(&scenarios()).unwrap();
+    let sc = sc.with_integrator(|it| it.t_end = 0.02).unwrap();
+    let s = robustness::largest_stable_step(case.name, &path, &sc, Method::Rapier);
+    assert!(s.refused.is_none(), "{s:?}");
+    let default = s.default_step_s.expect("rapier's own step");
+    let dt = s.largest_stable_step_s.expect("a step that lands");
+    assert!(dt < default, "{s:?}");
+    let above = s
+        .first_unstable
+        .as_ref()
+        .expect("the step above it is refused")
+        .0;
+    assert!((above / dt - 2.0).abs() < 1e-9, "{s:?}");
+}
