@@ -292,7 +292,7 @@ fn virgin_area(sc: &Scenario, x_max: f64, what: &str) -> f64 {
 /// backed off to `x_now` (m) in contact: the virgin area to `x_max` less the elastic energy
 /// given back, J.
 fn crush_work(sc: &Scenario, curbs: &Curbs, memory: &CrushMemory, x_now: f64, what: &str) -> f64 {
-    let x_max = memory.max_stroke;
+    let x_max = memory.max_stroke();
     virgin_area(sc, x_max, what)
         - (curbs.crush.stored_energy(x_max, *memory) - curbs.crush.stored_energy(x_now, *memory))
 }
@@ -357,7 +357,7 @@ fn curbs_crush_as_their_table_says(detached: Detached) {
     let mut expected = kept + held.iter().sum::<f64>();
     let memories = &sim.mechanism_state().curb_memory;
     for (((_, _), memory), k) in curbs.list.iter().zip(memories).zip(0..) {
-        let x_max = memory.max_stroke;
+        let x_max = memory.max_stroke();
         // Crushing to x_max, less the elastic energy it holds there: the plastic work.
         expected += virgin_area(&sc, x_max, &format!("curb {k}"))
             - curbs.crush.stored_energy(x_max, *memory);

@@ -49,12 +49,11 @@ impl State {
     /// ([`State::leaves`]), keeping its position and velocity: its gear keeps its strokes and
     /// loads. Returns whether it changed state or was moved.
     fn inertial_contact(&mut self, model: &Model, i: usize) -> Result<bool, RunError> {
-        let v = self.vehicle;
         let soil = model.mechanisms.soil.is_some();
         let s = model.surfaces[i];
         let plane = s.plane();
         if self.pads[i].state == ContactState::Contact {
-            if self.leaves(model, i, &v, &self.gear[i]) {
+            if self.leaves(model, i, &self.vehicle, &self.gear[i]) {
                 let pad = &mut self.pads[i];
                 pad.state = ContactState::Detached;
                 pad.stuck = false;
@@ -71,13 +70,16 @@ impl State {
         // lands if it approaches it faster than rounding (docs/errata.md, "Decisions at
         // rounding level").
         let tol = model.contact_tolerance;
-        let speed = (pad.velocity - v.velocity).norm() + v.velocity.norm();
+        let v_cm = self.vehicle.velocity;
+        let speed = (pad.velocity - v_cm).norm() + v_cm.norm();
         let below = pad.position.z < plane - tol;
         let touching = pad.position.z <= plane + tol && pad.velocity.z < -VELOCITY_ROUNDING * speed;
         if !(below || touching) {
             return Ok(false);
         }
         let vel = pad.velocity;
+        // The landing (rare) evaluates the gear through `&mut self`: the vehicle is copied.
+        let v = self.vehicle;
         self.put_down(model, i, &pad.position, &vel);
         // Its gear on the plane after the impact: a rigid surface that would have to pull it
         // there at once takes the impact and lets it go (on soil it penetrates, and leaves by

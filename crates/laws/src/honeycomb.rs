@@ -209,14 +209,24 @@ impl std::fmt::Display for Branch {
 }
 
 /// Crush memory of one loading direction: the largest stroke reached, and the depth of its
-/// end stop's current engagement.
+/// end stop's current engagement; written only by [`Honeycomb::commit`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CrushMemory {
     /// Largest stroke reached so far on this side (x_max), m.
-    pub max_stroke: f64,
+    max_stroke: f64,
+    /// The virgin curve's load at x_max, F_v(min(x_max, capacity)), N: where the rebound line
+    /// starts, kept with x_max so that a rebounding stroke does not look it up again.
+    max_stroke_force: f64,
     /// Deepest depth past the capacity reached in the end stop's current engagement, m: zero
     /// while the stop is open (the stroke at or below the capacity at the last accepted state).
     pub stop_depth: f64,
+}
+
+impl CrushMemory {
+    /// Largest stroke reached so far on this side (x_max), m.
+    pub fn max_stroke(&self) -> f64 {
+        self.max_stroke
+    }
 }
 
 /// An end stop: a strut bottoming past its capacity, or a primary strut pulled past its full
@@ -393,8 +403,7 @@ impl Honeycomb {
     /// x_max and the virgin curve's load there, the last plateau load past the capacity.
     #[inline]
     fn rebound_start(&self, memory: CrushMemory) -> (f64, f64) {
-        let x = memory.max_stroke;
-        (x, self.curve.force(x.min(self.curve.capacity())))
+        (memory.max_stroke, memory.max_stroke_force)
     }
 
     /// The branch stroke `x` (m, ≥ 0) lies on, given the committed memory, and its rate
@@ -427,6 +436,7 @@ impl Honeycomb {
     pub fn commit(&self, x: f64, memory: &mut CrushMemory) {
         if x > memory.max_stroke {
             memory.max_stroke = x;
+            memory.max_stroke_force = self.curve.force(x.min(self.curve.capacity()));
         }
         Stop::commit(x - self.curve.capacity(), &mut memory.stop_depth);
     }
@@ -604,10 +614,8 @@ mod tests {
         assert_eq!(h.crush_load(0.11, fresh), None, "ramp to the second stage");
         assert_eq!(h.crush_load(0.15, fresh), Some(3000.0));
         assert_eq!(h.crush_load(0.201, fresh), None, "bottoming is elastic");
-        let crushed = CrushMemory {
-            max_stroke: 0.06,
-            ..CrushMemory::default()
-        };
+        let mut crushed = CrushMemory::default();
+        h.commit(0.06, &mut crushed);
         assert_eq!(h.crush_load(0.05, crushed), None, "rebound line");
         assert_eq!(
             h.crush_load(0.06, crushed),
@@ -692,10 +700,8 @@ mod tests {
                 stroke_end: 0.2,
             }];
             let h = Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6, e).unwrap();
-            let mut m = CrushMemory {
-                max_stroke: 0.2,
-                ..CrushMemory::default()
-            };
+            let mut m = CrushMemory::default();
+            h.commit(0.2, &mut m);
             let triangle = 3000.0f64.powi(2) / 2e6;
             let own = 0.5 * 1e7 * 0.01f64.powi(2);
             // First hit: 10 mm deep from the capacity, F_c·d crushed plus the stop's own.
@@ -885,10 +891,8 @@ mod tests {
         assert!((v[1].0 - (0.01 + 1000.0 / kt)).abs() < 1e-12);
         assert!((v[4].0 - (0.2 + 3000.0 / kt)).abs() < 1e-12);
         // Permanent set is unchanged by the trunnion spring: x_max − F/K_B.
-        let m = CrushMemory {
-            max_stroke: 0.05 + 1000.0 / kt,
-            ..CrushMemory::default()
-        };
+        let mut m = CrushMemory::default();
+        t.commit(0.05 + 1000.0 / kt, &mut m);
         assert!((t.permanent_set(m) - (0.05 - 1000.0 / 1e6)).abs() < 1e-12);
     }
 
