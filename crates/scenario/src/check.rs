@@ -96,6 +96,23 @@ impl Check<'_> {
     pub(crate) fn err(&self, field: &str, message: impl Into<String>) -> ScenarioError {
         ScenarioError::field(owner_of(self.layers, field), field, message)
     }
+    /// An error for two fields that exclude each other, `field` and `other`: it names the one
+    /// set nearest the top of the chain (the file being written, or the command line's
+    /// overrides; `field` when one layer sets both) and says which file sets the other, so
+    /// that a file adding one over a base that has the other is told about its own line.
+    pub(crate) fn conflict(&self, field: &str, other: &str, message: &str) -> ScenarioError {
+        let layer = |f: &str| {
+            let owner = owner_of(self.layers, f);
+            self.layers.iter().position(|(file, _)| file == owner)
+        };
+        let (near, far) = if layer(other) < layer(field) {
+            (other, field)
+        } else {
+            (field, other)
+        };
+        let far_file = owner_of(self.layers, far);
+        self.err(near, format!("{message} ({far} is set in {far_file})"))
+    }
     pub(crate) fn warn(&self, field: &str, message: impl Into<String>) {
         self.warnings.borrow_mut().push(Warning {
             file: owner_of(self.layers, field).to_string(),

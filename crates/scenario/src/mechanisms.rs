@@ -98,9 +98,10 @@ pub(crate) fn soil(
         ));
     }
     if let Some((i, h)) = (holds.iter().enumerate()).find_map(|(i, h)| Some((i, (*h)?))) {
-        return Err(c.err(
+        return Err(c.conflict(
             &h.field(i),
-            format!(
+            "surface.kind",
+            &format!(
                 "{} are not part of the soil model (the report omits them there); give {} = 0",
                 h.what, h.key
             ),
@@ -163,9 +164,10 @@ pub(crate) fn curbs(
             ));
         }
         if let Some(h) = holds[leg] {
-            return Err(c.err(
+            return Err(c.conflict(
                 &h.field(leg),
-                format!(
+                &format!("surface.curbs[{i}]"),
+                &format!(
                     "leg {}'s footpad is held by {} and has a curb (surface.curbs[{i}]): curbs apply to sliding footpads; give {} = 0 there or remove the curb",
                     curb.leg, h.what, h.key
                 ),

@@ -553,8 +553,9 @@ pub(crate) fn resolve(
             ));
         }
         if spike[i] > 0.0 && obstacle[i] > 0.0 {
-            return Err(c.err(
+            return Err(c.conflict(
                 &format!("surface.spike_depth[{i}]"),
+                &format!("surface.obstacle[{i}]"),
                 "a footpad held by an obstacle's wall (surface.obstacle > 0) has no spikes too: give one of the two",
             ));
         }

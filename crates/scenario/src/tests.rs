@@ -382,7 +382,12 @@ fn spikes_are_one_restraint_a_footpad_on_a_rigid_surface() {
     assert!(pad.locked() && pad.obstacle <= 0.0);
     assert!((pad.hold_height() - 0.02 * crate::units::FOOT).abs() < 1e-15);
     for (extra, field, says) in [
-        ("[surface]\nobstacle = 1.0\n", "surface.spike_depth[0]", "has no spikes too"),
+        // The file that adds the wall over a spiked base is told about its own line.
+        (
+            "[surface]\nobstacle = 1.0\n",
+            "surface.obstacle[0]",
+            "give one of the two (surface.spike_depth[0] is set in ",
+        ),
         ("[surface]\nobstacle = 0.0\nspike_depth = -0.01\n", "surface.spike_depth[0]", "≥ 0"),
         (
             "[surface]\nspike_depth = [0.0, 0.0, 0.02, 0.0]\nobstacle = 0.0\n[[surface.curbs]]\nleg = 3\ndistance = 0.3\nangle = 0.0\nfriction = 0.0\n",
@@ -391,7 +396,8 @@ fn spikes_are_one_restraint_a_footpad_on_a_rigid_surface() {
         ),
     ] {
         let file = extending(dir, "refused.toml", &scenario("fig-25-26.toml"), extra);
-        let (_, f, message) = field_error(Scenario::load(&file));
+        let (owner, f, message) = field_error(Scenario::load(&file));
+        assert_eq!(owner, file.display().to_string(), "{extra}: {message}");
         assert_eq!(f, field, "{extra}: {message}");
         assert!(message.contains(says), "{extra}: {message}");
     }
