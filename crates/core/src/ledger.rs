@@ -171,11 +171,22 @@ impl State {
 
     /// Energy report at the current state.
     pub(crate) fn energy(&self, model: &Model) -> EnergyReport {
+        self.energy_with_footpads(model, self.footpad_energy(model))
+    }
+
+    /// [`State::energy`] with the footpads' energy `footpads` (J) already computed at this
+    /// state ([`State::footpad_energy`]): the step's contact logic has it.
+    pub(crate) fn energy_with_footpads(&self, model: &Model, footpads: f64) -> EnergyReport {
+        debug_assert_eq!(
+            footpads.to_bits(),
+            self.footpad_energy(model).to_bits(),
+            "the footpads' energy is the state's"
+        );
         self.ledger.report(
             self.stability.initial_kinetic_energy(),
             self.kinetic_energy(model),
             self.potential_energy(model) - model.potential0,
-            self.footpad_energy(model),
+            footpads,
             self.stored_energy(model),
         )
     }

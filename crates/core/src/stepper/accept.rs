@@ -80,11 +80,12 @@ impl State {
             _ => self.accept(model, new, spare)?,
         }
         self.vehicle = *new;
-        let pads_before = self.footpad_energy(model);
+        let mut pads_energy = self.footpad_energy(model);
         if self.contact_logic(model)? {
             // The impacts' loss (and the footpads put on their planes) is a contact event.
-            let events = self.footpad_energy(model) - pads_before;
-            self.ledger.events += events;
+            let pads_before = pads_energy;
+            pads_energy = self.footpad_energy(model);
+            self.ledger.events += pads_energy - pads_before;
             self.accept(model, new, spare)?;
             self.vehicle = *new;
         }
@@ -139,7 +140,8 @@ impl State {
         self.ledger.sliding += pads.gear + pads.curbs + pads.soil - pads.energy_change;
         self.book_strut_work(dt, quadrature, previous, trial);
         self.steps += 1;
-        let energy = self.energy(model);
+        // The footpads have not moved since the contact logic: their energy is the same.
+        let energy = self.energy_with_footpads(model, pads_energy);
         self.check_divergence(model, &energy)?;
         self.update_stability(model, Some(old), &energy);
         self.update_extremes();
