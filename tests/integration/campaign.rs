@@ -226,8 +226,13 @@ fn a_run_stopped_mid_record_or_mid_row_group_resumes_to_the_same_bytes() {
         read("landings.jsonl"),
         read("landings.parquet"),
     );
-    // The run's identity, as a run writes it when it starts: the manifest it will write.
-    let run_file = &manifest[..manifest.len() - 1];
+    // The run's identity, as a run writes it when it starts: the manifest it will write, but
+    // for the accuracy it measures once its landings have run.
+    let mut identity: touchdown_campaign::store::Manifest =
+        serde_json::from_slice(&manifest).unwrap();
+    assert!(identity.accuracy.take().is_some());
+    let run_file = touchdown_campaign::store::pretty(&identity);
+    let run_file = run_file.as_bytes();
     let line_ends: Vec<usize> = (jsonl.iter().enumerate())
         .filter(|(_, b)| **b == b'\n')
         .map(|(i, _)| i + 1)
@@ -315,6 +320,80 @@ fn the_values_applied_are_the_values_drawn_and_reach_the_model() {
     assert_eq!(
         slopes,
         [&Cell::Float(0.0), &Cell::Float(5.0), &Cell::Float(10.0)]
+    );
+}
+
+/// The accuracy a campaign states (docs/campaigns.md, "Accuracy") is its first landing landed
+/// at its settings and with DIST and dt_max divided by 8, written here by hand: the refined run
+/// takes several times the steps, the manifest's errors are those two runs', and settings four
+/// times coarser state a larger error.
+#[test]
+fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("campaign.toml");
+    small_with(&file, 4);
+    let coarse = tmp.path().join("coarse.toml");
+    let text = std::fs::read_to_string(&file).unwrap();
+    std::fs::write(
+        &coarse,
+        format!("{text}\n[[dispersion]]\nfield = \"integrator.dt_max\"\nunit = \"s\"\ndistribution = \"list\"\nvalues = [8.0e-4]\n"),
+    )
+    .unwrap();
+    let mut errors = Vec::new();
+    for file in [&file, &coarse] {
+        let campaign = Campaign::load(file).unwrap();
+        let (manifest, _) = run(&campaign, None, Some(1), None, false, |_| ()).unwrap();
+        let a = manifest
+            .accuracy
+            .expect("a campaign on the core states its accuracy");
+        assert_eq!((a.sample_landings, a.refinement), (1, 8.0));
+        let sc = touchdown_campaign::run::scenario(&campaign, &draws(&campaign, 0)).unwrap();
+        let refined = sc
+            .clone()
+            .with_integrator(|it| {
+                it.dist /= 8.0;
+                it.dt_max /= 8.0;
+            })
+            .unwrap();
+        let (x, x_ref) = (
+            touchdown_core::run(&sc).unwrap(),
+            touchdown_core::run(&refined).unwrap(),
+        );
+        assert!(
+            x_ref.steps > 4 * x.steps,
+            "{} against {}",
+            x_ref.steps,
+            x.steps
+        );
+        assert_eq!(a.outcomes_identical, u64::from(x.outcome == x_ref.outcome));
+        let largest = |s: &touchdown_record::Summary| {
+            s.max_primary_stroke_m.iter().fold(0.0f64, |m, x| m.max(*x))
+        };
+        let m = a.maxima.expect("both runs completed");
+        assert_eq!(
+            m.largest_primary_stroke.fraction,
+            (largest(&x) - largest(&x_ref)).abs() / largest(&x_ref)
+        );
+        let capacity = x.strut_capacity.secondary_tension.stroke_m;
+        let tension = |s: &touchdown_record::Summary| {
+            s.max_secondary_tension_m
+                .iter()
+                .flatten()
+                .copied()
+                .collect::<Vec<_>>()
+        };
+        let worst_tension = tension(&x)
+            .iter()
+            .zip(tension(&x_ref))
+            .fold(0.0f64, |w, (a, b)| w.max((a - b).abs() / capacity));
+        assert!(m.stroke_of_capacity.fraction >= worst_tension);
+        errors.push(m.stroke_of_capacity.fraction);
+    }
+    assert!(
+        errors[1] > errors[0],
+        "coarse {} against default {}",
+        errors[1],
+        errors[0]
     );
 }
 

@@ -6,6 +6,7 @@
 //!
 //! | module | content |
 //! |---|---|
+//! | [`accuracy`] | the accuracy the campaign's integrator settings give: its first landings against runs refined eightfold |
 //! | [`spec`] | the campaign file: base scenario, dispersions and their units, correlations, landings, seed, engine, records |
 //! | [`distribution`] | the distributions' quantile functions and each landing's random stream |
 //! | [`record`] | a landing's record: the values applied (read back), its outcome and failure mode, its strokes, loads and margins |
@@ -16,6 +17,7 @@
 //! | [`folder`] | the campaign's folder: built beside `--out`, locked, exchanged when complete |
 //! | [`run`] | landings in parallel, shards, merges and extensions |
 
+pub mod accuracy;
 pub mod distribution;
 pub mod fidelity;
 pub mod folder;

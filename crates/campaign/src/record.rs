@@ -95,6 +95,19 @@ impl Status {
         Status::Refused,
     ];
 
+    /// What became of a landing that ended with `result`.
+    pub fn of(result: Result<&Summary, &RunError>) -> Status {
+        match result {
+            Ok(s) => match s.outcome {
+                Outcome::Stable => Status::Stable,
+                Outcome::Unstable => Status::Unstable,
+                Outcome::Undecided => Status::Undecided,
+            },
+            Err(RunError::Refused(_)) => Status::Refused,
+            Err(_) => Status::Stopped,
+        }
+    }
+
     /// Its name, as in records.
     pub fn name(self) -> &'static str {
         match self {
@@ -300,25 +313,21 @@ pub fn row(
 /// One engine's cells of a record ([`engine_columns`]), appended to `r`.
 fn block(r: &mut Row, legs: usize, result: Result<&Summary, &RunError>) {
     let measured = result.ok();
-    let (status, failure, stroke_outs) = match result {
+    let status = Status::of(result);
+    let (failure, stroke_outs) = match result {
         Ok(s) => {
             // The struts past their capacity, named `leg2.primary`, `leg1.secondary_3_1.tension`.
             let outs: Vec<&str> = s.past_capacity.iter().map(|p| p.strut.as_str()).collect();
-            let status = match s.outcome {
-                Outcome::Stable => Status::Stable,
-                Outcome::Unstable => Status::Unstable,
-                Outcome::Undecided => Status::Undecided,
-            };
             let failure = match (s.outcome, outs.is_empty()) {
                 (Outcome::Unstable, _) => Failure::Overturned,
                 (_, false) => Failure::StrokeOut,
                 (Outcome::Undecided, true) => Failure::Undecided,
                 (Outcome::Stable, true) => Failure::None,
             };
-            (status, failure, outs)
+            (failure, outs)
         }
-        Err(RunError::Refused(_)) => (Status::Refused, Failure::Refused, Vec::new()),
-        Err(_) => (Status::Stopped, Failure::Stopped, Vec::new()),
+        Err(RunError::Refused(_)) => (Failure::Refused, Vec::new()),
+        Err(_) => (Failure::Stopped, Vec::new()),
     };
     r.push(Cell::Text(status.name().into()));
     r.push(Cell::Text(failure.name().into()));

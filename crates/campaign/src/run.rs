@@ -1,6 +1,7 @@
 //! Running a campaign: each landing drawn, resolved, read back and landed; landings in parallel
 //! (rayon) with their records handed on in landing order; shards, merges and extensions.
 
+use crate::accuracy;
 use crate::distribution::{scores, Value};
 use crate::folder::{self, Staging};
 use crate::paired::Report;
@@ -86,11 +87,7 @@ pub fn land(
         let results = vec![Err(&refused); campaign.engines.len()];
         record::row(campaign, landing, applied, &results)
     };
-    let sc = match campaign
-        .base
-        .with(&campaign.overrides(&drawn))
-        .and_then(|sc| same_legs(campaign, sc))
-    {
+    let sc = match scenario(campaign, &drawn) {
         Ok(sc) => sc,
         Err(e) => return Ok(refused_by_all(&drawn, e)),
     };
@@ -170,6 +167,15 @@ fn land_with_history(
         h.finish().map_err(|e| store(&path, e.to_string()))?;
     }
     Ok(summary)
+}
+
+/// The scenario of a landing that drew the values `drawn` ([`draws`]): the base with them
+/// applied, refused if they are out of their fields' domains or change the vehicle's legs.
+pub fn scenario(campaign: &Campaign, drawn: &[Value]) -> Result<Scenario, ScenarioError> {
+    campaign
+        .base
+        .with(&campaign.overrides(drawn))
+        .and_then(|sc| same_legs(campaign, sc))
 }
 
 /// The scenario, refused if a dispersed value changed its number of legs (the records have a
@@ -278,7 +284,8 @@ pub fn run_range(
 }
 
 /// The name of the file, in a campaign folder being built, that names the run building it: the
-/// manifest the folder will have, so that `--resume` goes on only with the same run.
+/// manifest the folder will have but for the accuracy measured at the end, so that `--resume`
+/// goes on only with the same run.
 const RUN_FILE: &str = "run.json";
 
 /// Runs a campaign, or one shard of it, writing its files into `out` when given (else into a
@@ -380,6 +387,10 @@ pub fn run(
             Ok(())
         },
     )?;
+    let mut manifest = manifest;
+    if range.start == 0 {
+        manifest.accuracy = accuracy::measure(campaign, campaign.landings, threads)?;
+    }
     finish(&dir, journal, manifest, staging)
 }
 
@@ -473,7 +484,8 @@ pub fn add(
         end_landing: total,
         shard: None,
     };
-    let manifest = Manifest::new(campaign, total, part, &columns);
+    let mut manifest = Manifest::new(campaign, total, part, &columns);
+    manifest.accuracy = accuracy::measure(campaign, total, threads)?;
     finish(&building, journal, manifest, Some(staging))
 }
 
@@ -546,6 +558,8 @@ pub fn merge(
         )));
     }
     let mut manifest = first;
+    // The accuracy is the part's that holds landing 0, measured as the whole campaign would.
+    manifest.accuracy = read[0].0.accuracy.clone();
     manifest.part = Part {
         first_landing: 0,
         end_landing: manifest.landings,

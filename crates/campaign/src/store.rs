@@ -7,6 +7,7 @@
 //! it a row group at a time, and the statistics are computed from the Parquet file a column at
 //! a time ([`complete`]); the manifest is written last.
 
+use crate::accuracy::Accuracy;
 use crate::paired::{self, Disagreement, EngineStatistics, Pair, Paired, Report};
 use crate::record::{prefix, Cell, Column, Kind, Row};
 use crate::spec::Campaign;
@@ -77,6 +78,11 @@ pub struct Manifest {
     pub part: Part,
     /// The records' columns.
     pub columns: Vec<Column>,
+    /// The accuracy of the campaign's settings, measured on its first landings
+    /// ([`crate::accuracy`]): in the manifest of a part that holds landing 0 and of the whole
+    /// campaign; absent from the other parts and when the campaign does not land on the core.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<Accuracy>,
 }
 
 impl Manifest {
@@ -103,6 +109,7 @@ impl Manifest {
             base_scenario: campaign.base_scenario.to_toml(),
             part,
             columns: columns.to_vec(),
+            accuracy: None,
         }
     }
 

@@ -267,6 +267,7 @@ fn percent(x: f64) -> String {
 /// each pair.
 pub fn text(m: &Manifest, report: &Report) -> String {
     let mut t = header(m);
+    t += &accuracy_text(m);
     match report {
         Report::One(s) => t += &engine_text(s),
         Report::Paired(p) => {
@@ -307,6 +308,50 @@ fn header(m: &Manifest) -> String {
         m.engines.join(", "),
         m.seed
     )
+}
+
+/// The accuracy of the campaign's settings (docs/campaigns.md, "Accuracy"), as a paragraph.
+fn accuracy_text(m: &Manifest) -> String {
+    let Some(a) = &m.accuracy else {
+        return if !m.engines.iter().any(|e| e == "core") {
+            "accuracy of the settings: not measured (measured on the core only)\n\n".into()
+        } else if m.part.first_landing > 0 {
+            "accuracy of the settings: stated by the part that holds landing 0\n\n".into()
+        } else {
+            "accuracy of the settings: not measured\n\n".into()
+        };
+    };
+    let n = a.sample_landings;
+    let mut t = format!(
+        "accuracy of the settings ({}, landings 0 to {} against runs with every step limit {}x finer):\n  outcomes identical on {} of {}",
+        a.engine,
+        n.saturating_sub(1),
+        a.refinement,
+        a.outcomes_identical,
+        n
+    );
+    if !a.outcomes_differ.is_empty() {
+        let list: Vec<String> = a.outcomes_differ.iter().map(u64::to_string).collect();
+        t += &format!(" (differ: landing {})", list.join(", "));
+    }
+    t += "\n";
+    let maxima = |what: &str, count: u64, m: &Option<touchdown_campaign::accuracy::Maxima>| {
+        let w = |w: &touchdown_campaign::accuracy::Worst| {
+            format!("{} (landing {})", percent(w.fraction), w.landing)
+        };
+        match m {
+            Some(x) => format!(
+                "  on the {count} {what}: largest primary stroke within {}, every maximum stroke within {} of its capacity, peak pitch rate within {} of the sample's largest\n",
+                w(&x.largest_primary_stroke),
+                w(&x.stroke_of_capacity),
+                w(&x.peak_pitch_rate_of_largest)
+            ),
+            None => format!("  no landing {what}: no maxima compared\n"),
+        }
+    };
+    t += &maxima("both runs completed", a.compared, &a.maxima);
+    t += &maxima("both runs found stable", a.stable, &a.stable_maxima);
+    t + "\n"
 }
 
 /// One engine's statistics as text.

@@ -109,9 +109,7 @@ impl Method {
         match self {
             Method::Report => sc.with_integrator(|it| {
                 it.scheme = Scheme::Report;
-                it.dist /= value;
-                it.dt_max /= value;
-                it.dt_min = it.dt_min.min(it.dt_max);
+                it.refine(value);
             }),
             Method::Rk4 => sc.with_integrator(|it| {
                 it.scheme = Scheme::Rk4;

@@ -772,6 +772,27 @@ pub struct Integrator {
     pub atol: f64,
 }
 
+impl Integrator {
+    /// The settings refined by `factor` (> 1) for the scheme they name: every step limit
+    /// (`dt_max`, and `dt_min` where it would exceed it) divided by `factor`; the report's step
+    /// rule also takes DIST ÷ `factor` (eq. 25: Δt = DIST/VEL); the Dormand–Prince pair also
+    /// takes `rtol` and `atol` ÷ `factor`⁵ (its local error is of fifth order in the step: the
+    /// same local error as a step `factor` times shorter).
+    pub fn refine(&mut self, factor: f64) {
+        self.dt_max /= factor;
+        self.dt_min = self.dt_min.min(self.dt_max);
+        match self.scheme {
+            Scheme::Report => self.dist /= factor,
+            Scheme::Rk4 => {}
+            Scheme::Dopri5 => {
+                let tolerance = factor.powi(5);
+                self.rtol /= tolerance;
+                self.atol /= tolerance;
+            }
+        }
+    }
+}
+
 /// Which stability walls count for the unstable declaration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
