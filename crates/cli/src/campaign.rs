@@ -322,10 +322,13 @@ fn accuracy_text(m: &Manifest) -> String {
         };
     };
     let n = a.sample_landings;
+    let sample = match n {
+        1 => "landing 0".to_string(),
+        _ => format!("landings 0 to {}", n - 1),
+    };
     let mut t = format!(
-        "accuracy of the settings ({}, landings 0 to {} against runs with every step limit {}x finer):\n  outcomes identical on {} of {}",
+        "accuracy of the settings ({}, {sample} against runs with every step limit {}x finer):\n  outcomes identical on {} of {}",
         a.engine,
-        n.saturating_sub(1),
         a.refinement,
         a.outcomes_identical,
         n
