@@ -1,7 +1,9 @@
 //! The accuracy a campaign's integrator settings give, measured and stated (docs/campaigns.md,
 //! "Accuracy"): the first landings of the campaign landed again on the core with its settings
-//! and with every step limit refined [`REFINEMENT`] times
-//! (`touchdown_scenario::schema::Integrator::refine`), their outcomes and maxima compared. The
+//! and with every step limit refined [`REFINEMENT`]/2 and [`REFINEMENT`] times
+//! (`touchdown_scenario::schema::Integrator::refine`), their outcomes and maxima compared: the
+//! settings' error against the finest, and the finest two against each other (how far the
+//! reference itself is from converged). The
 //! manifest of the whole campaign (and of the part that holds landing 0) carries the result.
 //!
 //! It measures the error of the steps, not of the model: both runs are of the same laws.
@@ -27,8 +29,9 @@ pub const MAX_SAMPLE: u64 = 20;
 
 /// The landings whose accuracy a campaign of `landings` measures: landings `0..n`, one in
 /// [`LANDINGS_PER_SAMPLE`] rounded up, at least one and at most [`MAX_SAMPLE`]. Each is landed
-/// twice more, once refined (about [`REFINEMENT`] times the steps): about 9 % more work on
-/// 1,000 landings, 1.8 % on 10,000, 0.2 % on 100,000, and 38 % on 24.
+/// three times more: at the campaign's settings, with its step limits [`REFINEMENT`]/2 and
+/// [`REFINEMENT`] times finer (about 1 + 4 + 8 times the steps): about 13 % more work on 1,000
+/// landings, 2.6 % on 10,000, 0.3 % on 100,000, and 54 % on 24.
 pub fn sample_size(landings: u64) -> u64 {
     landings
         .div_ceil(LANDINGS_PER_SAMPLE)
@@ -59,6 +62,18 @@ pub struct Maxima {
     pub peak_pitch_rate_of_largest: Worst,
 }
 
+/// The errors of the maxima over a set of landings: of the campaign's settings, and of the
+/// runs half as refined, each against the refined runs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Comparison {
+    /// The campaign's settings against the refined runs: their error.
+    pub settings: Maxima,
+    /// The runs [`REFINEMENT`]/2 times finer against the refined runs: how far the reference is
+    /// from converged. A channel whose error here is about its error in `settings` is decided by
+    /// the landing's sensitivity (a late rocking, an overturn), not by the step.
+    pub reference: Maxima,
+}
+
 /// The accuracy of a campaign's settings on its first landings ([`sample_size`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Accuracy {
@@ -73,24 +88,26 @@ pub struct Accuracy {
     pub outcomes_identical: u64,
     /// The landings whose outcome differs from the refined run's.
     pub outcomes_differ: Vec<u64>,
-    /// Landings both runs completed, whose maxima are compared.
+    /// The landings whose outcome differs between the refined runs and those half as refined.
+    pub reference_outcomes_differ: Vec<u64>,
+    /// Landings the three runs completed, whose maxima are compared.
     pub compared: u64,
-    /// The largest errors of the maxima; absent when no landing of the sample completed.
+    /// The largest errors of the maxima over them; absent when there are none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub maxima: Option<Maxima>,
-    /// Landings both runs found stable: the landings whose maxima a design reads (an
+    pub maxima: Option<Comparison>,
+    /// Landings the three runs found stable: the landings whose maxima a design reads (an
     /// overturn's are up to its crossing, where the runs part).
     pub stable: u64,
-    /// The largest errors of the maxima on the landings both runs found stable; absent when
-    /// there are none.
+    /// The largest errors of the maxima over them; absent when there are none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stable_maxima: Option<Maxima>,
+    pub stable_maxima: Option<Comparison>,
 }
 
-/// One landing of the sample at the campaign's settings and refined.
-struct Pair {
+/// One landing of the sample at the campaign's settings, half refined and refined.
+struct Runs {
     landing: u64,
     run: Result<Summary, RunError>,
+    half: Result<Summary, RunError>,
     refined: Result<Summary, RunError>,
 }
 
@@ -111,21 +128,24 @@ pub fn measure(
         .num_threads(threads.unwrap_or(0))
         .build()
         .map_err(|e| CampaignError::Threads(e.to_string()))?;
-    let pairs: Vec<Pair> = pool.install(|| {
+    let runs: Vec<Runs> = pool.install(|| {
         (0..n)
             .into_par_iter()
-            .map(|i| land_pair(campaign, i, &draws(campaign, i)))
+            .map(|i| land_runs(campaign, i, &draws(campaign, i)))
             .collect::<Result<_, _>>()
     })?;
-    Ok(Some(compare(&pairs, n)))
+    Ok(Some(compare(&runs, n)))
 }
 
-/// Landing `landing` (its draws `drawn`) at the campaign's settings and refined.
-fn land_pair(campaign: &Campaign, landing: u64, drawn: &[Value]) -> Result<Pair, CampaignError> {
-    let land = |refine: bool| -> Result<Result<Summary, RunError>, CampaignError> {
-        let sc = scenario(campaign, drawn).and_then(|sc| match refine {
-            true => sc.with_integrator(|it| it.refine(REFINEMENT)),
-            false => Ok(sc),
+/// Landing `landing` (its draws `drawn`) at the campaign's settings, half refined and refined.
+fn land_runs(campaign: &Campaign, landing: u64, drawn: &[Value]) -> Result<Runs, CampaignError> {
+    let land = |refinement: f64| -> Result<Result<Summary, RunError>, CampaignError> {
+        let sc = scenario(campaign, drawn).and_then(|sc| {
+            if refinement > 1.0 {
+                sc.with_integrator(|it| it.refine(refinement))
+            } else {
+                Ok(sc)
+            }
         });
         let sc = match sc {
             Ok(sc) => sc,
@@ -144,10 +164,11 @@ fn land_pair(campaign: &Campaign, landing: u64, drawn: &[Value]) -> Result<Pair,
             r => Ok(r.map_err(|f| f.error)),
         }
     };
-    Ok(Pair {
+    Ok(Runs {
         landing,
-        run: land(false)?,
-        refined: land(true)?,
+        run: land(1.0)?,
+        half: land(REFINEMENT / 2.0)?,
+        refined: land(REFINEMENT)?,
     })
 }
 
@@ -217,33 +238,58 @@ fn maxima(completed: &[(u64, &Summary, &Summary)]) -> Option<Maxima> {
     Some(m)
 }
 
+/// The landings of `runs` the three runs completed, each with its summaries (the campaign's
+/// settings, half refined, refined), and the errors of their maxima; the errors `None` when
+/// there are none.
+fn comparison<'a>(
+    runs: impl Iterator<Item = (u64, &'a Summary, &'a Summary, &'a Summary)>,
+) -> (u64, Option<Comparison>) {
+    let (settings, reference): (Vec<_>, Vec<_>) = runs
+        .map(|(i, run, half, refined)| ((i, run, refined), (i, half, refined)))
+        .unzip();
+    let comparison = maxima(&settings).zip(maxima(&reference));
+    let comparison = comparison.map(|(settings, reference)| Comparison {
+        settings,
+        reference,
+    });
+    (settings.len() as u64, comparison)
+}
+
 /// The sample's outcomes and maxima compared.
-fn compare(pairs: &[Pair], n: u64) -> Accuracy {
-    let mut outcomes_differ = Vec::new();
-    let completed: Vec<(u64, &Summary, &Summary)> = pairs
-        .iter()
-        .filter_map(|p| {
-            if Status::of(p.run.as_ref()) != Status::of(p.refined.as_ref()) {
-                outcomes_differ.push(p.landing);
-            }
-            Some((p.landing, p.run.as_ref().ok()?, p.refined.as_ref().ok()?))
+fn compare(runs: &[Runs], n: u64) -> Accuracy {
+    let differ = |a: &Result<Summary, RunError>, b: &Result<Summary, RunError>| {
+        Status::of(a.as_ref()) != Status::of(b.as_ref())
+    };
+    let outcomes_differ: Vec<u64> = (runs.iter())
+        .filter(|r| differ(&r.run, &r.refined))
+        .map(|r| r.landing)
+        .collect();
+    let reference_outcomes_differ = (runs.iter())
+        .filter(|r| differ(&r.half, &r.refined))
+        .map(|r| r.landing)
+        .collect();
+    let completed: Vec<_> = (runs.iter())
+        .filter_map(|r| {
+            let (a, b, c) = (r.run.as_ref(), r.half.as_ref(), r.refined.as_ref());
+            Some((r.landing, a.ok()?, b.ok()?, c.ok()?))
         })
         .collect();
-    let stable: Vec<_> = completed
-        .iter()
-        .filter(|(_, a, b)| a.outcome == Outcome::Stable && b.outcome == Outcome::Stable)
-        .copied()
-        .collect();
+    let stable = |s: &Summary| s.outcome == Outcome::Stable;
+    let (compared, maxima) = comparison(completed.iter().copied());
+    let (stable, stable_maxima) = comparison(
+        (completed.iter().copied()).filter(|(_, a, b, c)| stable(a) && stable(b) && stable(c)),
+    );
     Accuracy {
         engine: Engine::Core.name().into(),
         sample_landings: n,
         refinement: REFINEMENT,
         outcomes_identical: n - outcomes_differ.len() as u64,
         outcomes_differ,
-        compared: completed.len() as u64,
-        maxima: maxima(&completed),
-        stable: stable.len() as u64,
-        stable_maxima: maxima(&stable),
+        reference_outcomes_differ,
+        compared,
+        maxima,
+        stable,
+        stable_maxima,
     }
 }
 

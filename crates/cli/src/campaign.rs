@@ -312,6 +312,7 @@ fn header(m: &Manifest) -> String {
 
 /// The accuracy of the campaign's settings (docs/campaigns.md, "Accuracy"), as a paragraph.
 fn accuracy_text(m: &Manifest) -> String {
+    use touchdown_campaign::accuracy::{Comparison, Worst};
     let Some(a) = &m.accuracy else {
         return if !m.engines.iter().any(|e| e == "core") {
             "accuracy of the settings: not measured (measured on the core only)\n\n".into()
@@ -326,34 +327,50 @@ fn accuracy_text(m: &Manifest) -> String {
         1 => "landing 0".to_string(),
         _ => format!("landings 0 to {}", n - 1),
     };
+    let (fine, half) = (a.refinement, a.refinement / 2.0);
+    let landings = |list: &[u64]| {
+        let list: Vec<String> = list.iter().map(u64::to_string).collect();
+        list.join(", ")
+    };
     let mut t = format!(
-        "accuracy of the settings ({}, {sample} against runs with every step limit {}x finer):\n  outcomes identical on {} of {}",
-        a.engine,
-        a.refinement,
-        a.outcomes_identical,
-        n
+        "accuracy of the settings ({}, {sample}, against runs with every step limit {fine}x finer; in brackets the runs {half}x finer against those, the reference's own spread):\n  outcomes identical on {} of {n}",
+        a.engine, a.outcomes_identical,
     );
     if !a.outcomes_differ.is_empty() {
-        let list: Vec<String> = a.outcomes_differ.iter().map(u64::to_string).collect();
-        t += &format!(" (differ: landing {})", list.join(", "));
+        t += &format!(" (differ: landing {})", landings(&a.outcomes_differ));
+    }
+    if !a.reference_outcomes_differ.is_empty() {
+        t += &format!(
+            " [differ: landing {}]",
+            landings(&a.reference_outcomes_differ)
+        );
     }
     t += "\n";
-    let maxima = |what: &str, count: u64, m: &Option<touchdown_campaign::accuracy::Maxima>| {
-        let w = |w: &touchdown_campaign::accuracy::Worst| {
-            format!("{} (landing {})", percent(w.fraction), w.landing)
+    let maxima = |what: &str, count: u64, c: &Option<Comparison>| {
+        let w = |w: &Worst, r: &Worst| {
+            format!(
+                "{} (landing {}) [{} (landing {})]",
+                percent(w.fraction),
+                w.landing,
+                percent(r.fraction),
+                r.landing
+            )
         };
-        match m {
-            Some(x) => format!(
-                "  on the {count} {what}: largest primary stroke within {}, every maximum stroke within {} of its capacity, peak pitch rate within {} of the sample's largest\n",
-                w(&x.largest_primary_stroke),
-                w(&x.stroke_of_capacity),
-                w(&x.peak_pitch_rate_of_largest)
-            ),
+        match c {
+            Some(c) => {
+                let (x, r) = (&c.settings, &c.reference);
+                format!(
+                    "  on the {count} {what}: largest primary stroke within {}, every maximum stroke within {} of its capacity, peak pitch rate within {} of the sample's largest\n",
+                    w(&x.largest_primary_stroke, &r.largest_primary_stroke),
+                    w(&x.stroke_of_capacity, &r.stroke_of_capacity),
+                    w(&x.peak_pitch_rate_of_largest, &r.peak_pitch_rate_of_largest)
+                )
+            }
             None => format!("  no landing {what}: no maxima compared\n"),
         }
     };
-    t += &maxima("both runs completed", a.compared, &a.maxima);
-    t += &maxima("both runs found stable", a.stable, &a.stable_maxima);
+    t += &maxima("all three runs completed", a.compared, &a.maxima);
+    t += &maxima("all three runs found stable", a.stable, &a.stable_maxima);
     t + "\n"
 }
 
