@@ -327,7 +327,8 @@ fn the_values_applied_are_the_values_drawn_and_reach_the_model() {
 /// at its settings and with DIST and dt_max divided by 8, written here by hand: the refined run
 /// takes several times the steps, the manifest's errors are those two runs', and settings four
 /// times coarser state a larger error; the reference's own spread is that of the runs with
-/// DIST and dt_max divided by 4 against it.
+/// DIST and dt_max divided by 4 against it. A landing whose settings cannot be refined within
+/// their ranges is listed as not measured.
 #[test]
 fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
     let tmp = tempfile::tempdir().unwrap();
@@ -399,6 +400,20 @@ fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
         errors[1],
         errors[0]
     );
+    // A budget that refined would leave its range (max_steps ≤ 1e9) is not measured, and not
+    // counted as an outcome the refined run changed.
+    let budget = tmp.path().join("budget.toml");
+    std::fs::write(
+        &budget,
+        format!("{text}\n[[dispersion]]\nfield = \"integrator.max_steps\"\nunit = \"1\"\ndistribution = \"list\"\nvalues = [5.0e8]\n"),
+    )
+    .unwrap();
+    let campaign = Campaign::load(&budget).unwrap();
+    let (manifest, _) = run(&campaign, None, Some(1), None, false, |_| ()).unwrap();
+    let a = manifest.accuracy.unwrap();
+    assert_eq!(a.not_refined, [0]);
+    assert_eq!((a.outcomes_identical, a.compared), (0, 0));
+    assert!(a.outcomes_differ.is_empty() && a.maxima.is_none());
 }
 
 /// A vertical drop on flat ground strokes its primaries out exactly when it lands faster than

@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use touchdown_record::{Outcome, RunError, Summary};
 use touchdown_registry::Engine;
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// How many times finer the reference runs' step limits are than the campaign's.
 pub const REFINEMENT: f64 = 8.0;
@@ -86,6 +87,10 @@ pub struct Accuracy {
     /// Landings whose outcome (stable, unstable, undecided, stopped, refused) is the refined
     /// run's.
     pub outcomes_identical: u64,
+    /// The landings not measured: their settings refined leave their ranges (a `max_steps` or
+    /// `rtol` near its bound; docs/scenario-format.md, "Ranges").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub not_refined: Vec<u64>,
     /// The landings whose outcome differs from the refined run's.
     pub outcomes_differ: Vec<u64>,
     /// The landings whose outcome differs between the refined runs and those half as refined.
@@ -128,48 +133,62 @@ pub fn measure(
         .num_threads(threads.unwrap_or(0))
         .build()
         .map_err(|e| CampaignError::Threads(e.to_string()))?;
-    let runs: Vec<Runs> = pool.install(|| {
+    let runs: Vec<Option<Runs>> = pool.install(|| {
         (0..n)
             .into_par_iter()
             .map(|i| land_runs(campaign, i, &draws(campaign, i)))
             .collect::<Result<_, _>>()
     })?;
-    Ok(Some(compare(&runs, n)))
+    let not_refined = (0..n).filter(|i| runs[*i as usize].is_none()).collect();
+    let runs: Vec<Runs> = runs.into_iter().flatten().collect();
+    Ok(Some(compare(&runs, n, not_refined)))
 }
 
-/// Landing `landing` (its draws `drawn`) at the campaign's settings, half refined and refined.
-fn land_runs(campaign: &Campaign, landing: u64, drawn: &[Value]) -> Result<Runs, CampaignError> {
-    let land = |refinement: f64| -> Result<Result<Summary, RunError>, CampaignError> {
-        let sc = scenario(campaign, drawn).and_then(|sc| {
-            if refinement > 1.0 {
-                sc.with_integrator(|it| it.refine(refinement))
-            } else {
-                Ok(sc)
-            }
-        });
+/// Landing `landing` (its draws `drawn`) at the campaign's settings, half refined and refined;
+/// `Ok(None)` when its settings refined leave their ranges (a `max_steps` or `rtol` near its
+/// bound): not measured.
+fn land_runs(
+    campaign: &Campaign,
+    landing: u64,
+    drawn: &[Value],
+) -> Result<Option<Runs>, CampaignError> {
+    let at = |refinement: f64| {
+        scenario(campaign, drawn).and_then(|sc| match refinement > 1.0 {
+            true => sc.with_integrator(|it| it.refine(refinement)),
+            false => Ok(sc),
+        })
+    };
+    let (run, half, refined) = (at(1.0), at(REFINEMENT / 2.0), at(REFINEMENT));
+    if run.is_ok() && (half.is_err() || refined.is_err()) {
+        return Ok(None);
+    }
+    let land = |sc: Result<Scenario, ScenarioError>| {
         let sc = match sc {
             Ok(sc) => sc,
             Err(e) => return Ok(Err(RunError::Refused(e))),
         };
-        match touchdown_registry::land_reusing_runner(
+        let r = touchdown_registry::land_reusing_runner(
             Engine::Core,
             &campaign.scenario_path,
             &sc,
             &mut (),
             None,
-        ) {
+        );
+        match r {
+            // An engine that cannot be set up stops the campaign, as a landing's would.
             Err(f) if matches!(f.error, RunError::Setup(_)) => {
                 Err(CampaignError::Engine(Box::new(f)))
             }
             r => Ok(r.map_err(|f| f.error)),
         }
     };
-    Ok(Runs {
+    let (run, half, refined) = (land(run)?, land(half)?, land(refined)?);
+    Ok(Some(Runs {
         landing,
-        run: land(1.0)?,
-        half: land(REFINEMENT / 2.0)?,
-        refined: land(REFINEMENT)?,
-    })
+        run,
+        half,
+        refined,
+    }))
 }
 
 /// Every maximum stroke of `s` with its strut's capacity, m, in a fixed order.
@@ -255,8 +274,9 @@ fn comparison<'a>(
     (settings.len() as u64, comparison)
 }
 
-/// The sample's outcomes and maxima compared.
-fn compare(runs: &[Runs], n: u64) -> Accuracy {
+/// The sample's outcomes and maxima compared (`n` landings, of which `not_refined` could not
+/// be refined and are not in `runs`).
+fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>) -> Accuracy {
     let differ = |a: &Result<Summary, RunError>, b: &Result<Summary, RunError>| {
         Status::of(a.as_ref()) != Status::of(b.as_ref())
     };
@@ -283,7 +303,8 @@ fn compare(runs: &[Runs], n: u64) -> Accuracy {
         engine: Engine::Core.name().into(),
         sample_landings: n,
         refinement: REFINEMENT,
-        outcomes_identical: n - outcomes_differ.len() as u64,
+        outcomes_identical: (runs.len() - outcomes_differ.len()) as u64,
+        not_refined,
         outcomes_differ,
         reference_outcomes_differ,
         compared,

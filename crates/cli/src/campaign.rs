@@ -325,7 +325,7 @@ fn accuracy_text(m: &Manifest) -> String {
     let n = a.sample_landings;
     let sample = match n {
         1 => "landing 0".to_string(),
-        _ => format!("landings 0 to {}", n - 1),
+        _ => format!("landings 0 to {}", n.saturating_sub(1)),
     };
     let (fine, half) = (a.refinement, a.refinement / 2.0);
     let landings = |list: &[u64]| {
@@ -333,9 +333,17 @@ fn accuracy_text(m: &Manifest) -> String {
         list.join(", ")
     };
     let mut t = format!(
-        "accuracy of the settings ({}, {sample}, against runs with every step limit {fine}x finer; in brackets the runs {half}x finer against those, the reference's own spread):\n  outcomes identical on {} of {n}",
-        a.engine, a.outcomes_identical,
+        "accuracy of the settings ({}, {sample}, against runs with every step limit {fine}x finer; in brackets the runs {half}x finer against those, the reference's own spread):\n  outcomes identical on {} of {}",
+        a.engine,
+        a.outcomes_identical,
+        n.saturating_sub(a.not_refined.len() as u64),
     );
+    if !a.not_refined.is_empty() {
+        t += &format!(
+            " (not measured: landing {}, whose settings refined leave their ranges)",
+            landings(&a.not_refined)
+        );
+    }
     if !a.outcomes_differ.is_empty() {
         t += &format!(" (differ: landing {})", landings(&a.outcomes_differ));
     }

@@ -777,8 +777,10 @@ impl Integrator {
     /// (`dt_max`, and `dt_min` where it would exceed it) divided by `factor`; the report's step
     /// rule also takes DIST ÷ `factor` (eq. 25: Δt = DIST/VEL); the Dormand–Prince pair also
     /// takes `rtol` and `atol` ÷ `factor`⁵ (its local error is of fifth order in the step: the
-    /// same local error as a step `factor` times shorter).
+    /// same local error as a step `factor` times shorter). The run's budget of steps,
+    /// `max_steps`, grows by `factor`: a refined run is the same landing in more steps.
     pub fn refine(&mut self, factor: f64) {
+        self.max_steps *= factor;
         self.dt_max /= factor;
         self.dt_min = self.dt_min.min(self.dt_max);
         match self.scheme {
