@@ -10,7 +10,7 @@
 
 use crate::distribution::Value;
 use crate::record::Status;
-use crate::run::{draws, scenario};
+use crate::run::{draws, outcome, pool, scenario};
 use crate::spec::Campaign;
 use crate::CampaignError;
 use rayon::prelude::*;
@@ -129,11 +129,7 @@ pub fn measure(
         return Ok(None);
     }
     let n = sample_size(landings);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| CampaignError::Threads(e.to_string()))?;
-    let runs: Vec<Option<Runs>> = pool.install(|| {
+    let runs: Vec<Option<Runs>> = pool(threads)?.install(|| {
         (0..n)
             .into_par_iter()
             .map(|i| land_runs(campaign, i, &draws(campaign, i)))
@@ -167,20 +163,13 @@ fn land_runs(
             Ok(sc) => sc,
             Err(e) => return Ok(Err(RunError::Refused(e))),
         };
-        let r = touchdown_registry::land_reusing_runner(
+        outcome(touchdown_registry::land_reusing_runner(
             Engine::Core,
             &campaign.scenario_path,
             &sc,
             &mut (),
             None,
-        );
-        match r {
-            // An engine that cannot be set up stops the campaign, as a landing's would.
-            Err(f) if matches!(f.error, RunError::Setup(_)) => {
-                Err(CampaignError::Engine(Box::new(f)))
-            }
-            r => Ok(r.map_err(|f| f.error)),
-        }
+        ))
     };
     let (run, half, refined) = (land(run)?, land(half)?, land(refined)?);
     Ok(Some(Runs {
@@ -294,10 +283,11 @@ fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>) -> Accuracy {
             Some((r.landing, a.ok()?, b.ok()?, c.ok()?))
         })
         .collect();
-    let stable = |s: &Summary| s.outcome == Outcome::Stable;
+    let is_stable = |s: &Summary| s.outcome == Outcome::Stable;
     let (compared, maxima) = comparison(completed.iter().copied());
     let (stable, stable_maxima) = comparison(
-        (completed.iter().copied()).filter(|(_, a, b, c)| stable(a) && stable(b) && stable(c)),
+        (completed.iter().copied())
+            .filter(|(_, a, b, c)| is_stable(a) && is_stable(b) && is_stable(c)),
     );
     Accuracy {
         engine: Engine::Core.name().into(),

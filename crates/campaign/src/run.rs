@@ -14,8 +14,8 @@ use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
-use touchdown_record::{History, RunError};
-use touchdown_registry::Engine;
+use touchdown_record::{History, RunError, Summary};
+use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// A shard `K/N` (K from 1): the landings `⌊(K−1)·n/N⌋ .. ⌊K·n/N⌋` of a campaign of n.
@@ -116,15 +116,30 @@ pub fn land(
                 None,
             ),
         };
-        match result {
-            Err(f) if matches!(f.error, RunError::Setup(_)) => {
-                return Err(CampaignError::Engine(Box::new(f)))
-            }
-            r => results.push(r.map_err(|f| f.error)),
-        }
+        results.push(outcome(result)?);
     }
     let results: Vec<_> = results.iter().map(Result::as_ref).collect();
     Ok(record::row(campaign, landing, &applied, &results))
+}
+
+/// What an engine's run of a landing gives a campaign: its summary or why the landing did not
+/// complete (a record), or, when the engine could not be set up, the error that stops the
+/// campaign.
+pub(crate) fn outcome(
+    result: Result<Summary, EngineFailure>,
+) -> Result<Result<Summary, RunError>, CampaignError> {
+    match result {
+        Err(f) if matches!(f.error, RunError::Setup(_)) => Err(CampaignError::Engine(Box::new(f))),
+        r => Ok(r.map_err(|f| f.error)),
+    }
+}
+
+/// The pool of `threads` threads the landings run on (one per core with `None`).
+pub(crate) fn pool(threads: Option<usize>) -> Result<rayon::ThreadPool, CampaignError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| CampaignError::Threads(e.to_string()))
 }
 
 /// A landing on `engine` whose history is kept: `dir/landing-N.csv` (the MuJoCo runner writes
@@ -136,7 +151,7 @@ fn land_with_history(
     landing: u64,
     sc: &Scenario,
     dir: &Path,
-) -> Result<Result<touchdown_record::Summary, touchdown_registry::EngineFailure>, CampaignError> {
+) -> Result<Result<Summary, EngineFailure>, CampaignError> {
     let store = |path: &Path, message: String| CampaignError::Store {
         path: path.display().to_string(),
         message,
@@ -225,10 +240,7 @@ pub fn run_range(
     histories: Option<&Path>,
     mut each: impl FnMut(&Row) -> Result<(), CampaignError>,
 ) -> Result<(), CampaignError> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| CampaignError::Threads(e.to_string()))?;
+    let pool = pool(threads)?;
     let cancel = AtomicBool::new(false);
     let (tx, rx) = std::sync::mpsc::channel::<(u64, Result<Row, CampaignError>)>();
     let mut failure: Option<(u64, CampaignError)> = None;
