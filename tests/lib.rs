@@ -61,6 +61,19 @@ pub fn variant(base: &str, name: &str, extra: &str) -> PathBuf {
     path
 }
 
+/// Every bundled landing (scenarios/*.toml; the vehicle files are not landings), sorted.
+pub fn bundled_landings() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(root().join("scenarios"))
+        .expect("scenarios/ is readable")
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().into_string().ok()?;
+            name.ends_with(".toml").then_some(name)
+        })
+        .collect();
+    names.sort();
+    names
+}
+
 /// The file names of the nine validation landings under `scenarios/` (the eight Table I
 /// landings and the figure 25-26 landing), sorted.
 pub fn validation_landings() -> Vec<String> {

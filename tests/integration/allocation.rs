@@ -33,11 +33,12 @@ fn allocations() -> u64 {
     ALLOCATIONS.with(|c| c.get())
 }
 
-/// With every integration scheme (the report's, the fourth-order Runge–Kutta method and the
-/// adaptive Dormand–Prince pair, which also rejects steps), and either footpad.
+/// With every integration scheme (the report's, the report's in long strides, the
+/// fourth-order Runge–Kutta method and the adaptive Dormand–Prince pair, which also rejects
+/// steps), and either footpad.
 #[test]
 fn stepping_a_landing_does_not_allocate() {
-    let runs = ["report", "rk4", "dopri5"]
+    let runs = ["report", "strides", "rk4", "dopri5"]
         .into_iter()
         .flat_map(|scheme| ["rigid", "inertial"].map(|footpad| (scheme, footpad)));
     for (scheme, footpad) in runs {

@@ -6,8 +6,9 @@
 use nalgebra::{Matrix3, Vector3};
 use touchdown_record::Summary;
 use touchdown_scenario::model::Leg;
+use touchdown_scenario::schema::Scheme;
 use touchdown_scenario::Scenario;
-use touchdown_tests::scenario;
+use touchdown_tests::{bundled_landings, scenario};
 
 /// Relative agreement required between a landing and its mirror image.
 const TOLERANCE: f64 = 1e-9;
@@ -69,19 +70,6 @@ const UNSTABLE_TO_ASYMMETRY: &[&str] = &[
     "table-i-2-2-vv8.toml",
     "upslope-2-2-vv8.toml",
 ];
-
-/// Every bundled landing (scenarios/*.toml; the vehicle files are not landings).
-fn landings() -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(touchdown_tests::root().join("scenarios"))
-        .expect("scenarios/ is readable")
-        .filter_map(|e| {
-            let name = e.ok()?.file_name().into_string().ok()?;
-            name.ends_with(".toml").then_some(name)
-        })
-        .collect();
-    names.sort();
-    names
-}
 
 /// The mirror matrix M = diag(−1, 1, 1): x → −x in the gravity, surface and body frames.
 fn m() -> Matrix3<f64> {
@@ -369,6 +357,39 @@ fn instability_is_physical(sc: &Scenario, mirror_gap: f64, scales: Scales) -> bo
     nudge_gap > 0.1 * mirror_gap
 }
 
+/// The figures' scales of landing `sc`: its touchdown speed over its primary's length for
+/// rates, that length for lengths.
+fn scales(sc: &Scenario) -> Scales {
+    let speed = sc
+        .touchdown
+        .velocity_g
+        .norm()
+        .max(1e-3 * sc.vehicle.gravity.sqrt());
+    Scales {
+        rate_rad_s: speed / sc.legs[0].l2p,
+        length_m: sc.legs[0].l2p,
+    }
+}
+
+/// Landing `sc` on the core as `scheme` makes it (the scenario, or one built from it), with the
+/// landings it must match: its legs renumbered, its mirror image and, for a mirror-symmetric
+/// landing, itself (what was compared, the other landing, the leg map between them).
+fn with_images(
+    sc: &Scenario,
+    scheme: impl Fn(Scenario) -> Scenario,
+) -> (Summary, Vec<(&'static str, Summary, Map)>) {
+    let original = core(&scheme(sc.clone()));
+    let mut pairs = vec![];
+    let (renamed, map) = renumbered(sc);
+    pairs.push(("legs renumbered", core(&scheme(renamed)), map));
+    let (image, map) = mirrored(sc);
+    pairs.push(("mirrored", core(&scheme(image)), map));
+    if let Some(own) = self_mirror(sc) {
+        pairs.push(("its own mirror image", original.clone(), own));
+    }
+    (original, pairs)
+}
+
 /// Every bundled landing run on the core: its mirror image gives the mirrored result and its
 /// renumbered legs the renumbered result, to 1e-9 relative; a mirror-symmetric landing is its
 /// own mirror image, so it comes out symmetric.
@@ -376,27 +397,12 @@ fn instability_is_physical(sc: &Scenario, mirror_gap: f64, scales: Scales) -> bo
 fn mirror_symmetric_landings_come_out_symmetric() {
     let mut failures = vec![];
     let mut symmetric = vec![];
-    for name in landings() {
+    for name in bundled_landings() {
         let sc = Scenario::load(scenario(&name)).unwrap_or_else(|e| panic!("{e}"));
-        let original = core(&sc);
-        let speed = sc
-            .touchdown
-            .velocity_g
-            .norm()
-            .max(1e-3 * sc.vehicle.gravity.sqrt());
-        let scales = Scales {
-            rate_rad_s: speed / sc.legs[0].l2p,
-            length_m: sc.legs[0].l2p,
-        };
-        // (what was compared, the other landing, the leg map between them)
-        let mut pairs = vec![];
-        let (renamed, map) = renumbered(&sc);
-        pairs.push(("legs renumbered", core(&renamed), map));
-        let (image, map) = mirrored(&sc);
-        pairs.push(("mirrored", core(&image), map));
-        if let Some(own) = self_mirror(&sc) {
+        let scales = scales(&sc);
+        let (original, pairs) = with_images(&sc, |s| s);
+        if self_mirror(&sc).is_some() {
             symmetric.push(name.clone());
-            pairs.push(("its own mirror image", original.clone(), own));
         }
         if UNSTABLE_TO_ASYMMETRY.contains(&name.as_str()) {
             let widest = pairs
@@ -422,6 +428,37 @@ fn mirror_symmetric_landings_come_out_symmetric() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The `strides` scheme's step and its footpads' corrector are built of the legs' own
+/// quantities summed over the legs (docs/errata.md, "Long strides where the gear is soft"):
+/// every bundled landing it applies to (not on soil nor beside curbs) and that is not
+/// [`UNSTABLE_TO_ASYMMETRY`] on the report's scheme comes out mirrored and renumbered to 1e-9,
+/// and symmetric where it is its own mirror image, as on the report's scheme.
+#[test]
+fn the_strides_scheme_lands_mirror_images_and_renumbered_legs_alike() {
+    let strides = |s: Scenario| {
+        s.with_integrator(|it| it.scheme = Scheme::Strides)
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let mut failures = vec![];
+    let mut landed = vec![];
+    for name in bundled_landings() {
+        let sc = Scenario::load(scenario(&name)).unwrap_or_else(|e| panic!("{e}"));
+        let applies = sc.surface.soil.is_none() && sc.surface.curbs.is_empty();
+        if !applies || UNSTABLE_TO_ASYMMETRY.contains(&name.as_str()) {
+            continue;
+        }
+        landed.push(name.clone());
+        let (original, pairs) = with_images(&sc, strides);
+        for (what, other, map) in &pairs {
+            for d in differences(&original, other, map, scales(&sc)) {
+                failures.push(format!("{name}, {what}: {d}"));
+            }
+        }
+    }
+    assert!(landed.len() >= 10, "{landed:?}");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// The rounding ensemble's perturbed copies ([`touchdown_compare::rounding`]) of a landing
 /// that is its own mirror image are each other's mirror images: the touchdown velocity moved
 /// by one unit in the last place across, one way and the other. Where the core lands the
@@ -433,7 +470,7 @@ fn mirror_symmetric_landings_come_out_symmetric() {
 #[test]
 fn the_rounding_ensembles_copies_of_a_symmetric_landing_are_mirror_images() {
     let mut checked = vec![];
-    for name in landings() {
+    for name in bundled_landings() {
         if UNSTABLE_TO_ASYMMETRY.contains(&name.as_str()) {
             continue;
         }

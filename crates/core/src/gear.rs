@@ -226,6 +226,30 @@ fn evaluate_tripod(
     };
 }
 
+/// The gradients of the secondary strokes S31, S41 (eq. 34, tension positive) in the
+/// footpad's position BP (`bp`, body axes, m), body axes, dimensionless: a tripod's secondary
+/// runs to the footpad, ∂S/∂BP = û (eqs. 31-32 with B1 = BP); a cantilever's to point 1, at
+/// L21 along the primary, ∂S/∂BP = (L21/|V2P|)·(I − êêᵀ)·û (eqs. 29-32). The lagged bending
+/// displacement of point 1 is held over a step and has no gradient (eq. 47).
+pub(crate) fn secondary_gradients(
+    leg: &Leg,
+    arrangement: Arrangement,
+    bp: &Vector3<f64>,
+) -> [Vector3<f64>; 2] {
+    if arrangement == Arrangement::Tripod {
+        return [(bp - leg.b3).normalize(), (bp - leg.b4).normalize()];
+    }
+    let v2p = bp - leg.b2;
+    let len = v2p.norm();
+    let e = v2p / len;
+    let b1 = leg.b2 + e * leg.l21;
+    let lever = |u: Vector3<f64>| (u - e * e.dot(&u)) * (leg.l21 / len);
+    [
+        lever((b1 - leg.b3).normalize()),
+        lever((b1 - leg.b4).normalize()),
+    ]
+}
+
 /// The gear of a footpad that has left its surface, relaxed (docs/errata.md, "Contact and
 /// release"): a massless gear cannot hold a load without a reaction, so each strut goes back
 /// along its unloading branch to the nearest stroke at which it carries no force (the
@@ -416,6 +440,42 @@ mod tests {
         let moment: Vector3<f64> = on_body.iter().map(|(p, f)| p.cross(f)).sum();
         assert!((total + fp).norm() < 1e-9 * fp.norm());
         assert!((moment - bp.cross(&(-fp))).norm() < 1e-9 * fp.norm());
+    }
+
+    /// The secondary strokes' gradients are those of the strokes [`evaluate`] gives, by
+    /// central differences of the footpad's position, on both arrangements (a gradient that
+    /// left out the lever L21/|V2P|, 0.63 here, or the projection off the primary fails).
+    #[test]
+    fn secondary_gradients_are_those_of_the_evaluated_strokes() {
+        let (leg, laws, mem) = (leg(), laws(0.0), GearMemory::default());
+        let bp = deformed(leg.bp);
+        let tripod = GearOptions {
+            arrangement: Arrangement::Tripod,
+            bending: None,
+        };
+        for options in [CANTILEVER, tripod] {
+            let strokes = |p: Vector3<f64>| {
+                evaluated(&leg, &laws, &mem, &p, &Vector3::zeros(), &options)
+                    .unwrap()
+                    .secondary_stroke
+            };
+            let gradients = secondary_gradients(&leg, options.arrangement, &bp);
+            let h = 1e-6;
+            for axis in 0..3 {
+                let mut d = Vector3::zeros();
+                d[axis] = h;
+                let (plus, minus) = (strokes(bp + d), strokes(bp - d));
+                for j in 0..2 {
+                    let difference = (plus[j] - minus[j]) / (2.0 * h);
+                    assert!(
+                        (difference - gradients[j][axis]).abs() < 1e-7,
+                        "{:?}, secondary {j}, axis {axis}: {difference} by differences, {} stated",
+                        options.arrangement,
+                        gradients[j][axis]
+                    );
+                }
+            }
+        }
     }
 
     /// Independent statics of the massless gear: the primary pinned

@@ -51,6 +51,10 @@ pub(crate) struct Model {
     /// The time over which the bearing friction brings a footpad's stroking to rest off the
     /// surface, s ([`crate::stiction::relaxation`]).
     pub(crate) held_relaxation: f64,
+    /// The largest mobility of a strut's stroke on the vehicle, 1/kg: an upper bound of
+    /// g·M⁻¹·g over the struts and their states, g a stroke's gradient in the vehicle's
+    /// displacement and M its mass and inertia ([`crate::stepper::stroke_mobility`]).
+    pub(crate) stroke_mobility: f64,
     /// The scene's optional mechanisms' laws.
     pub(crate) mechanisms: Mechanisms,
     /// The order in which the legs' loads are summed ([`crate::summation`]).

@@ -92,6 +92,7 @@ impl Simulation {
         let curve = &laws.primary.honeycomb.curve;
         let force_rounding = 1e-9 * curve.force(curve.capacity());
         let held_relaxation = crate::stiction::relaxation(&laws, scenario.footpad.mass);
+        let stroke_mobility = crate::stepper::stroke_mobility(&scenario.legs, &laws, &mass);
         let mut model = Model {
             name: scenario.file.name.clone(),
             legs: scenario.legs.clone(),
@@ -109,6 +110,7 @@ impl Simulation {
             contact_tolerance: 1e-10 * scenario.legs[0].l2p,
             force_rounding,
             held_relaxation,
+            stroke_mobility,
             sum_order: SumOrder::new(&scenario.legs),
             mechanisms,
             potential0: 0.0,
@@ -231,6 +233,7 @@ impl Simulation {
         let mut m = serde_json::Map::new();
         let scheme = match it.scheme {
             Scheme::Report => "report predictor-corrector, eqs. (20)-(25)",
+            Scheme::Strides => "report predictor-corrector, eqs. (20)-(25), in long strides",
             Scheme::Rk4 => "classical fourth-order Runge-Kutta, fixed step dt_max",
             Scheme::Dopri5 => "Dormand-Prince 5(4), error control",
         };
@@ -240,11 +243,15 @@ impl Simulation {
             AttitudeForm::Quaternion => "unit quaternion",
         };
         m.insert("attitude".into(), attitude.into());
-        if it.scheme == Scheme::Report {
+        if matches!(it.scheme, Scheme::Report | Scheme::Strides) {
             m.insert("dist_m".into(), it.dist.into());
         }
         m.insert("dt_min_s".into(), it.dt_min.into());
         m.insert("dt_max_s".into(), it.dt_max.into());
+        if it.scheme == Scheme::Strides {
+            m.insert("stride".into(), it.stride.into());
+            m.insert("mode_step".into(), it.mode_step.into());
+        }
         if it.scheme == Scheme::Dopri5 {
             m.insert("rtol".into(), it.rtol.into());
             m.insert("atol".into(), it.atol.into());

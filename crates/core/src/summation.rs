@@ -12,6 +12,7 @@
 
 use nalgebra::Vector3;
 use std::cmp::Ordering;
+use std::ops::Add;
 use touchdown_scenario::model::Leg;
 
 /// The legs' summation order: groups of one leg, or of two mirror-twin legs.
@@ -65,13 +66,18 @@ impl SumOrder {
 
     /// The sum of `terms` (one per leg) in this order.
     pub(crate) fn sum(&self, terms: &[Vector3<f64>]) -> Vector3<f64> {
-        let mut total = Vector3::zeros();
+        self.sum_by(Vector3::zeros(), |i| terms[i])
+    }
+
+    /// The sum from `zero` of each leg's `term` (by index) in this order.
+    pub(crate) fn sum_by<T: Copy + Add<Output = T>>(
+        &self,
+        zero: T,
+        term: impl Fn(usize) -> T,
+    ) -> T {
+        let mut total = zero;
         for &[i, j] in &self.groups {
-            total += if i == j {
-                terms[i]
-            } else {
-                terms[i] + terms[j]
-            };
+            total = total + if i == j { term(i) } else { term(i) + term(j) };
         }
         total
     }

@@ -259,9 +259,10 @@ impl Scenario {
         change: impl FnOnce(&mut schema::Integrator),
     ) -> Result<Scenario, ScenarioError> {
         change(&mut self.file.integrator);
+        let surface = self.surface.clone();
         self.rechecked(
             "integrator.",
-            |c, f, u| resolve_integrator(c, &f.integrator, u),
+            |c, f, u| resolve_integrator(c, &f.integrator, u, &surface),
             |s, v| s.integrator = v,
         )
     }

@@ -526,6 +526,11 @@ pub struct Integrator {
     pub rtol: f64,
     /// `dopri5` absolute tolerance, SI units of each state component.
     pub atol: f64,
+    /// The report's scheme: the longest step as a multiple of `dt_max` where the engaged
+    /// gear is softer than its end stops (1: Δt ≤ `dt_max`).
+    pub stride: f64,
+    /// The `strides` scheme's largest ω·Δt on the gear's stiffest engaged mode (trace bound).
+    pub mode_step: f64,
 }
 
 /// Stability criteria, SI.

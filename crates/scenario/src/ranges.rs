@@ -186,6 +186,8 @@ pub const RANGES: &[Range] = &[
     usual(row("integrator.energy_tolerance", "", C(1e-9), C(10.0), "a fraction of the energy put in; healthy runs close to 1e-4, and above 1 the guard no longer guards"), 1e-9, 1.0),
     row("integrator.max_steps", "", C(1e2), C(1e9), "a landing takes thousands of steps; a billion is hours of a multibody engine"),
     row("integrator.rtol", "", C(1e-14), C(0.1), "a relative tolerance above the rounding of f64 (2.2e-16)"),
+    row("integrator.stride", "", C(1.0), C(1e3), "scheme strides: a multiple of dt_max from 1 (the report's rule) to a thousand"),
+    row("integrator.mode_step", "", O(0.0), O(2.0), "scheme strides: ω·Δt on the stiffest engaged mode, below the report scheme's stability limit of 2"),
     usual(row("integrator.atol", "", C(1e-18), C(1.0), "an absolute tolerance on m, m/s, rad, rad/s; `touchdown compare` goes to 1e-16"), 1e-14, 1.0),
     // Stability criteria.
     row("similarity.length", "", C(1e-3), C(1e3), "a similar vehicle from a thousandth to a thousand times as large"),

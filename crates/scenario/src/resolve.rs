@@ -181,11 +181,31 @@ pub(crate) fn resolve_touchdown(
     })
 }
 
-/// The integrator settings, SI, checked.
+/// A setting of the `strides` scheme only (`field`, dimensionless): its value or `default`
+/// with that scheme, refused with the others (1, unused, when absent).
+fn strides_only(
+    c: &Check,
+    it: &schema::Integrator,
+    field: &str,
+    value: Option<f64>,
+    default: f64,
+) -> Result<f64, ScenarioError> {
+    match (it.scheme, value) {
+        (schema::Scheme::Strides, v) => c.positive_si(field, v.unwrap_or(default), 1.0),
+        (_, None) => Ok(1.0),
+        (_, Some(_)) => Err(c.err(
+            field,
+            "expected it with scheme \"strides\" only (docs/errata.md, \"Long strides where the gear is soft\"); the schemes \"report\", \"rk4\" and \"dopri5\" have no stride",
+        )),
+    }
+}
+
+/// The integrator settings, SI, checked, on the resolved `surface`.
 pub(crate) fn resolve_integrator(
     c: &Check,
     it: &schema::Integrator,
     u: &Units,
+    surface: &model::Surface,
 ) -> Result<model::Integrator, ScenarioError> {
     let integrator = model::Integrator {
         scheme: it.scheme,
@@ -201,14 +221,37 @@ pub(crate) fn resolve_integrator(
         attitude: it.attitude,
         rtol: c.positive_si("integrator.rtol", it.rtol, 1.0)?,
         atol: c.positive_si("integrator.atol", it.atol, 1.0)?,
+        stride: strides_only(
+            c,
+            it,
+            "integrator.stride",
+            it.stride,
+            schema::DEFAULT_STRIDE,
+        )?,
+        mode_step: strides_only(
+            c,
+            it,
+            "integrator.mode_step",
+            it.mode_step,
+            schema::DEFAULT_MODE_STEP,
+        )?,
     };
     if integrator.dt_min > integrator.dt_max {
         return Err(c.err("integrator.dt_min", "expected dt_min ≤ dt_max"));
     }
-    if it.attitude == schema::AttitudeForm::Quaternion && it.scheme == schema::Scheme::Report {
+    if integrator.scheme == schema::Scheme::Strides
+        && (surface.soil.is_some() || !surface.curbs.is_empty())
+    {
+        return Err(c.err(
+            "integrator.scheme",
+            "expected \"report\", \"rk4\" or \"dopri5\" on soil or beside curbs: the long strides are derived for the struts' laws on footpads that stand or fly (docs/errata.md, \"Long strides where the gear is soft\"), not for the soil's bearing or the curbs' crushing",
+        ));
+    }
+    let corrector = matches!(it.scheme, schema::Scheme::Report | schema::Scheme::Strides);
+    if it.attitude == schema::AttitudeForm::Quaternion && corrector {
         return Err(c.err(
             "integrator.attitude",
-            "expected \"euler\" with scheme \"report\" (the report's predictor-corrector integrates Euler angles, eqs. 20-25); \"quaternion\" needs scheme \"rk4\" or \"dopri5\"",
+            "expected \"euler\" with scheme \"report\" or \"strides\" (the report's predictor-corrector integrates Euler angles, eqs. 20-25); \"quaternion\" needs scheme \"rk4\" or \"dopri5\"",
         ));
     }
     Ok(integrator)
@@ -605,7 +648,7 @@ pub(crate) fn resolve(
         release: sf.release,
     };
     let touchdown = resolve_touchdown(&c, &file.touchdown, &u)?;
-    let integrator = resolve_integrator(&c, &file.integrator, &u)?;
+    let integrator = resolve_integrator(&c, &file.integrator, &u, &surface)?;
     let st = &file.stability;
     let frac = c.positive(
         "stability.kinetic_energy_fraction",

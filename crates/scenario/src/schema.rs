@@ -693,6 +693,11 @@ pub enum Scheme {
     /// The Dormand–Prince 5(4) embedded Runge–Kutta pair with error control (`rtol`, `atol`),
     /// its steps within [`dt_min`, `dt_max`].
     Dopri5,
+    /// The report's predictor-corrector and step rule with the gear's stiff modes taken in its
+    /// stride: every strut of a footpad off the surface corrected implicitly, and a step
+    /// longer than `dt_max` (up to `stride` times it) where the gear's engaged stiffness
+    /// allows it (not in the report; docs/errata.md, "Long strides where the gear is soft").
+    Strides,
 }
 
 /// How the core represents the vehicle's attitude.
@@ -729,12 +734,18 @@ fn default_rtol() -> f64 {
 fn default_atol() -> f64 {
     1e-9
 }
+/// The longest step of the `strides` scheme as a multiple of `dt_max`, unless the file sets
+/// `integrator.stride`.
+pub const DEFAULT_STRIDE: f64 = 8.0;
+/// The `strides` scheme's ω·Δt on the gear's stiffest engaged mode (its trace bound), unless the
+/// file sets `integrator.mode_step`: the report's scheme is stable to 2.
+pub const DEFAULT_MODE_STEP: f64 = 1.0;
 
 /// Integration settings (eqs. 20-25).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Integrator {
-    /// "report" (default), "rk4" or "dopri5".
+    /// "report" (default), "strides", "rk4" or "dopri5".
     #[serde(default = "default_scheme")]
     pub scheme: Scheme,
     /// DIST: allowed relative movement between any footpad and the centre of mass per step
@@ -770,12 +781,24 @@ pub struct Integrator {
     /// units (m, m/s, rad, rad/s; whatever the file's units); default 1e-9.
     #[serde(default = "default_atol")]
     pub atol: f64,
+    /// `strides`: the longest step as a multiple of `dt_max` (dimensionless, ≥ 1; default
+    /// [`DEFAULT_STRIDE`]); the step goes past `dt_max` only where the gear's engaged
+    /// stiffness allows it (docs/errata.md, "Long strides where the gear is soft").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stride: Option<f64>,
+    /// `strides`: the largest ω·Δt a step may reach on the gear's stiffest engaged mode, ω
+    /// from the trace bound of the vehicle on its struts (dimensionless, in (0, 2); default
+    /// [`DEFAULT_MODE_STEP`]; docs/errata.md, "Long strides where the gear is soft").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_step: Option<f64>,
 }
 
 impl Integrator {
     /// The settings refined by `factor` (> 1) for the scheme they name: every step limit
     /// (`dt_max`, and `dt_min` where it would exceed it) divided by `factor`; the report's step
-    /// rule also takes DIST ÷ `factor` (eq. 25: Δt = DIST/VEL); the Dormand–Prince pair also
+    /// rule also takes DIST ÷ `factor` (eq. 25: Δt = DIST/VEL), and the `strides` scheme also
+    /// its `mode_step` ÷ `factor` (its step on the gear's modes, Δt = mode_step/ω, with the
+    /// longest, `stride`·`dt_max`, ÷ `factor` through `dt_max`); the Dormand–Prince pair also
     /// takes `rtol` and `atol` ÷ `factor`⁵ (its local error is of fifth order in the step: the
     /// same local error as a step `factor` times shorter). The run's budget of steps,
     /// `max_steps`, grows by `factor`: a refined run is the same landing in more steps.
@@ -785,6 +808,10 @@ impl Integrator {
         self.dt_min = self.dt_min.min(self.dt_max);
         match self.scheme {
             Scheme::Report => self.dist /= factor,
+            Scheme::Strides => {
+                self.dist /= factor;
+                self.mode_step = Some(self.mode_step.unwrap_or(DEFAULT_MODE_STEP) / factor);
+            }
             Scheme::Rk4 => {}
             Scheme::Dopri5 => {
                 let tolerance = factor.powi(5);

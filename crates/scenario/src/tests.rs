@@ -614,16 +614,29 @@ fn legs_closer_than_the_least_separation_are_refused() {
 /// A similar vehicle (`[similarity]`) written into `dir`: the figure 25-26 landing at full scale
 /// on the Moon. Returns its path.
 fn similar_vehicle(dir: &Path) -> PathBuf {
-    let similar = dir.join("similar.toml");
+    fig_25_26_with(
+        dir,
+        "similar",
+        "[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
+    )
+}
+
+/// The figure 25-26 landing with the TOML `tables` added, written into `dir` as `name`.toml.
+/// Returns its path.
+fn fig_25_26_with(dir: &Path, name: &str, tables: &str) -> PathBuf {
+    let path = dir.join(format!("{name}.toml"));
     std::fs::write(
-        &similar,
+        &path,
         format!(
-            "schema_version = 1\nextends = {:?}\nname = \"similar\"\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
-            root().join("scenarios/fig-25-26.toml").display().to_string()
+            "schema_version = 1\nextends = {:?}\nname = {name:?}\n{tables}",
+            root()
+                .join("scenarios/fig-25-26.toml")
+                .display()
+                .to_string()
         ),
     )
     .unwrap();
-    similar
+    path
 }
 
 /// Every number of every bundled scenario (and of explicit cantilever legs) has a range and is
@@ -644,6 +657,12 @@ fn every_numeric_field_has_a_range_checked_on_load() {
     files.push(explicit);
     let similar = similar_vehicle(dir);
     files.push(similar);
+    // The strides scheme's own settings.
+    files.push(fig_25_26_with(
+        dir,
+        "strides",
+        "[integrator]\nscheme = \"strides\"\nstride = 8.0\nmode_step = 1.0\n",
+    ));
     let mut leaves = BTreeSet::new();
     RANGE_CHECKED.with(|c| c.borrow_mut().clear());
     for path in &files {

@@ -33,10 +33,13 @@ pub mod runge_kutta;
 use crate::gear::GearState;
 use crate::ledger::{PadWork, Quadrature};
 use crate::model::Model;
+use crate::rigid_body::MassProperties;
 use crate::state::State;
-use crate::surface::ContactState;
+use crate::surface::{ContactState, Footpad};
 use crate::vehicle::VehicleState;
+use touchdown_laws::{GearLaws, Stop};
 use touchdown_record::RunError;
+use touchdown_scenario::model::{Leg, PadSurface};
 use touchdown_scenario::schema::Scheme;
 
 /// The space a stepper works in: the new state of the step, and gear states, one per leg (the
@@ -119,7 +122,9 @@ impl Schemes {
     pub(crate) fn new(scheme: Scheme, legs: usize, vehicle: &VehicleState, dt_max: f64) -> Schemes {
         let scratch = Scratch::new(legs, vehicle);
         match scheme {
-            Scheme::Report => Schemes::Report(report::PredictorCorrector::new(scratch)),
+            Scheme::Report | Scheme::Strides => {
+                Schemes::Report(report::PredictorCorrector::new(scratch))
+            }
             Scheme::Rk4 => Schemes::Fixed(runge_kutta::Fixed::rk4(scratch, legs)),
             Scheme::Dopri5 => {
                 Schemes::Adaptive(runge_kutta::Adaptive::dopri5(scratch, legs, dt_max))
@@ -226,34 +231,6 @@ impl State {
         let forces = laws.stop_forces(g.primary_stroke, g.secondary_stroke, memory);
         let tolerance = PLASTIC_STOP_ERROR * self.stability.initial_kinetic_energy();
         let period = |stop: &touchdown_laws::Stop| (model.footpad_mass / stop.rate).sqrt();
-        // The stroke's distance to where each stop next loads and its rate towards it: the
-        // primary's bottoming and extension stops, each secondary's on the side it is on.
-        let secondary = |j: usize| {
-            let s = g.secondary_stroke[j];
-            let (x, rate, m) = if s >= 0.0 {
-                (s, g.secondary_rate[j], memory.secondary[j].tension)
-            } else {
-                (-s, -g.secondary_rate[j], memory.secondary[j].compression)
-            };
-            let h = sec.side(s);
-            (h.curve.capacity() + h.stop.slack(m.stop_depth) - x, rate)
-        };
-        let c = g.primary_stroke;
-        let ((gap31, rate31), (gap41, rate41)) = (secondary(0), secondary(1));
-        let approaches = [
-            (
-                &p.stop,
-                p.curve.capacity() + p.stop.slack(memory.primary.compression.stop_depth) - c,
-                g.primary_rate,
-            ),
-            (
-                &p.stop,
-                c + p.stop.slack(memory.primary.extension_depth),
-                -g.primary_rate,
-            ),
-            (stops[1], gap31, rate31),
-            (stops[2], gap41, rate41),
-        ];
         let mut dt = f64::INFINITY;
         for (stop, f) in stops.into_iter().zip(forces) {
             if stop.restitution > 0.0 || f == 0.0 {
@@ -264,7 +241,7 @@ impl State {
             dt = dt.min(omega_dt * period(stop));
         }
         // A stop already loading (gap < 0) is bounded above, by what it holds.
-        for (stop, gap, rate) in approaches {
+        for (stop, gap, rate) in self.stop_approaches(model, i) {
             if stop.restitution > 0.0 || rate <= 0.0 || gap < 0.0 {
                 continue;
             }
@@ -273,13 +250,114 @@ impl State {
         dt
     }
 
+    /// The end stops of leg `i` its strokes approach, each with the stroke's distance to where
+    /// it next loads (m; negative once loading) and the stroke's rate towards it (m/s): the
+    /// primary's bottoming and extension stops, each secondary's on the side it is on.
+    fn stop_approaches<'m>(&self, model: &'m Model, i: usize) -> [(&'m Stop, f64, f64); 4] {
+        let (g, memory) = (&self.gear[i], &self.memory[i]);
+        let (p, sec) = (
+            &model.laws.primary.honeycomb,
+            &model.laws.secondary.honeycomb,
+        );
+        let secondary = |j: usize| {
+            let s = g.secondary_stroke[j];
+            let (x, rate, m) = if s >= 0.0 {
+                (s, g.secondary_rate[j], memory.secondary[j].tension)
+            } else {
+                (-s, -g.secondary_rate[j], memory.secondary[j].compression)
+            };
+            let h = sec.side(s);
+            (
+                &h.stop,
+                h.curve.capacity() + h.stop.slack(m.stop_depth) - x,
+                rate,
+            )
+        };
+        let c = g.primary_stroke;
+        [
+            (
+                &p.stop,
+                p.curve.capacity() + p.stop.slack(memory.primary.compression.stop_depth) - c,
+                g.primary_rate,
+            ),
+            (
+                &p.stop,
+                c + p.stop.slack(memory.primary.extension_depth),
+                -g.primary_rate,
+            ),
+            secondary(0),
+            secondary(1),
+        ]
+    }
+
+    /// The report scheme's longest step, s: `integrator.dt_max`, or with the `strides` scheme
+    /// the step that resolves the stiffest mode of the vehicle on its gear to
+    /// ω·Δt ≤ `integrator.mode_step` (default 1: the report's scheme is stable to ω·Δt = 2, its
+    /// amplification on an undamped mode having determinant 1 − (ω·Δt)⁴/12), within
+    /// [Δt_max, `stride`·Δt_max]. Every such mode has ω² ≤ Σ_j k_j·g_jᵀM⁻¹g_j ≤ μ·K (the trace
+    /// bound), k_j each strut's engaged rate, K their sum ([`State::engaged_stiffness`]) and μ
+    /// the struts' largest mobility ([`stroke_mobility`]). While a footpad slides, Δt_max: its
+    /// forces, frozen over the step (eq. 97), book its friction work to first order in the step
+    /// (docs/errata.md, "Long strides where the gear is soft").
+    pub(crate) fn stride_step(&self, model: &Model) -> f64 {
+        let it = &model.integrator;
+        let sliding = |(p, s): (&Footpad, &PadSurface)| {
+            p.state == ContactState::Contact && !p.walled && !p.stuck && s.friction > 0.0
+        };
+        if it.scheme != Scheme::Strides || self.pads.iter().zip(&model.surfaces).any(sliding) {
+            return it.dt_max;
+        }
+        let longest = it.dt_max * it.stride;
+        let omega_squared = model.stroke_mobility * self.engaged_stiffness(model, longest);
+        if omega_squared > 0.0 {
+            (it.mode_step / omega_squared.sqrt()).clamp(it.dt_max, longest)
+        } else {
+            longest
+        }
+    }
+
+    /// The gear's stiffness a step of `dt` (s) from the accepted state can meet, N/m: every
+    /// strut's rate on the branch of its law it is on (`branch`), and the stiffest rate of
+    /// every end stop its stroke reaches within `dt` at its current rate; summed over the legs
+    /// in their geometric order (crate::summation), so that a landing with its legs renumbered
+    /// or mirrored takes the same steps bit for bit.
+    fn engaged_stiffness(&self, model: &Model, dt: f64) -> f64 {
+        model
+            .sum_order
+            .sum_by(0.0, |i| self.leg_stiffness(model, i, dt))
+    }
+
+    /// [`State::engaged_stiffness`] of leg `i`'s three struts, N/m.
+    fn leg_stiffness(&self, model: &Model, i: usize, dt: f64) -> f64 {
+        let laws = &model.laws;
+        let (g, memory) = (&self.gear[i], &self.memory[i]);
+        let secondary = &laws.secondary.honeycomb;
+        let mut k = laws.primary.branch(g.primary_stroke, memory.primary).1
+            + secondary
+                .branch(g.secondary_stroke[0], memory.secondary[0])
+                .1
+            + secondary
+                .branch(g.secondary_stroke[1], memory.secondary[1])
+                .1;
+        for (stop, gap, rate) in self.stop_approaches(model, i) {
+            if gap >= 0.0 && rate > 0.0 && gap < rate * dt {
+                k += stop.stiffest_rate();
+            }
+        }
+        k
+    }
+
     /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
     /// [`PAD_MODE_STEP`]/ω with ω² = (k_2P + k_31 + k_41)/PMASS, each strut's rate the slope of
     /// the branch of its law it is on at the accepted state (the sum bounds the largest
     /// eigenvalue of the footpad's stiffness Σ k_j·û_j·û_jᵀ, each strut's stroke moving at most
     /// as fast as the footpad), s. The report's scheme leaves k_2P out: it takes that axial mode
-    /// implicitly ([`report`]'s footpad corrector).
+    /// implicitly ([`report`]'s footpad corrector); the `strides` scheme takes every strut's
+    /// implicitly, and the footpad's modes bound none of its steps.
     pub(crate) fn pad_mode_step(&self, model: &Model, i: usize) -> f64 {
+        if model.integrator.scheme == Scheme::Strides {
+            return f64::INFINITY;
+        }
         let (g, memory) = (&self.gear[i], &self.memory[i]);
         let secondary = &model.laws.secondary.honeycomb;
         let primary = match model.integrator.scheme {
@@ -305,4 +383,31 @@ impl State {
             f64::INFINITY
         }
     }
+}
+
+/// The largest mobility of any strut's stroke on the vehicle of mass and inertia `mass` on
+/// the gear of `legs` with the laws `laws`, 1/kg: 1/M + r²/J_min times the square of the
+/// largest stroke gradient, r = |B2| + L2P bounding the footpad's distance from the centre of
+/// mass (the primary no longer than its undeformed length), J_min the least principal moment
+/// of inertia. A strut's stroke moves with the footpad relative to the vehicle (a vehicle
+/// displacement (t, φ) moves it by −t + BP×φ), at most as fast as the footpad for the primary
+/// (and a tripod's struts) and L21/(L2P − primary capacity) as fast for a cantilever's
+/// secondaries, which move with point 1 (eqs. 29-34); infinite (every stride Δt_max) for a leg
+/// whose primary capacity exceeds its length.
+pub(crate) fn stroke_mobility(legs: &[Leg], laws: &GearLaws, mass: &MassProperties) -> f64 {
+    let least_moment = mass.inertia.symmetric_eigenvalues().min();
+    let capacity = laws.primary.honeycomb.curve.capacity();
+    legs.iter()
+        .map(|l| {
+            let r = l.b2.norm() + l.l2p;
+            // (a primary whose capacity would take its footpad past point 1: no bound)
+            let reach = l.l2p - capacity;
+            let gradient = if reach > 0.0 {
+                (l.l21 / reach).max(1.0)
+            } else {
+                f64::INFINITY
+            };
+            (1.0 / mass.mass + r * r / least_moment) * gradient * gradient
+        })
+        .fold(0.0, f64::max)
 }

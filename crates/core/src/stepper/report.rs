@@ -3,6 +3,7 @@
 //! and its step-size rule, eq. (25).
 
 use super::{limit_step, Advance, Scratch, Stepper};
+use crate::gear;
 use crate::gear::GearState;
 use crate::ledger::Quadrature;
 use crate::loads::Loads;
@@ -10,9 +11,10 @@ use crate::model::Model;
 use crate::state::State;
 use crate::surface::ContactState;
 use crate::vehicle::VehicleState;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 use std::ops::{Add, Div, Mul};
 use touchdown_record::RunError;
+use touchdown_scenario::schema::Scheme;
 
 /// The report's predictor-corrector with its own scratch space.
 #[derive(Debug, Clone)]
@@ -49,7 +51,8 @@ impl Stepper for PredictorCorrector {
     }
 }
 
-/// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], s.
+/// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], s; Δt_max is `dt_max`
+/// or, with a stride, the longest step the engaged gear allows ([`State::stride_step`]).
 fn step_size(model: &Model, state: &State) -> f64 {
     let it = &model.integrator;
     let v = &state.vehicle;
@@ -62,8 +65,18 @@ fn step_size(model: &Model, state: &State) -> f64 {
         };
         vel = vel.max(rel.norm());
     }
-    let dt = if vel > 0.0 { it.dist / vel } else { it.dt_max }; // eq. (25)
-    dt.clamp(it.dt_min, it.dt_max)
+    let dt = if vel > 0.0 {
+        it.dist / vel
+    } else {
+        f64::INFINITY
+    }; // eq. (25)
+       // the stride is sought only where eq. (25) asks for more than dt_max
+    let dt_max = if dt > it.dt_max {
+        state.stride_step(model)
+    } else {
+        it.dt_max
+    };
+    dt.clamp(it.dt_min, dt_max)
 }
 
 /// A degree of freedom the scheme updates (a vector of positions, angles or amplitudes).
@@ -157,19 +170,22 @@ fn predict_correct(
     Ok(loads.applied_power.applied)
 }
 
-/// A footpad's corrected state and the change of its primary's force the correction found.
+/// A footpad's corrected state and the changes of its struts' forces the correction found.
 struct Corrected {
     /// Position, m, and velocity, m/s, inertial.
     position: Vector3<f64>,
     velocity: Vector3<f64>,
-    /// The primary strut's axis V̂2P, body axes.
-    axis: Vector3<f64>,
-    /// The change of its force FCP over the trial's, N (compression positive).
+    /// The change of its primary's force FCP over the trial's, N (compression positive).
     force: f64,
+    /// The changes of its secondaries' forces FC31, FC41 over the trial's, N (tension
+    /// positive), where the scheme corrects them (`strides`).
+    secondary: Option<[f64; 2]>,
+    /// The change of the gear's force on the footpad FP, body axes, N.
+    on_pad: Vector3<f64>,
 }
 
 /// Step 5 of the report's scheme for the footpads off the surface: each corrected by
-/// [`correct_footpad`], the change of its primary's force put into the trial's forces
+/// [`FreePad::primary_implicit`], the change of its primary's force put into the trial's forces
 /// (`scratch.trial`) and into `loads` on the vehicle, summed in the legs' order
 /// (crate::summation), in the evaluation's per-leg buffers.
 fn correct_footpads(
@@ -185,19 +201,21 @@ fn correct_footpads(
     leg_torque.fill(Vector3::zeros());
     for i in 0..state.pads.len() {
         if state.pads[i].state != ContactState::Contact {
-            let c = correct_footpad(
-                model,
-                state,
-                i,
-                pred,
-                (&scratch.previous[i], &scratch.trial[i]),
-                dt,
-            );
+            let gear = (&scratch.previous[i], &scratch.trial[i]);
+            let free = FreePad::new(model, state, i, pred, gear, dt);
+            let c = match model.integrator.scheme {
+                Scheme::Strides => free.every_strut_implicit(model),
+                _ => free.primary_implicit(model),
+            };
             let bp = pred.t_bi.transpose() * (state.pads[i].position - pred.position);
-            let on_pad = c.axis * c.force;
+            let on_pad = c.on_pad;
             let slot = &mut scratch.trial[i];
             slot.fcp += c.force;
             slot.f2p += c.force;
+            if let Some(secondary) = c.secondary {
+                slot.fc_secondary[0] += secondary[0];
+                slot.fc_secondary[1] += secondary[1];
+            }
             slot.fp += on_pad;
             leg_torque[i] = bp.cross(&(-on_pad)); // eq. (66)
             leg_force[i] = -(pred.t_bi * on_pad); // eqs. (67)-(68)
@@ -210,53 +228,176 @@ fn correct_footpads(
     state.leg_loads = (leg_force, leg_torque);
 }
 
-/// The corrector of footpad `i` off the surface over `dt` (s), the vehicle predicted at `pred`
-/// and the footpad's gear at the start of the step and at the prediction in `gear`: the
-/// average-acceleration rule x₁ = x_k + u_k·Δt + (a_k + a₁)·Δt²/4, u₁ = u_k + (a_k + a₁)·Δt/2,
-/// with a₁ = a* + K·(x₁ − x*) linearised about the prediction x* along the primary strut:
-/// K = −(k/PMASS)·ŵŵᵀ, ŵ the strut's axis as the footpad can move (a wall leaves its vertical
-/// part), k the secant of the strut's law over the step bounded by its branch's slope (no
-/// spring in its free play). Stable for any stiffness of that law (docs/errata.md, "Footpads
-/// with inertia", "Numerics").
-fn correct_footpad(
-    model: &Model,
-    state: &State,
+/// Footpad `i` off the surface at the trial of a step of `dt` (s), as both correctors start
+/// from it: the vehicle predicted at `pred`, its gear at the start of the step and at the
+/// trial in `start` and `trial`.
+struct FreePad<'a> {
     i: usize,
-    pred: &VehicleState,
-    (start, trial): (&GearState, &GearState),
     dt: f64,
-) -> Corrected {
-    let pad = &state.pads[i];
-    let m = model.footpad_mass;
-    let u0 = state.pad_start[i].1;
-    let a0 = pad.acceleration;
-    let a_star = state.pad_acceleration(model, i, pred, trial);
-    let bp = pred.t_bi.transpose() * (pad.position - pred.position);
-    let axis = (bp - model.legs[i].b2).normalize();
-    let inertial_axis = pred.t_bi * axis;
-    let w = if pad.walled {
-        Vector3::new(0.0, 0.0, inertial_axis.z)
-    } else {
-        inertial_axis
-    };
-    // The law's secant over the step (regularised within 1e-9 of the strut's length, where a
-    // stroke change is rounding), at most its stiffest slope: no state decides it at rounding
-    // level, and a strut in its free play or on a plateau is no spring.
-    let stiffest = model.laws.primary.honeycomb.stop.stiffest_rate();
-    let dc = trial.primary_stroke - start.primary_stroke;
-    let eps = 1e-9 * model.legs[i].l2p;
-    let k = ((trial.fcp - start.fcp) * dc / (dc * dc + eps * eps)).clamp(0.0, stiffest);
-    // (I + α·ŵŵᵀ)·δ = (a* − a_k)·Δt²/4 with α = k·Δt²/(4·PMASS), by Sherman–Morrison
-    let alpha = k * dt * dt / (4.0 * m);
-    let d0 = (a_star - a0) * (0.25 * dt * dt);
-    let delta = d0 - w * (alpha * w.dot(&d0) / (1.0 + alpha * w.norm_squared()));
-    // the compression stroke changes by −ŵ·δ: FCP by −k·ŵ·δ
-    let force = -k * w.dot(&delta);
-    let a1 = a_star + w * (force / m);
-    Corrected {
-        position: pad.position + delta,
-        velocity: u0 + (a0 + a1) * (0.5 * dt),
-        axis,
-        force,
+    pred: &'a VehicleState,
+    start: &'a GearState,
+    trial: &'a GearState,
+    /// Its predicted position x*, m, and its velocity u_k and acceleration a_k at the start of
+    /// the step, m/s and m/s², inertial.
+    position: Vector3<f64>,
+    u0: Vector3<f64>,
+    a0: Vector3<f64>,
+    /// Its acceleration at the trial a*, m/s², inertial.
+    a_star: Vector3<f64>,
+    /// Its position BP in the predicted vehicle's body axes, m.
+    bp: Vector3<f64>,
+    /// Held laterally by its wall or spikes.
+    walled: bool,
+}
+
+impl<'a> FreePad<'a> {
+    /// Footpad `i` of `state` over a step of `dt` (s) with the vehicle predicted at `pred`
+    /// and its gear at the start of the step and at the trial in `gear`.
+    fn new(
+        model: &Model,
+        state: &State,
+        i: usize,
+        pred: &'a VehicleState,
+        (start, trial): (&'a GearState, &'a GearState),
+        dt: f64,
+    ) -> Self {
+        let pad = &state.pads[i];
+        FreePad {
+            i,
+            dt,
+            pred,
+            start,
+            trial,
+            position: pad.position,
+            u0: state.pad_start[i].1,
+            a0: pad.acceleration,
+            a_star: state.pad_acceleration(model, i, pred, trial),
+            bp: pred.t_bi.transpose() * (pad.position - pred.position),
+            walled: pad.walled,
+        }
     }
+
+    /// The body-axes direction `g` in inertial axes as the footpad can move along it: a wall
+    /// leaves its vertical part.
+    fn movable(&self, g: &Vector3<f64>) -> Vector3<f64> {
+        let w = self.pred.t_bi * g;
+        if self.walled {
+            Vector3::new(0.0, 0.0, w.z)
+        } else {
+            w
+        }
+    }
+
+    /// The average-acceleration rule's correction δ = x₁ − x* with nothing but the trial's
+    /// forces, (a* − a_k)·Δt²/4, m.
+    fn uncorrected(&self) -> Vector3<f64> {
+        (self.a_star - self.a0) * (0.25 * self.dt * self.dt)
+    }
+
+    /// The corrected footpad from δ (m) and a₁ (m/s²), with the changes of its struts'
+    /// forces.
+    fn corrected(
+        &self,
+        (delta, a1): (Vector3<f64>, Vector3<f64>),
+        (force, secondary, on_pad): (f64, Option<[f64; 2]>, Vector3<f64>),
+    ) -> Corrected {
+        Corrected {
+            position: self.position + delta,
+            velocity: self.u0 + (self.a0 + a1) * (0.5 * self.dt),
+            force,
+            secondary,
+            on_pad,
+        }
+    }
+    /// The report's corrector: the average-acceleration rule x₁ = x_k + u_k·Δt + (a_k + a₁)·Δt²/4,
+    /// u₁ = u_k + (a_k + a₁)·Δt/2, with a₁ = a* + K·(x₁ − x*) linearised about the prediction
+    /// x* along the primary strut: K = −(k/PMASS)·ŵŵᵀ, ŵ the strut's axis as the footpad can
+    /// move (a wall leaves its vertical part), k the secant of the strut's law over the step
+    /// bounded by its branch's slope (no spring in its free play). Stable for any stiffness of
+    /// that law (docs/errata.md, "Footpads with inertia", "Numerics").
+    fn primary_implicit(&self, model: &Model) -> Corrected {
+        let (m, dt, i) = (model.footpad_mass, self.dt, self.i);
+        let axis = (self.bp - model.legs[i].b2).normalize();
+        let w = self.movable(&axis);
+        let stiffest = model.laws.primary.honeycomb.stop.stiffest_rate();
+        let eps = 1e-9 * model.legs[i].l2p;
+        let k = secant(
+            (self.start.primary_stroke, self.start.fcp),
+            (self.trial.primary_stroke, self.trial.fcp),
+            eps,
+            stiffest,
+        );
+        // (I + α·ŵŵᵀ)·δ = (a* − a_k)·Δt²/4 with α = k·Δt²/(4·PMASS), by Sherman–Morrison
+        let alpha = k * dt * dt / (4.0 * m);
+        let d0 = self.uncorrected();
+        let delta = d0 - w * (alpha * w.dot(&d0) / (1.0 + alpha * w.norm_squared()));
+        // the compression stroke changes by −ŵ·δ: FCP by −k·ŵ·δ
+        let force = -k * w.dot(&delta);
+        let a1 = self.a_star + w * (force / m);
+        self.corrected((delta, a1), (force, None, axis * force))
+    }
+
+    /// The `strides` scheme's corrector: [`FreePad::primary_implicit`]'s average-acceleration
+    /// rule with every strut of the gear linearised about the prediction,
+    /// a₁ = a* − Σ_j ŵ_j·k_j·ŵ_j·(x₁ − x*)/PMASS, ŵ_j the gradient of strut j's stroke in the
+    /// footpad's position (the primary's compression −ê, the secondaries'
+    /// [`gear::secondary_gradients`], inertial, as the footpad can move) and k_j its law's secant
+    /// over the step: the 3×3 system (I + Δt²/(4·PMASS)·Σ_j k_j·ŵ_jŵ_jᵀ)·δ = (a* − a_k)·Δt²/4,
+    /// symmetric positive definite, by Cholesky. Stable for any stiffness of the three laws;
+    /// each strut's force changes by k_j·ŵ_j·δ, the footpad's by −Σ_j ∂S_j/∂BP times it
+    /// (virtual work on the massless gear) (docs/errata.md, "Long strides where the gear is
+    /// soft").
+    fn every_strut_implicit(&self, model: &Model) -> Corrected {
+        let (m, dt) = (model.footpad_mass, self.dt);
+        let (leg, laws) = (&model.legs[self.i], &model.laws);
+        let (start, trial) = (self.start, self.trial);
+        let axis = (self.bp - leg.b2).normalize();
+        let [g31, g41] = gear::secondary_gradients(leg, model.arrangement, &self.bp);
+        let gradients = [-axis, g31, g41];
+        let w = gradients.each_ref().map(|g| self.movable(g));
+        let eps = 1e-9 * leg.l2p;
+        let sec = &laws.secondary.honeycomb;
+        let sec_stiffest = sec
+            .tension
+            .stop
+            .stiffest_rate()
+            .max(sec.compression.stop.stiffest_rate());
+        let side = |j: usize| {
+            secant(
+                (start.secondary_stroke[j], start.fc_secondary[j]),
+                (trial.secondary_stroke[j], trial.fc_secondary[j]),
+                eps,
+                sec_stiffest,
+            )
+        };
+        let primary = secant(
+            (start.primary_stroke, start.fcp),
+            (trial.primary_stroke, trial.fcp),
+            eps,
+            laws.primary.honeycomb.stop.stiffest_rate(),
+        );
+        let k = [primary, side(0), side(1)];
+        let alpha = dt * dt / (4.0 * m);
+        let mut system = Matrix3::identity();
+        for (wj, kj) in w.iter().zip(k) {
+            system += wj * wj.transpose() * (alpha * kj);
+        }
+        let d0 = self.uncorrected();
+        // I plus a positive semi-definite matrix: its factorisation fails only on a NaN,
+        // which the step's divergence guard then reports.
+        let delta = system.cholesky().map_or(d0, |c| c.solve(&d0));
+        let df = [0, 1, 2].map(|j| k[j] * w[j].dot(&delta));
+        let on_pad = -(gradients[0] * df[0] + gradients[1] * df[1] + gradients[2] * df[2]);
+        let a1 = self.a_star - (w[0] * df[0] + w[1] * df[1] + w[2] * df[2]) / m;
+        self.corrected((delta, a1), (df[0], Some([df[1], df[2]]), on_pad))
+    }
+}
+
+/// A strut law's secant over the step from (stroke, force) at its start to those at the
+/// trial, N/m, regularised within `eps` (m; 1e-9 of the strut's length, where a stroke change
+/// is rounding) and at most `stiffest` (N/m), its stiffest slope: no state decides it at
+/// rounding level, and a strut in its free play or on a plateau is no spring.
+fn secant(start: (f64, f64), trial: (f64, f64), eps: f64, stiffest: f64) -> f64 {
+    let dc = trial.0 - start.0;
+    ((trial.1 - start.1) * dc / (dc * dc + eps * eps)).clamp(0.0, stiffest)
 }
