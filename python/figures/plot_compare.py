@@ -664,6 +664,7 @@ def boundaries(args: argparse.Namespace) -> None:
 # varies.
 METHODS = {
     "report": ("core report", COLOURS["core"], "o", "DIST and dt_max divided by"),
+    "strides": ("core strides", "#66a61e", "P", "DIST, dt_max and mode_step divided by"),
     "rk4": ("core rk4", "#7570b3", "s", "fixed step"),
     "dopri5": ("core dopri5", "#e7298a", "^", "relative tolerance"),
     "rapier": ("rapier", COLOURS["rapier"], "D", "timestep"),
@@ -673,7 +674,7 @@ METHODS = {
 
 def rung_label(method: str, value: float) -> str:
     """A rung's setting as `touchdown precision` prints it (precision::setting_label)."""
-    if method == "report":
+    if method in ("report", "strides"):
         return f"÷{value:g}"
     if method == "dopri5":
         mantissa, exponent = f"{value:.0e}".split("e")

@@ -28,6 +28,10 @@ pub enum Method {
     /// The core with the report's predictor-corrector (eqs. 20-25); the rung divides DIST and
     /// dt_max by its value.
     Report,
+    /// The core with the report's predictor-corrector in long strides (`strides`, docs/errata.md,
+    /// "Long strides where the gear is soft"); the rung divides DIST, dt_max and mode_step by
+    /// its value.
+    Strides,
     /// The core with the classical fourth-order Runge–Kutta method; the rung is its step, s.
     Rk4,
     /// The core with the Dormand–Prince 5(4) pair; the rung is `rtol` (`atol` = 1e-3 `rtol`, in
@@ -45,8 +49,9 @@ pub const DOPRI5_ATOL_PER_RTOL: f64 = 1.0e-3;
 
 impl Method {
     /// Every method, in table order.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Report,
+        Method::Strides,
         Method::Rk4,
         Method::Dopri5,
         Method::Rapier,
@@ -56,7 +61,7 @@ impl Method {
     /// The engine that runs the method.
     pub fn engine(self) -> Engine {
         match self {
-            Method::Report | Method::Rk4 | Method::Dopri5 => Engine::Core,
+            Method::Report | Method::Strides | Method::Rk4 | Method::Dopri5 => Engine::Core,
             Method::Rapier => Engine::Rapier,
             Method::Mujoco => Engine::Mujoco,
         }
@@ -66,6 +71,7 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::Report => "core report",
+            Method::Strides => "core strides",
             Method::Rk4 => "core rk4",
             Method::Dopri5 => "core dopri5",
             Method::Rapier => "rapier",
@@ -77,6 +83,7 @@ impl Method {
     pub fn setting(self) -> &'static str {
         match self {
             Method::Report => "DIST and dt_max divided by",
+            Method::Strides => "DIST, dt_max and mode_step divided by",
             Method::Rk4 | Method::Rapier | Method::Mujoco => "step, s",
             Method::Dopri5 => "rtol",
         }
@@ -85,7 +92,7 @@ impl Method {
     /// The default ladder, coarsest rung first.
     pub fn ladder(self) -> &'static [f64] {
         match self {
-            Method::Report => &[1.0, 2.0, 4.0, 8.0, 16.0, 32.0],
+            Method::Report | Method::Strides => &[1.0, 2.0, 4.0, 8.0, 16.0, 32.0],
             Method::Rk4 => &[2.0e-4, 1.0e-4, 5.0e-5, 2.0e-5, 1.0e-5, 5.0e-6],
             Method::Dopri5 => &[1.0e-2, 1.0e-3, 1.0e-4, 1.0e-5, 1.0e-6, 1.0e-7, 1.0e-8],
             Method::Rapier | Method::Mujoco => &[1.0e-4, 5.0e-5, 2.0e-5, 1.0e-5, 5.0e-6],
@@ -109,6 +116,10 @@ impl Method {
         match self {
             Method::Report => sc.with_integrator(|it| {
                 it.scheme = Scheme::Report;
+                it.refine(value);
+            }),
+            Method::Strides => sc.with_integrator(|it| {
+                it.scheme = Scheme::Strides;
                 it.refine(value);
             }),
             Method::Rk4 => sc.with_integrator(|it| {
@@ -592,7 +603,7 @@ pub fn work_precision_resolved(
 /// A rung's setting as the tables print it.
 pub fn setting_label(method: Method, value: f64) -> String {
     match method {
-        Method::Report => format!("÷{value}"),
+        Method::Report | Method::Strides => format!("÷{value}"),
         Method::Rk4 | Method::Rapier | Method::Mujoco => {
             format!("{:.3} µs", value * 1e6).replace(".000", "")
         }

@@ -407,7 +407,7 @@ pub const STEP_SEARCH_FLOOR: f64 = 1.0e-6;
 /// The case `sc` with `method` at step `dt` (s); the report's scheme scales DIST with dt_max.
 fn at_step(sc: &Scenario, method: Method, dt: f64) -> Result<Scenario, ScenarioError> {
     let value = match method {
-        Method::Report => sc.integrator.dt_max / dt,
+        Method::Report | Method::Strides => sc.integrator.dt_max / dt,
         _ => dt,
     };
     method.apply(sc, value)
@@ -435,7 +435,7 @@ fn own_step(method: Method, sc: &Scenario) -> Result<f64, ScenarioError> {
     let stated = match method {
         Method::Rapier => sc.rapier.timestep,
         Method::Mujoco => sc.mujoco.timestep,
-        Method::Report | Method::Rk4 | Method::Dopri5 => None,
+        Method::Report | Method::Strides | Method::Rk4 | Method::Dopri5 => None,
     };
     stated.map_or_else(|| time_step(method.engine(), sc), Ok)
 }
