@@ -226,25 +226,27 @@ fn evaluate_tripod(
     };
 }
 
-/// The gradients of the secondary strokes S31, S41 (eq. 34, tension positive) in the
-/// footpad's position BP (`bp`, body axes, m), body axes, dimensionless: a tripod's secondary
-/// runs to the footpad, ∂S/∂BP = û (eqs. 31-32 with B1 = BP); a cantilever's to point 1, at
-/// L21 along the primary, ∂S/∂BP = (L21/|V2P|)·(I − êêᵀ)·û (eqs. 29-32). The lagged bending
-/// displacement of point 1 is held over a step and has no gradient (eq. 47).
-pub(crate) fn secondary_gradients(
+/// The gradients of the strokes in the footpad's position BP (`bp`, body axes, m): the
+/// primary's compression c (eq. 33), −ê; the secondaries' S31, S41 (eq. 34, tension positive),
+/// for a tripod's, which run to the footpad, û (eqs. 31-32 with B1 = BP), for a cantilever's,
+/// which run to point 1 at L21 along the primary, (L21/|V2P|)·(I − êêᵀ)·û (eqs. 29-32). Body
+/// axes, dimensionless. The lagged bending displacement of point 1 is held over a step and has
+/// no gradient (eq. 47).
+pub(crate) fn stroke_gradients(
     leg: &Leg,
     arrangement: Arrangement,
     bp: &Vector3<f64>,
-) -> [Vector3<f64>; 2] {
-    if arrangement == Arrangement::Tripod {
-        return [(bp - leg.b3).normalize(), (bp - leg.b4).normalize()];
-    }
+) -> [Vector3<f64>; 3] {
     let v2p = bp - leg.b2;
     let len = v2p.norm();
     let e = v2p / len;
+    if arrangement == Arrangement::Tripod {
+        return [-e, (bp - leg.b3).normalize(), (bp - leg.b4).normalize()];
+    }
     let b1 = leg.b2 + e * leg.l21;
     let lever = |u: Vector3<f64>| (u - e * e.dot(&u)) * (leg.l21 / len);
     [
+        -e,
         lever((b1 - leg.b3).normalize()),
         lever((b1 - leg.b4).normalize()),
     ]
@@ -442,11 +444,11 @@ mod tests {
         assert!((moment - bp.cross(&(-fp))).norm() < 1e-9 * fp.norm());
     }
 
-    /// The secondary strokes' gradients are those of the strokes [`evaluate`] gives, by
-    /// central differences of the footpad's position, on both arrangements (a gradient that
+    /// The strokes' gradients are those of the strokes [`evaluate`] gives, by central
+    /// differences of the footpad's position, on both arrangements (a secondary's gradient that
     /// left out the lever L21/|V2P|, 0.63 here, or the projection off the primary fails).
     #[test]
-    fn secondary_gradients_are_those_of_the_evaluated_strokes() {
+    fn stroke_gradients_are_those_of_the_evaluated_strokes() {
         let (leg, laws, mem) = (leg(), laws(0.0), GearMemory::default());
         let bp = deformed(leg.bp);
         let tripod = GearOptions {
@@ -455,21 +457,24 @@ mod tests {
         };
         for options in [CANTILEVER, tripod] {
             let strokes = |p: Vector3<f64>| {
-                evaluated(&leg, &laws, &mem, &p, &Vector3::zeros(), &options)
-                    .unwrap()
-                    .secondary_stroke
+                let g = evaluated(&leg, &laws, &mem, &p, &Vector3::zeros(), &options).unwrap();
+                [
+                    g.primary_stroke,
+                    g.secondary_stroke[0],
+                    g.secondary_stroke[1],
+                ]
             };
-            let gradients = secondary_gradients(&leg, options.arrangement, &bp);
+            let gradients = stroke_gradients(&leg, options.arrangement, &bp);
             let h = 1e-6;
             for axis in 0..3 {
                 let mut d = Vector3::zeros();
                 d[axis] = h;
                 let (plus, minus) = (strokes(bp + d), strokes(bp - d));
-                for j in 0..2 {
+                for j in 0..3 {
                     let difference = (plus[j] - minus[j]) / (2.0 * h);
                     assert!(
                         (difference - gradients[j][axis]).abs() < 1e-7,
-                        "{:?}, secondary {j}, axis {axis}: {difference} by differences, {} stated",
+                        "{:?}, stroke {j}, axis {axis}: {difference} by differences, {} stated",
                         options.arrangement,
                         gradients[j][axis]
                     );

@@ -329,22 +329,32 @@ impl State {
 
     /// [`State::engaged_stiffness`] of leg `i`'s three struts, N/m.
     fn leg_stiffness(&self, model: &Model, i: usize, dt: f64) -> f64 {
-        let laws = &model.laws;
-        let (g, memory) = (&self.gear[i], &self.memory[i]);
-        let secondary = &laws.secondary.honeycomb;
-        let mut k = laws.primary.branch(g.primary_stroke, memory.primary).1
-            + secondary
-                .branch(g.secondary_stroke[0], memory.secondary[0])
-                .1
-            + secondary
-                .branch(g.secondary_stroke[1], memory.secondary[1])
-                .1;
+        let [primary, s31, s41] = self.branch_rates(model, i);
+        let mut k = primary + s31 + s41;
         for (stop, gap, rate) in self.stop_approaches(model, i) {
             if gap >= 0.0 && rate > 0.0 && gap < rate * dt {
                 k += stop.stiffest_rate();
             }
         }
         k
+    }
+
+    /// The rates of leg `i`'s primary, 3-1 and 4-1 struts on the branches of their laws they
+    /// are on at the accepted state, N/m (`branch`).
+    fn branch_rates(&self, model: &Model, i: usize) -> [f64; 3] {
+        let (g, memory) = (&self.gear[i], &self.memory[i]);
+        let laws = &model.laws;
+        let secondary = |j: usize| {
+            laws.secondary
+                .honeycomb
+                .branch(g.secondary_stroke[j], memory.secondary[j])
+                .1
+        };
+        [
+            laws.primary.branch(g.primary_stroke, memory.primary).1,
+            secondary(0),
+            secondary(1),
+        ]
     }
 
     /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
@@ -358,25 +368,12 @@ impl State {
         if model.integrator.scheme == Scheme::Strides {
             return f64::INFINITY;
         }
-        let (g, memory) = (&self.gear[i], &self.memory[i]);
-        let secondary = &model.laws.secondary.honeycomb;
+        let [primary, s31, s41] = self.branch_rates(model, i);
         let primary = match model.integrator.scheme {
             Scheme::Report => 0.0,
-            _ => {
-                model
-                    .laws
-                    .primary
-                    .branch(g.primary_stroke, memory.primary)
-                    .1
-            }
+            _ => primary,
         };
-        let k = primary
-            + secondary
-                .branch(g.secondary_stroke[0], memory.secondary[0])
-                .1
-            + secondary
-                .branch(g.secondary_stroke[1], memory.secondary[1])
-                .1;
+        let k = primary + s31 + s41;
         if k > 0.0 {
             PAD_MODE_STEP * (model.footpad_mass / k).sqrt()
         } else {

@@ -65,12 +65,12 @@ fn step_size(model: &Model, state: &State) -> f64 {
         };
         vel = vel.max(rel.norm());
     }
+    // eq. (25); the stride is sought only where it asks for more than dt_max
     let dt = if vel > 0.0 {
         it.dist / vel
     } else {
         f64::INFINITY
-    }; // eq. (25)
-       // the stride is sought only where eq. (25) asks for more than dt_max
+    };
     let dt_max = if dt > it.dt_max {
         state.stride_step(model)
     } else {
@@ -207,8 +207,7 @@ fn correct_footpads(
                 Scheme::Strides => free.every_strut_implicit(model),
                 _ => free.primary_implicit(model),
             };
-            let bp = pred.t_bi.transpose() * (state.pads[i].position - pred.position);
-            let on_pad = c.on_pad;
+            let (bp, on_pad) = (free.bp, c.on_pad);
             let slot = &mut scratch.trial[i];
             slot.fcp += c.force;
             slot.f2p += c.force;
@@ -309,6 +308,7 @@ impl<'a> FreePad<'a> {
             on_pad,
         }
     }
+
     /// The report's corrector: the average-acceleration rule x₁ = x_k + u_k·Δt + (a_k + a₁)·Δt²/4,
     /// u₁ = u_k + (a_k + a₁)·Δt/2, with a₁ = a* + K·(x₁ − x*) linearised about the prediction
     /// x* along the primary strut: K = −(k/PMASS)·ŵŵᵀ, ŵ the strut's axis as the footpad can
@@ -340,8 +340,7 @@ impl<'a> FreePad<'a> {
     /// The `strides` scheme's corrector: [`FreePad::primary_implicit`]'s average-acceleration
     /// rule with every strut of the gear linearised about the prediction,
     /// a₁ = a* − Σ_j ŵ_j·k_j·ŵ_j·(x₁ − x*)/PMASS, ŵ_j the gradient of strut j's stroke in the
-    /// footpad's position (the primary's compression −ê, the secondaries'
-    /// [`gear::secondary_gradients`], inertial, as the footpad can move) and k_j its law's secant
+    /// footpad's position ([`gear::stroke_gradients`], inertial, as the footpad can move) and k_j its law's secant
     /// over the step: the 3×3 system (I + Δt²/(4·PMASS)·Σ_j k_j·ŵ_jŵ_jᵀ)·δ = (a* − a_k)·Δt²/4,
     /// symmetric positive definite, by Cholesky. Stable for any stiffness of the three laws;
     /// each strut's force changes by k_j·ŵ_j·δ, the footpad's by −Σ_j ∂S_j/∂BP times it
@@ -351,9 +350,7 @@ impl<'a> FreePad<'a> {
         let (m, dt) = (model.footpad_mass, self.dt);
         let (leg, laws) = (&model.legs[self.i], &model.laws);
         let (start, trial) = (self.start, self.trial);
-        let axis = (self.bp - leg.b2).normalize();
-        let [g31, g41] = gear::secondary_gradients(leg, model.arrangement, &self.bp);
-        let gradients = [-axis, g31, g41];
+        let gradients = gear::stroke_gradients(leg, model.arrangement, &self.bp);
         let w = gradients.each_ref().map(|g| self.movable(g));
         let eps = 1e-9 * leg.l2p;
         let sec = &laws.secondary.honeycomb;
