@@ -329,8 +329,8 @@ impl State {
 
     /// [`State::engaged_stiffness`] of leg `i`'s three struts, N/m.
     fn leg_stiffness(&self, model: &Model, i: usize, dt: f64) -> f64 {
-        let [primary, s31, s41] = self.branch_rates(model, i);
-        let mut k = primary + s31 + s41;
+        let [s31, s41] = self.secondary_rates(model, i);
+        let mut k = self.primary_rate(model, i) + s31 + s41;
         for (stop, gap, rate) in self.stop_approaches(model, i) {
             if gap >= 0.0 && rate > 0.0 && gap < rate * dt {
                 k += stop.stiffest_rate();
@@ -339,22 +339,27 @@ impl State {
         k
     }
 
-    /// The rates of leg `i`'s primary, 3-1 and 4-1 struts on the branches of their laws they
-    /// are on at the accepted state, N/m (`branch`).
-    fn branch_rates(&self, model: &Model, i: usize) -> [f64; 3] {
+    /// The rate of leg `i`'s primary on the branch of its law it is on at the accepted state,
+    /// N/m (`branch`).
+    fn primary_rate(&self, model: &Model, i: usize) -> f64 {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
-        let laws = &model.laws;
-        let secondary = |j: usize| {
-            laws.secondary
-                .honeycomb
+        model
+            .laws
+            .primary
+            .branch(g.primary_stroke, memory.primary)
+            .1
+    }
+
+    /// The rates of leg `i`'s 3-1 and 4-1 struts on the branches of their laws they are on at
+    /// the accepted state, N/m (`branch`).
+    fn secondary_rates(&self, model: &Model, i: usize) -> [f64; 2] {
+        let (g, memory) = (&self.gear[i], &self.memory[i]);
+        let secondary = &model.laws.secondary.honeycomb;
+        [0, 1].map(|j| {
+            secondary
                 .branch(g.secondary_stroke[j], memory.secondary[j])
                 .1
-        };
-        [
-            laws.primary.branch(g.primary_stroke, memory.primary).1,
-            secondary(0),
-            secondary(1),
-        ]
+        })
     }
 
     /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
@@ -368,11 +373,11 @@ impl State {
         if model.integrator.scheme == Scheme::Strides {
             return f64::INFINITY;
         }
-        let [primary, s31, s41] = self.branch_rates(model, i);
         let primary = match model.integrator.scheme {
             Scheme::Report => 0.0,
-            _ => primary,
+            _ => self.primary_rate(model, i),
         };
+        let [s31, s41] = self.secondary_rates(model, i);
         let k = primary + s31 + s41;
         if k > 0.0 {
             PAD_MODE_STEP * (model.footpad_mass / k).sqrt()
