@@ -6,7 +6,7 @@ Three kinds, all drawn from data the `touchdown` CLI writes, so that a plot show
 series, verdicts and boundaries the Rust side measured (nothing is recomputed here):
 
 * traces      one landing on several engines, overlaid: the vertical acceleration over the
-              comparison's 2 ms window, the pitch rate, and every leg's primary stroke against
+              comparison's window, the pitch rate, and every leg's primary stroke against
               time. Legs of one engine whose stroke traces coincide (within LEG_TOLERANCE_M over
               the whole trace) are drawn as one line named "legs 1, 2 (identical)"; every other
               leg has its own line style. Beside each panel, the PASS/FAIL of every pair of
@@ -117,7 +117,7 @@ def read_trace(path: Path) -> dict:
         "t": column("t_s"),
         "pitch_rate": column("pitch_rate_rad_s"),
         "strokes": dict(sorted(legs.items())),
-        # The 2 ms window centred on t: empty within 1 ms of either end.
+        # The window centred on t: empty within half a window of either end.
         "acc_t": [float(r["t_s"]) for r in rows if r["vertical_acceleration_m_s2"] != ""],
         "acc": column("vertical_acceleration_m_s2"),
     }
@@ -140,7 +140,8 @@ def read_comparison_verdicts(path: Path) -> dict:
     """The verdicts of the comparison's document (`<stem>.json`, a line of `touchdown compare
     --format json`, docs/schemas/compare.schema.json) as {"scenario": its name, "pairs": [{"a",
     "b", "verdict", "outcome_agrees", "channels": {key (channel_key): {"difference", "tolerance",
-    "verdict"}}}], "units": {key: the unit of its difference and tolerance}}; a verdict is "pass",
+    "verdict"}}}], "units": {key: the unit of its difference and tolerance},
+    "acceleration_window_s": the window of the vertical acceleration}; a verdict is "pass",
     "fail" or "not_determined" (rounding decides it: docs/engines.md, "Rounding-decided
     channels")."""
     entry = json.loads(path.read_text())
@@ -160,7 +161,12 @@ def read_comparison_verdicts(path: Path) -> dict:
                 "channels": channels,
             }
         )
-    return {"scenario": entry["scenario_name"], "pairs": pairs, "units": units}
+    return {
+        "scenario": entry["scenario_name"],
+        "pairs": pairs,
+        "units": units,
+        "acceleration_window_s": entry["acceleration_window_s"],
+    }
 
 
 # Metres per second of the velocity units a scenario may state.
@@ -277,8 +283,13 @@ def legs_label(group: list[int]) -> str:
 def verdict_value(difference: float, unit: str) -> str:
     """A difference (or tolerance) in the way its channel measures it, short (to 3 significant
     figures, under 0.01 of the shown unit as "< 0.01")."""
+    scales = {"footprint_radius": "% ℓ", "time_scale": "% τ", "velocity_scale": "% v"}
     if unit.startswith("fraction"):
         value, shown = 100.0 * difference, "%"
+    elif unit in scales:
+        # a fraction of one of the vehicle's scales (docs/engines.md, "Tolerances from the
+        # vehicle's scales")
+        value, shown = 100.0 * difference, scales[unit]
     elif unit == "s":
         value, shown = 1000.0 * difference, "ms"
     elif unit == "m":
@@ -396,7 +407,8 @@ def traces(args: argparse.Namespace) -> None:
                 label=f"{engine_name(engine)} {legs_label(group)}",
             )
             stroke_handles.append(line)
-    acc.set_ylabel("vertical acceleration, m/s²\n(2 ms window, up +)")
+    window = f"{1000.0 * verdicts['acceleration_window_s']:.3g} ms window, " if verdicts else ""
+    acc.set_ylabel(f"vertical acceleration, m/s²\n({window}up +)")
     pitch.set_ylabel("pitch rate, rad/s")
     stroke.set_ylabel("primary stroke, mm")
     stroke.set_xlabel("time since first contact, s")

@@ -115,10 +115,10 @@ def view(
 def boundary(
     scenario: Union[str, PathLike],
     vv: Union[float, Sequence[float]],
-    vh_start: float = 0.0,
-    vh_step: float = 2.0,
-    vh_max: float = 30.0,
-    tol: float = 0.05,
+    vh_start: Optional[float] = None,
+    vh_step: Optional[float] = None,
+    vh_max: Optional[float] = None,
+    tol: Optional[float] = None,
     engines: Sequence[str] = ("core",),
     overrides: Optional[Mapping[str, Any]] = None,
     scan_step: Optional[float] = None,
@@ -129,10 +129,13 @@ def boundary(
     (negative down, as the scenario files write `touchdown.vertical_velocity`; one number or a
     list), the horizontal
     speeds on the grid `vh_start`, `vh_start + vh_step`, ... up to `vh_max`, scanned every
-    `scan_step` around the changes the grid finds (None: 0.25 when below `vh_step`; 0: the grid
-    only), every change of outcome and the first speed past a strut's capacity bisected to
-    `tol`, once per end-stop restitution of `stop_restitution` (empty: the scenario's own); the
-    settings in the scenario's length unit per second, the horizontal direction the scenario's.
+    `scan_step` around the changes the grid finds (0: the grid only), every change of outcome
+    and the first speed past a strut's capacity bisected to `tol`, once per end-stop
+    restitution of `stop_restitution` (empty: the scenario's own); the settings in the
+    scenario's length unit per second, the horizontal direction the scenario's. A setting left
+    None takes the command's default, a ratio of the vehicle's velocity scale
+    √(g·footprint radius): `vh_start` 0, `vh_step` 0.25, `vh_max` 3.5, `tol` 0.006 (2.11, 29.6
+    and 0.051 ft/s on the 1/6-scale model), `scan_step` an eighth of `vh_step`.
     One dict per engine, restitution and vertical velocity, the command's JSON Lines document
     (docs/schemas/boundary.schema.json): in SI, `vv_m_s`, `vh_m_s` (the boundary, absent if
     none), `stable_at_vh_m_s`, `unstable_at_vh_m_s`, `transitions` (each end with its
@@ -143,10 +146,10 @@ def boundary(
     lines = _native.boundary(
         str(scenario),
         [float(v) for v in vv],
-        float(vh_start),
-        float(vh_step),
-        float(vh_max),
-        float(tol),
+        None if vh_start is None else float(vh_start),
+        None if vh_step is None else float(vh_step),
+        None if vh_max is None else float(vh_max),
+        None if tol is None else float(tol),
         list(engines),
         dict(overrides or {}),
         None if scan_step is None else float(scan_step),

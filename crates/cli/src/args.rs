@@ -301,22 +301,26 @@ pub(crate) enum Command {
         /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12).
         #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
         vv: String,
-        /// First horizontal speed of the grid.
-        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-        vh_start: f64,
+        /// First horizontal speed of the grid, in the scenario's length unit per second
+        /// [default: 0].
+        #[arg(long, allow_negative_numbers = true, value_name = "VH")]
+        vh_start: Option<f64>,
         /// Step of the horizontal-speed grid: every grid point is landed, and every change of
-        /// outcome between neighbours is bisected.
-        #[arg(long, default_value_t = 2.0)]
-        vh_step: f64,
-        /// Largest horizontal speed of the grid.
-        #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
-        vh_max: f64,
-        /// Bisection tolerance on the horizontal speed.
-        #[arg(long, default_value_t = 0.05)]
-        tol: f64,
+        /// outcome between neighbours is bisected [default: 0.25 of the vehicle's velocity
+        /// scale √(g·footprint radius), 2.11 ft/s on the 1/6-scale model].
+        #[arg(long, value_name = "STEP")]
+        vh_step: Option<f64>,
+        /// Largest horizontal speed of the grid [default: 3.5 of the velocity scale, 29.6 ft/s
+        /// on the 1/6-scale model].
+        #[arg(long, allow_negative_numbers = true, value_name = "VH")]
+        vh_max: Option<f64>,
+        /// Bisection tolerance on the horizontal speed [default: 0.006 of the velocity scale,
+        /// 0.051 ft/s on the 1/6-scale model].
+        #[arg(long, value_name = "TOL")]
+        tol: Option<f64>,
         /// Step of the finer scan from a grid step below the first change the grid finds to a
         /// grid step above the last, so that an outcome alternating faster than the grid is
-        /// seen (default 0.25 when below --vh-step; 0: the grid only).
+        /// seen [default: an eighth of --vh-step; 0: the grid only].
         #[arg(long, value_name = "STEP")]
         scan_step: Option<f64>,
         /// Search once per end-stop coefficient of restitution in this comma-separated list,

@@ -64,15 +64,16 @@ pub fn boundary(
     scenario: &Path,
     set: &[crate::Set],
     vv: &str,
-    settings: Settings,
+    asked: boundary::Asked,
     (engines, restitutions): (&[Engine], &[f64]),
     format: BoundaryFormat,
     (out, plot): (Option<&Path>, bool),
 ) -> Result<()> {
     let vvs = range(vv)?;
     let speeds = boundary::descent_speeds(&vvs, "--vv")?;
-    settings.validate()?;
     let (base, sc) = crate::load(scenario, set)?;
+    let settings = asked.settings(&sc)?;
+    settings.validate()?;
     crate::warn(&sc);
     let bar = crate::progress_bar(0, "landings");
     let overrides = crate::overrides(set);
@@ -196,7 +197,7 @@ fn restitution(e: Option<f64>) -> String {
 fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
     let mut o = String::new();
     let scan = match s.scan_step {
-        Some(step) => format!(", scanned every {step} around its changes"),
+        Some(step) => format!(", scanned every {} around its changes", Short(step)),
         None => String::new(),
     };
     let _ = writeln!(
@@ -204,7 +205,10 @@ fn boundary_text(points: &[EnginePoint], unit: &str, s: Settings) -> String {
         "stability boundary: where the landing turns unstable, where a strut first goes past its \
          capacity, and the safe envelope (stable and within every capacity), at each vertical \
          velocity Vv (negative down)\n({unit}; Vh grid {} to {} step {}{scan}, tolerance {})",
-        s.vh_start, s.vh_max, s.vh_step, s.tolerance
+        Short(s.vh_start),
+        Short(s.vh_max),
+        Short(s.vh_step),
+        Short(s.tolerance)
     );
     let _ = writeln!(
         o,

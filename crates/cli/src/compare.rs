@@ -42,7 +42,7 @@ pub fn compare(
     }
     if let Format::Text = format {
         out!(
-            "tolerances\n{}",
+            "tolerances (the testbench's; a scenario's [comparison] table sets its own)\n{}",
             touchdown_compare::report::tolerances_text()
         )?;
     }

@@ -256,12 +256,12 @@ fn run(cli: Cli) -> Result<Verdict> {
             out,
             plot,
         } => {
-            let settings = touchdown_validation::boundary::Settings {
+            let settings = touchdown_validation::boundary::Asked {
                 vh_start,
                 vh_step,
                 vh_max,
                 tolerance: tol,
-                scan_step: touchdown_validation::boundary::scan_step(scan_step, vh_step),
+                scan_step,
             };
             let format = match format {
                 TableFormat::Text => boundary::BoundaryFormat::Text,

@@ -29,7 +29,7 @@ use touchdown_registry::land;
 pub use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::Scenario;
 use touchdown_view::{EngineTrajectory, Recorder, Recording, Scene, Trajectory};
-pub use trace::Trace;
+pub use trace::{Trace, ACCELERATION_WINDOW};
 
 /// Errors of a comparison: a scenario that does not load, an engine that did not complete it.
 #[derive(Debug, thiserror::Error)]
@@ -92,6 +92,8 @@ pub struct EngineRun {
     pub summary: Summary,
     /// Its trace.
     pub trace: Trace,
+    /// What its channels are judged against: the vehicle's scales and the tolerances.
+    pub basis: metrics::Basis,
     /// Its frames for a viewer, when asked for ([`run_recorded`]).
     pub recording: Option<Recording>,
     /// The same engine's runs of the landing's perturbed copies ([`rounding::perturbed`]): the
@@ -159,11 +161,12 @@ pub fn run_recorded(
         scenario: path.display().to_string(),
         error,
     };
+    let basis = metrics::Basis::of(sc)?;
     let scratch = touchdown_registry::scratch_folder(engine).map_err(failure)?;
     let mut tracer = Tracer {
         sample: Sample::new(sc.legs.len()),
         sink: Sink {
-            trace: Trace::default(),
+            trace: Trace::new(ACCELERATION_WINDOW * basis.scales.time_s),
             recorder: frame_interval.map(|dt| Recorder::new(sc, dt)),
         },
     };
@@ -183,6 +186,7 @@ pub fn run_recorded(
         engine,
         summary,
         trace: tracer.sink.trace,
+        basis,
         recording: tracer.sink.recorder.map(Recorder::finish),
         perturbed: Vec::new(),
     })
@@ -332,6 +336,11 @@ pub struct ScenarioComparison {
     pub engines: Vec<(Engine, String)>,
     /// Engines asked for that the scenario's `engines.applicable` leaves out (not run).
     pub not_applicable: Vec<Engine>,
+    /// The vehicle's scales, which the tolerances not of a channel's own value are ratios of.
+    pub scales: touchdown_scenario::scales::Scales,
+    /// The window the vertical accelerations are averaged over ([`ACCELERATION_WINDOW`] of the
+    /// time scale), s.
+    pub acceleration_window_s: f64,
     /// Each engine's summary.
     #[serde(skip)]
     pub runs: Vec<EngineRun>,
@@ -393,6 +402,7 @@ pub fn compare_recorded(
     if let Some(f) = frame_interval {
         check_frame_interval(f)?;
     }
+    let scales = metrics::Basis::of(sc)?.scales;
     let (applicable, not_applicable) = split_applicable(sc, engines);
     let runs = applicable
         .iter()
@@ -410,6 +420,8 @@ pub fn compare_recorded(
         scenario_sha256: sc.sha256(),
         engines: runs.iter().map(|r| (r.engine, engine_version(r))).collect(),
         not_applicable,
+        scales,
+        acceleration_window_s: ACCELERATION_WINDOW * scales.time_s,
         runs,
         pairs,
     })

@@ -1,11 +1,17 @@
 //! Divergence of two engines on one landing, channel by channel, each against a tolerance
-//! written down with its reason ([`TOLERANCES`]).
+//! written down with its reason ([`TOLERANCES`]). Every tolerance and every floor is a ratio:
+//! of the channel's own value, of a strut's capacity or of the vehicle's own scales
+//! ([`touchdown_scenario::scales`]), so that a dynamically similar vehicle is judged alike
+//! (docs/engines.md, "Tolerances from the vehicle's scales"); a scenario may set its own
+//! tolerances (`[comparison]`, [`Basis`]).
 
 use crate::rounding::{own_spreads, Spread};
 use crate::trace::Trace;
 use crate::{Engine, EngineRun};
 use serde::Serialize;
 use touchdown_record::Outcome;
+use touchdown_scenario::scales::Scales;
+use touchdown_scenario::{Scenario, ScenarioError};
 
 /// A channel's tolerance and why it is that.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -14,9 +20,11 @@ pub struct Tolerance {
     pub channel: &'static str,
     /// The channel family's identifier: the `quantity` of its channels.
     pub quantity: &'static str,
-    /// Largest difference that passes, in `difference_unit`.
+    /// Largest difference that passes, a ratio to what `difference_unit` names.
     pub limit: f64,
-    /// The unit of the difference and the limit: `fraction` (a ratio) or an SI unit.
+    /// What the difference and the limit are ratios to: [`OWN_VALUE`] (the channel's own
+    /// value, or the energy at touchdown), [`FOOTPRINT_RADIUS`], [`TIME_SCALE`] or
+    /// [`VELOCITY_SCALE`] (the vehicle's scales).
     pub difference_unit: &'static str,
     /// How the difference is measured.
     pub measured_as: &'static str,
@@ -24,25 +32,56 @@ pub struct Tolerance {
     pub reason: &'static str,
 }
 
-/// Primary strokes: relative difference of the maximum stroke, strokes under 10 mm measured
-/// against 10 mm.
+/// A difference as a fraction of the channel's own value (or, for the energy, of the touchdown
+/// kinetic energy): `difference_unit` of such a tolerance.
+pub const OWN_VALUE: &str = "fraction";
+
+/// A difference as a fraction of the vehicle's footprint radius ([`Scales::length_m`]).
+pub const FOOTPRINT_RADIUS: &str = "footprint_radius";
+
+/// A difference as a fraction of the vehicle's time scale ([`Scales::time_s`]).
+pub const TIME_SCALE: &str = "time_scale";
+
+/// A difference as a fraction of the vehicle's velocity scale ([`Scales::velocity_m_s`]).
+pub const VELOCITY_SCALE: &str = "velocity_scale";
+
+/// Primary strokes under this fraction of the primary's capacity are measured against it:
+/// 9.5 mm on the 1/6-scale model's 135 mm, within the scatter of its drop tests' records. Each
+/// ratio here and in [`TOLERANCES`] replaces an absolute value chosen on the 1/6-scale model
+/// (10 mm here) and is no looser than it there.
+pub const PRIMARY_STROKE_FLOOR: f64 = 0.07;
+
+/// Secondary strokes under this fraction of the secondaries' smaller capacity are measured
+/// against it: 4.8 mm on the 1/6-scale model's 107 mm (5 mm before).
+pub const SECONDARY_STROKE_FLOOR: f64 = 0.045;
+
+/// Pitch rates under this fraction of the vehicle's rate scale 1/[`Scales::time_s`] are
+/// measured against it: 0.095 rad/s on the 1/6-scale model (3.81 rad/s).
+pub const PITCH_RATE_FLOOR: f64 = 0.025;
+
+/// Vertical accelerations under this fraction of the vehicle's acceleration scale
+/// ([`Scales::acceleration_m_s2`], g) are measured against it: 0.98 m/s² under Earth gravity.
+pub const ACCELERATION_FLOOR: f64 = 0.1;
+
+/// Primary strokes: relative difference of the maximum stroke, strokes under
+/// [`PRIMARY_STROKE_FLOOR`] of the capacity measured against it.
 pub const PRIMARY_STROKE: Tolerance = Tolerance {
     channel: "primary stroke",
     quantity: "primary_stroke",
     limit: 0.05,
-    difference_unit: "fraction",
-    measured_as: "fraction of the larger maximum stroke (at least 10 mm)",
-    reason: "the agreement asked of the rebuilds on the Table I primary strokes; below 10 mm a stroke is within the scatter of the drop tests' records",
+    difference_unit: OWN_VALUE,
+    measured_as: "fraction of the larger maximum stroke (at least 7 % of the primary's capacity)",
+    reason: "the agreement asked of the rebuilds on the Table I primary strokes; below 7 % of the capacity (9.5 mm on the 1/6-scale model) a stroke is within the scatter of the drop tests' records",
 };
 
 /// Secondary strokes: relative difference of the maximum stroke (compression or tension), under
-/// 5 mm measured against 5 mm.
+/// [`SECONDARY_STROKE_FLOOR`] of the smaller capacity measured against it.
 pub const SECONDARY_STROKE: Tolerance = Tolerance {
     channel: "secondary stroke",
     quantity: "secondary_stroke",
     limit: 0.10,
-    difference_unit: "fraction",
-    measured_as: "fraction of the larger maximum stroke (at least 5 mm)",
+    difference_unit: OWN_VALUE,
+    measured_as: "fraction of the larger maximum stroke (at least 4.5 % of the secondaries' smaller capacity)",
     reason: "the agreement asked of the rebuilds on the Table I secondary strokes; secondaries are short and follow the gear's swing, so twice the primaries' tolerance",
 };
 
@@ -51,8 +90,8 @@ pub const PEAK_PITCH_RATE: Tolerance = Tolerance {
     channel: "peak pitch rate",
     quantity: "peak_pitch_rate",
     limit: 0.05,
-    difference_unit: "fraction",
-    measured_as: "fraction of the larger peak magnitude (at least 0.1 rad/s)",
+    difference_unit: OWN_VALUE,
+    measured_as: "fraction of the larger peak magnitude (at least 2.5 % of the vehicle's rate scale, the inverse of its time scale)",
     reason: "the pitch rate drives the overturn; 5 % of its peak moves a stability boundary by about as much as the report's 0.05 ft/s search tolerance at 8 ft/s",
 };
 
@@ -60,10 +99,10 @@ pub const PEAK_PITCH_RATE: Tolerance = Tolerance {
 pub const PEAK_PITCH_RATE_TIME: Tolerance = Tolerance {
     channel: "peak pitch rate time",
     quantity: "peak_pitch_rate_time",
-    limit: 0.01,
-    difference_unit: "s",
-    measured_as: "the absolute difference of the times of the peaks",
-    reason: "10 ms, 5 % of a 0.2 s landing: the same phase of the landing",
+    limit: 0.038,
+    difference_unit: TIME_SCALE,
+    measured_as: "the difference of the times of the peaks, as a fraction of the vehicle's time scale",
+    reason: "10 ms on the 1/6-scale model (time scale 0.263 s), 5 % of a 0.2 s landing: the same phase of the landing",
 };
 
 /// Time-aligned pitch-rate history, RMS of the difference.
@@ -71,8 +110,8 @@ pub const PITCH_RATE_RMS: Tolerance = Tolerance {
     channel: "pitch rate history RMS difference",
     quantity: "pitch_rate_history_rms_difference",
     limit: 0.10,
-    difference_unit: "fraction",
-    measured_as: "fraction of the first engine's peak magnitude",
+    difference_unit: OWN_VALUE,
+    measured_as: "fraction of the first engine's peak magnitude (at least 2.5 % of the rate scale)",
     reason: "over the common span, the histories tell the same story when their RMS difference stays within a tenth of the peak",
 };
 
@@ -81,8 +120,8 @@ pub const PITCH_RATE_MAX: Tolerance = Tolerance {
     channel: "pitch rate history largest difference",
     quantity: "pitch_rate_history_largest_difference",
     limit: 0.25,
-    difference_unit: "fraction",
-    measured_as: "fraction of the first engine's peak magnitude",
+    difference_unit: OWN_VALUE,
+    measured_as: "fraction of the first engine's peak magnitude (at least 2.5 % of the rate scale)",
     reason: "a contact event a step earlier or later shifts a steep stretch of the history: a quarter of the peak allows that, not a different landing",
 };
 
@@ -91,29 +130,29 @@ pub const PEAK_VERTICAL_ACCELERATION: Tolerance = Tolerance {
     channel: "peak vertical acceleration",
     quantity: "peak_vertical_acceleration",
     limit: 0.10,
-    difference_unit: "fraction",
-    measured_as: "fraction of the larger peak magnitude (at least 1 m/s²), 2 ms window",
-    reason: "the load the vehicle feels; a 2 ms average filters the multibody's contact spikes as an accelerometer would",
+    difference_unit: OWN_VALUE,
+    measured_as: "fraction of the larger peak magnitude (at least 10 % of the acceleration scale, g), averaged over 0.75 % of the time scale",
+    reason: "the load the vehicle feels; an average over 2 ms on the 1/6-scale model filters the multibody's contact spikes as an accelerometer would",
 };
 
 /// Minimum stability distance.
 pub const MIN_STABILITY_DISTANCE: Tolerance = Tolerance {
     channel: "minimum stability distance",
     quantity: "min_stability_distance",
-    limit: 0.01,
-    difference_unit: "m",
-    measured_as: "the absolute difference of the minima",
-    reason: "1 cm of margin at 1/6 scale (6 cm full scale): finer than the footpad's own size",
+    limit: 0.014,
+    difference_unit: FOOTPRINT_RADIUS,
+    measured_as: "the difference of the minima, as a fraction of the vehicle's footprint radius",
+    reason: "9.5 mm of margin on the 1/6-scale model's 0.68 m footprint radius (5.7 cm at full scale): finer than the footpad's own size",
 };
 
 /// Overturning velocity (both engines unstable).
 pub const OVERTURN_VELOCITY: Tolerance = Tolerance {
     channel: "overturn velocity",
     quantity: "overturn_velocity",
-    limit: 0.05,
-    difference_unit: "m/s",
-    measured_as: "the absolute difference of the velocities at the crossing",
-    reason: "the velocity across the wall at the crossing; 5 cm/s is the scale of the report's boundary-search tolerance",
+    limit: 0.019,
+    difference_unit: VELOCITY_SCALE,
+    measured_as: "the difference of the velocities at the crossing, as a fraction of the vehicle's velocity scale",
+    reason: "the velocity across the wall at the crossing; 4.9 cm/s on the 1/6-scale model (velocity scale 2.58 m/s), the scale of the report's boundary-search tolerance",
 };
 
 /// Energy dissipated per mechanism.
@@ -121,7 +160,7 @@ pub const ENERGY: Tolerance = Tolerance {
     channel: "energy",
     quantity: "energy",
     limit: 0.05,
-    difference_unit: "fraction",
+    difference_unit: OWN_VALUE,
     measured_as: "fraction of the first engine's touchdown kinetic energy",
     reason: "where the touchdown energy goes; 5 % of it per mechanism separates a shifted share from rounding",
 };
@@ -131,7 +170,7 @@ pub const PAST_CAPACITY: Tolerance = Tolerance {
     channel: "struts past capacity",
     quantity: "past_capacity",
     limit: 0.01,
-    difference_unit: "fraction",
+    difference_unit: OWN_VALUE,
     measured_as: "the largest difference over the struts of the stroke past the capacity, as a fraction of the capacity (`a` and `b` count the struts past it)",
     reason: "a strut past its capacity is on its end stop, whose law is an estimate; the stop is stiff enough that 1 % of the capacity past the end carries 15-40 times the last crush load on the 1/6 model, so 1 % separates a touch of the stop from a different landing",
 };
@@ -205,7 +244,8 @@ pub struct Channel {
     pub absolute_difference: f64,
     /// The difference as the tolerance measures it, in `difference_unit`.
     pub difference: f64,
-    /// The unit of `difference` and `tolerance`: `fraction` or an SI unit.
+    /// What `difference` and `tolerance` are ratios to: `fraction` (of the channel's own
+    /// value), `footprint_radius`, `time_scale` or `velocity_scale` (the vehicle's scales).
     pub difference_unit: &'static str,
     /// The tolerance's limit, in `difference_unit`.
     pub tolerance: f64,
@@ -327,9 +367,50 @@ impl PairComparison {
     }
 }
 
-/// Peak pitch rate below which a landing does not pitch, rad/s (0.06 °/s): a symmetric drop's
-/// solver noise (2e-5 rad/s in rapier, whose contact solver is not symmetric).
-pub const NO_PITCH: f64 = 1.0e-3;
+/// Peak pitch rate below which a landing does not pitch, as a fraction of the vehicle's rate
+/// scale: 0.00095 rad/s (0.05 °/s) on the 1/6-scale model, where a symmetric drop's solver
+/// noise is 2e-5 rad/s in rapier (whose contact solver is not symmetric).
+pub const NO_PITCH: f64 = 2.5e-4;
+
+/// What a landing's channels are judged against: the vehicle's own scales and every channel
+/// family's tolerance, the testbench's ([`TOLERANCES`]) or the one the scenario sets
+/// (`[comparison]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Basis {
+    /// The vehicle's scales.
+    pub scales: Scales,
+    /// Every channel family's tolerance, in the order of [`TOLERANCES`].
+    pub tolerances: [Tolerance; 11],
+}
+
+impl Basis {
+    /// The basis of the scenario `sc`: its scales, and the tolerances with those it sets.
+    pub fn of(sc: &Scenario) -> Result<Basis, ScenarioError> {
+        let mut tolerances = TOLERANCES;
+        for (quantity, limit) in sc.comparison.set() {
+            for t in tolerances.iter_mut().filter(|t| t.quantity == quantity) {
+                t.limit = limit;
+            }
+        }
+        Ok(Basis {
+            scales: Scales::of(sc)?,
+            tolerances,
+        })
+    }
+
+    /// The tolerance of the channel family `family` on this landing.
+    fn tolerance(&self, family: &Tolerance) -> Tolerance {
+        (self.tolerances.iter())
+            .find(|t| t.quantity == family.quantity)
+            .copied()
+            .unwrap_or(*family)
+    }
+
+    /// The rate scale 1/[`Scales::time_s`], rad/s.
+    fn rate(&self) -> f64 {
+        1.0 / self.scales.time_s
+    }
+}
 
 fn relative(a: f64, b: f64, floor: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(floor)
@@ -421,9 +502,17 @@ fn past_capacity_difference(a: &touchdown_record::Summary, b: &touchdown_record:
         .fold(0.0, f64::max)
 }
 
-/// Every channel of two engines' runs of the same landing, judged on these two runs alone.
+/// Every channel of two engines' runs of the same landing, judged on these two runs alone
+/// against the first run's [`Basis`] (both are of one scenario).
 pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
     let (sa, sb) = (&a.summary, &b.summary);
+    let basis = &a.basis;
+    let tolerance = |family: &Tolerance| basis.tolerance(family);
+    let caps = &sa.strut_capacity;
+    let primary_floor = PRIMARY_STROKE_FLOOR * caps.primary.stroke_m;
+    let secondary_floor = SECONDARY_STROKE_FLOOR
+        * (caps.secondary_compression.stroke_m).min(caps.secondary_tension.stroke_m);
+    let rate_floor = PITCH_RATE_FLOOR * basis.rate();
     let mut channels = Vec::new();
     for (i, (x, y)) in sa
         .max_primary_stroke_m
@@ -436,8 +525,8 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
             strut: Some(Strut::Primary),
             ..About::default()
         };
-        let d = relative(*x, *y, 0.010);
-        channels.push(values(about, "m", (*x, *y), d, &PRIMARY_STROKE));
+        let d = relative(*x, *y, primary_floor);
+        channels.push(values(about, "m", (*x, *y), d, &tolerance(&PRIMARY_STROKE)));
     }
     let secondary = |s: &touchdown_record::Summary, i: usize, j: usize| {
         s.max_secondary_compression_m[i][j].max(s.max_secondary_tension_m[i][j])
@@ -453,75 +542,79 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
                 strut: Some(strut),
                 ..About::default()
             };
-            let d = relative(x, y, 0.005);
-            channels.push(values(about, "m", (x, y), d, &SECONDARY_STROKE));
+            let d = relative(x, y, secondary_floor);
+            channels.push(values(about, "m", (x, y), d, &tolerance(&SECONDARY_STROKE)));
         }
     }
     let (qa, qb) = (sa.peak_pitch_rate_rad_s, sb.peak_pitch_rate_rad_s);
-    let d = relative(qa, qb, 0.1);
+    let d = relative(qa, qb, rate_floor);
     channels.push(values(
         About::default(),
         "rad/s",
         (qa, qb),
         d,
-        &PEAK_PITCH_RATE,
+        &tolerance(&PEAK_PITCH_RATE),
     ));
     // A landing that does not pitch (a symmetric drop) has a peak of solver noise whose time
     // means nothing: it counts as 0.
-    let time_of = |q: f64, t: f64| if q.abs() < NO_PITCH { 0.0 } else { t };
+    let no_pitch = NO_PITCH * basis.rate();
+    let time_of = |q: f64, t: f64| if q.abs() < no_pitch { 0.0 } else { t };
     let (ta, tb) = (
         time_of(qa, sa.peak_pitch_rate_time_s),
         time_of(qb, sb.peak_pitch_rate_time_s),
     );
-    let d = (ta - tb).abs();
+    let d = (ta - tb).abs() / basis.scales.time_s;
     channels.push(values(
         About::default(),
         "s",
         (ta, tb),
         d,
-        &PEAK_PITCH_RATE_TIME,
+        &tolerance(&PEAK_PITCH_RATE_TIME),
     ));
     let (rms, max) = pitch_rate_differences(&a.trace, &b.trace);
-    let scale = qa.abs().max(0.1);
-    for (absolute, t) in [(rms, &PITCH_RATE_RMS), (max, &PITCH_RATE_MAX)] {
+    let scale = qa.abs().max(rate_floor);
+    for (absolute, t) in [
+        (rms, tolerance(&PITCH_RATE_RMS)),
+        (max, tolerance(&PITCH_RATE_MAX)),
+    ] {
         channels.push(channel(
             About::default(),
             "rad/s",
             None,
             absolute,
             absolute / scale,
-            t,
+            &t,
         ));
     }
     let (ga, gb) = (
         a.trace.peak_vertical_acceleration().0,
         b.trace.peak_vertical_acceleration().0,
     );
-    let d = relative(ga, gb, 1.0);
+    let d = relative(ga, gb, ACCELERATION_FLOOR * basis.scales.acceleration_m_s2);
     channels.push(values(
         About::default(),
         "m/s^2",
         (ga, gb),
         d,
-        &PEAK_VERTICAL_ACCELERATION,
+        &tolerance(&PEAK_VERTICAL_ACCELERATION),
     ));
     let (da, db) = (sa.min_stability_distance_m, sb.min_stability_distance_m);
-    let d = (da - db).abs();
+    let d = (da - db).abs() / basis.scales.length_m;
     channels.push(values(
         About::default(),
         "m",
         (da, db),
         d,
-        &MIN_STABILITY_DISTANCE,
+        &tolerance(&MIN_STABILITY_DISTANCE),
     ));
     if let (Some(va), Some(vb)) = (sa.overturn_velocity_m_s, sb.overturn_velocity_m_s) {
-        let d = (va - vb).abs();
+        let d = (va - vb).abs() / basis.scales.velocity_m_s;
         channels.push(values(
             About::default(),
             "m/s",
             (va, vb),
             d,
-            &OVERTURN_VELOCITY,
+            &tolerance(&OVERTURN_VELOCITY),
         ));
     }
     let (past_a, past_b) = (sa.past_capacity.len(), sb.past_capacity.len());
@@ -531,7 +624,7 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
         STRUT_COUNT,
         (past_a as f64, past_b as f64),
         d,
-        &PAST_CAPACITY,
+        &tolerance(&PAST_CAPACITY),
     ));
     let (ea, eb) = (&sa.energy, &sb.energy);
     let ke0 = ea.kinetic_initial_j.max(f64::MIN_POSITIVE);
@@ -558,12 +651,13 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
     if ea.mechanisms_j != 0.0 || eb.mechanisms_j != 0.0 {
         accounts.push(("mechanisms", ea.mechanisms_j, eb.mechanisms_j));
     }
+    let energy = tolerance(&ENERGY);
     for (account, x, y) in accounts {
         let about = About {
             account: Some(account),
             ..About::default()
         };
-        channels.push(values(about, "J", (x, y), (x - y).abs() / ke0, &ENERGY));
+        channels.push(values(about, "J", (x, y), (x - y).abs() / ke0, &energy));
     }
     channels
 }
@@ -629,5 +723,150 @@ pub fn compare(a: &EngineRun, b: &EngineRun) -> PairComparison {
         channels,
         worst_channel,
         verdict,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run;
+    use std::path::{Path, PathBuf};
+    use touchdown_record::Summary;
+
+    fn scenario(name: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios")
+            .join(name)
+    }
+
+    /// The similarity ratios of length, mass and time of the twin in these tests: the 1/6-scale
+    /// model at full scale on the Moon.
+    const L: f64 = 6.0;
+    const M: f64 = 216.0;
+    const T: f64 = 6.0;
+
+    /// The factor a quantity of the summary scales by on the twin, from the unit its field's
+    /// name (or the nearest enclosing one) ends with.
+    fn factor(name: &str) -> Option<f64> {
+        [
+            ("_m_s2", L / (T * T)),
+            ("_rad_s", 1.0 / T),
+            ("_n_m", M / (T * T)),
+            ("_m_s", L / T),
+            ("_j", M * L * L / (T * T)),
+            ("_n", M * L / (T * T)),
+            ("_m", L),
+            ("_s", T),
+        ]
+        .into_iter()
+        .find(|(suffix, _)| name.ends_with(suffix))
+        .map(|(_, f)| f)
+    }
+
+    fn scaled_value(v: &mut serde_json::Value, f: Option<f64>) {
+        match v {
+            serde_json::Value::Object(map) => {
+                for (k, x) in map.iter_mut() {
+                    scaled_value(x, factor(k).or(f));
+                }
+            }
+            serde_json::Value::Array(xs) => xs.iter_mut().for_each(|x| scaled_value(x, f)),
+            serde_json::Value::Number(n) => {
+                if let (Some(f), Some(x), false) = (f, n.as_f64(), n.is_u64()) {
+                    *v = serde_json::json!(x * f);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// `run` as the twin would land if it landed exactly as `run` does: every value in the
+    /// similarity's ratios, judged against the twin's `basis`.
+    fn twin_of(run: &EngineRun, basis: &Basis) -> EngineRun {
+        let mut summary = serde_json::to_value(&run.summary).unwrap();
+        scaled_value(&mut summary, None);
+        let summary: Summary = serde_json::from_value(summary).unwrap();
+        let r = &run.trace;
+        let trace = Trace {
+            t: r.t.iter().map(|t| t * T).collect(),
+            vz: r.vz.iter().map(|v| v * L / T).collect(),
+            pitch_rate: r.pitch_rate.iter().map(|q| q / T).collect(),
+            attitude: r.attitude.clone(),
+            primary_stroke: r.primary_stroke.iter().map(|x| x * L).collect(),
+            legs: r.legs,
+            acceleration_window_s: r.acceleration_window_s * T,
+        };
+        EngineRun {
+            summary,
+            trace,
+            basis: basis.clone(),
+            perturbed: Vec::new(),
+            recording: None,
+            engine: run.engine,
+        }
+    }
+
+    #[test]
+    fn a_similar_vehicle_is_judged_alike_channel_by_channel() {
+        // Two different landings of the figure 25-26 configuration (one unstable), and the
+        // same two as the Froude twin would land them: every channel measures the same
+        // dimensionless difference against the same tolerance.
+        let path = scenario("fig-25-26.toml");
+        let load = |over: &[(&str, f64)]| Scenario::load_with(&path, over).unwrap();
+        let twin = [
+            ("similarity.length", L),
+            ("similarity.mass", M),
+            ("similarity.time", T),
+        ];
+        let basis = Basis::of(&load(&twin)).unwrap();
+        for other in [
+            ("touchdown.vertical_velocity", -9.0),
+            ("touchdown.horizontal_velocity[1]", 27.0),
+        ] {
+            let a = run(Engine::Core, &path, &load(&[])).unwrap();
+            let b = run(Engine::Core, &path, &load(&[other])).unwrap();
+            let (a2, b2) = (twin_of(&a, &basis), twin_of(&b, &basis));
+            let (original, similar) = (channels(&a, &b), channels(&a2, &b2));
+            assert_eq!(original.len(), similar.len());
+            let mut failing = 0;
+            for (x, y) in original.iter().zip(&similar) {
+                assert_eq!(x.key(), y.key());
+                let close = (x.difference - y.difference).abs() <= 1e-9 * x.difference.max(1e-12);
+                assert!(
+                    close,
+                    "{}: {} against {}",
+                    x.name(),
+                    x.difference,
+                    y.difference
+                );
+                assert_eq!(x.tolerance, y.tolerance, "{}", x.name());
+                assert_eq!(x.verdict, y.verdict, "{}", x.name());
+                failing += usize::from(x.verdict == Verdict::Fail);
+            }
+            // the pairs are different landings: their comparison fails somewhere
+            assert!(failing > 0, "{other:?}");
+        }
+    }
+
+    #[test]
+    fn a_landing_sets_its_own_tolerances() {
+        let path = scenario("fig-25-26.toml");
+        let own = Scenario::load_with(
+            &path,
+            &[
+                ("comparison.min_stability_distance", 0.5),
+                ("comparison.primary_stroke", 0.2),
+            ],
+        )
+        .unwrap();
+        let basis = Basis::of(&own).unwrap();
+        let limit = |t: &Tolerance| basis.tolerance(t).limit;
+        assert_eq!(limit(&MIN_STABILITY_DISTANCE), 0.5);
+        assert_eq!(limit(&PRIMARY_STROKE), 0.2);
+        assert_eq!(limit(&SECONDARY_STROKE), SECONDARY_STROKE.limit);
+        let e = Scenario::load_with(&path, &[("comparison.energy", -0.1)])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("comparison.energy"), "{e}");
     }
 }

@@ -1,12 +1,13 @@
 //! What `touchdown compare --plot DIR` hands to the plotting script (`python/figures/plot_compare.py`):
 //! one CSV per engine and scenario with the traces the comparison measured, so that the plots
-//! show exactly the series the metrics were computed from (the 2 ms vertical acceleration of
-//! [`Trace::vertical_acceleration`] included), and no series is recomputed in Python.
+//! show exactly the series the metrics were computed from (the windowed vertical acceleration
+//! of [`Trace::vertical_acceleration`] included), and no series is recomputed in Python.
 //!
 //! `<stem>.<engine>.csv` columns: `t_s`, `pitch_rate_rad_s`, `leg<n>_primary_stroke_m` per leg,
-//! then `vertical_acceleration_m_s2`, the acceleration averaged over the 2 ms window centred on
-//! `t_s` ([`Trace::vertical_acceleration_at`], positive up), empty in the first and last
-//! millisecond, whose window would leave the trace. `<stem>.json` beside them is the
+//! then `vertical_acceleration_m_s2`, the acceleration averaged over the window centred on
+//! `t_s` ([`Trace::vertical_acceleration_at`], positive up; `acceleration_window_s` of the
+//! comparison's document, 2 ms on the 1/6-scale model), empty within half a window of either
+//! end, where the window would leave the trace. `<stem>.json` beside them is the
 //! comparison's document (`touchdown compare --format json`), with every channel's verdict.
 //! Rows are thinned to one per [`PLOT_INTERVAL`] at most (a multibody's 20 µs steps would give
 //! 25,000 rows for a 0.5 s landing drawn 1,000 pixels wide, 0.5 ms a pixel; the rows are

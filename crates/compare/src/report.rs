@@ -6,6 +6,7 @@ use crate::metrics::{Verdict, TOLERANCES};
 use crate::{Engine, ScenarioComparison};
 use std::fmt::Write;
 use touchdown_record::{Document, ScenarioId};
+use touchdown_scenario::scales::VelocityScale;
 
 /// Below this magnitude (SI) a number is written as 0.
 pub const NOISE: f64 = 1e-6;
@@ -33,6 +34,18 @@ pub fn text(c: &ScenarioComparison) -> String {
     let mut o = String::new();
     let _ = writeln!(o, "scenario: {} ({})", c.scenario, c.file);
     let _ = writeln!(o, "scenario sha256: {}", c.scenario_sha256);
+    let v = &c.scales;
+    let _ = writeln!(
+        o,
+        "vehicle scales: footprint radius ℓ {} m, velocity v {} m/s ({}), time τ {} s",
+        sig3(v.length_m),
+        sig3(v.velocity_m_s),
+        match v.velocity_from {
+            VelocityScale::Froude => "√(g·ℓ)",
+            VelocityScale::TouchdownSpeed => "the touchdown speed: no gravity",
+        },
+        sig3(v.time_s)
+    );
     for (run, (engine, version)) in c.runs.iter().zip(&c.engines) {
         let s = &run.summary;
         let decision = s
@@ -196,11 +209,17 @@ pub fn determinacy_text(d: &crate::rounding::Determinacy) -> String {
     o
 }
 
-/// `x` in `unit` to three significant figures: a fraction as a percentage, an SI value with
-/// its unit.
+/// `x` in `unit` to three significant figures: a fraction of the channel's own value as a
+/// percentage, a fraction of one of the vehicle's scales as a percentage of its symbol (ℓ the
+/// footprint radius, τ the time scale, v the velocity scale), an SI value with its unit.
 pub fn with_unit(x: f64, unit: &str) -> String {
+    use crate::metrics::{FOOTPRINT_RADIUS, OWN_VALUE, TIME_SCALE, VELOCITY_SCALE};
+    let percent = sig3(100.0 * x);
     match unit {
-        "fraction" => format!("{} %", sig3(100.0 * x)),
+        OWN_VALUE => format!("{percent} %"),
+        FOOTPRINT_RADIUS => format!("{percent} % ℓ"),
+        TIME_SCALE => format!("{percent} % τ"),
+        VELOCITY_SCALE => format!("{percent} % v"),
         unit => format!("{} {unit}", sig3(x)),
     }
 }

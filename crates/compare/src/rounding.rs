@@ -66,7 +66,8 @@ pub struct OwnSpread {
     /// Largest difference between two members, as the tolerance measures it, in
     /// `difference_unit`.
     pub spread: f64,
-    /// The unit of `spread` and `tolerance`: `fraction` or an SI unit.
+    /// What `spread` and `tolerance` are ratios to: `fraction` (the channel's own value) or
+    /// one of the vehicle's scales (`footprint_radius`, `time_scale`, `velocity_scale`).
     pub difference_unit: &'static str,
     /// The tolerance, in `difference_unit`.
     pub tolerance: f64,

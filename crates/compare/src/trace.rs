@@ -3,13 +3,15 @@
 
 use touchdown_record::Sample;
 
-/// Window of the vertical-acceleration average, s: the velocity change over 2 ms, like an
-/// accelerometer filtered at a few hundred hertz. A multibody's contact impulses make the
-/// step-to-step acceleration of its vehicle spiky at the 20 µs step; the report's is smooth.
-pub const ACCELERATION_WINDOW: f64 = 2.0e-3;
+/// Window of the vertical-acceleration average, as a fraction of the vehicle's time scale
+/// ([`touchdown_scenario::scales::Scales::time_s`]): the velocity change over 1.97 ms on the
+/// 1/6-scale model (time scale 0.263 s), like an accelerometer filtered at a few hundred hertz.
+/// A multibody's contact impulses make the step-to-step acceleration of its vehicle spiky at
+/// the 20 µs step; the report's is smooth.
+pub const ACCELERATION_WINDOW: f64 = 0.0075;
 
 /// A landing's trace (SI, inertial frame = the surface frame).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Trace {
     /// Times, s, increasing.
     pub t: Vec<f64>,
@@ -23,9 +25,26 @@ pub struct Trace {
     pub primary_stroke: Vec<f64>,
     /// Legs per time in `primary_stroke`.
     pub legs: usize,
+    /// Window of the vertical-acceleration average, s ([`ACCELERATION_WINDOW`] of the
+    /// vehicle's time scale).
+    pub acceleration_window_s: f64,
 }
 
 impl Trace {
+    /// An empty trace whose vertical acceleration is averaged over `acceleration_window_s`
+    /// (s, > 0).
+    pub fn new(acceleration_window_s: f64) -> Trace {
+        Trace {
+            t: Vec::new(),
+            vz: Vec::new(),
+            pitch_rate: Vec::new(),
+            attitude: Vec::new(),
+            primary_stroke: Vec::new(),
+            legs: 0,
+            acceleration_window_s,
+        }
+    }
+
     /// Appends a sample.
     pub fn push(&mut self, s: &Sample) {
         self.t.push(s.t);
@@ -78,33 +97,34 @@ impl Trace {
         &self.primary_stroke[i * self.legs..(i + 1) * self.legs]
     }
 
-    /// The vertical acceleration averaged over [`ACCELERATION_WINDOW`] from each time of the
-    /// trace whose window ends within it: (the window's middle, s; m/s², positive up).
+    /// The vertical acceleration averaged over the trace's window from each time of the trace
+    /// whose window ends within it: (the window's middle, s; m/s², positive up).
     pub fn vertical_acceleration(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        let end = self.end() - ACCELERATION_WINDOW;
+        let w = self.acceleration_window_s;
+        let end = self.end() - w;
         self.t
             .iter()
             .zip(&self.vz)
             .take_while(move |(t, _)| **t <= end)
-            .map(|(&t, &vz)| {
-                let a = (self.at(&self.vz, t + ACCELERATION_WINDOW) - vz) / ACCELERATION_WINDOW;
-                (t + 0.5 * ACCELERATION_WINDOW, a)
+            .map(move |(&t, &vz)| {
+                let a = (self.at(&self.vz, t + w) - vz) / w;
+                (t + 0.5 * w, a)
             })
     }
 
-    /// The vertical acceleration averaged over the [`ACCELERATION_WINDOW`] centred on `t`
-    /// (m/s², positive up): the function whose values at the windows' middles
+    /// The vertical acceleration averaged over the trace's window centred on `t` (m/s²,
+    /// positive up): the function whose values at the windows' middles
     /// [`Trace::vertical_acceleration`] gives; `None` where the window leaves the trace.
     pub fn vertical_acceleration_at(&self, t: f64) -> Option<f64> {
-        let (from, to) = (t - 0.5 * ACCELERATION_WINDOW, t + 0.5 * ACCELERATION_WINDOW);
+        let w = self.acceleration_window_s;
+        let (from, to) = (t - 0.5 * w, t + 0.5 * w);
         let start = *self.t.first()?;
         (from >= start && to <= self.end())
-            .then(|| (self.at(&self.vz, to) - self.at(&self.vz, from)) / ACCELERATION_WINDOW)
+            .then(|| (self.at(&self.vz, to) - self.at(&self.vz, from)) / w)
     }
 
-    /// The vertical acceleration of largest magnitude, averaged over
-    /// [`ACCELERATION_WINDOW`] (m/s², signed; positive up), and its time (the window's
-    /// middle, s).
+    /// The vertical acceleration of largest magnitude, averaged over the trace's window (m/s²,
+    /// signed; positive up), and its time (the window's middle, s).
     pub fn peak_vertical_acceleration(&self) -> (f64, f64) {
         self.vertical_acceleration()
             .fold((0.0, 0.0), |peak: (f64, f64), (t, a)| {
@@ -133,6 +153,7 @@ mod tests {
             primary_stroke: t.iter().flat_map(|t| [*t, 2.0 * t]).collect(),
             legs: 2,
             t,
+            acceleration_window_s: 2.0e-3,
         };
         assert_eq!(trace.primary_strokes_at(3)[1], 2.0 * 1.5e-3);
         assert_eq!(trace.primary_stroke.len() / trace.legs, 25);

@@ -15,7 +15,7 @@ use touchdown_record::{History, RunError};
 use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::{ScenarioBase, ScenarioError};
 use touchdown_validation::boundary::{
-    descent_speeds, document_line, options, search_engines, Settings,
+    descent_speeds, document_line, options, search_engines, Asked,
 };
 use touchdown_validation::ValidationError;
 
@@ -354,9 +354,10 @@ fn view(
 /// The stability-boundary search of `scenario` (a path or TOML text) with `overrides`, as
 /// `touchdown boundary --format json` does: at each vertical velocity of `vv` (negative down,
 /// as in the scenario files, the scenario's velocity unit), on each of `engines`, scanned
-/// every `scan_step` around the changes (`None`: the command's default; 0: the grid only), once
-/// per end-stop restitution of `stop_restitution` (empty: the scenario's own); the points as
-/// the command's JSON Lines.
+/// every `scan_step` around the changes (0: the grid only), once per end-stop restitution of
+/// `stop_restitution` (empty: the scenario's own); a setting that is `None` takes the
+/// command's default, a ratio of the vehicle's velocity scale; the points as the command's
+/// JSON Lines.
 #[pyfunction]
 #[pyo3(signature = (scenario, vv, vh_start, vh_step, vh_max, tol, engines, overrides=None, scan_step=None, stop_restitution=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
@@ -364,10 +365,10 @@ fn boundary(
     py: Python<'_>,
     scenario: &str,
     vv: Vec<f64>,
-    vh_start: f64,
-    vh_step: f64,
-    vh_max: f64,
-    tol: f64,
+    vh_start: Option<f64>,
+    vh_step: Option<f64>,
+    vh_max: Option<f64>,
+    tol: Option<f64>,
     engines: Vec<String>,
     overrides: Option<&Bound<'_, PyDict>>,
     scan_step: Option<f64>,
@@ -375,12 +376,12 @@ fn boundary(
 ) -> PyResult<Vec<String>> {
     let engines = self::engines(engines)?;
     let values = override_values(overrides)?;
-    let settings = Settings {
+    let asked = Asked {
         vh_start,
         vh_step,
         vh_max,
         tolerance: tol,
-        scan_step: touchdown_validation::boundary::scan_step(scan_step, vh_step),
+        scan_step,
     };
     py.detach(|| -> Result<Vec<String>, Box<Failed>> {
         let speeds = descent_speeds(&vv, "vv").map_err(|e| Box::new(Failed::Boundary(e)))?;
@@ -388,6 +389,9 @@ fn boundary(
         let sc = b
             .with(&as_refs(&values))
             .map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let settings = asked
+            .settings(&sc)
+            .map_err(|e| Box::new(Failed::Boundary(e)))?;
         let points = search_engines(
             &b,
             &as_refs(&values),

@@ -9,7 +9,9 @@
 //! * [`ranges`]: the range of physical plausibility of every number, checked on load in SI;
 //! * [`model`]: the resolved, validated scenario in SI ([`Scenario`]), with the
 //!   [`Scenario::warnings`] of values legal but outside their usual range;
-//! * [`initial`]: the state a landing starts from (eq. 19), shared by every engine.
+//! * [`initial`]: the state a landing starts from (eq. 19), shared by every engine;
+//! * [`scales`]: the vehicle's own length, velocity, time and acceleration scales, which
+//!   judgements that must not depend on its size or units are ratios of.
 //!
 //! A file may `extends = "other.toml"`: tables are merged key by key, the extending file
 //! winning; it may not change the `[units]` of the file it extends. Errors name the file that
@@ -28,6 +30,7 @@ mod overrides;
 pub mod ranges;
 mod read;
 mod resolve;
+pub mod scales;
 pub mod schema;
 mod strict;
 #[cfg(test)]

@@ -33,6 +33,9 @@ pub struct Scenario {
     pub integrator: Integrator,
     /// Stability criteria.
     pub stability: Stability,
+    /// The `touchdown compare` tolerances the file sets, each a ratio in (0, 10] (the others
+    /// are the testbench's).
+    pub comparison: schema::Comparison,
     /// The engines that apply to the scenario, in comparison order, without repeats.
     pub applicable_engines: Vec<schema::Engine>,
     /// Settings of the rapier multibody rebuild.

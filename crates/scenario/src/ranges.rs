@@ -195,6 +195,18 @@ pub const RANGES: &[Range] = &[
     row("similarity.time", "", C(1e-3), C(1e3), "a similar vehicle's time ratio, the square root of length over gravity ratios"),
     row("stability.kinetic_energy_fraction", "", C(1e-6), C(1.0), "a fraction of the touchdown kinetic energy; below 1e-6 no landing would ever end stable"),
     row("stability.min_separation_velocity", "m/s", C(0.0), C(1e3), "a speed up to 1 km/s"),
+    // The comparison's tolerances.
+    row("comparison.primary_stroke", "", O(0.0), C(10.0), "a fraction of the larger maximum stroke: above ten times, no difference fails"),
+    row("comparison.secondary_stroke", "", O(0.0), C(10.0), "a fraction of the larger maximum stroke: above ten times, no difference fails"),
+    row("comparison.peak_pitch_rate", "", O(0.0), C(10.0), "a fraction of the larger peak: above ten times, no difference fails"),
+    row("comparison.peak_pitch_rate_time", "", O(0.0), C(10.0), "a fraction of the vehicle's time scale: above ten times, no difference fails"),
+    row("comparison.pitch_rate_history_rms_difference", "", O(0.0), C(10.0), "a fraction of the peak pitch rate: above ten times, no difference fails"),
+    row("comparison.pitch_rate_history_largest_difference", "", O(0.0), C(10.0), "a fraction of the peak pitch rate: above ten times, no difference fails"),
+    row("comparison.peak_vertical_acceleration", "", O(0.0), C(10.0), "a fraction of the larger peak: above ten times, no difference fails"),
+    row("comparison.min_stability_distance", "", O(0.0), C(10.0), "a fraction of the footprint radius: above ten times, no difference fails"),
+    row("comparison.overturn_velocity", "", O(0.0), C(10.0), "a fraction of the vehicle's velocity scale: above ten times, no difference fails"),
+    row("comparison.past_capacity", "", O(0.0), C(10.0), "a fraction of the strut's capacity: above ten times, no difference fails"),
+    row("comparison.energy", "", O(0.0), C(10.0), "a fraction of the touchdown kinetic energy: above ten times, no difference fails"),
     // The descent engine.
     row("thrust.thrust", "N", C(0.0), C(1e8), "the LM descent engine gives 45 kN; 1e8 N exceeds any rocket stage"),
     row("thrust.tailoff_start", "s", C(-1e4), C(1e4), "a time on the thrust-curve clock within the run bound"),

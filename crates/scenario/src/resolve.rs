@@ -671,6 +671,10 @@ pub(crate) fn resolve(
         walls: st.walls,
         terminate_on_decision: st.terminate_on_decision,
     };
+    let comparison = file.comparison.unwrap_or_default();
+    for (name, limit) in comparison.set() {
+        c.positive_si(&format!("comparison.{name}"), limit, 1.0)?;
+    }
     let applicable_engines = resolve_applicable(&c, &file.engines.applicable)?;
     let rapier = resolve_rapier(&c, &file.engines.rapier, &u)?;
     let mujoco = resolve_mujoco(&c, &file.engines.mujoco, &u)?;
@@ -693,6 +697,7 @@ pub(crate) fn resolve(
         touchdown,
         integrator,
         stability,
+        comparison,
         applicable_engines,
         rapier,
         mujoco,

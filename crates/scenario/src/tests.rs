@@ -663,6 +663,12 @@ fn every_numeric_field_has_a_range_checked_on_load() {
         "strides",
         "[integrator]\nscheme = \"strides\"\nstride = 8.0\nmode_step = 1.0\n",
     ));
+    // A landing's own comparison tolerances.
+    files.push(fig_25_26_with(
+        dir,
+        "comparison",
+        "[comparison]\nprimary_stroke = 0.1\nsecondary_stroke = 0.1\npeak_pitch_rate = 0.1\npeak_pitch_rate_time = 0.1\npitch_rate_history_rms_difference = 0.1\npitch_rate_history_largest_difference = 0.1\npeak_vertical_acceleration = 0.1\nmin_stability_distance = 0.1\noverturn_velocity = 0.1\npast_capacity = 0.1\nenergy = 0.1\n",
+    ));
     let mut leaves = BTreeSet::new();
     RANGE_CHECKED.with(|c| c.borrow_mut().clear());
     for path in &files {

@@ -60,17 +60,72 @@ pub struct Settings {
     pub scan_step: Option<f64>,
 }
 
-/// The scan step when none is asked for, scenario velocity unit.
-pub const DEFAULT_SCAN_STEP: f64 = 0.25;
+/// The grid step when none is asked for, as a fraction of the vehicle's velocity scale
+/// ([`touchdown_scenario::scales::Scales::velocity_m_s`]): 2.11 ft/s on the 1/6-scale model
+/// (velocity scale 8.45 ft/s, 2.58 m/s), whose boundary moves by about 2 ft/s per 2 ft/s of
+/// descent speed.
+pub const DEFAULT_VH_STEP: f64 = 0.25;
 
-/// The scan step of a search whose grid step is `vh_step`, given the one asked for (`asked`,
-/// scenario velocity unit): [`DEFAULT_SCAN_STEP`] when none is asked and it is below the grid
-/// step (none otherwise), none when 0 is asked, else the one asked.
-pub fn scan_step(asked: Option<f64>, vh_step: f64) -> Option<f64> {
-    match asked {
-        None => (DEFAULT_SCAN_STEP < vh_step).then_some(DEFAULT_SCAN_STEP),
-        Some(0.0) => None,
-        Some(s) => Some(s),
+/// The grid's largest horizontal speed when none is asked for, as a fraction of the vehicle's
+/// velocity scale: 29.6 ft/s on the 1/6-scale model, past its boundary at every descent speed
+/// of Table I (23.6 ft/s at 8 ft/s, docs/engines.md).
+pub const DEFAULT_VH_MAX: f64 = 3.5;
+
+/// The bisection tolerance when none is asked for, as a fraction of the vehicle's velocity
+/// scale: 0.051 ft/s on the 1/6-scale model, the report's 0.05 ft/s.
+pub const DEFAULT_TOLERANCE: f64 = 0.006;
+
+/// The scan step when none is asked for, as a fraction of the grid step: 0.25 ft/s on a grid
+/// of 2 ft/s, 0.264 ft/s on the 1/6-scale model's default grid.
+pub const DEFAULT_SCAN_STEP: f64 = 0.125;
+
+/// A search's settings as asked (`--vh-start`, `--vh-step`, `--vh-max`, `--tol`,
+/// `--scan-step`), scenario velocity unit: each one left out takes its default, a ratio of the
+/// vehicle's velocity scale ([`Asked::settings`]), so that a dynamically similar vehicle is
+/// searched alike whatever its size and units.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Asked {
+    /// First grid point; default 0.
+    pub vh_start: Option<f64>,
+    /// Grid step; default [`DEFAULT_VH_STEP`] of the velocity scale.
+    pub vh_step: Option<f64>,
+    /// Largest grid point; default [`DEFAULT_VH_MAX`] of the velocity scale.
+    pub vh_max: Option<f64>,
+    /// Bisection tolerance; default [`DEFAULT_TOLERANCE`] of the velocity scale.
+    pub tolerance: Option<f64>,
+    /// Scan step: 0 scans nothing but the grid; default [`DEFAULT_SCAN_STEP`] of the grid
+    /// step.
+    pub scan_step: Option<f64>,
+}
+
+impl Asked {
+    /// The settings of a search of `sc`: what is asked as asked, the rest from the vehicle's
+    /// velocity scale in the scenario's velocity unit; an error for a vehicle with no velocity
+    /// scale (neither gravity nor a touchdown speed) if a default needs it.
+    pub fn settings(&self, sc: &Scenario) -> Result<Settings, ValidationError> {
+        let scale = || -> Result<f64, ValidationError> {
+            let v = touchdown_scenario::scales::Scales::of(sc)?.velocity_m_s;
+            Ok(v / sc.units().velocity())
+        };
+        let or_scaled = |asked: Option<f64>, ratio: f64| -> Result<f64, ValidationError> {
+            match asked {
+                Some(v) => Ok(v),
+                None => Ok(ratio * scale()?),
+            }
+        };
+        let vh_step = or_scaled(self.vh_step, DEFAULT_VH_STEP)?;
+        let scan_step = match self.scan_step {
+            Some(0.0) => None,
+            Some(s) => Some(s),
+            None => Some(DEFAULT_SCAN_STEP * vh_step),
+        };
+        Ok(Settings {
+            vh_start: self.vh_start.unwrap_or(0.0),
+            vh_step,
+            vh_max: or_scaled(self.vh_max, DEFAULT_VH_MAX)?,
+            tolerance: or_scaled(self.tolerance, DEFAULT_TOLERANCE)?,
+            scan_step,
+        })
     }
 }
 
@@ -1063,6 +1118,72 @@ pub fn document_line(
 mod tests {
     use super::*;
     use std::sync::atomic::{AtomicUsize, Ordering};
+
+    #[test]
+    fn the_defaults_are_ratios_of_the_vehicle_s_velocity_scale() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/fig-25-26.toml");
+        let sc = Scenario::load(&path).unwrap();
+        let twin = Scenario::load_with(
+            &path,
+            &[
+                ("similarity.length", 6.0),
+                ("similarity.mass", 216.0),
+                ("similarity.time", 6.0),
+            ],
+        )
+        .unwrap();
+        // The 1/6-scale model in ft/s: √(32.174 ft/s² · 2.221 ft) = 8.4533 ft/s.
+        let v = (32.174f64 * 2.221).sqrt();
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * y.abs();
+        let s = Asked::default().settings(&sc).unwrap();
+        assert_eq!(s.vh_start, 0.0);
+        assert!(close(s.vh_step, DEFAULT_VH_STEP * v), "{s:?}");
+        assert!(close(s.vh_max, DEFAULT_VH_MAX * v), "{s:?}");
+        assert!(close(s.tolerance, DEFAULT_TOLERANCE * v), "{s:?}");
+        assert_eq!(s.scan_step, Some(DEFAULT_SCAN_STEP * s.vh_step), "{s:?}");
+        s.validate().unwrap();
+        // the Froude twin moves as fast: the same settings in its (the same) velocity unit
+        let t = Asked::default().settings(&twin).unwrap();
+        for (x, y) in [
+            (t.vh_step, s.vh_step),
+            (t.vh_max, s.vh_max),
+            (t.tolerance, s.tolerance),
+            (t.scan_step.unwrap(), s.scan_step.unwrap()),
+        ] {
+            assert!(close(x, y), "{t:?} {s:?}");
+        }
+        // what is asked is kept, the scan an eighth of the grid's step (0.25 ft/s on 2 ft/s)
+        let asked = Asked {
+            vh_start: Some(1.0),
+            vh_step: Some(2.0),
+            vh_max: Some(30.0),
+            tolerance: Some(0.05),
+            scan_step: None,
+        };
+        let expected = settings_from(1.0, 2.0, 30.0, 0.05, Some(0.25));
+        assert_eq!(asked.settings(&sc).unwrap(), expected);
+        let grid_only = Asked {
+            scan_step: Some(0.0),
+            ..Asked::default()
+        };
+        assert_eq!(grid_only.settings(&sc).unwrap().scan_step, None);
+    }
+
+    fn settings_from(
+        vh_start: f64,
+        vh_step: f64,
+        vh_max: f64,
+        tolerance: f64,
+        scan_step: Option<f64>,
+    ) -> Settings {
+        Settings {
+            vh_start,
+            vh_step,
+            vh_max,
+            tolerance,
+            scan_step,
+        }
+    }
 
     fn settings(vh_step: f64, vh_max: f64, tolerance: f64) -> Settings {
         Settings {
