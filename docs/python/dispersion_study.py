@@ -78,7 +78,7 @@ for name in ("stable", "unstable", "undecided"):
 # %%
 # Vertical velocities as the scenario files write them (negative down, ft/s); the points come
 # back in SI (docs/schemas/boundary.schema.json) and are drawn in ft/s, descent positive down.
-points = touchdown.boundary(SCENARIO, vv=-np.linspace(4.0, 12.0, 9), vh_step=0.5, vh_max=24.0, tol=0.05)
+points = touchdown.boundary(SCENARIO, vv=-np.linspace(4.0, 12.0, 9), vh_step=0.5, vh_max=24.0, tol=0.05, scan_step=0.25)
 FT = 0.3048  # m per ft
 line = [(p["vh_m_s"] / FT, -p["vv_m_s"] / FT) for p in points if "vh_m_s" in p]
 others = {
