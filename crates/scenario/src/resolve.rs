@@ -172,6 +172,15 @@ pub(crate) fn resolve_touchdown(
         td.vertical_velocity,
         u.velocity(),
     )?;
+    if velocity_g.z > 0.0 {
+        c.warn(
+            "touchdown.vertical_velocity",
+            format!(
+                "{} in the file's units is upward (negative is down): the vehicle starts away from the ground and lands only if gravity brings it back",
+                short(td.vertical_velocity)
+            ),
+        );
+    }
     Ok(model::Touchdown {
         attitude: c.vec3("touchdown.attitude", td.attitude, u.angle())?,
         attitude_reference: td.attitude_reference,
@@ -421,6 +430,17 @@ pub(crate) fn check_legs(
                 "a secondary trunnion coincides with the attachment point 1",
             ));
         }
+        // A gear reaches down from the vehicle to its footpad.
+        if leg.bp.z >= leg.b2.z {
+            return Err(c.err(
+                &f,
+                format!(
+                    "expected the footpad BP below its primary trunnion B2 (a gear reaches down to its footpad); BP is at z = {}, B2 at z = {} (file length units, body axes, +Z up)",
+                    short(leg.bp.z / lengths),
+                    short(leg.b2.z / lengths)
+                ),
+            ));
+        }
     }
     // Counter-clockwise order seen from above: footpad azimuths strictly increasing, one turn.
     let az: Vec<f64> = legs.iter().map(|l| l.bp.y.atan2(l.bp.x)).collect();
@@ -477,6 +497,22 @@ pub(crate) fn inertia(
     let j = Matrix3::new(xx, -xy, -xz, -xy, yy, -yz, -xz, -yz, zz);
     if j.cholesky().is_none() {
         return Err(c.err("vehicle.inertia", "expected a positive-definite inertia tensor (check the moments and the products of inertia)"));
+    }
+    // Every rigid body's principal moments satisfy the triangle inequalities: I₁ = ∫(y² + z²)dm
+    // ≤ ∫(x² + z²)dm + ∫(x² + y²)dm = I₂ + I₃, equal only for a body with no extent along the
+    // first axis (a flat plate). A tensor past that is no body's, however it integrates.
+    let mut moments: Vec<f64> = j.symmetric_eigenvalues().iter().copied().collect();
+    moments.sort_by(f64::total_cmp);
+    if moments[2] > (moments[0] + moments[1]) * (1.0 + 1e-9) {
+        return Err(c.err(
+            "vehicle.inertia",
+            format!(
+                "expected the inertia of a rigid body: its principal moments {}, {} and {} (file units) break the triangle inequality, the largest exceeding the sum of the other two, which no distribution of mass allows (check that each moment is about its own axis, e.g. yy about Y_B)",
+                short(moments[0] / s),
+                short(moments[1] / s),
+                short(moments[2] / s)
+            ),
+        ));
     }
     Ok(j)
 }
@@ -552,6 +588,20 @@ pub(crate) fn resolve(
             "primary_strut.bearing.inner_cylinder_length",
             "expected the inner cylinder D1 to be shorter than the primary strut",
         ));
+    }
+    // The landed vehicle rests on its primaries: below its weight their first crush load would
+    // crush them standing (a load in kN written as N lands without any other word).
+    let weight = vehicle.mass * vehicle.gravity;
+    let first_crush = primary.compression.stages.first().map_or(0.0, |s| s.0);
+    if n as f64 * first_crush < weight {
+        c.warn(
+            "primary_strut.compression.stages[0].crush_load",
+            format!(
+                "the {n} primaries' first crush load, {} each (file force units), holds less than the vehicle's weight, {}: the landed vehicle would crush its gear standing still (a load meant in kN written in N?)",
+                short(first_crush / u.force()),
+                short(weight / u.force())
+            ),
+        );
     }
     let ss = &file.secondary_strut;
     let secondary = model::SecondaryStrut {

@@ -910,3 +910,44 @@ fn an_override_takes_arrays_tables_and_per_leg_values_as_an_extending_file_would
         assert!(message.contains(says), "{message}");
     }
 }
+
+/// A lander file no body could be is refused naming the field, or landed with a warning where a
+/// test may mean it.
+#[test]
+fn a_lander_no_body_could_be_is_refused_or_warned_of() {
+    // Principal moments past the triangle inequality: no distribution of mass has them.
+    let flat = scenario("flat-drop.toml");
+    let base = Scenario::load(&flat).unwrap();
+    let j = base.vehicle.inertia;
+    let past = (j[(0, 0)] + j[(2, 2)]) * 1.01 / base.file.read_units().inertia();
+    let (_, field, message) =
+        field_error(Scenario::load_with(&flat, &[("vehicle.inertia.yy", past)]));
+    assert_eq!(field, "vehicle.inertia");
+    assert!(message.contains("triangle inequality"), "{message}");
+    // A flat plate's moments are on the limit, and it loads.
+    let plate = (j[(0, 0)] + j[(2, 2)]) / base.file.read_units().inertia();
+    assert!(Scenario::load_with(&flat, &[("vehicle.inertia.yy", plate)]).is_ok());
+    // A footpad above its primary trunnion.
+    let tripod = scenario("tripod-drop.toml");
+    let (_, field, message) =
+        field_error(Scenario::load_with(&tripod, &[("gear.legs[1].bp[2]", 0.5)]));
+    assert_eq!(field, "gear.legs[1]");
+    assert!(message.contains("below its primary trunnion"), "{message}");
+    // An upward touchdown velocity, and crush loads that would not hold the landed weight:
+    // legal, each with a warning naming its field.
+    let up = Scenario::load_with(&flat, &[("touchdown.vertical_velocity", 1.0)]).unwrap();
+    let fields: Vec<&str> = up.warnings().iter().map(|w| w.field.as_str()).collect();
+    assert_eq!(fields, ["touchdown.vertical_velocity"]);
+    let weak = Scenario::load_with(
+        &flat,
+        &[("primary_strut.compression.stages[0].crush_load", 10.0)],
+    )
+    .unwrap();
+    let fields: Vec<&str> = weak.warnings().iter().map(|w| w.field.as_str()).collect();
+    assert_eq!(fields, ["primary_strut.compression.stages[0].crush_load"]);
+    assert!(
+        weak.warnings()[0].message.contains("weight"),
+        "{:?}",
+        weak.warnings()
+    );
+}
