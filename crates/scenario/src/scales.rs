@@ -5,6 +5,7 @@
 //! ratios, so the same ratios judge it alike (docs/engines.md, "Tolerances from the vehicle's
 //! scales").
 
+use crate::check::owner_of;
 use crate::model::Scenario;
 use crate::ScenarioError;
 
@@ -49,8 +50,9 @@ impl Scales {
             (speed, VelocityScale::TouchdownSpeed)
         };
         if !(velocity_m_s > 0.0 && length_m > 0.0) {
+            // Named in the file (or the overrides) that set the gravity.
             return Err(ScenarioError::field(
-                &sc.source,
+                owner_of(&sc.layers, "vehicle.gravity"),
                 "vehicle.gravity",
                 "a landing with neither gravity nor a touchdown speed has no velocity scale to judge its motion by; expected gravity > 0 or a touchdown velocity",
             ));
@@ -123,5 +125,7 @@ mod tests {
             e.contains("vehicle.gravity") && e.contains("velocity scale"),
             "{e}"
         );
+        // named where the zero gravity was set: here the overrides, not the file
+        assert!(e.starts_with("overrides"), "{e}");
     }
 }
