@@ -29,7 +29,7 @@ use touchdown_registry::land;
 pub use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::Scenario;
 use touchdown_view::{EngineTrajectory, Recorder, Recording, Scene, Trajectory};
-pub use trace::{Trace, ACCELERATION_WINDOW};
+pub use trace::Trace;
 
 /// Errors of a comparison: a scenario that does not load, an engine that did not complete it.
 #[derive(Debug, thiserror::Error)]
@@ -166,7 +166,7 @@ pub fn run_recorded(
     let mut tracer = Tracer {
         sample: Sample::new(sc.legs.len()),
         sink: Sink {
-            trace: Trace::new(ACCELERATION_WINDOW * basis.scales.time_s),
+            trace: Trace::new(basis.acceleration_window_s()),
             recorder: frame_interval.map(|dt| Recorder::new(sc, dt)),
         },
     };
@@ -338,8 +338,8 @@ pub struct ScenarioComparison {
     pub not_applicable: Vec<Engine>,
     /// The vehicle's scales, which the tolerances not of a channel's own value are ratios of.
     pub scales: touchdown_scenario::scales::Scales,
-    /// The window the vertical accelerations are averaged over ([`ACCELERATION_WINDOW`] of the
-    /// time scale), s.
+    /// The window the vertical accelerations are averaged over
+    /// ([`metrics::Basis::acceleration_window_s`]), s.
     pub acceleration_window_s: f64,
     /// Each engine's summary.
     #[serde(skip)]
@@ -402,7 +402,7 @@ pub fn compare_recorded(
     if let Some(f) = frame_interval {
         check_frame_interval(f)?;
     }
-    let scales = metrics::Basis::of(sc)?.scales;
+    let basis = metrics::Basis::of(sc)?;
     let (applicable, not_applicable) = split_applicable(sc, engines);
     let runs = applicable
         .iter()
@@ -420,8 +420,8 @@ pub fn compare_recorded(
         scenario_sha256: sc.sha256(),
         engines: runs.iter().map(|r| (r.engine, engine_version(r))).collect(),
         not_applicable,
-        scales,
-        acceleration_window_s: ACCELERATION_WINDOW * scales.time_s,
+        scales: basis.scales,
+        acceleration_window_s: basis.acceleration_window_s(),
         runs,
         pairs,
     })

@@ -6,7 +6,7 @@
 //! tolerances (`[comparison]`, [`Basis`]).
 
 use crate::rounding::{own_spreads, Spread};
-use crate::trace::Trace;
+use crate::trace::{Trace, ACCELERATION_WINDOW};
 use crate::{Engine, EngineRun};
 use serde::Serialize;
 use touchdown_record::Outcome;
@@ -404,6 +404,12 @@ impl Basis {
             .find(|t| t.quantity == family.quantity)
             .copied()
             .unwrap_or(*family)
+    }
+
+    /// The window the vertical accelerations are averaged over, s: [`ACCELERATION_WINDOW`] of
+    /// the time scale.
+    pub fn acceleration_window_s(&self) -> f64 {
+        ACCELERATION_WINDOW * self.scales.time_s
     }
 
     /// The rate scale 1/[`Scales::time_s`], rad/s.
