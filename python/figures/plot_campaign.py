@@ -53,11 +53,11 @@ def read_landings(folder):
 
 def read_statistics(folder):
     """DIR/statistics.json: {"landings", "influence": [(input column, correlation with a stable
-    landing)], strongest first}."""
+    landing, None where not defined)], strongest first}."""
     stats = json.loads((folder / "statistics.json").read_text())
     return {
         "landings": stats["landings"],
-        "influence": [(i["column"], i["correlation_with_stable"]) for i in stats["influence"]],
+        "influence": [(i["column"], i.get("correlation_with_stable")) for i in stats["influence"]],
     }
 
 
@@ -89,7 +89,9 @@ def finish_scatter(fig, ax, inputs, correlation, what, title, path):
     """Labels the scatter of landings over the two `inputs` (columns) with each one's
     `correlation` with `what`, titles it and writes it to `path`."""
     for axis, column in zip((ax.set_xlabel, ax.set_ylabel), inputs):
-        axis(f"{column.removeprefix('applied.')}  (correlation with {what} {correlation[column]:+.2f})")
+        r = correlation[column]
+        r = "not defined" if r is None else f"{r:+.2f}"
+        axis(f"{column.removeprefix('applied.')}  (correlation with {what} {r})")
     ax.set_title(title, fontsize=10)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="landings", title_fontsize=8)
     ax.grid(alpha=0.3)

@@ -44,7 +44,7 @@ def read_pair(folder):
     pair = stats["pairs"][0]
     return {
         "landings": stats["landings"],
-        "influence": [(i["column"], i["correlation_with_disagreement"]) for i in pair["influence"]],
+        "influence": [(i["column"], i.get("correlation_with_disagreement")) for i in pair["influence"]],
     }
 
 

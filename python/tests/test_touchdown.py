@@ -137,6 +137,109 @@ def test_a_shard_from_python_is_the_command_lines_byte_for_byte(tmp_path):
         assert (py / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
 
 
+def test_campaign_arguments_of_the_wrong_kind_are_refused_by_name(tmp_path):
+    """1.5 is not a shard number, 'no' is not False, one path is not a list of folders, a string
+    is not a shard count: each a TypeError naming the argument, before anything runs."""
+    import touchdown.dask
+
+    small = str(ROOT / "scenarios" / "campaigns" / "small.toml")
+    for call, name in [
+        (lambda: campaign.run_shard(small, 1.5, 2, tmp_path / "a"), "k"),
+        (lambda: campaign.run_shard(small, True, 2, tmp_path / "a"), "k"),
+        (lambda: campaign.run_shard(small, 1, 2, tmp_path / "a", resume="no"), "resume"),
+        (lambda: campaign.merge(str(tmp_path / "a"), tmp_path / "b"), "parts"),
+        (lambda: touchdown.dask.run_campaign(None, small, "3", tmp_path / "c"), "shards"),
+    ]:
+        with pytest.raises(TypeError, match=f"^{name}: "):
+            call()
+    with pytest.raises(ValueError, match="^n: expected at least 1"):
+        campaign.run_shard(small, 1, 0, tmp_path / "a")
+    assert not any(tmp_path.iterdir()), "an argument refused after something was written"
+    # The command line's limit on vertical velocities holds for Python's list too.
+    with pytest.raises(ValueError, match="^vv: expected 1 to 10000 vertical velocities, got 10001"):
+        touchdown.boundary(SCENARIO, [-1.0] * 10_001)
+
+
+def test_scenario_text_with_extends_and_overrides_of_the_wrong_kind_are_refused_by_name():
+    """Text cannot extend a file (its path would be relative to nothing); an override's name or
+    value of the wrong kind, or a string with a lone surrogate, is refused naming the override."""
+    with pytest.raises(touchdown.ScenarioInvalid) as e:
+        touchdown.run('schema_version = 1\nextends = "scenarios/flat-drop.toml"\nname = "x"\n')
+    assert "field `extends`: a scenario given as text cannot extend a file" in str(e.value)
+    for overrides, error, says in [
+        ({"name": "\udc80"}, ValueError, 'overrides["name"]: expected a string of valid Unicode'),
+        ({"\udc80": 1.0}, TypeError, "overrides: expected field paths as strings"),
+        ({"name": [1]}, TypeError, 'overrides["name"]: expected a number, a string or a boolean, got list'),
+        ({3: 1.0}, TypeError, "overrides: expected field paths as strings"),
+    ]:
+        with pytest.raises(error) as e:
+            touchdown.run(SCENARIO, overrides=overrides)
+        assert says in str(e.value)
+
+
+def test_python_entry_points_refuse_hostile_arguments_by_name(tmp_path, monkeypatch):
+    """The Python entry points fuzzed: each argument of each call replaced, one at a time, by a
+    value of another kind (None, a bool, a float where a whole number goes, a string where a list
+    goes, a list where a string goes, a lone surrogate, NaN, an empty dict). Each call either
+    runs or raises a TypeError or ValueError naming the argument, a TouchdownError (whose
+    message names the file or the field) or, for a path that names no file, FileNotFoundError
+    with the path: never anything else, and never a panic."""
+    import itertools
+
+    monkeypatch.chdir(tmp_path)
+    small = str(ROOT / "scenarios" / "campaigns" / "small.toml")
+    hostile = [None, True, 1.5, -1, "", "core", "\udc80", [], ["x"], {}, float("nan"), object()]
+    calls = {
+        "run": (touchdown.run, {"scenario": str(SCENARIO), "engine": "core", "overrides": {}, "history": False}),
+        "compare": (touchdown.compare, {"scenario": str(SCENARIO), "engines": ["core", "core"], "overrides": {}}),
+        "boundary": (
+            touchdown.boundary,
+            {"scenario": str(SCENARIO), "vv": [-8.0], "vh_step": 12.0, "vh_max": 12.0, "tol": 1.0, "engines": ["core"]},
+        ),
+        "run_shard": (campaign.run_shard, {"campaign": small, "k": 24, "n": 24, "out_dir": "shard", "resume": False}),
+        "holds_shard": (campaign.holds_shard, {"campaign": small, "k": 1, "n": 2, "folder": "nothing"}),
+        "merge": (campaign.merge, {"parts": ["nothing"], "out_dir": "merged"}),
+    }
+    outcomes = {}
+    for name, (call, arguments) in calls.items():
+        for argument, value in itertools.product(arguments, hostile):
+            given = dict(arguments, **{argument: value})
+            try:
+                call(**given)
+                outcome = "ran"
+            except FileNotFoundError as e:
+                # A path that names no file: the documented error, with the path.
+                assert argument in ("scenario", "campaign") and e.filename == value, f"{name}({argument}={value!r}): {e}"
+                outcome = "FileNotFoundError"
+            except (TypeError, ValueError) as e:
+                assert str(e).startswith(argument), f"{name}({argument}={value!r}): {type(e).__name__}: {e}"
+                outcome = type(e).__name__
+            except touchdown.TouchdownError as e:
+                assert str(e), f"{name}({argument}={value!r}): an empty message"
+                outcome = "TouchdownError"
+            outcomes[outcome] = outcomes.get(outcome, 0) + 1
+    assert outcomes.get("TypeError", 0) > 0 and outcomes.get("ran", 0) > 0, outcomes
+
+
+def test_a_shard_folder_of_the_campaign_before_an_edit_is_not_taken_for_done(tmp_path):
+    """A scheduler counts a shard done only when its folder holds that shard of the campaign as
+    it is now (`holds_shard`, what `touchdown.dask.run_campaign` asks): after the campaign file
+    is edited, the old shard is not reused, and running into its folder is refused by name."""
+    text = (ROOT / "scenarios" / "campaigns" / "small.toml").read_text()
+    base = ROOT / "scenarios" / "table-i-2-2-vv8.toml"
+    text = text.replace('"../table-i-2-2-vv8.toml"', repr(str(base)).replace("'", '"'))
+    file = tmp_path / "campaign.toml"
+    file.write_text(text)
+    out = tmp_path / "out"
+    done = campaign.run_shard_atomically(str(file), 1, 2, str(out))
+    assert campaign.holds_shard(file, 1, 2, done)
+    assert not campaign.holds_shard(file, 2, 2, done)
+    file.write_text(text.replace("seed = 7", "seed = 8"))
+    assert not campaign.holds_shard(file, 1, 2, done)
+    with pytest.raises(touchdown.TouchdownError, match="another campaign"):
+        campaign.run_shard_atomically(str(file), 1, 2, str(out))
+
+
 def cli_campaign(tmp_path, name="cli"):
     small = str(ROOT / "scenarios" / "campaigns" / "small.toml")
     subprocess.run([TOUCHDOWN, "campaign", small, "--out", tmp_path / name], capture_output=True, check=True)

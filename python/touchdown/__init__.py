@@ -18,11 +18,13 @@ threads land in parallel.
 
 import io
 import json
+from numbers import Real
 from os import PathLike
 from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
+from . import _arguments as a
 from . import _native
 from ._native import EngineUnavailable, LandingStopped, ScenarioInvalid, TouchdownError
 
@@ -77,7 +79,13 @@ def run(
     "Rounding-decided channels")."""
     if frame not in (None, "pandas", "polars"):
         raise ValueError(f'frame: expected None, "pandas" or "polars", got {frame!r}')
-    summary, csv_text = _native.run(str(scenario), engine, dict(overrides or {}), history, rounding)
+    summary, csv_text = _native.run(
+        a.path("scenario", scenario),
+        a.text("engine", engine),
+        a.mapping("overrides", overrides),
+        a.flag("history", history),
+        a.flag("rounding", rounding),
+    )
     return {
         "summary": json.loads(summary),
         "history": _history(csv_text, frame) if csv_text else None,
@@ -93,7 +101,9 @@ def compare(
     `engines.applicable` lists and compares every pair channel by channel against the written
     tolerances (docs/engines.md, "Comparing the engines"): the document `touchdown compare
     --format json` prints for the scenario (docs/schemas/compare.schema.json)."""
-    return json.loads(_native.compare(str(scenario), list(engines), dict(overrides or {})))
+    return json.loads(
+        _native.compare(a.path("scenario", scenario), a.texts("engines", engines), a.mapping("overrides", overrides))
+    )
 
 
 def view(
@@ -108,7 +118,12 @@ def view(
     "html": ...}`: the trajectory document (docs/schemas/trajectory.schema.json) and the
     self-contained page that plays it (write it to a file and open it in a browser, or show it
     in a notebook: `IPython.display.IFrame` of the file, docs/python.md)."""
-    data, html = _native.view(str(scenario), list(engines), float(frame_interval), dict(overrides or {}))
+    data, html = _native.view(
+        a.path("scenario", scenario),
+        a.texts("engines", engines),
+        a.number("frame_interval", frame_interval),
+        a.mapping("overrides", overrides),
+    )
     return {"trajectory": json.loads(data), "html": html}
 
 
@@ -141,18 +156,18 @@ def boundary(
     none), `stable_at_vh_m_s`, `unstable_at_vh_m_s`, `transitions` (each end with its
     `stable_stops` / `unstable_stops`), `band`, `capacity`, `safe`, `undecided_at_vh_m_s`,
     `landings`, `undecided`, with the scenario and the settings."""
-    if isinstance(vv, (int, float)):
+    if isinstance(vv, Real) and not isinstance(vv, bool):
         vv = [vv]  # one vertical velocity, as a list of one
     lines = _native.boundary(
-        str(scenario),
-        [float(v) for v in vv],
-        None if vh_start is None else float(vh_start),
-        None if vh_step is None else float(vh_step),
-        None if vh_max is None else float(vh_max),
-        None if tol is None else float(tol),
-        list(engines),
-        dict(overrides or {}),
-        None if scan_step is None else float(scan_step),
-        [float(e) for e in stop_restitution],
+        a.path("scenario", scenario),
+        a.numbers("vv", vv),
+        a.optional_number("vh_start", vh_start),
+        a.optional_number("vh_step", vh_step),
+        a.optional_number("vh_max", vh_max),
+        a.optional_number("tol", tol),
+        a.texts("engines", engines),
+        a.mapping("overrides", overrides),
+        a.optional_number("scan_step", scan_step),
+        a.numbers("stop_restitution", stop_restitution),
     )
     return [json.loads(line) for line in lines]

@@ -4,6 +4,7 @@ from os import PathLike
 from pathlib import Path
 from typing import Iterable, Optional, Union
 
+from . import _arguments as a
 from . import _native
 
 
@@ -14,13 +15,23 @@ def run_shard(
     as `touchdown campaign CAMPAIGN --shard K/N --out OUT_DIR` does (the same bytes); with
     `resume`, as `--resume` does (a run of this shard stopped part-way goes on from the records
     it wrote in `<out_dir>.partial`). Returns `out_dir`."""
-    return Path(_native.run_shard(str(campaign), int(k), int(n), str(out_dir), bool(resume)))
+    campaign, k, n = a.path("campaign", campaign), a.count("k", k), a.count("n", n)
+    out_dir, resume = a.path("out_dir", out_dir), a.flag("resume", resume)
+    return Path(_native.run_shard(campaign, k, n, out_dir, resume))
+
+
+def holds_shard(campaign: Union[str, PathLike], k: int, n: int, folder: Union[str, PathLike]) -> bool:
+    """Whether `folder` holds shard `k` of `n` of the campaign file `campaign` as it is now,
+    finished by this build: a folder of another campaign, or of this one before an edit, does
+    not."""
+    campaign, folder = a.path("campaign", campaign), a.path("folder", folder)
+    return _native.holds_shard(campaign, a.count("k", k), a.count("n", n), folder)
 
 
 def merge(parts: Iterable[Union[str, PathLike]], out_dir: Union[str, PathLike]) -> Path:
     """Merges the shards' folders `parts` into `out_dir`, exactly as `touchdown campaign merge`
     does (the same bytes as the whole campaign run at once); returns `out_dir`."""
-    return Path(_native.merge([str(p) for p in parts], str(out_dir)))
+    return Path(_native.merge(a.paths("parts", parts), a.path("out_dir", out_dir)))
 
 
 def shard_dir(out_dir: Union[str, PathLike], k: int, n: int) -> Path:
@@ -32,14 +43,14 @@ def shard_dir(out_dir: Union[str, PathLike], k: int, n: int) -> Path:
 
 
 def run_shard_atomically(campaign: str, k: int, n: int, out_dir: str) -> str:
-    """Runs shard `k` of `n` into `shard_dir(out_dir, k, n)`, unless that folder exists: a
+    """Runs shard `k` of `n` into `shard_dir(out_dir, k, n)`, unless that folder holds it: a
     shard's folder appears only complete (the run builds it beside, in `<folder>.partial`, and
-    renames it), so one that exists is a finished shard, what an interrupted campaign resumes
-    from. An attempt stopped part-way (its worker killed) leaves the records it finished there,
+    renames it), so one that holds this shard of this campaign is finished, what an interrupted
+    campaign resumes from; one of the campaign before an edit is refused by the run. An attempt stopped part-way (its worker killed) leaves the records it finished there,
     and the next attempt resumes from them (`resume=True`); a second attempt while the first
     still runs is refused (the folder is locked) and retried. Returns the shard's folder."""
     final = shard_dir(out_dir, k, n)
-    if not final.exists():
+    if not holds_shard(campaign, k, n, final):
         final.parent.mkdir(parents=True, exist_ok=True)
         run_shard(campaign, k, n, final, resume=True)
     return str(final)

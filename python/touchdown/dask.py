@@ -8,7 +8,8 @@
                                     shards=16, out_dir="out/d3117")
 
 Each task runs one shard in its worker's process with the Rust landing code and writes the
-shard's folder (only paths and numbers cross processes); a shard whose folder exists is done,
+shard's folder (only paths and numbers cross processes); a shard whose folder holds it is done
+(a folder of the campaign before an edit is not: its run refuses the folder, naming it),
 so a campaign interrupted and resumed recomputes only the missing shards, and a task lost with
 its worker is run again, going on from the records its shard had written. The shards are merged with the campaign's own merge: the result is
 byte for byte that of `touchdown campaign FILE --out DIR` on one machine.
@@ -18,6 +19,7 @@ from os import PathLike
 from pathlib import Path
 from typing import Union
 
+from . import _arguments
 from . import campaign as _campaign
 
 #: Retries of a shard whose task failed (its worker died, or it raised).
@@ -35,10 +37,12 @@ def run_campaign(
     merges them into `out_dir` (the shards' folders beside it, under `<out_dir>.shards/`). Size the shards
     so that each task lasts seconds (Dask's overhead is about a millisecond a task). Returns
     `out_dir`."""
-    if shards < 1:
-        raise ValueError(f"shards: expected at least 1, got {shards}")
-    campaign, out = str(campaign), Path(out_dir)
-    todo = [k for k in range(1, shards + 1) if not _campaign.shard_dir(out, k, shards).exists()]
+    shards = _arguments.count("shards", shards)
+    campaign, out = _arguments.path("campaign", campaign), Path(_arguments.path("out_dir", out_dir))
+    progress = _arguments.flag("progress", progress)
+    todo = [
+        k for k in range(1, shards + 1) if not _campaign.holds_shard(campaign, k, shards, _campaign.shard_dir(out, k, shards))
+    ]
     futures = [
         client.submit(
             _campaign.run_shard_atomically,

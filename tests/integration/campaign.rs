@@ -119,7 +119,7 @@ fn added_landings_leave_the_first_ones_unchanged() {
     let extended = tmp.path().join("extended");
     let c16 = Campaign::load(&file).unwrap();
     run(&c16, None, None, Some(&extended), false, |_| ()).unwrap();
-    touchdown_campaign::add(&c16, &extended, 8, None, |_| ()).unwrap();
+    touchdown_campaign::add(&c16, &extended, 8, None, false, |_| ()).unwrap();
     small_with(&file, 24);
     let at_once = tmp.path().join("at-once");
     run(
@@ -168,7 +168,7 @@ fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
     let whole = tmp.path().join("whole");
     run(&campaign, None, None, Some(&whole), false, |_| ()).unwrap();
     let copy = tmp.path().join("copy");
-    touchdown_campaign::folder::copy_tree(&whole, &copy).unwrap();
+    copy_dir(&whole, &copy);
     refused(
         &whole,
         Some(Shard { index: 1, count: 3 }),
@@ -209,6 +209,32 @@ fn a_campaign_folder_is_replaced_only_when_complete_and_by_one_writer() {
     ));
 }
 
+/// The `run.json` of the run that writes the folder whose manifest is `manifest`, as the run
+/// writes it when it starts: the manifest it will write, but for the accuracy it measures once
+/// its landings have run and the seal of its files.
+fn run_file_of(manifest: &[u8]) -> String {
+    let mut identity: touchdown_campaign::store::Manifest =
+        serde_json::from_slice(manifest).unwrap();
+    identity.accuracy.take();
+    identity.files_sha256.clear();
+    identity.seal_sha256.clear();
+    touchdown_campaign::store::pretty(&identity)
+}
+
+/// Copies the folder tree `from` into `to`.
+fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let target = to.join(path.file_name().unwrap());
+        if path.is_dir() {
+            copy_dir(&path, &target);
+        } else {
+            std::fs::copy(&path, target).unwrap();
+        }
+    }
+}
+
 /// What a run killed part-way leaves in `<out>.partial` is resumed from (`--resume`) to the same
 /// bytes as an uninterrupted run: a last record cut short mid-line is dropped and landed again,
 /// and a Parquet file cut short while a row group was being written is written again. (The
@@ -226,12 +252,7 @@ fn a_run_stopped_mid_record_or_mid_row_group_resumes_to_the_same_bytes() {
         read("landings.jsonl"),
         read("landings.parquet"),
     );
-    // The run's identity, as a run writes it when it starts: the manifest it will write, but
-    // for the accuracy it measures once its landings have run.
-    let mut identity: touchdown_campaign::store::Manifest =
-        serde_json::from_slice(&manifest).unwrap();
-    assert!(identity.accuracy.take().is_some());
-    let run_file = touchdown_campaign::store::pretty(&identity);
+    let run_file = run_file_of(&manifest);
     let run_file = run_file.as_bytes();
     let line_ends: Vec<usize> = (jsonl.iter().enumerate())
         .filter(|(_, b)| **b == b'\n')
@@ -251,8 +272,8 @@ fn a_run_stopped_mid_record_or_mid_row_group_resumes_to_the_same_bytes() {
         let partial = tmp.path().join(format!("stopped-{k}.partial"));
         // The kept landings' histories were written as they finished (the one asked for is of
         // landing 3).
-        touchdown_campaign::folder::copy_tree(&whole.join("histories"), &partial.join("histories"))
-            .unwrap();
+        copy_dir(&whole.join("histories"), &partial.join("histories"));
+        std::fs::write(partial.join(".lock"), "").unwrap();
         std::fs::write(partial.join("run.json"), run_file).unwrap();
         std::fs::write(partial.join("landings.jsonl"), records).unwrap();
         if let Some(columns) = columns {
@@ -279,8 +300,8 @@ fn a_run_stopped_mid_record_or_mid_row_group_resumes_to_the_same_bytes() {
     };
     let out = tmp.path().join("altered");
     let partial = tmp.path().join("altered.partial");
-    touchdown_campaign::folder::copy_tree(&whole.join("histories"), &partial.join("histories"))
-        .unwrap();
+    copy_dir(&whole.join("histories"), &partial.join("histories"));
+    std::fs::write(partial.join(".lock"), "").unwrap();
     std::fs::write(partial.join("run.json"), run_file).unwrap();
     std::fs::write(partial.join("landings.jsonl"), &altered).unwrap();
     run(&campaign, None, None, Some(&out), true, |_| ()).unwrap();
@@ -468,7 +489,7 @@ fn an_outcome_decided_by_one_input_has_its_analytic_probability() {
     );
     // Every landing that did not stroke out is stable; the bound is below the fraction.
     assert_eq!(stats.first().stable_within_capacity.landings, 400 - outs);
-    assert!(stats.first().stable_within_capacity.lower_bound < 1.0 - p + 0.05);
+    assert!(stats.first().stable_within_capacity.lower_bound.unwrap() < 1.0 - p + 0.05);
 }
 
 fn refused(text: &str) -> String {
@@ -628,21 +649,38 @@ fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
     )
     .unwrap();
     assert!(message(&[&a, &d]).contains("campaign (its SHA-256)"));
-    // A record no landing could have written (an outcome of another name, or none) is
-    // refused by file and line, in parts that otherwise merge: the counts would no longer add
-    // up.
+    // A paired part among one-engine parts: the engines are named, not two hashes.
+    let paired = tmp.path().join("paired");
+    let both = Campaign::load(small())
+        .unwrap()
+        .with_engines(
+            vec![
+                touchdown_scenario::schema::Engine::Core,
+                touchdown_scenario::schema::Engine::Rapier,
+            ],
+            "--engines",
+        )
+        .unwrap();
+    let last = Some(Shard {
+        index: 24,
+        count: 24,
+    });
+    run(&both, last, None, Some(&paired), false, |_| ()).unwrap();
+    let engines = message(&[&a, &paired]);
+    assert!(
+        engines.contains("engines: core against core, rapier"),
+        "{engines}"
+    );
+    // A record no landing could have written (an outcome of another name, or none): in a
+    // finished part, refused by its manifest's seal; in the records a stopped run left, by file
+    // and line when the run resumes: the counts would no longer add up.
     let middle = part(2, 3, "middle");
     let e = tmp.path().join("e");
-    std::fs::create_dir(&e).unwrap();
-    for name in [
-        "manifest.json",
-        "landings.jsonl",
-        "landings.parquet",
-        "statistics.json",
-    ] {
-        std::fs::copy(c.join(name), e.join(name)).unwrap();
-    }
+    copy_dir(&c, &e);
     let jsonl = std::fs::read_to_string(c.join("landings.jsonl")).unwrap();
+    let stopped = tmp.path().join("stopped");
+    let partial = tmp.path().join("stopped.partial");
+    let run_file = run_file_of(&std::fs::read(c.join("manifest.json")).unwrap());
     for (tampered, says) in [
         (
             jsonl.replacen("\"outcome\":\"", "\"outcome\":\"banana", 1),
@@ -658,12 +696,230 @@ fn merges_refuse_parts_of_other_campaigns_gaps_and_overlaps() {
         std::fs::write(e.join("landings.jsonl"), &tampered).unwrap();
         match merge(&[&b, &middle, &e], &tmp.path().join("out"), |_| ()) {
             Err(CampaignError::Store { path, message }) => {
-                assert!(path.ends_with("landings.jsonl:1"), "{path}");
+                assert!(path.ends_with("e/landings.jsonl"), "{path}");
+                assert!(
+                    message.contains("is not the file its manifest sealed"),
+                    "{message}"
+                );
+            }
+            other => panic!("expected a refusal, got {other:?}"),
+        }
+        std::fs::create_dir_all(&partial).unwrap();
+        std::fs::write(partial.join(".lock"), "").unwrap();
+        std::fs::write(partial.join("run.json"), &run_file).unwrap();
+        std::fs::write(partial.join("landings.jsonl"), &tampered).unwrap();
+        let shard = Some(Shard { index: 3, count: 3 });
+        match run(&campaign, shard, None, Some(&stopped), true, |_| ()) {
+            Err(CampaignError::Store { path, message }) => {
+                assert!(path.ends_with("stopped.partial/landings.jsonl:1"), "{path}");
                 assert!(message.contains(says), "{message}");
             }
             other => panic!("expected a refusal, got {other:?}"),
         }
     }
+}
+
+/// A campaign folder loses nothing and claims nothing it does not hold: a `.partial` folder
+/// touchdown did not make (no `.lock`) is never cleared, and a staging name is refused as
+/// `--out`; records past the end of a part, an edited manifest, an edited record and a stray
+/// history are refused by name; a run with nothing of its own to resume starts afresh; and an
+/// `--add` stopped part-way resumes to the same bytes as one that was not.
+#[test]
+fn a_campaign_folder_keeps_what_it_did_not_write_and_claims_only_what_it_landed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    let refused = |result: Result<_, CampaignError>, at: &str, says: &str| match result {
+        Err(CampaignError::Store { path, message }) => {
+            assert!(path.ends_with(at), "{path} (expected …{at}): {message}");
+            assert!(message.contains(says), "{message}");
+        }
+        other => panic!("expected a refusal naming {at}, got {other:?}"),
+    };
+    // A user's folder named as a staging folder is kept, whatever it holds.
+    let notes = tmp.path().join("notes.partial");
+    std::fs::create_dir(&notes).unwrap();
+    std::fs::write(notes.join("notes.txt"), "keep").unwrap();
+    let out = tmp.path().join("notes");
+    refused(
+        run(&campaign, None, None, Some(&out), false, |_| ()),
+        "notes.partial",
+        "did not leave there",
+    );
+    refused(
+        run(&campaign, None, None, Some(&out), true, |_| ()),
+        "notes.partial",
+        "did not leave there",
+    );
+    assert_eq!(
+        std::fs::read_to_string(notes.join("notes.txt")).unwrap(),
+        "keep"
+    );
+    let file = tmp.path().join("file.partial");
+    std::fs::write(&file, "keep").unwrap();
+    refused(
+        run(
+            &campaign,
+            None,
+            None,
+            Some(&tmp.path().join("file")),
+            false,
+            |_| (),
+        ),
+        "file.partial",
+        "exists and is not a folder",
+    );
+    // A staging name as --out: the next run into its folder would clear it.
+    let whole = tmp.path().join("whole");
+    run(&campaign, None, None, Some(&whole), false, |_| ()).unwrap();
+    for name in ["x.partial", "x.replaced"] {
+        let staged = tmp.path().join(name);
+        refused(
+            run(&campaign, None, None, Some(&staged), false, |_| ()),
+            name,
+            "is the one touchdown builds a campaign folder in",
+        );
+        refused(
+            merge(&[&whole], &staged, |_| ()),
+            name,
+            "is the one touchdown builds",
+        );
+    }
+    // Records past the end of the part a stopped run resumes: not this run's.
+    let half = Some(Shard { index: 1, count: 2 });
+    let first = tmp.path().join("first");
+    run(&campaign, half, None, Some(&first), false, |_| ()).unwrap();
+    let run_file = run_file_of(&std::fs::read(first.join("manifest.json")).unwrap());
+    let jsonl = std::fs::read_to_string(whole.join("landings.jsonl")).unwrap();
+    let thirteen: String = jsonl.split_inclusive('\n').take(13).collect();
+    let resumed = tmp.path().join("resumed");
+    let partial = tmp.path().join("resumed.partial");
+    std::fs::create_dir(&partial).unwrap();
+    std::fs::write(partial.join(".lock"), "").unwrap();
+    std::fs::write(partial.join("run.json"), &run_file).unwrap();
+    std::fs::write(partial.join("landings.jsonl"), &thirteen).unwrap();
+    refused(
+        run(&campaign, half, None, Some(&resumed), true, |_| ()),
+        "resumed.partial/landings.jsonl",
+        "holds 13 records where this run has 12 landings",
+    );
+    // The run named but no records written: nothing to resume, a fresh run.
+    std::fs::remove_file(partial.join("landings.jsonl")).unwrap();
+    run(&campaign, half, None, Some(&resumed), true, |_| ()).unwrap();
+    assert_same_files(&resumed, &first);
+    // A finished part edited by hand: its manifest (the seed), a record (an outcome flipped),
+    // a stray history.
+    let second = tmp.path().join("second");
+    run(
+        &campaign,
+        Some(Shard { index: 2, count: 2 }),
+        None,
+        Some(&second),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    let merged = tmp.path().join("merged");
+    let edit = |name: &str, from: &str, to: &str| {
+        let path = first.join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains(from), "{name} holds no {from}");
+        std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+        text
+    };
+    let manifest = edit("manifest.json", "\"seed\": 7", "\"seed\": 8");
+    refused(
+        merge(&[&first, &second], &merged, |_| ()),
+        "first/manifest.json",
+        "was edited",
+    );
+    std::fs::write(first.join("manifest.json"), manifest).unwrap();
+    let records = edit(
+        "landings.jsonl",
+        "\"outcome\":\"stable\"",
+        "\"outcome\":\"overturned\"",
+    );
+    refused(
+        merge(&[&first, &second], &merged, |_| ()),
+        "first/landings.jsonl",
+        "is not the file its manifest sealed",
+    );
+    std::fs::write(first.join("landings.jsonl"), records).unwrap();
+    std::fs::write(first.join("histories/landing-30.csv"), "t_s\n").unwrap();
+    refused(
+        merge(&[&first, &second], &merged, |_| ()),
+        "first/histories/landing-30.csv",
+        "is no history of a landing this part keeps",
+    );
+    std::fs::remove_file(first.join("histories/landing-30.csv")).unwrap();
+    merge(&[&first, &second], &merged, |_| ()).unwrap();
+    assert_same_files(&merged, &whole);
+    // An empty shard (more shards than landings) claims no fraction, bound or correlation, and
+    // merges with the others into the whole campaign.
+    let empty = tmp.path().join("empty");
+    let (manifest, statistics) = run(
+        &campaign,
+        Some(Shard {
+            index: 1,
+            count: 100,
+        }),
+        None,
+        Some(&empty),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    assert_eq!(
+        (manifest.part.first_landing, manifest.part.end_landing),
+        (0, 0)
+    );
+    assert!(
+        manifest.accuracy.is_none(),
+        "an accuracy claimed for no landings"
+    );
+    let s = statistics.first();
+    assert_eq!(
+        (s.landings, s.stable.fraction, s.stable.lower_bound),
+        (0, None, None)
+    );
+    assert!(s
+        .influence
+        .iter()
+        .all(|i| i.correlation_with_stable.is_none()));
+    let text = std::fs::read_to_string(empty.join("statistics.json")).unwrap();
+    assert!(
+        !text.contains("fraction") && !text.contains("correlation"),
+        "{text}"
+    );
+    merge(&[&empty, &first, &second], &merged, |_| ()).unwrap();
+    assert_same_files(&merged, &whole);
+    // An --add stopped after copying the first records and landing two new ones resumes; `each`
+    // sees the added records only, each once.
+    let file = tmp.path().join("campaign.toml");
+    small_with(&file, 16);
+    let c16 = Campaign::load(&file).unwrap();
+    let extended = tmp.path().join("extended");
+    run(&c16, None, None, Some(&extended), false, |_| ()).unwrap();
+    small_with(&file, 24);
+    let c24 = Campaign::load(&file).unwrap();
+    let at_once = tmp.path().join("at-once");
+    run(&c24, None, None, Some(&at_once), false, |_| ()).unwrap();
+    let staged = tmp.path().join("extended.partial");
+    std::fs::create_dir(&staged).unwrap();
+    std::fs::write(staged.join(".lock"), "").unwrap();
+    std::fs::write(
+        staged.join("run.json"),
+        run_file_of(&std::fs::read(at_once.join("manifest.json")).unwrap()),
+    )
+    .unwrap();
+    let eighteen: String = (std::fs::read_to_string(at_once.join("landings.jsonl")).unwrap())
+        .split_inclusive('\n')
+        .take(18)
+        .collect();
+    std::fs::write(staged.join("landings.jsonl"), eighteen).unwrap();
+    let mut seen = Vec::new();
+    touchdown_campaign::add(&c16, &extended, 8, None, true, |r| seen.push(r[0].clone())).unwrap();
+    assert_same_files(&extended, &at_once);
+    assert_eq!(seen, (16..24).map(Cell::Integer).collect::<Vec<_>>());
 }
 
 /// The JSON Lines `text` with the first record's `failure` left out.
@@ -924,7 +1180,7 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
         .with_engines(vec![Engine::Core], "--engines")
         .unwrap();
     run(&core_alone, None, Some(2), Some(&low), false, |_| ()).unwrap();
-    touchdown_campaign::add(&core_alone, &low, 6, Some(2), |_| ()).unwrap();
+    touchdown_campaign::add(&core_alone, &low, 6, Some(2), false, |_| ()).unwrap();
     let mf = touchdown_campaign::fidelity::from_folders(&whole, &low, Some(100.0)).unwrap();
     assert_eq!(
         (mf.low_engine.as_str(), mf.high_engine.as_str()),
@@ -949,7 +1205,22 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
     let refused = touchdown_campaign::fidelity::from_folders(&whole, &other, None)
         .unwrap_err()
         .to_string();
-    assert!(refused.contains("dispersed fields differs"), "{refused}");
+    assert!(refused.contains("what draws the landings"), "{refused}");
+    // Landings past the paired ones spliced in from another campaign: refused by the seal.
+    let spliced = tmp.path().join("spliced");
+    copy_dir(&low, &spliced);
+    let own = std::fs::read_to_string(low.join("landings.jsonl")).unwrap();
+    let theirs = std::fs::read_to_string(other.join("landings.jsonl")).unwrap();
+    let mut lines: Vec<&str> = own.split_inclusive('\n').collect();
+    lines[10] = theirs.split_inclusive('\n').nth(10).unwrap();
+    std::fs::write(spliced.join("landings.jsonl"), lines.concat()).unwrap();
+    let refused = touchdown_campaign::fidelity::from_folders(&whole, &spliced, None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        refused.contains("is not the file its manifest sealed"),
+        "{refused}"
+    );
     // `--engines` makes another campaign of the same file; an engine named twice is refused.
     let single = Campaign::load(small()).unwrap();
     let identity = single.identity.clone();
@@ -971,10 +1242,11 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
 /// The multi-fidelity interval's coverage, measured: the 1,000 paired core/MuJoCo landings of
 /// `lm-1-6-d3117-paired` (tests/data/fidelity/d3117-core-mujoco-stable.csv, from
 /// docs/campaigns/d3117-paired-mujoco.txt's run) taken as the population, whose MuJoCo P(stable)
-/// is known; 400 seeds each draw 2,000 landings from it with replacement, the first 200 paired,
-/// and the 95 % interval must cover the truth as often as stated, within three binomial
-/// standard errors of 400 trials. The variance reduction is what the engines' correlation
-/// allows (ρ ≈ 0.5: 1/(1 − 0.9·ρ²) ≈ 1.3).
+/// is known; 2,000 seeds each draw m landings from it with replacement, the first n paired.
+/// From n = `MIN_PAIRED_LANDINGS` on (at m = 10·n and 100·n) the 95 % interval must cover the
+/// truth as often as stated, within three binomial standard errors; at n = 8 it must not (the
+/// minimum is needed). The variance reduction is what the engines' correlation allows
+/// (ρ ≈ 0.5: 1/(1 − 0.9·ρ²) ≈ 1.3). `-- --nocapture` prints the coverages.
 #[test]
 fn the_multi_fidelity_interval_covers_a_known_probability_as_stated() {
     use touchdown_campaign::fidelity::estimate;
@@ -1000,24 +1272,303 @@ fn the_multi_fidelity_interval_covers_a_known_probability_as_stated() {
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
     };
-    let (seeds, n, m) = (400, 200, 2000);
-    let (mut covered, mut reduction) = (0, 0.0);
-    for _ in 0..seeds {
-        let drawn: Vec<(bool, bool)> = (0..m).map(|_| rows[(next() % 1000) as usize]).collect();
-        let high: Vec<bool> = drawn[..n].iter().map(|r| r.1).collect();
-        let low_all: Vec<bool> = drawn.iter().map(|r| r.0).collect();
-        let e = estimate(&high, &low_all[..n], &low_all, 0.95, None).unwrap();
-        covered += usize::from(e.lower <= truth && truth <= e.upper);
-        reduction += e.variance_reduction / seeds as f64;
-    }
-    let coverage = covered as f64 / seeds as f64;
+    // From the stated minimum of paired landings on, at m = 10·n and 100·n: coverage within
+    // three standard errors of the confidence; well below it, not (the minimum is needed).
+    let seeds = 2000;
+    let mut coverage = |n: usize, m: usize, reduction: &mut f64| {
+        let mut covered = 0;
+        for _ in 0..seeds {
+            let drawn: Vec<(bool, bool)> = (0..m).map(|_| rows[(next() % 1000) as usize]).collect();
+            let high: Vec<bool> = drawn[..n].iter().map(|r| r.1).collect();
+            let low_all: Vec<bool> = drawn.iter().map(|r| r.0).collect();
+            let e = estimate(&high, &low_all[..n], &low_all, 0.95, None).unwrap();
+            covered += usize::from(e.lower <= truth && truth <= e.upper);
+            *reduction += e.variance_reduction / seeds as f64;
+        }
+        covered as f64 / seeds as f64
+    };
     let sigma = (0.95f64 * 0.05 / seeds as f64).sqrt();
-    assert!(
-        (coverage - 0.95).abs() <= 3.0 * sigma,
-        "coverage {coverage} over {seeds} seeds"
-    );
+    let n = touchdown_campaign::fidelity::MIN_PAIRED_LANDINGS as usize;
+    let mut reduction = 0.0;
+    for (m, mean_reduction) in [(10 * n, &mut reduction), (100 * n, &mut 0.0)] {
+        let c = coverage(n, m, mean_reduction);
+        eprintln!("coverage at n {n}, m {m}: {c:.4} over {seeds} seeds");
+        assert!(
+            (c - 0.95).abs() <= 3.0 * sigma,
+            "coverage {c} at n {n}, m {m}"
+        );
+    }
+    let below = coverage(8, 800, &mut 0.0);
+    eprintln!("coverage at n 8, m 800: {below:.4}");
+    assert!(below < 0.95 - 3.0 * sigma, "coverage {below} at n 8, m 800");
+    // The mean variance reduction at m = 10·n.
     assert!(
         (1.2..1.5).contains(&reduction),
         "mean variance reduction {reduction}"
     );
+}
+
+/// The campaign folders fuzzed (docs/robustness.md, "Fuzzing"): a finished folder, a shard, a
+/// stopped run's `.partial`, a user's folder of a staging name, each damaged one way or another
+/// (a byte flipped, a file cut short, removed or replaced, a stray history, a record too many),
+/// then run into, resumed, merged, extended or estimated from. Whatever the case: nothing
+/// panics; a user's files are never touched; an operation that succeeds writes exactly the
+/// folder an undamaged run writes; one that fails names a path and leaves its `--out` as it
+/// was. `TOUCHDOWN_FUZZ_CASES` and `TOUCHDOWN_FUZZ_SEED` run more.
+#[test]
+fn hostile_campaign_folders_lose_nothing_and_claim_nothing() {
+    use proptest::prelude::*;
+    use touchdown_scenario::schema::Engine;
+    let tmp = tempfile::tempdir().unwrap();
+    let pristine = tmp.path().join("pristine");
+    std::fs::create_dir(&pristine).unwrap();
+    let (six, four) = (pristine.join("six.toml"), pristine.join("four.toml"));
+    small_with(&six, 6);
+    small_with(&four, 4);
+    let (c6, c4) = (
+        Campaign::load(&six).unwrap(),
+        Campaign::load(&four).unwrap(),
+    );
+    let half = |k| Some(Shard { index: k, count: 2 });
+    run(
+        &c6,
+        None,
+        None,
+        Some(&pristine.join("whole")),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    run(
+        &c6,
+        half(1),
+        None,
+        Some(&pristine.join("part-1")),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    run(
+        &c6,
+        half(2),
+        None,
+        Some(&pristine.join("part-2")),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    run(&c4, None, None, Some(&pristine.join("four")), false, |_| ()).unwrap();
+    // What `four` extended by two landings is: the campaign of its file planned with six.
+    small_with(&four, 6);
+    let extended = Campaign::load(&four).unwrap();
+    small_with(&four, 4);
+    let four_plus_two = pristine.join("four-plus-two");
+    run(&extended, None, None, Some(&four_plus_two), false, |_| ()).unwrap();
+    let paired_file = pristine.join("paired.toml");
+    paired_with(&paired_file, 4);
+    let paired = Campaign::load(&paired_file).unwrap();
+    run(
+        &paired,
+        None,
+        None,
+        Some(&pristine.join("paired")),
+        false,
+        |_| (),
+    )
+    .unwrap();
+    paired_with(&paired_file, 6);
+    let low = Campaign::load(&paired_file)
+        .unwrap()
+        .with_engines(vec![Engine::Core], "--engines")
+        .unwrap();
+    run(&low, None, None, Some(&pristine.join("low")), false, |_| ()).unwrap();
+    let folders = ["whole", "part-1", "part-2", "four", "paired", "low"];
+    let files = [
+        "manifest.json",
+        "landings.jsonl",
+        "landings.parquet",
+        "statistics.json",
+    ];
+    let (mut runner, _, _) = touchdown_tests::fuzz_runner(16);
+    let strategy = (0..9usize, 0..6usize, 0..4usize, 0..7usize, any::<u64>());
+    let case_number = std::cell::Cell::new(0);
+    let (succeeded, refused) = (std::cell::Cell::new(0), std::cell::Cell::new(0));
+    runner
+        .run(&strategy, |(damage, target, file, operation, pick)| {
+            let case = tmp.path().join(format!("case-{}", case_number.get()));
+            case_number.set(case_number.get() + 1);
+            for name in folders {
+                copy_dir(&pristine.join(name), &case.join(name));
+            }
+            // The folder damaged: one the operation reads or writes.
+            let inputs: &[&str] = match operation {
+                0 | 1 => &["whole"],
+                2 => &["part-1"],
+                3 | 4 => &["part-1", "part-2"],
+                5 => &["four"],
+                _ => &["paired", "low"],
+            };
+            let target = inputs[target % inputs.len()];
+            let folder = case.join(target);
+            let file = folder.join(files[file]);
+            let staging = case.join(format!("{target}.partial"));
+            let user_file = staging.join("notes.txt");
+            match damage {
+                0 => {}
+                1 => {
+                    let mut bytes = std::fs::read(&file).unwrap();
+                    let i = (pick % bytes.len() as u64) as usize;
+                    bytes[i] ^= 0x20;
+                    std::fs::write(&file, bytes).unwrap();
+                }
+                2 => {
+                    let bytes = std::fs::read(&file).unwrap();
+                    std::fs::write(&file, &bytes[..(pick % bytes.len() as u64) as usize]).unwrap();
+                }
+                3 => std::fs::remove_file(&file).unwrap(),
+                4 => {
+                    std::fs::create_dir_all(folder.join("histories")).unwrap();
+                    std::fs::write(folder.join("histories/landing-99.csv"), "t_s\n").unwrap();
+                }
+                5 => {
+                    std::fs::create_dir(&staging).unwrap();
+                    std::fs::write(&user_file, "keep").unwrap();
+                }
+                6 => std::fs::write(&staging, "keep").unwrap(),
+                7 => {
+                    // A stopped run of this folder's campaign: its lock, its run file, the first
+                    // records.
+                    let manifest = std::fs::read(folder.join("manifest.json")).unwrap();
+                    let jsonl = std::fs::read_to_string(folder.join("landings.jsonl")).unwrap();
+                    let kept: String = jsonl
+                        .split_inclusive('\n')
+                        .take(pick as usize % 3)
+                        .collect();
+                    std::fs::create_dir(&staging).unwrap();
+                    std::fs::write(staging.join(".lock"), "").unwrap();
+                    std::fs::write(staging.join("run.json"), run_file_of(&manifest)).unwrap();
+                    std::fs::write(staging.join("landings.jsonl"), kept).unwrap();
+                }
+                _ => {
+                    let jsonl =
+                        std::fs::read_to_string(file.with_file_name("landings.jsonl")).unwrap();
+                    let last = jsonl.lines().last().unwrap().to_string();
+                    std::fs::write(folder.join("landings.jsonl"), format!("{jsonl}{last}\n"))
+                        .unwrap();
+                }
+            }
+            let resume = pick % 2 == 0;
+            let outs = [
+                "whole", "whole", "part-1", "merged", "part-1", "four", "paired",
+            ];
+            let before = snapshot(&case.join(outs[operation]));
+            let (out, expected, result) = match operation {
+                0 | 1 => {
+                    let out = case.join("whole");
+                    let r = run(&c6, None, None, Some(&out), resume, |_| ()).map(|_| ());
+                    (out, pristine.join("whole"), r)
+                }
+                2 => {
+                    let out = case.join("part-1");
+                    let r = run(&c6, half(1), None, Some(&out), resume, |_| ()).map(|_| ());
+                    (out, pristine.join("part-1"), r)
+                }
+                3 | 4 => {
+                    let out = case.join(if operation == 3 { "merged" } else { "part-1" });
+                    let parts = [case.join("part-1"), case.join("part-2")];
+                    let r = merge(&[&parts[0], &parts[1]], &out, |_| ()).map(|_| ());
+                    (out, pristine.join("whole"), r)
+                }
+                5 => {
+                    let out = case.join("four");
+                    let r = touchdown_campaign::add(&c4, &out, 2, None, resume, |_| ()).map(|_| ());
+                    (out, four_plus_two.clone(), r)
+                }
+                _ => {
+                    let r = touchdown_campaign::fidelity::from_folders(
+                        &case.join("paired"),
+                        &case.join("low"),
+                        None,
+                    )
+                    .map(|_| ());
+                    let out = case.join("paired");
+                    (out.clone(), out, r)
+                }
+            };
+            let label = format!(
+                "damage {damage} to {} ({}), operation {operation}",
+                target,
+                file.display()
+            );
+            let user = match damage {
+                5 => std::fs::read_to_string(&user_file).ok(),
+                6 => std::fs::read_to_string(&staging).ok(),
+                _ => Some("keep".into()),
+            };
+            prop_assert_eq!(
+                user.as_deref(),
+                Some("keep"),
+                "{}: a user's file was touched",
+                label
+            );
+            match result {
+                Ok(()) if operation < 6 => {
+                    succeeded.set(succeeded.get() + 1);
+                    prop_assert!(
+                        files_equal(&out, &expected),
+                        "{}: succeeded with another folder",
+                        label
+                    );
+                }
+                Ok(()) => succeeded.set(succeeded.get() + 1),
+                Err(e) => {
+                    refused.set(refused.get() + 1);
+                    let message = e.to_string();
+                    prop_assert!(
+                        message.contains(&*case.to_string_lossy()),
+                        "{}: {}",
+                        label,
+                        message
+                    );
+                    prop_assert!(
+                        snapshot(&out) == before,
+                        "{}: failed ({}) and changed its --out",
+                        label,
+                        message
+                    );
+                }
+            }
+            std::fs::remove_dir_all(&case).unwrap();
+            Ok(())
+        })
+        .unwrap();
+    eprintln!(
+        "{} cases: {} succeeded as an undamaged run, {} refused naming a path",
+        case_number.get(),
+        succeeded.get(),
+        refused.get()
+    );
+}
+
+/// Every file under `dir` (none if it does not exist) with its bytes.
+fn snapshot(dir: &Path) -> Vec<(PathBuf, Option<Vec<u8>>)> {
+    if !dir.is_dir() {
+        return Vec::new();
+    }
+    tree(dir)
+        .into_iter()
+        .map(|f| {
+            let bytes = std::fs::read(dir.join(&f)).ok();
+            (f, bytes)
+        })
+        .collect()
+}
+
+/// Whether the folders `a` and `b` hold the same files, byte for byte.
+fn files_equal(a: &Path, b: &Path) -> bool {
+    let (ta, tb) = (tree(a), tree(b));
+    ta == tb
+        && ta
+            .iter()
+            .all(|f| std::fs::read(a.join(f)).ok() == std::fs::read(b.join(f)).ok())
 }

@@ -19,6 +19,15 @@ use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, Normal};
 use std::path::Path;
 
+/// The fewest paired landings at which the estimate's interval was measured to keep its
+/// confidence: over 4,000 resamplings of 1,000 paired landings of the 1/6-scale campaign (core
+/// and MuJoCo, P(stable) 0.863, the engines disagreeing on 9.9 %), the 95 % interval covered
+/// the truth 0.78-0.91 of the time at n = 3-30 with m = 100·n, and within 0.01 of 0.95 from
+/// n = 100 on, at m = 10·n and 100·n (the test
+/// `the_multi_fidelity_interval_covers_a_known_probability_as_stated`). Below it the estimate
+/// is given, but its interval is marked as not shown to cover.
+pub const MIN_PAIRED_LANDINGS: u64 = 100;
+
 /// A multi-fidelity estimate of one probability.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Estimate {
@@ -119,6 +128,12 @@ pub struct MultiFidelity {
     pub high_engine: String,
     /// Landings paired on both engines, n.
     pub paired_landings: u64,
+    /// [`MIN_PAIRED_LANDINGS`]: with fewer pairs the intervals are not shown to keep their
+    /// confidence.
+    pub min_paired_landings: u64,
+    /// Whether `paired_landings` is below `min_paired_landings`: the intervals may cover the
+    /// probability less often than their confidence says.
+    pub below_min_paired_landings: bool,
     /// Landings on the low engine, m ≥ n (the first n are the pairs' draws).
     pub low_landings: u64,
     /// Confidence of the intervals.
@@ -143,6 +158,8 @@ pub fn from_folders(
     cost_ratio: Option<f64>,
 ) -> Result<MultiFidelity, CampaignError> {
     let (p, l) = (store::read_manifest(paired)?, store::read_manifest(low)?);
+    p.check_files(paired)?;
+    l.check_files(low)?;
     let refuse = |m: String| CampaignError::Mismatch(m);
     let [a, b] = p.engines.as_slice() else {
         return Err(refuse(format!(
@@ -170,16 +187,10 @@ pub fn from_folders(
         }
     };
     let same = [
-        ("seed", p.seed.to_string(), l.seed.to_string()),
         (
-            "dispersed fields",
-            p.dispersed_fields.join(", "),
-            l.dispersed_fields.join(", "),
-        ),
-        (
-            "base scenario (its SHA-256)",
-            p.base_scenario_sha256.clone(),
-            l.base_scenario_sha256.clone(),
+            "what draws the landings (seed, dispersions, correlations and base scenario: their SHA-256)",
+            p.draws_sha256.clone(),
+            l.draws_sha256.clone(),
         ),
         (
             "source revision",
@@ -268,6 +279,8 @@ pub fn from_folders(
         low_engine: low_engine.clone(),
         high_engine: high_engine.clone(),
         paired_landings: n,
+        min_paired_landings: MIN_PAIRED_LANDINGS,
+        below_min_paired_landings: n < MIN_PAIRED_LANDINGS,
         low_landings: m,
         confidence: p.confidence,
         cost_ratio,

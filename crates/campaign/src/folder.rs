@@ -24,15 +24,34 @@ pub struct Staging {
     _lock: File,
 }
 
-/// `out` with `.suffix` added to its name.
+/// `out` with `.suffix` added to its name. A name that is itself a staging name (ending in
+/// `.partial` or `.replaced`) is refused: the next run into the folder it stages for would
+/// clear or replace it.
 fn beside(out: &Path, suffix: &str) -> Result<PathBuf, CampaignError> {
-    let name = out.file_name().ok_or_else(|| CampaignError::Store {
+    let refuse = |message: String| CampaignError::Store {
         path: out.display().to_string(),
-        message: "expected a folder's name for --out (not `.`, `..` or `/`)".into(),
+        message,
+    };
+    let name = out.file_name().ok_or_else(|| {
+        refuse("expected a folder's name for --out (not `.`, `..` or `/`)".into())
     })?;
+    if let Some(ending) = [PARTIAL, REPLACED]
+        .iter()
+        .find(|s| name.to_string_lossy().ends_with(&format!(".{s}")))
+    {
+        return Err(refuse(format!(
+            "a name ending in `.{ending}` is the one touchdown builds a campaign folder in, and a run into the folder without it would clear it: name the folder without `.{ending}`"
+        )));
+    }
     let mut name = name.to_os_string();
     name.push(format!(".{suffix}"));
     Ok(out.with_file_name(name))
+}
+
+/// The folder a campaign into `out` is built in, `<out>.partial`, where a stopped run's records
+/// are kept.
+pub fn staging_dir(out: &Path) -> Result<PathBuf, CampaignError> {
+    beside(out, PARTIAL)
 }
 
 /// What `out` holds, checked before any landing runs: nothing (missing or empty), or a folder
@@ -103,7 +122,7 @@ impl Staging {
 
     /// `<out>.partial`, created if missing, locked.
     fn open(out: &Path) -> Result<Staging, CampaignError> {
-        let (dir, replaced) = (beside(out, PARTIAL)?, beside(out, REPLACED)?);
+        let (dir, replaced) = (staging_dir(out)?, beside(out, REPLACED)?);
         if replaced.exists() {
             return Err(CampaignError::Store {
                 path: replaced.display().to_string(),
@@ -115,8 +134,29 @@ impl Staging {
                 ),
             });
         }
-        std::fs::create_dir_all(&dir).map_err(|e| CampaignError::store(&dir, e))?;
         let lock_path = dir.join(LOCK);
+        let refuse = |message: &str| {
+            CampaignError::Store {
+            path: dir.display().to_string(),
+            message: format!(
+                "{message}: touchdown builds the folder {} in it and will not clear what it did not write; move it away or delete it",
+                out.display()
+            ),
+        }
+        };
+        if dir.exists() {
+            if !dir.is_dir() {
+                return Err(refuse("exists and is not a folder"));
+            }
+            // A folder touchdown builds holds its lock file from its creation to its exchange.
+            let mut entries = std::fs::read_dir(&dir).map_err(|e| CampaignError::store(&dir, e))?;
+            if entries.next().is_some() && !lock_path.is_file() {
+                return Err(refuse(
+                    "holds files touchdown did not leave there (no .lock)",
+                ));
+            }
+        }
+        std::fs::create_dir_all(&dir).map_err(|e| CampaignError::store(&dir, e))?;
         let lock = File::create(&lock_path).map_err(|e| CampaignError::store(&lock_path, e))?;
         match lock.try_lock() {
             Ok(()) => {}
@@ -143,35 +183,69 @@ impl Staging {
         &self.dir
     }
 
-    /// The complete folder takes the place of `out` (the previous one, if any, is deleted).
+    /// The complete folder takes the place of `out` (the previous one, if any, is deleted). The
+    /// lock file goes last, so that a folder stopped anywhere in the exchange is still one
+    /// touchdown knows for its own.
     pub fn commit(self) -> Result<(), CampaignError> {
-        let lock_path = self.dir.join(LOCK);
-        std::fs::remove_file(&lock_path).map_err(|e| CampaignError::store(&lock_path, e))?;
         if self.out.exists() {
             let replaced = beside(&self.out, REPLACED)?;
             std::fs::rename(&self.out, &replaced)
                 .map_err(|e| CampaignError::store(&self.out, e))?;
             std::fs::rename(&self.dir, &self.out)
                 .map_err(|e| CampaignError::store(&self.dir, e))?;
-            std::fs::remove_dir_all(&replaced).map_err(|e| CampaignError::store(&replaced, e))
+            std::fs::remove_dir_all(&replaced).map_err(|e| CampaignError::store(&replaced, e))?;
         } else {
-            std::fs::rename(&self.dir, &self.out).map_err(|e| CampaignError::store(&self.dir, e))
+            std::fs::rename(&self.dir, &self.out)
+                .map_err(|e| CampaignError::store(&self.dir, e))?;
         }
+        let lock_path = self.out.join(LOCK);
+        std::fs::remove_file(&lock_path).map_err(|e| CampaignError::store(&lock_path, e))
     }
 }
 
-/// Copies the folder tree `from` into `to` (created), file by file.
-pub fn copy_tree(from: &Path, to: &Path) -> Result<(), CampaignError> {
-    std::fs::create_dir_all(to).map_err(|e| CampaignError::store(to, e))?;
-    for entry in std::fs::read_dir(from).map_err(|e| CampaignError::store(from, e))? {
-        let path = entry.map_err(|e| CampaignError::store(from, e))?.path();
+/// Copies the `histories/` folder `from` of the campaign part `manifest` into `to`, file by
+/// file. Anything that is not a history the part keeps ([`Manifest::keeps_history`]) is
+/// refused, naming it: a merge or an extension carries the campaign's files only.
+pub fn copy_histories(manifest: &Manifest, from: &Path, to: &Path) -> Result<(), CampaignError> {
+    copy_under(manifest, from, Path::new(""), to)
+}
+
+/// [`copy_histories`] of the folder `root/rel`.
+fn copy_under(
+    manifest: &Manifest,
+    root: &Path,
+    rel: &Path,
+    to: &Path,
+) -> Result<(), CampaignError> {
+    let from = root.join(rel);
+    std::fs::create_dir_all(to.join(rel)).map_err(|e| CampaignError::store(&to.join(rel), e))?;
+    for entry in std::fs::read_dir(&from).map_err(|e| CampaignError::store(&from, e))? {
+        let path = entry.map_err(|e| CampaignError::store(&from, e))?.path();
         let Some(name) = path.file_name() else {
             continue;
         };
+        let rel = rel.join(name);
+        let engine_folder = manifest.engines.len() > 1
+            && path.is_dir()
+            && manifest.engines.iter().any(|e| Path::new(e) == rel);
+        if !(engine_folder || manifest.keeps_history(&rel)) {
+            return Err(CampaignError::Store {
+                path: path.display().to_string(),
+                message: format!(
+                    "is no history of a landing this part keeps (landings {} to {}, histories of {:?}): move it out of the campaign folder and try again",
+                    manifest.part.first_landing,
+                    manifest.part.end_landing.saturating_sub(1),
+                    manifest.histories
+                ),
+            });
+        }
         if path.is_dir() {
-            copy_tree(&path, &to.join(name))?;
+            copy_under(manifest, root, &rel, to)?;
         } else {
-            std::fs::copy(&path, to.join(name)).map_err(|e| CampaignError::store(&path, e))?;
+            let target = to.join(&rel);
+            std::fs::copy(&path, &target).map_err(|e| {
+                CampaignError::store(&target, format!("{e} (copying {})", path.display()))
+            })?;
         }
     }
     Ok(())

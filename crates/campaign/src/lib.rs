@@ -107,7 +107,10 @@ impl CampaignError {
             S::Io { file, cause } => (file, cause.to_string()),
             S::TooLarge { file, bytes, most } => (
                 file,
-                format!("the file is {bytes} bytes; a campaign file is at most {most}"),
+                format!(
+                    "the file is {bytes} bytes; a campaign file is at most {most} bytes ({} MiB)",
+                    most >> 20
+                ),
             ),
             S::NotAFile { file, kind } => (file, format!("not a regular file ({kind})")),
             S::Empty { file } => (

@@ -107,9 +107,10 @@ pub struct Difference {
 pub struct DisagreementInfluence {
     /// The applied value's column.
     pub column: String,
-    /// Its correlation with disagreement (point-biserial), in [−1, 1]; 0 when either is
-    /// constant.
-    pub correlation_with_disagreement: f64,
+    /// Its correlation with disagreement (point-biserial), in [−1, 1]; absent when it is not
+    /// defined (fewer than two landings, or the input or the agreement the same on every one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub correlation_with_disagreement: Option<f64>,
 }
 
 /// A landing on which two engines disagree.
@@ -400,6 +401,6 @@ mod tests {
         assert_eq!(p.worst[0].strut, "leg1.primary.stroke_m");
         assert_eq!(p.worst[0].applied["applied.v_m_s"], serde_json::json!(2.0));
         assert_eq!(p.worst[1].scenario_file, "disagreements/landing-3.toml");
-        assert!(p.influence[0].correlation_with_disagreement.abs() > 0.0);
+        assert!(p.influence[0].correlation_with_disagreement.unwrap().abs() > 0.0);
     }
 }

@@ -318,34 +318,11 @@ pub fn run(
     resume: bool,
     mut each: impl FnMut(&Row),
 ) -> Result<(Manifest, Report), CampaignError> {
-    let range = shard.map_or(0..campaign.landings, |s| s.range(campaign.landings));
-    let columns = record::columns(campaign);
-    let part = Part {
-        first_landing: range.start,
-        end_landing: range.end,
-        shard: shard.map(|s| s.to_string()),
-    };
-    let manifest = Manifest::new(campaign, campaign.landings, part.clone(), &columns);
+    let (range, manifest) = planned(campaign, shard);
     let scratch;
     let (staging, dir) = match out {
         Some(dir) => {
-            folder::check_out(dir, |held| {
-                held.same_campaign(&manifest).map_err(|m| {
-                    format!("holds another campaign's landings ({m}): name a new or empty folder")
-                })?;
-                if held.part != part || held.landings != manifest.landings {
-                    return Err(format!(
-                        "holds landings {} to {} of {} of this campaign, this run writes {} to {} of {}: name a new or empty folder (or extend a finished campaign with --add)",
-                        held.part.first_landing,
-                        held.part.end_landing.saturating_sub(1),
-                        held.landings,
-                        part.first_landing,
-                        part.end_landing.saturating_sub(1),
-                        manifest.landings
-                    ));
-                }
-                Ok(())
-            })?;
+            folder::check_out(dir, |held| same_part(&manifest, held))?;
             let staging = if resume {
                 Staging::resume(dir)?
             } else {
@@ -363,30 +340,9 @@ pub fn run(
         }
     };
     let histories = staging.as_ref().map(|s| s.dir().join("histories"));
-    // The same run stopped here before: its records are kept; anything else is cleared.
-    let resumed = match &staging {
-        Some(staging) if resume => match std::fs::read_to_string(dir.join(RUN_FILE)) {
-            Ok(text) if text == store::pretty(&manifest) => Some(store::Journal::resume(
-                &dir,
-                &columns,
-                range.start,
-                &mut each,
-            )?),
-            _ => {
-                staging.clear()?;
-                None
-            }
-        },
-        _ => None,
-    };
-    let (mut journal, done) = match resumed {
-        Some(kept) => kept,
-        None => {
-            let run_file = dir.join(RUN_FILE);
-            std::fs::write(&run_file, store::pretty(&manifest))
-                .map_err(|e| CampaignError::store(&run_file, e))?;
-            (store::Journal::create(&dir, &columns)?, 0)
-        }
+    let (mut journal, done) = match &staging {
+        Some(staging) => staged_journal(staging, &manifest, resume, range.clone(), &mut each)?,
+        None => fresh_journal(&dir, &manifest)?,
     };
     run_range(
         campaign,
@@ -400,10 +356,114 @@ pub fn run(
         },
     )?;
     let mut manifest = manifest;
-    if range.start == 0 {
+    if range.start == 0 && !range.is_empty() {
         manifest.accuracy = accuracy::measure(campaign, campaign.landings, threads)?;
     }
     finish(&dir, journal, manifest, staging)
+}
+
+/// Whether `held`, a folder's manifest, is of the part `manifest` plans of the same campaign:
+/// `Err` says what differs and what to do.
+fn same_part(manifest: &Manifest, held: &Manifest) -> Result<(), String> {
+    held.same_campaign(manifest).map_err(|m| {
+        format!("holds another campaign's landings ({m}): name a new or empty folder")
+    })?;
+    if held.part != manifest.part || held.landings != manifest.landings {
+        return Err(format!(
+            "holds landings {} to {} of {} of this campaign, this run writes {} to {} of {}: name a new or empty folder (or extend a finished campaign with --add)",
+            held.part.first_landing,
+            held.part.end_landing.saturating_sub(1),
+            held.landings,
+            manifest.part.first_landing,
+            manifest.part.end_landing.saturating_sub(1),
+            manifest.landings
+        ));
+    }
+    Ok(())
+}
+
+/// Whether `dir` holds the finished `shard` (or, without one, the whole) of `campaign`, as
+/// this build runs it: what a scheduler of shards counts as done. A folder with no manifest
+/// holds nothing finished; a manifest that does not read is an error.
+pub fn holds_part(
+    campaign: &Campaign,
+    shard: Option<Shard>,
+    dir: &Path,
+) -> Result<bool, CampaignError> {
+    if !dir.join("manifest.json").is_file() {
+        return Ok(false);
+    }
+    let (_, manifest) = planned(campaign, shard);
+    Ok(same_part(&manifest, &store::read_manifest(dir)?).is_ok())
+}
+
+/// The landings `shard` (or, without one, the whole campaign) runs, and the manifest its folder
+/// will have but for the accuracy.
+fn planned(campaign: &Campaign, shard: Option<Shard>) -> (Range<u64>, Manifest) {
+    let range = shard.map_or(0..campaign.landings, |s| s.range(campaign.landings));
+    let part = Part {
+        first_landing: range.start,
+        end_landing: range.end,
+        shard: shard.map(|s| s.to_string()),
+    };
+    let manifest = Manifest::new(
+        campaign,
+        campaign.landings,
+        part,
+        &record::columns(campaign),
+    );
+    (range, manifest)
+}
+
+/// The landing a record is of (its first column).
+fn landing(row: &Row) -> u64 {
+    match row[0] {
+        record::Cell::Integer(l) => l as u64,
+        _ => u64::MAX,
+    }
+}
+
+/// The journal of a run of the landings `landings` whose folder is built in `staging`, and how
+/// many of its records it already holds: with `resume`, what the same run (its `run.json` the
+/// manifest it will write) stopped there left, each record handed to `each`, refused if it
+/// holds more records than the run has landings; otherwise, or when there is nothing of this
+/// run to resume, an empty one in a cleared folder.
+fn staged_journal(
+    staging: &Staging,
+    manifest: &Manifest,
+    resume: bool,
+    landings: Range<u64>,
+    each: &mut impl FnMut(&Row),
+) -> Result<(store::Journal, u64), CampaignError> {
+    let dir = staging.dir();
+    let same_run = resume
+        && dir.join("landings.jsonl").is_file()
+        && std::fs::read_to_string(dir.join(RUN_FILE))
+            .is_ok_and(|text| text == store::pretty(manifest));
+    if !same_run {
+        staging.clear()?;
+        return fresh_journal(dir, manifest);
+    }
+    let (journal, done) = store::Journal::resume(dir, &manifest.columns, landings.start, each)?;
+    let planned = landings.end - landings.start;
+    if done > planned {
+        return Err(CampaignError::Store {
+            path: dir.join("landings.jsonl").display().to_string(),
+            message: format!(
+                "holds {done} records where this run has {planned} landings to write: it was not written by this run; delete {} and run again without --resume",
+                dir.display()
+            ),
+        });
+    }
+    Ok((journal, done))
+}
+
+/// An empty journal in `dir`, beside the `run.json` that names the run writing it.
+fn fresh_journal(dir: &Path, manifest: &Manifest) -> Result<(store::Journal, u64), CampaignError> {
+    let run_file = dir.join(RUN_FILE);
+    std::fs::write(&run_file, store::pretty(manifest))
+        .map_err(|e| CampaignError::store(&run_file, e))?;
+    Ok((store::Journal::create(dir, &manifest.columns)?, 0))
 }
 
 /// Completes the folder `dir` whose records `journal` holds (the Parquet file, the statistics,
@@ -412,11 +472,11 @@ pub fn run(
 fn finish(
     dir: &Path,
     journal: store::Journal,
-    manifest: Manifest,
+    mut manifest: Manifest,
     staging: Option<Staging>,
 ) -> Result<(Manifest, Report), CampaignError> {
     journal.close()?;
-    let statistics = store::complete(dir, &manifest)?;
+    let statistics = store::complete(dir, &mut manifest)?;
     // Kept until the folder is complete, so that a run stopped while completing it resumes.
     let run_file = dir.join(RUN_FILE);
     if run_file.exists() {
@@ -431,15 +491,18 @@ fn finish(
 /// Adds `more` landings to the finished campaign in `dir` (written by a run or a merge of the
 /// same campaign file), without changing the landings it holds: landings n..n+more are run and
 /// the folder replaced, when they have all run, by the one the campaign would have written had
-/// it planned n + more from the start. `each` sees the added records.
+/// it planned n + more from the start. `each` sees the added records. With `resume`, an `--add`
+/// of the same landings to the same folder that was stopped goes on from the records it wrote.
 pub fn add(
     campaign: &Campaign,
     dir: &Path,
     more: u64,
     threads: Option<usize>,
+    resume: bool,
     mut each: impl FnMut(&Row),
 ) -> Result<(Manifest, Report), CampaignError> {
     let old = store::read_manifest(dir)?;
+    old.check_files(dir)?;
     let columns = record::columns(campaign);
     let fresh = Manifest::new(campaign, old.landings, old.part.clone(), &columns);
     fresh.same_campaign(&old).map_err(|m| {
@@ -464,11 +527,29 @@ pub fn add(
                 crate::spec::MAX_LANDINGS
             ))
         })?;
-    let staging = Staging::begin(dir)?;
+    let part = Part {
+        first_landing: 0,
+        end_landing: total,
+        shard: None,
+    };
+    let mut manifest = Manifest::new(campaign, total, part, &columns);
+    let staging = if resume {
+        Staging::resume(dir)?
+    } else {
+        Staging::begin(dir)?
+    };
     let building = staging.dir().to_path_buf();
-    let mut journal = store::Journal::create(&building, &columns)?;
+    let (mut journal, done) = staged_journal(&staging, &manifest, resume, 0..total, &mut |row| {
+        if landing(row) >= old.landings {
+            each(row)
+        }
+    })?;
+    // The finished campaign's records, those a stopped run had not copied yet.
     let kept = store::for_each_record(&dir.join("landings.jsonl"), &columns, 0, |row| {
-        journal.append(&row)
+        if landing(&row) >= done {
+            journal.append(&row)?;
+        }
+        Ok(())
     })?;
     if kept != old.landings {
         return Err(CampaignError::Store {
@@ -478,11 +559,11 @@ pub fn add(
     }
     let histories = building.join("histories");
     if dir.join("histories").is_dir() {
-        folder::copy_tree(&dir.join("histories"), &histories)?;
+        folder::copy_histories(&old, &dir.join("histories"), &histories)?;
     }
     run_range(
         campaign,
-        old.landings..total,
+        done.max(old.landings)..total,
         threads,
         Some(&histories),
         |row| {
@@ -491,12 +572,6 @@ pub fn add(
             Ok(())
         },
     )?;
-    let part = Part {
-        first_landing: 0,
-        end_landing: total,
-        shard: None,
-    };
-    let mut manifest = Manifest::new(campaign, total, part, &columns);
     manifest.accuracy = accuracy::measure(campaign, total, threads)?;
     finish(&building, journal, manifest, Some(staging))
 }
@@ -514,7 +589,11 @@ pub fn merge(
 ) -> Result<(Manifest, Report), CampaignError> {
     let mut read: Vec<(Manifest, &Path)> = parts
         .iter()
-        .map(|p| store::read_manifest(p).map(|m| (m, *p)))
+        .map(|p| {
+            let m = store::read_manifest(p)?;
+            m.check_files(p)?;
+            Ok((m, *p))
+        })
         .collect::<Result<_, _>>()?;
     let Some((first, _)) = read.first() else {
         return Err(CampaignError::Mismatch(
@@ -571,7 +650,9 @@ pub fn merge(
     }
     let mut manifest = first;
     // The accuracy is the part's that holds landing 0, measured as the whole campaign would.
-    manifest.accuracy = read[0].0.accuracy.clone();
+    manifest.accuracy = (read.iter())
+        .find(|(m, _)| m.part.first_landing < m.part.end_landing)
+        .and_then(|(m, _)| m.accuracy.clone());
     manifest.part = Part {
         first_landing: 0,
         end_landing: manifest.landings,
@@ -599,7 +680,7 @@ pub fn merge(
         }
         let histories = path.join("histories");
         if histories.is_dir() {
-            folder::copy_tree(&histories, &building.join("histories"))?;
+            folder::copy_histories(m, &histories, &building.join("histories"))?;
         }
     }
     finish(&building, journal, manifest, Some(staging))

@@ -153,6 +153,10 @@ pub struct Campaign {
     /// SHA-256 of the campaign without its landing count (hex): what a shard, a merge and an
     /// extension must share.
     pub identity: String,
+    /// SHA-256 of what decides each landing's values and scenario (hex): the seed, the
+    /// dispersions and correlations, and the resolved base scenario. Campaigns that share it
+    /// land the same scenario at every landing number, whatever their engines, names or counts.
+    pub draws_identity: String,
 }
 
 impl Campaign {
@@ -162,6 +166,7 @@ impl Campaign {
         let file = path.display().to_string();
         let table = touchdown_scenario::read_toml(path).map_err(|e| CampaignError::file(&e))?;
         let identity = identity(&table);
+        let draws_table = draws_table(&table);
         let spec: CampaignFile = touchdown_scenario::read_strict(toml::Value::Table(table))
             .map_err(|m| CampaignError::field(&file, m.field, m.message))?;
         let err = |field: &str, message: String| CampaignError::field(&file, field, message);
@@ -264,7 +269,6 @@ impl Campaign {
             description: spec.description,
             scenario_path,
             base,
-            base_scenario,
             engines,
             landings: spec.landings,
             seed: spec.seed,
@@ -272,6 +276,10 @@ impl Campaign {
             histories: spec.record.histories,
             dispersions,
             copula,
+            draws_identity: crate::sha256_hex(
+                format!("{draws_table}\nbase scenario {}", base_scenario.sha256()).as_bytes(),
+            ),
+            base_scenario,
             identity,
         })
     }
@@ -334,6 +342,17 @@ fn identity(table: &toml::Table) -> String {
     let mut t = table.clone();
     t.remove("landings");
     crate::sha256_hex(toml::to_string(&t).unwrap_or_default().as_bytes())
+}
+
+/// The keys of the campaign table that decide the values drawn (`seed`, `dispersion`,
+/// `correlation`), written back as TOML: with the resolved base scenario, what
+/// [`Campaign::draws_identity`] hashes.
+fn draws_table(table: &toml::Table) -> String {
+    let t: toml::Table = ["seed", "dispersion", "correlation"]
+        .into_iter()
+        .filter_map(|k| Some((k.to_string(), table.get(k)?.clone())))
+        .collect();
+    toml::to_string(&t).unwrap_or_default()
 }
 
 /// A dispersion checked: its parameters, its unit against the base scenario's units, its values.

@@ -23,11 +23,13 @@ pub struct Count {
 pub struct Proportion {
     /// Landings counted.
     pub landings: u64,
-    /// Their fraction of the campaign.
-    pub fraction: f64,
+    /// Their fraction of the campaign; absent (not defined) when it holds no landings.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fraction: Option<f64>,
     /// The one-sided Clopper-Pearson lower bound of the probability at the campaign's
-    /// confidence.
-    pub lower_bound: f64,
+    /// confidence; absent when the campaign holds no landings.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lower_bound: Option<f64>,
 }
 
 /// A proportion with its two-sided exact (Clopper-Pearson) interval.
@@ -35,12 +37,15 @@ pub struct Proportion {
 pub struct Interval {
     /// Landings counted.
     pub landings: u64,
-    /// Their fraction of the campaign.
-    pub fraction: f64,
-    /// The interval's lower end at the campaign's confidence.
-    pub lower: f64,
-    /// Its upper end.
-    pub upper: f64,
+    /// Their fraction of the campaign; absent (not defined) when it holds no landings.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fraction: Option<f64>,
+    /// The interval's lower end at the campaign's confidence; absent with no landings.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lower: Option<f64>,
+    /// Its upper end; absent with no landings.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub upper: Option<f64>,
 }
 
 impl Interval {
@@ -48,21 +53,13 @@ impl Interval {
     /// ([`clopper_pearson_interval`]).
     pub fn of(k: u64, n: u64, confidence: f64) -> Interval {
         let (lower, upper) = clopper_pearson_interval(k, n, confidence);
+        let defined = |x: f64| (n > 0).then_some(x);
         Interval {
             landings: k,
-            fraction: fraction(k, n),
-            lower,
-            upper,
+            fraction: defined(k as f64 / n as f64),
+            lower: defined(lower),
+            upper: defined(upper),
         }
-    }
-}
-
-/// `k` landings' fraction of `n` (0 of none).
-fn fraction(k: u64, n: u64) -> f64 {
-    if n == 0 {
-        0.0
-    } else {
-        k as f64 / n as f64
     }
 }
 
@@ -100,8 +97,10 @@ pub struct Percentiles {
 pub struct Influence {
     /// The applied value's column.
     pub column: String,
-    /// The correlation, in [−1, 1]; 0 when either is constant.
-    pub correlation_with_stable: f64,
+    /// The correlation, in [−1, 1]; absent when it is not defined (fewer than two landings, or
+    /// the input or the outcome the same on every landing).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub correlation_with_stable: Option<f64>,
 }
 
 /// A campaign's statistics.
@@ -130,8 +129,9 @@ pub struct Statistics {
     pub influence: Vec<Influence>,
 }
 
-/// Pearson's correlation of `x` and `y`; 0 when either is constant.
-pub fn correlation(x: &[f64], y: &[f64]) -> f64 {
+/// Pearson's correlation of `x` and `y`; `None` where it is not defined (either constant, or
+/// fewer than two pairs).
+pub fn correlation(x: &[f64], y: &[f64]) -> Option<f64> {
     let n = x.len() as f64;
     let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
     let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
@@ -140,21 +140,17 @@ pub fn correlation(x: &[f64], y: &[f64]) -> f64 {
         sxx += (a - mx) * (a - mx);
         syy += (b - my) * (b - my);
     }
-    if sxx > 0.0 && syy > 0.0 {
-        sxy / (sxx * syy).sqrt()
-    } else {
-        0.0
-    }
+    (sxx > 0.0 && syy > 0.0).then(|| sxy / (sxx * syy).sqrt())
 }
 
 /// The correlation of each numeric applied value with `indicator` (one per landing), the
-/// strongest first (ties by name); `column(i, visit)` calls `visit` with each cell of column
+/// strongest first (ties by name), those not defined last; `column(i, visit)` calls `visit` with each cell of column
 /// `i`, in landing order.
 pub fn correlations<E>(
     columns: &[Column],
     indicator: &[f64],
     column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
-) -> Result<Vec<(String, f64)>, E> {
+) -> Result<Vec<(String, Option<f64>)>, E> {
     let mut out = Vec::new();
     for (i, c) in columns.iter().enumerate() {
         if !(c.name.starts_with("applied.") && c.kind == Kind::Float) {
@@ -169,7 +165,12 @@ pub fn correlations<E>(
         })?;
         out.push((c.name.clone(), correlation(&x, indicator)));
     }
-    out.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()).then_with(|| a.0.cmp(&b.0)));
+    let strength = |r: Option<f64>| r.map_or(-1.0, f64::abs);
+    out.sort_by(|a, b| {
+        strength(b.1)
+            .total_cmp(&strength(a.1))
+            .then_with(|| a.0.cmp(&b.0))
+    });
     Ok(out)
 }
 
@@ -273,8 +274,8 @@ impl Statistics {
         })?;
         let proportion = |k: u64| Proportion {
             landings: k,
-            fraction: fraction(k, n),
-            lower_bound: clopper_pearson_lower(k, n, confidence),
+            fraction: (n > 0).then(|| k as f64 / n as f64),
+            lower_bound: (n > 0).then(|| clopper_pearson_lower(k, n, confidence)),
         };
         let landings_of = |counts: &[Count], name: &str| {
             counts
@@ -429,10 +430,12 @@ mod tests {
 
     #[test]
     fn correlation_is_pearsons() {
-        assert!((correlation(&[1.0, 2.0, 3.0], &[2.0, 4.0, 6.0]) - 1.0).abs() < 1e-12);
+        assert!((correlation(&[1.0, 2.0, 3.0], &[2.0, 4.0, 6.0]).unwrap() - 1.0).abs() < 1e-12);
         assert!(
-            (correlation(&[1.0, 2.0, 3.0], &[1.0, 0.0, 0.0]) + 0.8660254037844387).abs() < 1e-12
+            (correlation(&[1.0, 2.0, 3.0], &[1.0, 0.0, 0.0]).unwrap() + 0.8660254037844387).abs()
+                < 1e-12
         );
-        assert_eq!(correlation(&[1.0, 1.0], &[0.0, 1.0]), 0.0);
+        assert_eq!(correlation(&[1.0, 1.0], &[0.0, 1.0]), None);
+        assert_eq!(correlation(&[], &[]), None);
     }
 }

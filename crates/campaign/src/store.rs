@@ -18,12 +18,13 @@ use parquet::file::properties::WriterProperties;
 use parquet::file::writer::SerializedFileWriter;
 use parquet::schema::types::Type;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// The manifest's format name.
-pub const FORMAT: &str = "touchdown-campaign/1";
+pub const FORMAT: &str = "touchdown-campaign/2";
 
 /// Landings per Parquet row group: the records held while the Parquet file is written (about
 /// 3 kB each, so about 25 MB).
@@ -57,6 +58,9 @@ pub struct Manifest {
     pub campaign_name: String,
     /// SHA-256 of the campaign without its landing count.
     pub campaign_sha256: String,
+    /// SHA-256 of what decides each landing's values and scenario
+    /// ([`Campaign::draws_identity`]): campaigns sharing it land the same scenarios.
+    pub draws_sha256: String,
     /// The engines, in the campaign's order (several for a paired campaign).
     pub engines: Vec<String>,
     /// The seed.
@@ -68,6 +72,8 @@ pub struct Manifest {
     /// The scenario field each `applied.*` column holds, in the columns' order.
     #[serde(default)]
     pub dispersed_fields: Vec<String>,
+    /// The landings whose histories the campaign keeps (in `histories/`).
+    pub histories: Vec<u64>,
     /// The base scenario file, as the campaign names it.
     pub base_scenario_file: String,
     /// SHA-256 of the resolved base scenario.
@@ -83,7 +89,15 @@ pub struct Manifest {
     /// campaign; absent from the other parts and when the campaign does not land on the core.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accuracy: Option<Accuracy>,
+    /// SHA-256 of each file the folder holds beside the manifest ([`SEALED`]), as written.
+    pub files_sha256: BTreeMap<String, String>,
+    /// SHA-256 of this manifest written with this field empty: a manifest edited after it was
+    /// written does not read.
+    pub seal_sha256: String,
 }
+
+/// The files of a campaign folder its manifest holds the SHA-256 of.
+pub const SEALED: [&str; 3] = ["landings.jsonl", "landings.parquet", "statistics.json"];
 
 impl Manifest {
     /// The manifest of `campaign` (`landings` in all) for the part `part`.
@@ -95,6 +109,7 @@ impl Manifest {
             campaign_file: campaign.file.clone(),
             campaign_name: campaign.name.clone(),
             campaign_sha256: campaign.identity.clone(),
+            draws_sha256: campaign.draws_identity.clone(),
             engines: campaign.engines.iter().map(|e| e.name().into()).collect(),
             seed: campaign.seed,
             confidence: campaign.confidence,
@@ -104,20 +119,79 @@ impl Manifest {
                 .iter()
                 .map(|d| d.field.clone())
                 .collect(),
+            histories: campaign.histories.clone(),
             base_scenario_file: campaign.scenario_path.display().to_string(),
             base_scenario_sha256: campaign.base_scenario.sha256(),
             base_scenario: campaign.base_scenario.to_toml(),
             part,
             columns: columns.to_vec(),
             accuracy: None,
+            files_sha256: BTreeMap::new(),
+            seal_sha256: String::new(),
         }
+    }
+
+    /// Whether `path`, relative to the folder's `histories/`, is (in) the history of a landing
+    /// of this part that the campaign keeps: `landing-N.csv`, or the MuJoCo runner's folder
+    /// `landing-N/` or a file in it, under a folder named after its engine when the campaign is
+    /// paired.
+    pub fn keeps_history(&self, path: &Path) -> bool {
+        let mut parts = path.iter().map(|c| c.to_string_lossy());
+        if self.engines.len() > 1 {
+            let engine = parts.next().unwrap_or_default();
+            if !self.engines.iter().any(|e| *e == engine) {
+                return false;
+            }
+        }
+        let Some(first) = parts.next() else {
+            return false;
+        };
+        let rest = parts.count();
+        let name = match rest {
+            0 => first.strip_suffix(".csv").unwrap_or(&first),
+            _ => first.as_ref(),
+        };
+        name.strip_prefix("landing-")
+            .and_then(|n| n.parse::<u64>().ok())
+            .is_some_and(|l| {
+                (self.part.first_landing..self.part.end_landing).contains(&l)
+                    && self.histories.contains(&l)
+            })
+    }
+
+    /// The SHA-256 of this manifest written with an empty seal.
+    fn seal(&self) -> String {
+        let unsealed = Manifest {
+            seal_sha256: String::new(),
+            ..self.clone()
+        };
+        crate::sha256_hex(pretty(&unsealed).as_bytes())
+    }
+
+    /// Checks that the files of the campaign folder `dir` are those this manifest sealed:
+    /// `Err` names the first that differs (edited, damaged or replaced since it was written).
+    pub fn check_files(&self, dir: &Path) -> Result<(), CampaignError> {
+        for name in SEALED {
+            let path = dir.join(name);
+            let held = file_sha256(&path)?;
+            if self.files_sha256.get(name) != Some(&held) {
+                return Err(CampaignError::Store {
+                    path: path.display().to_string(),
+                    message: format!(
+                        "is not the file its manifest sealed (SHA-256 {held}, sealed {}): it was edited or damaged after touchdown wrote it; run this part again",
+                        self.files_sha256.get(name).map_or("none", String::as_str)
+                    ),
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Whether `other` is a part of the same campaign run by the same code: everything but the
     /// part, the campaign file's path and the landing count (which `--add` changes) agree.
     /// `Err` names what differs.
     pub fn same_campaign(&self, other: &Manifest) -> Result<(), String> {
-        let checks = [
+        let build = [
             ("format", &self.format, &other.format),
             (
                 "touchdown version",
@@ -129,6 +203,25 @@ impl Manifest {
                 &self.source_revision,
                 &other.source_revision,
             ),
+        ];
+        let differ = |checks: &[(&str, &String, &String)]| {
+            checks
+                .iter()
+                .find(|(_, a, b)| a != b)
+                .map_or(Ok(()), |(what, a, b)| {
+                    Err(format!("{what}: {a} against {b}"))
+                })
+        };
+        differ(&build)?;
+        // The engines before the campaign's hash, which names them: say what differs.
+        if self.engines != other.engines {
+            return Err(format!(
+                "engines: {} against {}",
+                self.engines.join(", "),
+                other.engines.join(", ")
+            ));
+        }
+        differ(&[
             (
                 "campaign (its SHA-256)",
                 &self.campaign_sha256,
@@ -139,19 +232,7 @@ impl Manifest {
                 &self.base_scenario_sha256,
                 &other.base_scenario_sha256,
             ),
-        ];
-        for (what, a, b) in checks {
-            if a != b {
-                return Err(format!("{what}: {a} against {b}"));
-            }
-        }
-        if self.engines != other.engines {
-            return Err(format!(
-                "engines: {} against {}",
-                self.engines.join(", "),
-                other.engines.join(", ")
-            ));
-        }
+        ])?;
         if self.columns != other.columns {
             return Err("the records' columns differ".into());
         }
@@ -571,7 +652,7 @@ pub fn visit_column(
 /// file, a column at a time; a paired campaign's also each pair's, and the landings they list
 /// as standalone scenario files in `disagreements/`) and, last, its manifest. Returns the
 /// statistics.
-pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Report, CampaignError> {
+pub fn complete(dir: &Path, manifest: &mut Manifest) -> Result<Report, CampaignError> {
     let columns = &manifest.columns;
     let parquet_path = dir.join("landings.parquet");
     let mut parquet = Parquet::create(&parquet_path, columns)?;
@@ -632,6 +713,11 @@ pub fn complete(dir: &Path, manifest: &Manifest) -> Result<Report, CampaignError
             .map_err(|e| CampaignError::store(&path, e))
     };
     write("statistics.json", pretty(&statistics) + "\n")?;
+    manifest.files_sha256 = SEALED
+        .iter()
+        .map(|name| Ok((name.to_string(), file_sha256(&dir.join(name))?)))
+        .collect::<Result<_, CampaignError>>()?;
+    manifest.seal_sha256 = manifest.seal();
     write("manifest.json", pretty(manifest) + "\n")?;
     Ok(statistics)
 }
@@ -702,19 +788,46 @@ fn read_file(dir: &Path, name: &str) -> Result<String, CampaignError> {
     })
 }
 
-/// Reads the manifest of a campaign folder.
+/// The SHA-256 (hex) of the file at `path`, read a block at a time.
+fn file_sha256(path: &Path) -> Result<String, CampaignError> {
+    use sha2::{Digest, Sha256};
+    use std::io::Read;
+    let mut file = std::fs::File::open(path).map_err(|e| CampaignError::store(path, e))?;
+    let mut hasher = Sha256::new();
+    let mut block = vec![0u8; 65_536];
+    loop {
+        let n = file
+            .read(&mut block)
+            .map_err(|e| CampaignError::store(path, e))?;
+        if n == 0 {
+            return Ok(format!("{:x}", hasher.finalize()));
+        }
+        hasher.update(&block[..n]);
+    }
+}
+
+/// Reads the manifest of a campaign folder, refused if it was edited after it was written (its
+/// seal).
 pub fn read_manifest(dir: &Path) -> Result<Manifest, CampaignError> {
-    let manifest: Manifest =
-        serde_json::from_str(&read_file(dir, "manifest.json")?).map_err(|e| {
-            CampaignError::Store {
-                path: dir.join("manifest.json").display().to_string(),
-                message: format!("not a campaign manifest: {e}"),
-            }
-        })?;
-    if manifest.format != FORMAT {
+    let path = dir.join("manifest.json");
+    let refuse = |message: String| CampaignError::Store {
+        path: path.display().to_string(),
+        message,
+    };
+    let value: serde_json::Value = serde_json::from_str(&read_file(dir, "manifest.json")?)
+        .map_err(|e| refuse(format!("not a campaign manifest: {e}")))?;
+    let format = value.get("format").and_then(|f| f.as_str()).unwrap_or("");
+    if format != FORMAT {
+        return Err(refuse(format!(
+            "format {format:?}, expected {FORMAT:?}: written by another version of touchdown; run the campaign again with this one"
+        )));
+    }
+    let manifest: Manifest = serde_json::from_value(value)
+        .map_err(|e| refuse(format!("not a campaign manifest: {e}")))?;
+    if manifest.seal_sha256 != manifest.seal() {
         return Err(CampaignError::Store {
             path: dir.join("manifest.json").display().to_string(),
-            message: format!("format {:?}, expected {FORMAT:?}", manifest.format),
+            message: "was edited after touchdown wrote it (its fields do not match its seal_sha256): restore it or run this part again".into(),
         });
     }
     Ok(manifest)

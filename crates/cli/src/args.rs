@@ -376,9 +376,9 @@ pub(crate) struct CampaignArgs {
     pub(crate) add: Option<u64>,
     /// Go on with the run of this campaign (or shard) into --out that was stopped (killed, out
     /// of time, out of disk), from the records it wrote in DIR.partial: the folder ends as an
-    /// uninterrupted run's, byte for byte. Starts afresh when there is nothing of this run to
-    /// resume.
-    #[arg(long, requires = "out", conflicts_with = "add")]
+    /// uninterrupted run's, byte for byte. With --add, the same for landings being added.
+    /// Starts afresh when there is nothing of this run to resume.
+    #[arg(long, requires = "out")]
     pub(crate) resume: bool,
     /// Threads that land (default: one per core); the records do not depend on it.
     #[arg(long, value_name = "N")]
@@ -480,11 +480,25 @@ impl std::str::FromStr for Set {
                 "expected one value on one line after '=' (a TOML value, e.g. [0.0, 1.0]), got {value:?}"
             ));
         }
-        // A TOML value as the file would hold it; a bare word is a string (surface.kind=soil).
-        let value = toml::from_str::<toml::Table>(&format!("v = {value}"))
-            .ok()
-            .and_then(|mut t| t.remove("v"))
-            .unwrap_or_else(|| toml::Value::String(value.to_string()));
+        // A TOML value as the file would hold it; a bare word (letters, digits, `_`, `-`, `.`)
+        // is a string (surface.kind=soil). Anything else that is not TOML is refused with
+        // TOML's reason: an unclosed quote or bracket is a typo, not a string.
+        let bare_word = !value.is_empty()
+            && value
+                .chars()
+                .all(|c| c.is_alphanumeric() || matches!(c, '_' | '-' | '.'));
+        let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
+            .map_err(|e| e.message().to_string())
+            .and_then(|mut t| t.remove("v").ok_or_else(|| "no value".to_string()));
+        let value = match parsed {
+            Ok(v) => v,
+            Err(_) if bare_word => toml::Value::String(value.to_string()),
+            Err(reason) => {
+                return Err(format!(
+                    "{field}: expected a TOML value after '=' (a number, true or false, \"a string\", [a, list]) or a bare word, got {value:?}: {reason}"
+                ))
+            }
+        };
         Ok(Set {
             field: field.to_string(),
             value,

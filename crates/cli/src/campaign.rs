@@ -78,6 +78,14 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         }
         (None, None) => campaign.landings,
     };
+    crate::signals::say_when_stopped(match out {
+        Some(dir) => format!(
+            "\ntouchdown: stopped by a signal. The records of the landings that finished are kept in {}; this goes on from them:\n  {}\n",
+            touchdown_campaign::folder::staging_dir(dir)?.display(),
+            crate::signals::resume_command()
+        ),
+        None => "\ntouchdown: stopped by a signal. Nothing is kept: without --out the campaign is written nowhere.\n".into(),
+    });
     let bar = crate::progress_bar(planned, "landings");
     let columns = touchdown_campaign::record::columns(&campaign);
     // The first error writing the records ends the command once the landings have run.
@@ -91,7 +99,7 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
     let (manifest, statistics) = match add {
         Some(more) => {
             let dir = out.context("--add: name the finished campaign's folder with --out")?;
-            touchdown_campaign::add(&campaign, dir, more, threads, &mut each)?
+            touchdown_campaign::add(&campaign, dir, more, threads, resume, &mut each)?
         }
         None => touchdown_campaign::run::run(&campaign, shard, threads, out, resume, &mut each)?,
     };
@@ -287,6 +295,9 @@ pub fn text(m: &Manifest, report: &Report) -> String {
 /// What ran: the campaign, its base scenario, engines, seed and landings.
 fn header(m: &Manifest) -> String {
     let part = match &m.part.shard {
+        Some(k) if m.part.first_landing == m.part.end_landing => {
+            format!("shard {k}: no landings (of {})", m.landings)
+        }
         Some(k) => format!(
             "shard {k}: landings {} to {} of {}",
             m.part.first_landing,
@@ -382,21 +393,29 @@ fn accuracy_text(m: &Manifest) -> String {
     t + "\n"
 }
 
+/// A fraction as a percentage, or "not defined" (of no landings).
+fn defined(x: Option<f64>) -> String {
+    x.map_or_else(|| "not defined".into(), percent)
+}
+
 /// One engine's statistics as text.
 fn engine_text(s: &Statistics) -> String {
     let mut t = String::new();
+    if s.landings == 0 {
+        return "no landings: no probability, count or percentile is defined\n".into();
+    }
     let c = percent(s.confidence);
     t += &format!(
         "P(stable landing) = {} ({} of {}); lower bound at {c} confidence (one-sided Clopper-Pearson): {}\n",
-        percent(s.stable.fraction),
+        defined(s.stable.fraction),
         s.stable.landings,
         s.landings,
-        percent(s.stable.lower_bound)
+        defined(s.stable.lower_bound)
     );
     t += &format!(
         "P(stable and within every strut's capacity) = {}; lower bound: {}\n\n",
-        percent(s.stable_within_capacity.fraction),
-        percent(s.stable_within_capacity.lower_bound)
+        defined(s.stable_within_capacity.fraction),
+        defined(s.stable_within_capacity.lower_bound)
     );
     t += "landings by outcome and by failure mode (each landing has one of each)\n";
     let counts = s
@@ -459,7 +478,7 @@ fn engine_text(s: &Statistics) -> String {
 
 /// The dispersed inputs (applied columns) with their correlation with `what`, strongest first,
 /// as a titled table.
-fn influence_table<'a>(what: &str, rows: impl Iterator<Item = (&'a str, f64)>) -> String {
+fn influence_table<'a>(what: &str, rows: impl Iterator<Item = (&'a str, Option<f64>)>) -> String {
     let title = format!("\ndispersed inputs by their correlation with {what} (point-biserial)\n");
     title
         + &text_table(
@@ -468,7 +487,7 @@ fn influence_table<'a>(what: &str, rows: impl Iterator<Item = (&'a str, f64)>) -
             rows.map(|(column, r)| {
                 vec![
                     column.trim_start_matches("applied.").to_string(),
-                    format!("{r:+.3}"),
+                    r.map_or("not defined".into(), |r| format!("{r:+.3}")),
                 ]
             }),
         )
@@ -482,10 +501,10 @@ fn pair_text(p: &Pair, landings: u64, confidence: f64) -> String {
     t += &format!(
         "outcomes disagree on {} of {landings} landings: {}; {} interval (two-sided Clopper-Pearson): {} to {}\n",
         d.landings,
-        percent(d.fraction),
+        defined(d.fraction),
         percent(confidence),
-        percent(d.lower),
-        percent(d.upper)
+        defined(d.lower),
+        defined(d.upper)
     );
     t += &format!(
         "stable on {a} only: {}; on {b} only: {}; McNemar's exact test of equal P(stable): p = {:.4}\n",
@@ -570,6 +589,12 @@ fn estimate_text(e: &MultiFidelity) -> String {
         n = e.paired_landings,
         m = e.low_landings
     );
+    if e.below_min_paired_landings {
+        t += &format!(
+            "warning: {} paired landings, fewer than the {} at which the intervals were measured to keep their\nconfidence (docs/campaigns.md, \"Multi-fidelity estimate\"): they may cover the probability less often\nthan they say. Pair more landings (--add to the paired campaign).\n\n",
+            e.paired_landings, e.min_paired_landings
+        );
+    }
     let c = percent(e.confidence);
     let interval = |[a, b]: [f64; 2]| format!("{} to {}", percent(a), percent(b));
     let rows = [

@@ -44,7 +44,11 @@ pub fn run(
     // The MuJoCo runner writes its own history.csv.
     let mut recorder = match out {
         Some(dir) if engine != Engine::Mujoco => {
-            Some(History::create(&dir.join("history.csv"), sc.legs.len())?)
+            let path = dir.join("history.csv");
+            Some(
+                History::create(&path, sc.legs.len())
+                    .with_context(|| format!("cannot write {}", path.display()))?,
+            )
         }
         _ => None,
     };
@@ -54,18 +58,21 @@ pub fn run(
         Some(t) => landed.with_context(|| format!("--timestep {t:e} s"))?,
         None => landed?,
     };
-    if let Some(r) = recorder {
-        r.finish()?;
+    let written = |dir: &Path, name: &str| format!("cannot write {}", dir.join(name).display());
+    if let (Some(r), Some(dir)) = (recorder, out) {
+        r.finish().with_context(|| written(dir, "history.csv"))?;
     }
     if let Some(dir) = out {
         // Every engine has written the same history.csv: one thinning for all.
         if every > 1 {
-            touchdown_record::history::decimate(&dir.join("history.csv"), every)?;
+            touchdown_record::history::decimate(&dir.join("history.csv"), every)
+                .with_context(|| written(dir, "history.csv"))?;
         }
         std::fs::write(
             dir.join("scenario.resolved.toml"),
             report::resolved_scenario(&sc),
-        )?;
+        )
+        .with_context(|| written(dir, "scenario.resolved.toml"))?;
     }
     let mut options = match timestep {
         Some(t) => serde_json::json!({ "timestep_s": t }),
@@ -84,7 +91,8 @@ pub fn run(
     let document =
         touchdown_compare::rounding::run_document(&summary, &id, &settings, determinacy.as_ref());
     if let Some(dir) = out {
-        std::fs::write(dir.join("summary.json"), &document)?;
+        std::fs::write(dir.join("summary.json"), &document)
+            .with_context(|| written(dir, "summary.json"))?;
     }
     match format {
         Format::Text => {

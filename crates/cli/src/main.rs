@@ -10,6 +10,7 @@ mod plots;
 mod precision;
 mod report;
 mod robustness;
+mod signals;
 mod validation;
 mod view;
 

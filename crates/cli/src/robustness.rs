@@ -19,7 +19,11 @@ pub fn robustness(
         None => CATALOGUE.to_vec(),
         Some(names) => names
             .iter()
-            .map(|n| {
+            .enumerate()
+            .map(|(i, n)| {
+                if names[..i].contains(n) {
+                    anyhow::bail!("--cases: {n:?} is named twice: name each case once");
+                }
                 CATALOGUE
                     .iter()
                     .find(|c| c.name == n)

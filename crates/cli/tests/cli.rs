@@ -471,6 +471,15 @@ fn boundary_prints_csv_and_json() {
             "{flag} {value}: {e}"
         );
     }
+    // A speed the scenario cannot take names the scenario, the speed and the field.
+    let bad = touchdown(&["boundary", f.to_str().unwrap(), "--vv=-1e308:-1e308:1"]);
+    assert_eq!(bad.status.code(), Some(1));
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        e.contains(&format!("{} at vertical velocity -1e+308", f.display()))
+            && e.contains("touchdown.vertical_velocity"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -1105,6 +1114,62 @@ fn set_changes_a_value_as_an_extending_file_would() {
     let o = touchdown(&["run", &scenario, "--set", "vertical_velocity"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("FIELD=VALUE"));
+    // A bare word is a string; a value that is not TOML otherwise is a typo, refused with
+    // TOML's reason, never taken as a string.
+    let named = json(&[
+        "run",
+        &scenario,
+        "--set",
+        "name=lander-2.b",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(named["scenario_name"], "lander-2.b");
+    for (value, reason) in [
+        ("name=\"abc", "invalid basic string"),
+        ("touchdown.attitude=[1, 2", "unclosed array"),
+        ("touchdown.vertical_velocity=", "got \"\""),
+        ("name=a b", "got \"a b\""),
+    ] {
+        let o = touchdown(&["run", &scenario, "--set", value]);
+        assert_eq!(o.status.code(), Some(2), "{value}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        let field = value.split('=').next().unwrap();
+        assert!(
+            err.contains(&format!("{field}: expected a TOML value")) && err.contains(reason),
+            "{value}: {err}"
+        );
+    }
+}
+
+/// `precision` whose reference refinements run past the scenario's budget says which one, how
+/// far the ladder got and how to give it more, rather than the engine's stop; `robustness`
+/// refuses a case named twice.
+#[test]
+fn a_reference_past_its_budget_and_a_case_named_twice_are_said_as_such() {
+    let o = touchdown(&[
+        "precision",
+        "scenarios/flat-drop.toml",
+        "--engines",
+        "core",
+        "--set",
+        "integrator.max_steps=3000",
+        "-q",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("no converged reference within the run budget: refinement 1")
+            && err.contains("--set integrator.max_steps=N (now 3000)"),
+        "{err}"
+    );
+    let o = touchdown(&["robustness", "--cases", "onset-x10,onset-x10"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--cases: \"onset-x10\" is named twice"),
+        "{err}"
+    );
 }
 
 /// The command line helps itself: a typo gets clap's suggestion, every help text wraps at 100
@@ -1621,9 +1686,65 @@ fn a_campaign_killed_at_any_moment_resumes_to_the_same_bytes() {
     }
 }
 
+/// A campaign ended by SIGINT, SIGTERM or SIGHUP says what it keeps and the command that goes
+/// on from it, ends with the status a shell gives a process the signal ended, and that command
+/// completes the campaign.
+#[cfg(unix)]
+#[test]
+fn a_campaign_ended_by_a_signal_says_what_it_keeps_and_how_to_go_on() {
+    let dir = temp("signals");
+    let file = d3117_with(&dir, 400);
+    for signal in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+        let out = dir.join(format!("out-{signal}"));
+        let records = dir.join(format!("out-{signal}.partial/landings.jsonl"));
+        let child = Command::new(env!("CARGO_BIN_EXE_touchdown"))
+            .args([
+                "campaign",
+                file.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .current_dir(root())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+        while std::fs::metadata(&records).map_or(true, |m| m.len() == 0) {
+            assert!(
+                std::time::Instant::now() < deadline,
+                "no record within 120 s"
+            );
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        // SAFETY: sending a signal to the child this test started and has not waited for.
+        unsafe {
+            libc::kill(child.id() as libc::pid_t, signal);
+        }
+        let ended = child.wait_with_output().unwrap();
+        assert_eq!(ended.status.code(), Some(128 + signal), "{ended:?}");
+        let err = String::from_utf8_lossy(&ended.stderr);
+        let kept = format!("kept in {}", records.parent().unwrap().display());
+        assert!(
+            err.contains("stopped by a signal") && err.contains(&kept),
+            "{err}"
+        );
+        let command = err.lines().last().unwrap().trim();
+        assert!(command.ends_with("--resume"), "{err}");
+        if signal == libc::SIGINT {
+            let args: Vec<String> = shlex::split(command).unwrap();
+            assert_eq!(args[0], "touchdown");
+            let args: Vec<&str> = args[1..].iter().map(String::as_str).collect();
+            let resumed = touchdown(&args);
+            assert!(resumed.status.success(), "{resumed:?}");
+            assert!(out.join("manifest.json").is_file());
+        }
+    }
+}
+
 /// A campaign that cannot write its records (here a file-size limit, as a full disk would)
 /// ends with an error naming the file and a non-zero status, and leaves no folder that looks
-/// complete.
+/// complete; a single landing's `--out` names the file it could not write.
 #[test]
 fn a_campaign_that_cannot_write_ends_with_the_path_and_claims_nothing() {
     let dir = temp("full");
@@ -1631,25 +1752,41 @@ fn a_campaign_that_cannot_write_ends_with_the_path_and_claims_nothing() {
     let out_dir = dir.join("out");
     // `ulimit -f` in 512-byte blocks: 64 blocks, 32 kB, about ten records. SIGXFSZ ignored (as
     // `trap` leaves it for the program), so that a write past the limit fails with EFBIG.
-    let command = format!(
-        "trap '' XFSZ; ulimit -f 64; exec {} campaign {} --out {}",
-        env!("CARGO_BIN_EXE_touchdown"),
+    let past_the_limit = |args: String| {
+        let command = format!(
+            "trap '' XFSZ; ulimit -f 64; exec {} {args}",
+            env!("CARGO_BIN_EXE_touchdown")
+        );
+        let out = Command::new("sh")
+            .args(["-c", &command])
+            .current_dir(root())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        assert_eq!(out.status.code(), Some(1), "{stderr}");
+        stderr
+    };
+    let stderr = past_the_limit(format!(
+        "campaign {} --out {}",
         file.display(),
         out_dir.display()
-    );
-    let out = Command::new("sh")
-        .args(["-c", &command])
-        .current_dir(root())
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    ));
     // The first file past the limit (a history or the records), in the folder being built.
     assert!(
         stderr.contains("out.partial/") && stderr.contains("File too large"),
         "the error names the file: {stderr}"
     );
     assert!(!out_dir.exists(), "nothing claimed complete");
+    // One landing's files past the same limit: the error names the file that failed.
+    let run_dir = dir.join("run");
+    let stderr = past_the_limit(format!(
+        "run scenarios/fig-25-26.toml --out {}",
+        run_dir.display()
+    ));
+    assert!(
+        stderr.contains("cannot write") && stderr.contains("run/history.csv"),
+        "the error names the file: {stderr}"
+    );
 }
 
 #[test]

@@ -289,7 +289,32 @@ pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> 
     let mut worst = String::new();
     for level in 0..REFERENCE_LEVELS {
         let scl = reference_level(sc, level)?;
-        let current = run(Engine::Core, path, &scl)?;
+        let current = match run(Engine::Core, path, &scl) {
+            // A refinement past the scenario's budget: the ladder ends there, said as such.
+            Err(CompareError::Engine(touchdown_registry::EngineFailure {
+                error: touchdown_record::RunError::Stopped(d),
+                ..
+            })) if d.law == touchdown_record::Law::RunBudget => {
+                let it = &scl.integrator;
+                let compared = if worst.is_empty() {
+                    "no two refinements compared yet".to_string()
+                } else {
+                    worst
+                };
+                return Err(CompareError::Unconverged {
+                    scenario: path.display().to_string(),
+                    message: format!(
+                        "no converged reference within the run budget: refinement {level} (rtol {:.0e}, dt_max {:.3e} s) ran out of it at t = {:.4} s ({}); {compared}; give the reference a larger budget with --set integrator.max_steps=N (now {})",
+                        it.rtol,
+                        it.dt_max * scl.units().time(),
+                        d.time_s,
+                        d.message,
+                        it.max_steps
+                    ),
+                });
+            }
+            other => other?,
+        };
         if let Some(prev) = previous {
             let e = errors(&current, &prev);
             let a = REFERENCE_AGREEMENT;

@@ -3,9 +3,9 @@
 //! while they run. Errors arrive as Python exceptions carrying the file, field and cause the
 //! command line prints.
 
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::{PyException, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString};
 use serde_json::json;
 use std::fmt::Display;
 use std::path::Path;
@@ -129,6 +129,7 @@ fn validation_error(py: Python<'_>, e: &ValidationError) -> PyErr {
         ValidationError::Run { scenario, source } => {
             run_error(py, source, format!("{scenario}: {source}"))
         }
+        ValidationError::Point { source, .. } => TouchdownError::new_err(format!("{e}: {source}")),
         ValidationError::Setting {
             argument,
             expected,
@@ -178,8 +179,9 @@ fn resolved<'a>(
         .map_err(|e| Box::new(Failed::Scenario(e)))
 }
 
-/// An override's value as TOML.
-fn toml_value(v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+/// The override of `key`'s value as TOML: a number, a string or a boolean; anything else is a
+/// TypeError, a string that is not valid Unicode a ValueError, each naming the override.
+fn toml_value(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if let Ok(b) = v.extract::<bool>() {
         return Ok(toml::Value::Boolean(b));
     }
@@ -189,18 +191,31 @@ fn toml_value(v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if let Ok(s) = v.extract::<String>() {
         return Ok(toml::Value::String(s));
     }
-    Err(TouchdownError::new_err(format!(
-        "an override must be a number, a string or a boolean, not {}",
+    if v.is_instance_of::<PyString>() {
+        return Err(PyValueError::new_err(format!(
+            "overrides[{key:?}]: expected a string of valid Unicode, got {} (a lone surrogate)",
+            v.repr()?
+        )));
+    }
+    Err(PyTypeError::new_err(format!(
+        "overrides[{key:?}]: expected a number, a string or a boolean, got {}",
         v.get_type().name()?
     )))
 }
 
-/// The overrides of a call: field path → value in the file's units.
+/// The overrides given as a dict, each field path with its value as TOML.
 fn override_values(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, toml::Value)>> {
     let mut values = Vec::new();
     if let Some(d) = overrides {
         for (k, v) in d.iter() {
-            values.push((k.extract::<String>()?, toml_value(&v)?));
+            let key: String = k.extract().map_err(|_| {
+                let repr = k.repr().map(|r| r.to_string()).unwrap_or_default();
+                PyTypeError::new_err(format!(
+                    "overrides: expected field paths as strings of valid Unicode, got {repr}"
+                ))
+            })?;
+            let value = toml_value(&key, &v)?;
+            values.push((key, value));
         }
     }
     Ok(values)
@@ -442,6 +457,21 @@ fn run_shard(
     Ok(out_dir.to_string())
 }
 
+/// Whether `dir` holds shard `k` of `n` of the campaign file `campaign`, finished by this build:
+/// what a scheduler of shards counts as done (a folder of another campaign, or of the campaign
+/// before an edit, is not).
+#[pyfunction]
+fn holds_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, dir: &str) -> PyResult<bool> {
+    let shard: Shard = format!("{k}/{n}")
+        .parse()
+        .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))?;
+    py.detach(|| {
+        let c = Campaign::load(campaign)?;
+        touchdown_campaign::run::holds_part(&c, Some(shard), Path::new(dir))
+    })
+    .map_err(|e| campaign_error(py, &e))
+}
+
 /// Merges the campaign folders `parts` into `out_dir` exactly as `touchdown campaign merge`
 /// does (refusing parts of other campaigns, builds or base scenarios, gaps and overlaps);
 /// returns `out_dir`.
@@ -485,6 +515,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(view, m)?)?;
     m.add_function(wrap_pyfunction!(boundary, m)?)?;
     m.add_function(wrap_pyfunction!(run_shard, m)?)?;
+    m.add_function(wrap_pyfunction!(holds_shard, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add("TouchdownError", py.get_type::<TouchdownError>())?;
     m.add("ScenarioInvalid", py.get_type::<ScenarioInvalid>())?;

@@ -9,7 +9,7 @@ pub enum ScenarioError {
     #[error("{file}: cannot read the scenario file: {cause}")]
     Io { file: String, cause: std::io::Error },
     /// The file is larger than any scenario file: `bytes` over the limit `most`.
-    #[error("{file}: cannot read the scenario file: the file is {} bytes; a scenario file is at most {} bytes", crate::units::short(*bytes as f64), crate::units::short(*most as f64))]
+    #[error("{file}: cannot read the scenario file: the file is {bytes} bytes; a scenario file is at most {most} bytes ({} MiB)", most >> 20)]
     TooLarge { file: String, bytes: u64, most: u64 },
     /// The path is not a regular file (a directory, a FIFO, a device, a socket): refused before
     /// it is opened, so that a FIFO cannot block the reader.

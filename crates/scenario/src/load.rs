@@ -196,6 +196,13 @@ impl ScenarioBase {
     /// A scenario given as TOML text (no `extends`); `source` names it in messages.
     pub fn from_toml(source: &str, text: &str) -> Result<ScenarioBase, ScenarioError> {
         let table = parse(source, text)?;
+        if table.contains_key("extends") {
+            return Err(ScenarioError::field(
+                source,
+                "extends",
+                "a scenario given as text cannot extend a file (its path would be relative to nothing): give the path of a file that extends it, or the whole scenario without `extends`",
+            ));
+        }
         Ok(ScenarioBase {
             source: source.to_string(),
             merged: Merged {

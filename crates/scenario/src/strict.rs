@@ -7,7 +7,9 @@
 //!   `stability = [1.0]` would silently read as `kinetic_energy_fraction = 1`;
 //! * a float given where the schema wants an integer, a string or a boolean, and an integer out
 //!   of its type's range, are reported in short notation ([`crate::units::short`]), never as a
-//!   300-digit expansion.
+//!   300-digit expansion;
+//! * a number, boolean or list where the schema wants one of a set of names is reported as what
+//!   it is, with the names.
 
 use crate::units::short;
 use serde::de::{self, DeserializeSeed, Deserializer, Expected, MapAccess, SeqAccess, Visitor};
@@ -149,8 +151,19 @@ impl<'de> Deserializer<'de> for Strict {
         visitor: V,
     ) -> Result<V::Value, Error> {
         match self.0 {
-            Value::Float(x) => Err(float_where_not_wanted(x, &visitor)),
-            other => other.deserialize_enum(name, variants, visitor),
+            // A name (or, for a variant with data, a table): anything else is said as what it
+            // is, with the names expected, not as serde's "unit variant".
+            other @ (Value::String(_) | Value::Table(_)) => {
+                other.deserialize_enum(name, variants, visitor)
+            }
+            other => {
+                let names: Vec<String> = variants.iter().map(|v| format!("\"{v}\"")).collect();
+                Err(de::Error::custom(format!(
+                    "expected one of {}, found {}",
+                    names.join(", "),
+                    kind(&other)
+                )))
+            }
         }
     }
 

@@ -951,3 +951,20 @@ fn a_lander_no_body_could_be_is_refused_or_warned_of() {
         weak.warnings()
     );
 }
+
+/// A file past the size limit is refused with both sizes in whole bytes, never in floating
+/// notation.
+#[test]
+fn a_file_past_the_size_limit_is_refused_in_whole_bytes() {
+    let folder = scratch("huge");
+    let path = folder.path().join("huge.toml");
+    let file = std::fs::File::create(&path).unwrap();
+    file.set_len(17_000_000).unwrap();
+    let message = Scenario::load(&path).unwrap_err().to_string();
+    assert!(
+        message.contains("the file is 17000000 bytes")
+            && message.contains("at most 16777216 bytes (16 MiB)")
+            && !message.contains("e+"),
+        "{message}"
+    );
+}

@@ -797,7 +797,14 @@ where
                 toml::Value::Float(dy * vh),
             ),
         ]);
-        let sc = base.with(&values)?;
+        let sc = base
+            .with(&values)
+            .map_err(|source| ValidationError::Point {
+                scenario: base.source().to_string(),
+                vv: Short(-vv).to_string(),
+                vh: Short(vh).to_string(),
+                source: Box::new(source),
+            })?;
         land(&sc).map_err(|source| ValidationError::Run {
             scenario: format!("{} at Vv = {vv}, Vh = {vh}", base.source()),
             source,
@@ -1054,8 +1061,15 @@ impl EnginePoint {
 
 /// The descent speeds (positive down, as the search takes them) of vertical velocities `vvs`
 /// written as in the scenario files (negative down); refuses a vertical velocity that is not
-/// negative, naming `argument`.
+/// negative, and none or more than [`MAX_GRID_POINTS`] of them, naming `argument`.
 pub fn descent_speeds(vvs: &[f64], argument: &'static str) -> Result<Vec<f64>, ValidationError> {
+    if vvs.is_empty() || vvs.len() > MAX_GRID_POINTS {
+        return Err(refuse(
+            argument,
+            format!("1 to {MAX_GRID_POINTS} vertical velocities"),
+            vvs.len() as f64,
+        ));
+    }
     vvs.iter()
         .map(|&v| {
             if v.is_finite() && v < 0.0 {

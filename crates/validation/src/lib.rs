@@ -34,6 +34,18 @@ pub enum ValidationError {
         /// What became of it.
         source: touchdown_record::RunError,
     },
+    /// A point of a search that the scenario cannot take: a speed outside its field's range.
+    #[error("{scenario} at vertical velocity {vv}, horizontal speed {vh} (the file's units, from the speeds asked for)")]
+    Point {
+        /// The scenario.
+        scenario: String,
+        /// The vertical velocity, in the file's units, negative down.
+        vv: String,
+        /// The horizontal speed, in the file's units.
+        vh: String,
+        /// What the scenario says of it (boxed: the rare path, kept out of every result's size).
+        source: Box<touchdown_scenario::ScenarioError>,
+    },
     /// The optimiser failed.
     #[error("calibration: {0}")]
     Calibration(String),
