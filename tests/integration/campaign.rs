@@ -1159,6 +1159,16 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
     let pair = &stats["pairs"][0];
     assert_eq!(pair["engines"], serde_json::json!(["core", "rapier"]));
     assert_eq!(pair["disagreement"]["landings"], serde_json::json!(differ));
+    // The one-value `integrator.t_end` list is the same on every landing: not an influence.
+    for influence in [&pair["influence"], &stats["engines"][0]["influence"]] {
+        let columns: Vec<&str> = (influence.as_array().unwrap().iter())
+            .map(|i| i["column"].as_str().unwrap())
+            .collect();
+        assert!(
+            !columns.is_empty() && !columns.contains(&"applied.integrator.t_end_s"),
+            "{columns:?}"
+        );
+    }
     assert_eq!(stats["engines"][1]["engine"], "rapier");
     let worst = pair["worst"].as_array().unwrap();
     assert!(!worst.is_empty());

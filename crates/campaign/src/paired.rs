@@ -108,7 +108,8 @@ pub struct DisagreementInfluence {
     /// The applied value's column.
     pub column: String,
     /// Its correlation with disagreement (point-biserial), in [−1, 1]; absent when it is not
-    /// defined (fewer than two landings, or the input or the agreement the same on every one).
+    /// defined (the agreement the same on every landing; an input the same on every landing is
+    /// not listed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub correlation_with_disagreement: Option<f64>,
 }

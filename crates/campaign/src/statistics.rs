@@ -97,8 +97,8 @@ pub struct Percentiles {
 pub struct Influence {
     /// The applied value's column.
     pub column: String,
-    /// The correlation, in [−1, 1]; absent when it is not defined (fewer than two landings, or
-    /// the input or the outcome the same on every landing).
+    /// The correlation, in [−1, 1]; absent when it is not defined (the outcome the same on
+    /// every landing; an input the same on every landing is not listed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub correlation_with_stable: Option<f64>,
 }
@@ -125,7 +125,8 @@ pub struct Statistics {
     /// Percentiles of the strokes (fractions of capacity), peak loads, the peak specific force
     /// and the minimum stability distance.
     pub percentiles: Vec<Percentiles>,
-    /// The numeric dispersed inputs, the most influential on stability first.
+    /// The numeric dispersed inputs that vary over the landings, the most influential on
+    /// stability first.
     pub influence: Vec<Influence>,
 }
 
@@ -143,8 +144,9 @@ pub fn correlation(x: &[f64], y: &[f64]) -> Option<f64> {
     (sxx > 0.0 && syy > 0.0).then(|| sxy / (sxx * syy).sqrt())
 }
 
-/// The correlation of each numeric applied value with `indicator` (one per landing), the
-/// strongest first (ties by name), those not defined last; `column(i, visit)` calls `visit` with each cell of column
+/// The correlation of each numeric applied value that varies over the landings with `indicator`
+/// (one per landing), the strongest first (ties by name), those not defined (the indicator
+/// constant) last; `column(i, visit)` calls `visit` with each cell of column
 /// `i`, in landing order.
 pub fn correlations<E>(
     columns: &[Column],
@@ -163,6 +165,10 @@ pub fn correlations<E>(
                 _ => 0.0,
             })
         })?;
+        // An input the same on every landing says nothing of the outcome: left out.
+        if x.iter().all(|v| *v == x[0]) {
+            continue;
+        }
         out.push((c.name.clone(), correlation(&x, indicator)));
     }
     let strength = |r: Option<f64>| r.map_or(-1.0, f64::abs);

@@ -298,7 +298,8 @@ pub(crate) enum Command {
         #[command(flatten)]
         set: Overrides,
         /// Vertical velocities FROM:TO:STEP as the scenario files write them, negative down, in
-        /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12).
+        /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12), or one
+        /// (`--vv=-8`).
         #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
         vv: String,
         /// First horizontal speed of the grid, in the scenario's length unit per second

@@ -12,17 +12,21 @@ use touchdown_validation::boundary::{
     self, BoundaryPoint, Direction, EnginePoint, Limit, Settings, Stops, Transition,
 };
 
-/// Parses the vertical velocities FROM:TO:STEP, written as in the scenario files (negative
-/// down): finite, FROM and TO negative, STEP > 0 and at most [`boundary::MAX_GRID_POINTS`]
-/// velocities, FROM, FROM ± STEP, ... towards TO.
+/// Parses the vertical velocities FROM:TO:STEP, or one vertical velocity, written as in the
+/// scenario files (negative down): finite, FROM and TO negative, STEP > 0 and at most
+/// [`boundary::MAX_GRID_POINTS`] velocities, FROM, FROM ± STEP, ... towards TO.
 fn range(spec: &str) -> Result<Vec<f64>> {
     let parts: Vec<f64> = spec
         .split(':')
         .map(|s| s.trim().parse::<f64>())
         .collect::<Result<_, _>>()
-        .with_context(|| format!("--vv {spec:?}: expected FROM:TO:STEP numbers"))?;
-    let [from, to, step] = parts[..] else {
-        bail!("--vv {spec:?}: expected FROM:TO:STEP")
+        .with_context(|| {
+            format!("--vv {spec:?}: expected FROM:TO:STEP numbers (--vv=-4:-12:2) or one (--vv=-8)")
+        })?;
+    let [from, to, step] = match parts[..] {
+        [one] => [one, one, 1.0],
+        [from, to, step] => [from, to, step],
+        _ => bail!("--vv {spec:?}: expected FROM:TO:STEP (--vv=-4:-12:2) or one vertical velocity (--vv=-8)"),
     };
     if !(from.is_finite() && to.is_finite() && step.is_finite()) {
         bail!("--vv {spec:?}: expected finite FROM:TO:STEP numbers");
@@ -619,6 +623,7 @@ mod boundary_tests {
         assert_eq!(range("-4:-8:2").unwrap(), vec![-4.0, -6.0, -8.0]);
         assert_eq!(range("-8:-4:2").unwrap(), vec![-8.0, -6.0, -4.0]);
         assert_eq!(range("-0.1:-0.4:0.1").unwrap().len(), 4);
+        assert_eq!(range("-2.5").unwrap(), vec![-2.5]);
         for bad in [
             "4:8:2",
             "0:-4:1",
@@ -628,6 +633,8 @@ mod boundary_tests {
             "-4:-inf:1",
             "-1:-1e9:1",
             "-1:-2",
+            "2.5",
+            "-1:-2:1:1",
         ] {
             let e = range(bad).unwrap_err().to_string();
             assert!(

@@ -49,8 +49,14 @@ pub fn view(
     }
     for r in &runs {
         let frames = r.recording.as_ref().map_or(0, |f| f.frames.t_s.len());
+        // The outcome's own time, then how far the landing ran: a landing decided at 0.08 s
+        // and run on to its end time is not "stable after" the end time.
+        let decided = r
+            .summary
+            .decision_time_s
+            .map_or(String::new(), |t| format!(" (decided at {t:.4} s)"));
         outln!(
-            "{}: {} after {:.4} s, {} steps, {} frames",
+            "{}: {}{decided}, run to {:.4} s, {} steps, {} frames",
             r.engine,
             format!("{:?}", r.summary.outcome).to_lowercase(),
             r.summary.t_end_s,

@@ -1492,7 +1492,7 @@ fn view_writes_the_same_page_twice_and_refuses_bad_arguments() {
             String::from_utf8_lossy(&out.stderr)
         );
         let text = String::from_utf8_lossy(&out.stdout);
-        assert!(text.contains("mujoco: stable after"), "{text}");
+        assert!(text.contains("mujoco: stable (decided at "), "{text}");
     }
     for f in ["fig-25-26.trajectory.json", "fig-25-26.html"] {
         let (x, y) = (
