@@ -95,9 +95,10 @@ impl Staging {
         Ok(staging)
     }
 
-    /// Goes on building the folder that will replace `out`, with what a stopped run left in
-    /// `<out>.partial` (nothing if none did): refused while another process builds it.
-    pub fn resume(out: &Path) -> Result<Staging, CampaignError> {
+    /// Opens the folder that will replace `out` as a stopped run left it in `<out>.partial`
+    /// (empty if none did), for the caller to go on from it or clear it: refused while another
+    /// process builds it.
+    pub fn keeping(out: &Path) -> Result<Staging, CampaignError> {
         Staging::open(out)
     }
 
@@ -135,14 +136,15 @@ impl Staging {
             });
         }
         let lock_path = dir.join(LOCK);
-        let refuse = |message: &str| {
-            CampaignError::Store {
-            path: dir.display().to_string(),
-            message: format!(
-                "{message}: touchdown builds the folder {} in it and will not clear what it did not write; move it away or delete it",
+        let refuse = |what: &str| {
+            let message = format!(
+                "{what}: touchdown builds the folder {} in it and will not clear what it did not write; move it away or delete it",
                 out.display()
-            ),
-        }
+            );
+            CampaignError::Store {
+                path: dir.display().to_string(),
+                message,
+            }
         };
         if dir.exists() {
             if !dir.is_dir() {

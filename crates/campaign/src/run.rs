@@ -323,11 +323,8 @@ pub fn run(
     let (staging, dir) = match out {
         Some(dir) => {
             folder::check_out(dir, |held| same_part(&manifest, held))?;
-            let staging = if resume {
-                Staging::resume(dir)?
-            } else {
-                Staging::begin(dir)?
-            };
+            // What a stopped run left is kept or cleared by `staged_journal`.
+            let staging = Staging::keeping(dir)?;
             let dir = staging.dir().to_path_buf();
             (Some(staging), dir)
         }
@@ -504,8 +501,8 @@ pub fn add(
     let old = store::read_manifest(dir)?;
     old.check_files(dir)?;
     let columns = record::columns(campaign);
-    let fresh = Manifest::new(campaign, old.landings, old.part.clone(), &columns);
-    fresh.same_campaign(&old).map_err(|m| {
+    let mut manifest = Manifest::new(campaign, old.landings, old.part.clone(), &columns);
+    manifest.same_campaign(&old).map_err(|m| {
         CampaignError::Mismatch(format!("{}: not this campaign's: {m}", dir.display()))
     })?;
     if old.part.first_landing != 0 || old.part.end_landing != old.landings {
@@ -527,17 +524,13 @@ pub fn add(
                 crate::spec::MAX_LANDINGS
             ))
         })?;
-    let part = Part {
+    manifest.landings = total;
+    manifest.part = Part {
         first_landing: 0,
         end_landing: total,
         shard: None,
     };
-    let mut manifest = Manifest::new(campaign, total, part, &columns);
-    let staging = if resume {
-        Staging::resume(dir)?
-    } else {
-        Staging::begin(dir)?
-    };
+    let staging = Staging::keeping(dir)?;
     let building = staging.dir().to_path_buf();
     let (mut journal, done) = staged_journal(&staging, &manifest, resume, 0..total, &mut |row| {
         if landing(row) >= old.landings {

@@ -445,9 +445,7 @@ fn run_shard(
     out_dir: &str,
     resume: bool,
 ) -> PyResult<String> {
-    let shard: Shard = format!("{k}/{n}")
-        .parse()
-        .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))?;
+    let shard = shard(k, n)?;
     py.detach(|| {
         let c = Campaign::load(campaign)?;
         let out = Some(Path::new(out_dir));
@@ -457,14 +455,19 @@ fn run_shard(
     Ok(out_dir.to_string())
 }
 
+/// Shard `k` of `n`, checked as `--shard K/N` is.
+fn shard(k: u64, n: u64) -> PyResult<Shard> {
+    format!("{k}/{n}")
+        .parse()
+        .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))
+}
+
 /// Whether `dir` holds shard `k` of `n` of the campaign file `campaign`, finished by this build:
 /// what a scheduler of shards counts as done (a folder of another campaign, or of the campaign
 /// before an edit, is not).
 #[pyfunction]
 fn holds_shard(py: Python<'_>, campaign: &str, k: u64, n: u64, dir: &str) -> PyResult<bool> {
-    let shard: Shard = format!("{k}/{n}")
-        .parse()
-        .map_err(|e: String| TouchdownError::new_err(format!("shard: {e}")))?;
+    let shard = shard(k, n)?;
     py.detach(|| {
         let c = Campaign::load(campaign)?;
         touchdown_campaign::run::holds_part(&c, Some(shard), Path::new(dir))
