@@ -289,28 +289,44 @@ pub(crate) fn resolve_links(
 pub(crate) fn parametric_legs(
     c: &Check,
     p: &schema::Parametric,
+    arrangement: schema::Arrangement,
     u: &Units,
 ) -> Result<Vec<model::Leg>, ScenarioError> {
     let l = u.length();
     let f = |name: &str, v: f64| c.positive_si(&format!("gear.parametric.{name}"), v, l);
     let (r1, r2, r3) = (f("r1", p.r1)?, f("r2", p.r2)?, f("r3", p.r3)?);
-    let (z1, z2, z3, zc) = (
-        f("z1", p.z1)?,
-        f("z2", p.z2)?,
-        f("z3", p.z3)?,
-        f("zc", p.zc)?,
-    );
+    let (z2, z3, zc) = (f("z2", p.z2)?, f("z3", p.z3)?, f("zc", p.zc)?);
+    // Point 1's height: Z1 on the cantilever; the footpad's, 0, on the tripod (eqs. 29-30).
+    let z1 = match (arrangement, p.z1) {
+        (schema::Arrangement::Cantilever, Some(z1)) => {
+            let z1_si = f("z1", z1)?;
+            if z1_si >= z3 {
+                return Err(c.err(
+                    "gear.parametric.z1",
+                    format!(
+                        "expected Z1 below the primary trunnion height Z3 = {}, got {}",
+                        short(p.z3),
+                        short(z1)
+                    ),
+                ));
+            }
+            z1_si
+        }
+        (schema::Arrangement::Cantilever, None) => {
+            return Err(c.err(
+                "gear.parametric.z1",
+                "expected Z1 (length), the height of point 1, for the cantilever gear",
+            ))
+        }
+        (schema::Arrangement::Tripod, None) => 0.0,
+        (schema::Arrangement::Tripod, Some(_)) => {
+            return Err(c.err(
+                "gear.parametric.z1",
+                "the tripod's secondaries meet the primary at the footpad: leave Z1 out",
+            ))
+        }
+    };
     let beta = c.finite_si("gear.parametric.beta", p.beta, u.angle())?;
-    if z1 >= z3 {
-        return Err(c.err(
-            "gear.parametric.z1",
-            format!(
-                "expected Z1 below the primary trunnion height Z3 = {}, got {}",
-                short(p.z3),
-                short(p.z1)
-            ),
-        ));
-    }
     // Point 1: on the primary axis from B2 = (R1, Z3) to BP = (R3, 0), at height Z1.
     let t1 = (z3 - z1) / z3;
     let x1 = r1 + (r3 - r1) * t1;
@@ -543,13 +559,7 @@ pub(crate) fn resolve(
     let arrangement = file.gear.arrangement;
     let (legs, legs_field) = match (&file.gear.legs, &file.gear.parametric) {
         (Some(l), None) => (explicit_legs(&c, l, arrangement, &u)?, "gear.legs"),
-        (None, Some(_)) if arrangement == schema::Arrangement::Tripod => {
-            return Err(c.err(
-                "gear.arrangement",
-                "the tripod is not supported by gear.parametric (the report's fig. 23 parameterisation is of the cantilever gear): give the tripod's points in gear.legs",
-            ))
-        }
-        (None, Some(p)) => (parametric_legs(&c, p, &u)?, "gear.parametric"),
+        (None, Some(p)) => (parametric_legs(&c, p, arrangement, &u)?, "gear.parametric"),
         _ => return Err(c.err("gear", "expected exactly one of `legs` or `parametric`")),
     };
     check_legs(&c, legs_field, &legs, arrangement, u.length())?;

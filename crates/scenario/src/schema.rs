@@ -195,7 +195,8 @@ pub enum BetaConvention {
 /// the leg, z up, datum z = 0 at the undeformed footpad plane; the body origin is the centre of
 /// mass at height ZC. B2 = (R1, 0, Z3), BP = (R3, 0, 0), point 1 on the primary axis at height
 /// Z1 (so L21 follows), B3/B4 per `beta_convention`. Each leg is this frame rotated about Z_B by
-/// its azimuth.
+/// its azimuth. The tripod takes the same form without Z1: its point 1 is the footpad (so
+/// `strut_angle` reads x1 = R3).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Parametric {
@@ -206,7 +207,9 @@ pub struct Parametric {
     /// R3: radius of the footpad BP; length.
     pub r3: f64,
     /// Z1: height of the secondary attachment point 1 above the footpad plane; length.
-    pub z1: f64,
+    /// Required for the cantilever; the tripod has none (its point 1 is the footpad).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z1: Option<f64>,
     /// Z2: height of the secondary trunnions; length.
     pub z2: f64,
     /// Z3: height of the primary trunnion; length.

@@ -968,3 +968,49 @@ fn a_file_past_the_size_limit_is_refused_in_whole_bytes() {
         "{message}"
     );
 }
+
+/// The tripod takes the parametric form without Z1 (its point 1 is the footpad): the 1/6-scale
+/// model's fig. 23 parameters give the points `tripod-drop.toml` lists, to the six decimals it
+/// writes them with; Z1 on a tripod, or none on a cantilever, is refused by name.
+#[test]
+fn the_tripod_takes_the_parametric_form_without_point_1() {
+    let explicit = scenario("tripod-drop.toml");
+    let text = std::fs::read_to_string(&explicit).unwrap();
+    let start = text.find("[[gear.legs]]").unwrap();
+    let end = text.find("[primary_strut]").unwrap();
+    let parametric = "[gear.parametric]\nr1 = 1.639\nr2 = 1.562\nr3 = 2.221\nz2 = 0.806\nz3 = 1.351\nzc = 0.952\nbeta = 19.72\nbeta_convention = \"trunnion_azimuth\"\nleg_azimuths = [0.0, 90.0, 180.0, 270.0]\n\n";
+    let folder = scratch("tripod-parametric");
+    let path = folder.path().join("tripod.toml");
+    std::fs::write(
+        &path,
+        format!("{}{parametric}{}", &text[..start], &text[end..]),
+    )
+    .unwrap();
+    let (a, b) = (
+        Scenario::load(&explicit).unwrap(),
+        Scenario::load(&path).unwrap(),
+    );
+    let foot = 0.3048;
+    for (x, y) in a.legs.iter().zip(&b.legs) {
+        for (p, q) in [(x.b2, y.b2), (x.b3, y.b3), (x.b4, y.b4), (x.bp, y.bp)] {
+            assert!((p - q).norm() < 1e-6 * foot, "{p} against {q}");
+        }
+        // Point 1 is the footpad: L21 is the whole primary.
+        assert!((y.l21 - y.l2p).abs() < 1e-12 && (y.b1() - y.bp).norm() < 1e-12);
+    }
+    let (_, field, message) =
+        field_error(Scenario::load_with(&path, &[("gear.parametric.z1", 0.49)]));
+    assert_eq!(field, "gear.parametric.z1");
+    assert!(message.contains("leave Z1 out"), "{message}");
+    let cantilever = folder.path().join("cantilever.toml");
+    std::fs::write(
+        &cantilever,
+        std::fs::read_to_string(&path)
+            .unwrap()
+            .replace("arrangement = \"tripod\"", "arrangement = \"cantilever\""),
+    )
+    .unwrap();
+    let (_, field, message) = field_error(Scenario::load(&cantilever));
+    assert_eq!(field, "gear.parametric.z1");
+    assert!(message.contains("expected Z1"), "{message}");
+}
