@@ -126,6 +126,15 @@ def test_run_documents(tmp_path):
     assert from_python["rounding"] == rounded["rounding"]
 
 
+def test_check_documents():
+    clean = parse(cli("check", "scenarios/flat-drop.toml", "--format", "json"))
+    check(clean, "check")
+    assert clean["findings"] == [] and clean["figures"]["stroke_energy_of_touchdown"] > 1
+    steep = touchdown.check(ROOT / "scenarios/flat-drop.toml", overrides={"surface.slope": 70.0})
+    check(steep, "check")
+    assert [f["concern"] for f in steep["findings"]] == ["value", "tip_over"]
+
+
 def test_compare_streams_one_document_per_scenario(tmp_path):
     out = cli("compare", "scenarios/flat-drop.toml", "scenarios/level-sliding.toml", "--engines", "core,rapier",
               "--format", "json", "--report-only", "--out", str(tmp_path))

@@ -31,6 +31,7 @@ from ._native import EngineUnavailable, LandingStopped, ScenarioInvalid, Touchdo
 __version__ = _native.__version__
 __all__ = [
     "run",
+    "check",
     "compare",
     "view",
     "boundary",
@@ -90,6 +91,15 @@ def run(
         "summary": json.loads(summary),
         "history": _history(csv_text, frame) if csv_text else None,
     }
+
+
+def check(scenario: Union[str, PathLike], overrides: Optional[Mapping[str, Any]] = None) -> dict:
+    """Reviews `scenario` (a path, or TOML text) with `overrides` before it lands: the gear's
+    crush load against the weight, its stroke energy against the touchdown energy, the static
+    tip-over angle against the slope, the principal moments, and every finding with the file
+    that set the value; the document `touchdown check --format json` prints
+    (docs/schemas/check.schema.json). Nothing is landed."""
+    return json.loads(_native.check(a.path("scenario", scenario), a.mapping("overrides", overrides)))
 
 
 def compare(

@@ -38,9 +38,12 @@ pub(crate) enum Command {
         /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// history.csv: keep every Nth step's row (and the last), not every step's.
-        #[arg(long, value_name = "N", requires = "out", default_value_t = 1)]
-        every: usize,
+        /// history.csv: keep every Nth step's row (and the last). By default rows are no closer
+        /// than the core's largest step integrator.dt_max: every step on the core, every Nth on
+        /// rapier and MuJoCo with N = floor(dt_max / timestep) (10 on the 1/6-scale model);
+        /// --every 1 keeps every step.
+        #[arg(long, value_name = "N", requires = "out")]
+        every: Option<usize>,
         /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
         /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
         /// in the project's Python environment with the shared laws; settings in
@@ -58,6 +61,83 @@ pub(crate) enum Command {
         /// (docs/engines.md, "Rounding-decided channels"). Three more landings.
         #[arg(long)]
         rounding: bool,
+    },
+    /// Draft a first vehicle and landing from a handful of numbers (docs/authoring.md, "A
+    /// vehicle in minutes"): writes DIR/vehicle.toml (every value not given derived by a rule
+    /// written beside it, from the bundled robotic lander's proportions) and DIR/landing.toml,
+    /// then reviews them as `touchdown check` does. Numbers in the --units given; angles in
+    /// degrees.
+    New {
+        /// Folder to write vehicle.toml and landing.toml into (created; existing files are
+        /// never overwritten).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// The vehicle's name.
+        #[arg(long)]
+        name: String,
+        /// The unit system of every number given and of the files: si (m, kg, N, s) or
+        /// ft-slug-lbf (ft, slug, lbf, s).
+        #[arg(long, value_enum)]
+        units: DraftUnits,
+        /// Gear arrangement.
+        #[arg(long, value_enum, default_value_t = DraftArrangement::Cantilever)]
+        arrangement: DraftArrangement,
+        /// Number of legs, evenly spaced.
+        #[arg(long, default_value_t = 4)]
+        legs: usize,
+        /// Vehicle mass at touchdown, without the footpads; mass.
+        #[arg(long, allow_hyphen_values = true)]
+        mass: f64,
+        /// Local gravity (1.62 m/s² on the Moon); length/time².
+        #[arg(long, allow_hyphen_values = true)]
+        gravity: f64,
+        /// Principal moments of inertia about the centre of mass, XX,YY,ZZ; mass·length².
+        #[arg(
+            long,
+            value_delimiter = ',',
+            num_args = 1,
+            required = true,
+            allow_hyphen_values = true,
+            value_name = "XX,YY,ZZ"
+        )]
+        inertia: Vec<f64>,
+        /// Radius of the circle through the footpads, seen from above; length.
+        #[arg(long, allow_hyphen_values = true)]
+        footprint_radius: f64,
+        /// Height of the centre of mass above the footpads, gear undeformed; length.
+        #[arg(long, allow_hyphen_values = true)]
+        centre_of_mass_height: f64,
+        /// The primary strut's first crush load; force.
+        #[arg(long, allow_hyphen_values = true)]
+        crush_load: f64,
+        /// The primary strut's stroke capacity; length.
+        #[arg(long, allow_hyphen_values = true)]
+        stroke: f64,
+        /// Touchdown vertical velocity, negative down; length/time.
+        #[arg(long, allow_hyphen_values = true)]
+        vertical_velocity: f64,
+        /// Touchdown horizontal velocity along +Y (downhill on a slope; toward leg 2 of four);
+        /// length/time.
+        #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+        horizontal_velocity: f64,
+        /// Surface slope about X, deg (+Y downhill).
+        #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+        slope: f64,
+    },
+    /// Review a vehicle and its landing before it runs (docs/authoring.md, "Checked before it
+    /// lands"): the gear's crush load against the weight, its stroke energy against the
+    /// touchdown energy, the static tip-over angle against the slope, the principal moments,
+    /// and every finding with the file that set the value. Exits 3 when there is a finding;
+    /// `run` prints the findings as warnings.
+    Check {
+        /// Scenario file (TOML).
+        scenario: PathBuf,
+        #[command(flatten)]
+        set: Overrides,
+        /// Output format: text, or the review as one JSON document
+        /// (docs/schemas/check.schema.json).
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
     /// Run scenarios through several engines and report how far apart they land, channel by
     /// channel against written tolerances (docs/engines.md, "Comparing the engines").
@@ -439,6 +519,34 @@ pub(crate) enum CampaignAction {
     },
 }
 
+impl Cli {
+    /// The command line parsed, with one mistake clap cannot name caught first: `--set FIELD
+    /// VALUE` (a space where the `=` goes), which clap would report as an unexpected argument
+    /// with advice to write `-- -3`.
+    pub(crate) fn parse_arguments() -> Cli {
+        let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+        if let Some(message) = set_split_in_two(&args) {
+            use clap::CommandFactory;
+            Cli::command()
+                .error(clap::error::ErrorKind::ValueValidation, message)
+                .exit();
+        }
+        Cli::parse_from(args)
+    }
+}
+
+/// The message for `--set FIELD VALUE` written as two arguments, if `args` holds one.
+fn set_split_in_two(args: &[std::ffi::OsString]) -> Option<String> {
+    args.windows(3).find_map(|w| {
+        let (flag, field, value) = (w[0].to_str()?, w[1].to_str()?, w[2].to_str()?);
+        (flag == "--set" && !field.contains('=') && !value.starts_with("--")).then(|| {
+            format!(
+                "--set {field} {value}: the field and its value are one argument joined by '=': --set {field}={value}"
+            )
+        })
+    })
+}
+
 /// `--set FIELD=VALUE`, on every command that takes a scenario.
 #[derive(clap::Args)]
 pub(crate) struct Overrides {
@@ -546,6 +654,24 @@ pub(crate) enum ValidationProtocol {
     TwoRow,
     /// Leave-one-out cross-validation (reference/cross-validation-protocol.toml).
     Cv,
+}
+
+/// `touchdown new --units`.
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum DraftUnits {
+    /// m, kg, N, s.
+    Si,
+    /// ft, slug, lbf, s.
+    FtSlugLbf,
+}
+
+/// `touchdown new --arrangement`.
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum DraftArrangement {
+    /// The LM's: secondaries attached to the primary at point 1.
+    Cantilever,
+    /// Inverted tripod: secondaries attached at the footpad.
+    Tripod,
 }
 
 #[derive(Clone, Copy, ValueEnum)]

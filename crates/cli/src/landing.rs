@@ -14,10 +14,10 @@ pub fn run(
     scenario: &Path,
     set: &[Set],
     format: Format,
-    (out, every): (Option<&Path>, usize),
+    (out, every): (Option<&Path>, Option<usize>),
     (engine, timestep, rounding): (Engine, Option<f64>, bool),
 ) -> Result<()> {
-    if every == 0 {
+    if every == Some(0) {
         anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
     }
     let mut sc = load(scenario, set)?.1;
@@ -64,6 +64,7 @@ pub fn run(
     }
     if let Some(dir) = out {
         // Every engine has written the same history.csv: one thinning for all.
+        let every = every.unwrap_or_else(|| history_every(&sc, &summary));
         if every > 1 {
             touchdown_record::history::decimate(&dir.join("history.csv"), every)
                 .with_context(|| written(dir, "history.csv"))?;
@@ -104,4 +105,19 @@ pub fn run(
         Format::Json => outln!("{document}")?,
     }
     Ok(())
+}
+
+/// The default thinning of history.csv: rows no closer in time than the core's largest step
+/// `integrator.dt_max` (scaled with the vehicle, so a row per 0.2 ms on the 1/6-scale model),
+/// which is every step on the core and every Nth step on a fixed-step engine whose step is N
+/// or more times finer (N = ⌊dt_max / step⌋: 10 for rapier's 20 µs on the 1/6-scale model).
+fn history_every(sc: &touchdown_scenario::Scenario, summary: &touchdown_record::Summary) -> usize {
+    let step = summary
+        .engine_settings
+        .get("timestep_s")
+        .and_then(serde_json::Value::as_f64);
+    match step {
+        Some(step) if step > 0.0 => ((sc.integrator.dt_max / step).floor() as usize).max(1),
+        _ => 1,
+    }
 }

@@ -3,7 +3,9 @@
 mod args;
 mod boundary;
 mod campaign;
+mod check;
 mod compare;
+mod draft;
 mod landing;
 mod manual;
 mod plots;
@@ -16,7 +18,6 @@ mod view;
 
 use anyhow::{bail, Context, Result};
 use args::{CampaignAction, Cli, Command, Format, TableFormat, ValidationProtocol};
-use clap::Parser;
 use std::path::{Path, PathBuf};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -45,7 +46,7 @@ fn main() -> std::process::ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    let cli = Cli::parse();
+    let cli = Cli::parse_arguments();
     QUIET.store(cli.quiet, std::sync::atomic::Ordering::Relaxed);
     match run(cli) {
         Ok(Verdict::Pass) => std::process::ExitCode::SUCCESS,
@@ -86,6 +87,10 @@ pub fn write_stdout(text: std::fmt::Arguments) -> Result<()> {
 pub fn warn(sc: &Scenario) {
     for w in sc.warnings() {
         eprintln!("warning: {}: field `{}`: {}", w.file, w.field, w.message);
+    }
+    // What `touchdown check` finds besides: the stroke energy, the tip-over angle.
+    for f in check::findings(sc) {
+        eprintln!("warning: {f}");
     }
 }
 
@@ -158,6 +163,51 @@ fn run(cli: Cli) -> Result<Verdict> {
             (out.as_deref(), every),
             (engine, timestep, rounding),
         ),
+        Command::New {
+            out,
+            name,
+            units,
+            arrangement,
+            legs,
+            mass,
+            gravity,
+            inertia,
+            footprint_radius,
+            centre_of_mass_height,
+            crush_load,
+            stroke,
+            vertical_velocity,
+            horizontal_velocity,
+            slope,
+        } => draft::new(
+            &out,
+            draft::Numbers {
+                name,
+                units,
+                arrangement,
+                legs,
+                values: [
+                    mass,
+                    gravity,
+                    footprint_radius,
+                    centre_of_mass_height,
+                    crush_load,
+                    stroke,
+                    vertical_velocity,
+                    horizontal_velocity,
+                    slope,
+                ],
+                inertia,
+            },
+        ),
+        Command::Check {
+            scenario,
+            set,
+            format,
+        } => {
+            let passed = check::check(&scenario, &set.set, format)?;
+            return Ok(verdict(passed, false));
+        }
         Command::Compare {
             scenarios,
             set,

@@ -56,7 +56,12 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
                 None => String::new(),
             }
         ),
-        _ => format!("UNDECIDED{bottomed} (no stability decision before the end time)"),
+        _ => format!(
+            "UNDECIDED{bottomed} (no stability decision before the end time, {:.4} s: the four stable conditions of docs/errata.md, \"Eqs. (105)-(107)\", never held together and no wall was crossed; with {:.4} J of kinetic energy left, a longer run may decide it: --set integrator.t_end={} (in the file's time unit))",
+            s.t_end_s,
+            s.energy.kinetic_j,
+            2.0 * s.t_end_s / u.time()
+        ),
     };
     let _ = writeln!(o, "outcome:  {outcome}");
     let _ = writeln!(
@@ -68,6 +73,7 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     if lname != "m" {
         strokes(&mut o, s, lu, lname);
     }
+    stroke_times(&mut o, s);
     past_capacity(&mut o, s);
     let _ = writeln!(
         o,
@@ -193,6 +199,52 @@ fn past_capacity(o: &mut String, s: &Summary) {
             "peak stop force N",
         ],
         &[1, 2, 3, 4, 5],
+        rows,
+    ));
+}
+
+/// The table of the times each maximum stroke was first reached, s ("—" where the strut never
+/// stroked that way).
+fn stroke_times(o: &mut String, s: &Summary) {
+    let _ = writeln!(
+        o,
+        "\ntime of each maximum stroke, s (a touchdown peak or a late rock)"
+    );
+    let rows = s.max_primary_stroke_m.iter().enumerate().map(|(i, p)| {
+        let (c, t) = (
+            s.max_secondary_compression_m[i],
+            s.max_secondary_tension_m[i],
+        );
+        let (ct, tt) = (
+            s.max_secondary_compression_time_s[i],
+            s.max_secondary_tension_time_s[i],
+        );
+        let at = |stroke: f64, time: f64| {
+            if stroke > 0.0 {
+                format!("{time:.4}")
+            } else {
+                "—".to_string()
+            }
+        };
+        vec![
+            (i + 1).to_string(),
+            at(*p, s.max_primary_stroke_time_s[i]),
+            at(c[0], ct[0]),
+            at(t[0], tt[0]),
+            at(c[1], ct[1]),
+            at(t[1], tt[1]),
+        ]
+    });
+    o.push_str(&touchdown_compare::report::text_table(
+        &[
+            "leg",
+            "primary",
+            "3-1 compr",
+            "3-1 tension",
+            "4-1 compr",
+            "4-1 tension",
+        ],
+        &[0, 1, 2, 3, 4, 5],
         rows,
     ));
 }

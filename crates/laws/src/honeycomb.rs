@@ -161,6 +161,14 @@ impl LoadStroke {
             .zip(self.f[..self.n].iter().copied())
     }
 
+    /// The work the virgin curve takes from no stroke to its capacity, J: the area under it,
+    /// onset ramps and plateaus (what the strut can absorb before it bottoms).
+    pub fn energy_to_capacity(&self) -> f64 {
+        (1..self.n)
+            .map(|i| 0.5 * (self.f[i] + self.f[i - 1]) * (self.x[i] - self.x[i - 1]))
+            .sum()
+    }
+
     /// Stroke-out (bottoming) rate beyond the last stage, N/m.
     pub fn stroke_out_rate(&self) -> f64 {
         self.stroke_out_rate
@@ -586,6 +594,19 @@ mod tests {
             },
         ];
         Honeycomb::new(LoadStroke::new(1e5, &stages, 1e7).unwrap(), 1e6, 1.0).unwrap()
+    }
+
+    #[test]
+    fn the_energy_to_capacity_is_the_area_under_the_virgin_curve() {
+        let c = primary().curve;
+        // Onset to 1000 N over 10 mm (5 J), plateau to 0.1 m (90 J), onset to 3000 N over
+        // 20 mm (40 J), plateau to 0.2 m (240 J).
+        assert!((c.energy_to_capacity() - 375.0).abs() < 1e-9);
+        // The same by the midpoint rule on the force itself.
+        let n = 200_000;
+        let h = c.capacity() / n as f64;
+        let sum: f64 = (0..n).map(|i| c.force((i as f64 + 0.5) * h) * h).sum();
+        assert!((sum - 375.0).abs() < 1e-6, "{sum}");
     }
 
     #[test]

@@ -557,7 +557,7 @@ impl GearBook {
     fn update_extremes(&mut self, t: f64, v: &BodyMotion) {
         for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
             self.extremes
-                .update_leg(i, k.c, k.s, f.primary(k.c_dot), f.secondary());
+                .update_leg(t, i, k.c, k.s, f.primary(k.c_dot), f.secondary());
         }
         self.extremes.update_pitch_rate(t, v.pitch_rate());
     }

@@ -335,6 +335,25 @@ fn compare(
     .map_err(|f| f.into_py_err(py))
 }
 
+/// The review of `scenario` (a path or TOML text) with `overrides` before it lands, as
+/// `touchdown check --format json` prints it (docs/schemas/check.schema.json).
+#[pyfunction]
+#[pyo3(signature = (scenario, overrides=None))]
+fn check(
+    py: Python<'_>,
+    scenario: &str,
+    overrides: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let values = override_values(overrides)?;
+    py.detach(|| -> Result<String, Box<Failed>> {
+        let (sc, source) = resolved(scenario, &values)?;
+        let review = touchdown_review::review(&sc).map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let id = touchdown_record::ScenarioId::new(source, &sc);
+        Ok(review.document(&id, &settings(&values, json!({}))))
+    })
+    .map_err(|f| f.into_py_err(py))
+}
+
 /// A landing to watch, as `touchdown view` writes it: `scenario` (a path or TOML text) with
 /// `overrides` on each of `engines` that its `engines.applicable` lists, a frame every
 /// `frame_interval` s; the trajectory document (JSON) and the page that plays it (HTML).
@@ -515,6 +534,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(view, m)?)?;
     m.add_function(wrap_pyfunction!(boundary, m)?)?;
     m.add_function(wrap_pyfunction!(run_shard, m)?)?;

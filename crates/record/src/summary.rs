@@ -6,12 +6,16 @@ use crate::stability::{Outcome, StabilityTracker};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-/// Running extremes of one leg: strokes (m) and strut forces (N).
+/// Running extremes of one leg: strokes (m) with the times they were reached (s), and strut
+/// forces (N).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct LegExtremes {
     primary: f64,
     sec_compression: [f64; 2],
     sec_tension: [f64; 2],
+    primary_time: f64,
+    sec_compression_time: [f64; 2],
+    sec_tension_time: [f64; 2],
     primary_force: f64,
     sec_compression_force: [f64; 2],
     sec_tension_force: [f64; 2],
@@ -52,11 +56,13 @@ impl Extremes {
         self.closed |= stability.overturned();
     }
 
-    /// Updates leg `i` with its primary compression stroke (m) and force (N, compression
-    /// positive), and its secondary strokes (m) and forces (N), tension positive.
+    /// Updates leg `i` at time `t` (s) with its primary compression stroke (m) and force (N,
+    /// compression positive), and its secondary strokes (m) and forces (N), tension positive.
+    /// Each stroke's maximum keeps the time it was first reached.
     #[inline]
     pub fn update_leg(
         &mut self,
+        t: f64,
         i: usize,
         primary: f64,
         secondary: [f64; 2],
@@ -66,12 +72,29 @@ impl Extremes {
         if self.closed {
             return;
         }
+        /// Raises `max` to `x`, and `time` to `t` with it.
+        fn raise(max: &mut f64, time: &mut f64, x: f64, t: f64) {
+            if x > *max {
+                *max = x;
+                *time = t;
+            }
+        }
         let leg = &mut self.legs[i];
-        leg.primary = leg.primary.max(primary);
+        raise(&mut leg.primary, &mut leg.primary_time, primary, t);
         leg.primary_force = leg.primary_force.max(primary_force);
         for j in 0..2 {
-            leg.sec_tension[j] = leg.sec_tension[j].max(secondary[j]);
-            leg.sec_compression[j] = leg.sec_compression[j].max(-secondary[j]);
+            raise(
+                &mut leg.sec_tension[j],
+                &mut leg.sec_tension_time[j],
+                secondary[j],
+                t,
+            );
+            raise(
+                &mut leg.sec_compression[j],
+                &mut leg.sec_compression_time[j],
+                -secondary[j],
+                t,
+            );
             leg.sec_tension_force[j] = leg.sec_tension_force[j].max(secondary_force[j]);
             leg.sec_compression_force[j] = leg.sec_compression_force[j].max(-secondary_force[j]);
         }
@@ -146,6 +169,15 @@ pub struct Summary {
     pub max_secondary_compression_m: Vec<[f64; 2]>,
     /// Maximum tension stroke of the two secondaries per leg, m (positive).
     pub max_secondary_tension_m: Vec<[f64; 2]>,
+    /// Time each leg's maximum primary stroke was first reached, s (the run's start where the
+    /// strut never compressed: its maximum is then 0).
+    pub max_primary_stroke_time_s: Vec<f64>,
+    /// Time each maximum secondary compression stroke was first reached, s (the start where
+    /// it is 0).
+    pub max_secondary_compression_time_s: Vec<[f64; 2]>,
+    /// Time each maximum secondary tension stroke was first reached, s (the start where it is
+    /// 0).
+    pub max_secondary_tension_time_s: Vec<[f64; 2]>,
     /// Largest primary axial force F2P per leg, N (compression positive).
     pub peak_primary_force_n: Vec<f64>,
     /// Largest compression force of the two secondaries (3-1, 4-1) per leg, N (positive).
@@ -283,6 +315,9 @@ impl Summary {
             max_primary_stroke_m: max_primary,
             max_secondary_compression_m: max_compression,
             max_secondary_tension_m: max_tension,
+            max_primary_stroke_time_s: extremes.per_leg(|l| l.primary_time),
+            max_secondary_compression_time_s: extremes.per_leg(|l| l.sec_compression_time),
+            max_secondary_tension_time_s: extremes.per_leg(|l| l.sec_tension_time),
             peak_primary_force_n: extremes.per_leg(|l| l.primary_force),
             peak_secondary_compression_force_n: extremes.per_leg(|l| l.sec_compression_force),
             peak_secondary_tension_force_n: extremes.per_leg(|l| l.sec_tension_force),
@@ -308,11 +343,16 @@ mod tests {
     #[test]
     fn extremes_keep_maxima_and_the_signed_peak_rate() {
         let mut x = Extremes::new(2, StrutCapacities::default());
-        x.update_leg(1, 0.1, [0.02, -0.03], 900.0, [-40.0, 25.0]);
-        x.update_leg(1, 0.05, [-0.01, 0.04], 700.0, [10.0, -5.0]);
+        x.update_leg(0.5, 1, 0.1, [0.02, -0.03], 900.0, [-40.0, 25.0]);
+        x.update_leg(0.7, 1, 0.05, [-0.01, 0.04], 700.0, [10.0, -5.0]);
+        // An equal stroke later keeps the time the maximum was first reached.
+        x.update_leg(0.9, 1, 0.1, [0.0, 0.0], 0.0, [0.0, 0.0]);
         assert_eq!(x.per_leg(|l| l.primary), vec![0.0, 0.1]);
+        assert_eq!(x.per_leg(|l| l.primary_time), vec![0.0, 0.5]);
         assert_eq!(x.legs[1].sec_tension, [0.02, 0.04]);
+        assert_eq!(x.legs[1].sec_tension_time, [0.5, 0.7]);
         assert_eq!(x.legs[1].sec_compression, [0.01, 0.03]);
+        assert_eq!(x.legs[1].sec_compression_time, [0.7, 0.5]);
         assert_eq!(x.per_leg(|l| l.primary_force), vec![0.0, 900.0]);
         assert_eq!(x.legs[1].sec_tension_force, [10.0, 25.0]);
         assert_eq!(x.legs[1].sec_compression_force, [40.0, 5.0]);

@@ -9,6 +9,7 @@
 //! * [`ranges`]: the range of physical plausibility of every number, checked on load in SI;
 //! * [`model`]: the resolved, validated scenario in SI ([`Scenario`]), with the
 //!   [`Scenario::warnings`] of values legal but outside their usual range;
+//! * [`draft`]: a first vehicle and landing drafted from a handful of numbers (`touchdown new`);
 //! * [`initial`]: the state a landing starts from (eq. 19), shared by every engine;
 //! * [`scales`]: the vehicle's own length, velocity, time and acceleration scales, which
 //!   judgements that must not depend on its size or units are ratios of.
@@ -21,6 +22,7 @@
 
 mod check;
 pub mod dimension;
+pub mod draft;
 pub mod error;
 pub mod initial;
 mod load;

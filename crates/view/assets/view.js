@@ -1169,7 +1169,7 @@
     state.plots = [
       makePlot($("plot-primary"), "stroke (mm)", primarySeries(model)),
       makePlot($("plot-secondary"), "stroke (mm)", secondarySeries(model, state.secondaryLeg)),
-      makePlot($("plot-pitch"), "pitch rate (deg/s)", pitchSeries(model)),
+      makePlot($("plot-pitch"), "pitch rate (rad/s)", pitchSeries(model)),
     ];
   }
 
@@ -1196,11 +1196,11 @@
     }));
   }
 
-  /** Pitch rate, deg/s, per engine. */
+  /** Pitch rate, rad/s (the unit of the summary and history.csv), per engine. */
   function pitchSeries(model) {
     return model.engines.map((e) => ({
       engine: e,
-      columns: [{ label: e.name, dash: LEG_DASHES[0], values: e.frames.pitch_rate_rad_s.map((v) => (180 / Math.PI) * v) }],
+      columns: [{ label: e.name, dash: LEG_DASHES[0], values: e.frames.pitch_rate_rad_s }],
     }));
   }
 

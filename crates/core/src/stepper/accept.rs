@@ -213,6 +213,7 @@ impl State {
     pub(crate) fn update_extremes(&mut self) {
         for (i, g) in self.gear.iter().enumerate() {
             self.extremes.update_leg(
+                self.t,
                 i,
                 g.primary_stroke,
                 g.secondary_stroke,

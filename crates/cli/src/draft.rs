@@ -1,0 +1,87 @@
+//! `touchdown new`: a first vehicle and landing drafted from a handful of numbers
+//! (`touchdown_scenario::draft`), written and reviewed.
+
+use crate::args::{DraftArrangement, DraftUnits, Format};
+use crate::{out, outln};
+use anyhow::{bail, Context, Result};
+use std::path::Path;
+use touchdown_scenario::draft::{Draft, UnitSystem};
+use touchdown_scenario::schema::Arrangement;
+
+/// The numbers of `touchdown new`, as given.
+pub struct Numbers {
+    /// The vehicle's name.
+    pub name: String,
+    /// Their unit system.
+    pub units: DraftUnits,
+    /// The gear arrangement.
+    pub arrangement: DraftArrangement,
+    /// Legs.
+    pub legs: usize,
+    /// [mass, gravity, footprint radius, centre-of-mass height, crush load, stroke,
+    /// vertical velocity, horizontal velocity, slope], in `units`.
+    pub values: [f64; 9],
+    /// The principal moments, as given (three expected).
+    pub inertia: Vec<f64>,
+}
+
+/// `touchdown new`: writes `out`/vehicle.toml and `out`/landing.toml from `n`, then prints
+/// their review.
+pub fn new(out: &Path, n: Numbers) -> Result<()> {
+    let inertia: [f64; 3] = n.inertia.as_slice().try_into().map_err(|_| {
+        anyhow::anyhow!(
+            "--inertia: expected three principal moments XX,YY,ZZ, got {}",
+            n.inertia.len()
+        )
+    })?;
+    let [mass, gravity, footprint_radius, centre_of_mass_height, crush_load, stroke, vertical_velocity, horizontal_velocity, slope] =
+        n.values;
+    let draft = Draft {
+        name: n.name,
+        units: match n.units {
+            DraftUnits::Si => UnitSystem::Si,
+            DraftUnits::FtSlugLbf => UnitSystem::FootSlugPound,
+        },
+        arrangement: match n.arrangement {
+            DraftArrangement::Cantilever => Arrangement::Cantilever,
+            DraftArrangement::Tripod => Arrangement::Tripod,
+        },
+        legs: n.legs,
+        mass,
+        gravity,
+        inertia,
+        footprint_radius,
+        centre_of_mass_height,
+        crush_load,
+        stroke,
+        vertical_velocity,
+        horizontal_velocity,
+        slope,
+    };
+    let (vehicle, landing) = draft
+        .files("vehicle.toml")
+        .map_err(|e| anyhow::anyhow!("--{}: {}", e.field.replace('_', "-"), e.message))?;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let (vehicle_path, landing_path) = (out.join("vehicle.toml"), out.join("landing.toml"));
+    for path in [&vehicle_path, &landing_path] {
+        if path.exists() {
+            bail!(
+                "{} exists: touchdown new never writes over a file (choose another --out, or move it away)",
+                path.display()
+            );
+        }
+    }
+    for (path, text) in [(&vehicle_path, vehicle), (&landing_path, landing)] {
+        std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    outln!(
+        "wrote {} and {}\n",
+        vehicle_path.display(),
+        landing_path.display()
+    )?;
+    crate::check::check(&landing_path, &[], Format::Text)?;
+    out!(
+        "\nnext: touchdown run {} (then replace each estimate, tag E, with your own values)\n",
+        landing_path.display()
+    )
+}
