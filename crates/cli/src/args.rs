@@ -38,6 +38,11 @@ pub(crate) enum Command {
         /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Also write report.html into the --out folder: one self-contained page of the landing
+        /// (the outcome and why, each strut's maximum stroke against its capacity with its
+        /// time, the energy ledger as bars, the time histories), no script, no network.
+        #[arg(long, requires = "out")]
+        report: bool,
         /// history.csv: keep every Nth step's row (and the last). By default rows are no closer
         /// than the core's largest step integrator.dt_max: every step on the core, every Nth on
         /// rapier and MuJoCo with N = floor(dt_max / timestep) (10 on the 1/6-scale model);

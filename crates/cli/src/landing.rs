@@ -8,13 +8,14 @@ use touchdown_record::History;
 use touchdown_scenario::schema::Engine;
 
 /// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
-/// summary.json, history.csv and scenario.resolved.toml in that folder; with `rounding`, what
-/// the rounding ensemble says of it (its `rounding` field and section).
+/// summary.json, history.csv and scenario.resolved.toml in that folder (and report.html, the
+/// landing's page, with `page`); with `rounding`, what the rounding ensemble says of it (its
+/// `rounding` field and section).
 pub fn run(
     scenario: &Path,
     set: &[Set],
     format: Format,
-    (out, every): (Option<&Path>, Option<usize>),
+    (out, every, page): (Option<&Path>, Option<usize>, bool),
     (engine, timestep, rounding): (Engine, Option<f64>, bool),
 ) -> Result<()> {
     if every == Some(0) {
@@ -94,6 +95,17 @@ pub fn run(
     if let Some(dir) = out {
         std::fs::write(dir.join("summary.json"), &document)
             .with_context(|| written(dir, "summary.json"))?;
+        if page {
+            let series = touchdown_view::report::Series::read(&dir.join("history.csv"))?;
+            let html = touchdown_view::report::landing_page(
+                &sc.file.name,
+                &scenario.display().to_string(),
+                &summary,
+                &series,
+            );
+            std::fs::write(dir.join("report.html"), html)
+                .with_context(|| written(dir, "report.html"))?;
+        }
     }
     match format {
         Format::Text => {

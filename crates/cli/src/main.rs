@@ -152,6 +152,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             set,
             format,
             out,
+            report,
             every,
             engine,
             timestep,
@@ -160,7 +161,7 @@ fn run(cli: Cli) -> Result<Verdict> {
             &scenario,
             &set.set,
             format,
-            (out.as_deref(), every),
+            (out.as_deref(), every, report),
             (engine, timestep, rounding),
         ),
         Command::New {

@@ -397,6 +397,51 @@ fn new_drafts_a_vehicle_a_first_landing_runs_from() {
     assert!(!other.exists());
 }
 
+/// `run --out DIR --report` writes one self-contained page of the landing, the same bytes
+/// twice: its outcome and why, each strut against its capacity with the time, the energy
+/// ledger, the histories; no script, nothing undefined.
+#[test]
+fn report_writes_one_page_per_landing() {
+    let pages: Vec<String> = ["report-1", "report-2"]
+        .iter()
+        .map(|name| {
+            let dir = temp(name);
+            let out = touchdown(&[
+                "run",
+                "scenarios/fig-25-26.toml",
+                "--set",
+                "integrator.t_end=0.3",
+                "--out",
+                dir.to_str().unwrap(),
+                "--report",
+            ]);
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            std::fs::read_to_string(dir.join("report.html")).unwrap()
+        })
+        .collect();
+    assert_eq!(pages[0], pages[1]);
+    let page = &pages[0];
+    for needle in [
+        "Stable, with 2 struts past their capacity",
+        "leg1.secondary_4_1.compression",
+        "Strokes against capacity",
+        "Energy since touchdown",
+        "Primary strokes, m",
+        "Pitch rate, rad/s",
+        "<polyline",
+    ] {
+        assert!(page.contains(needle), "missing {needle:?}");
+    }
+    assert!(!page.contains("<script") && !page.contains("NaN"));
+    assert!(!page.contains(",inf") && !page.contains("inf,") && !page.contains("\"inf"));
+    let o = touchdown(&["run", "scenarios/flat-drop.toml", "--report"]);
+    assert_eq!(o.status.code(), Some(2), "--report needs --out");
+}
+
 /// `touchdown check` reviews a vehicle and its landing before it lands: exit 0 with no finding,
 /// 3 with one, each naming the file that set the value; `run` prints the same as warnings.
 #[test]

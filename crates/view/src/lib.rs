@@ -6,8 +6,10 @@
 //! |---|---|
 //! | [`trajectory`] | the scene (vehicle and ground) and an engine's frames, decimated with every contact event kept, from the samples every engine records |
 //! | [`page`] | the HTML page: the trajectory embedded, the page's script and the vendored plotting library inlined |
+//! | [`report`] | one page per landing: the outcome and why, strokes against capacity with their times, the energy ledger, the time histories, as inline SVG |
 
 pub mod page;
+pub mod report;
 pub mod trajectory;
 
 use serde::Serialize;

@@ -53,8 +53,8 @@ pub fn page(title: &str, trajectory_json: &str) -> String {
     html
 }
 
-/// `text` safe inside an HTML element.
-fn escape_html(text: &str) -> String {
+/// `text` safe inside an HTML element (or an attribute's quotes).
+pub(crate) fn escape_html(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
