@@ -91,6 +91,61 @@ pub struct Percentiles {
     pub max: f64,
 }
 
+/// How close the landings came to failing by one measure, the smaller the closer: the lower
+/// tail of a margin over the landings that measured it (linear interpolation between order
+/// statistics, as [`Percentiles`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Margin {
+    /// The margin: `min_stability_distance_m` (the closest approach to overturn, m), or a
+    /// strut's stroke margin `legN.<strut>.stroke_margin`, 1 − its largest stroke over its
+    /// capacity (negative past the capacity).
+    pub margin: String,
+    /// Landings that measured it.
+    pub landings: u64,
+    /// The least.
+    pub min: f64,
+    /// 1st percentile.
+    pub p1: f64,
+    /// 10th percentile.
+    pub p10: f64,
+    /// Median.
+    pub p50: f64,
+    /// The landing with the least (the first of equals).
+    pub landing: u64,
+}
+
+/// A landing that came closest to failing by a kind of margin, written as the standalone
+/// scenario that ran it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClosestLanding {
+    /// `stability_distance` (the closest approach to overturn) or `stroke` (the least stroke
+    /// margin of any strut).
+    pub by: String,
+    /// The margin it has the least of (a [`Margin::margin`]) and its value.
+    pub margin: String,
+    /// Its value (m for the stability distance, a fraction of capacity for a stroke).
+    pub value: f64,
+    /// The landing.
+    pub landing: u64,
+    /// The values applied, by column.
+    pub applied: serde_json::Map<String, serde_json::Value>,
+    /// The landing as a standalone scenario file in the campaign's folder.
+    pub scenario_file: String,
+}
+
+/// The margins of a campaign's landings: what a team reads when nothing fails.
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+pub struct Margins {
+    /// The closest approach to overturn: each landing's minimum stability distance (absent
+    /// when no landing measured one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stability_distance: Option<Margin>,
+    /// Each strut's stroke margin, the least first (ties by name).
+    pub strokes: Vec<Margin>,
+    /// The landings closest to failing, by the stability distance and by the stroke margin.
+    pub closest: Vec<ClosestLanding>,
+}
+
 /// How strongly a dispersed input goes with a stable landing: the correlation between its
 /// applied value and the indicator of a stable landing (point-biserial), over every landing.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -128,6 +183,9 @@ pub struct Statistics {
     /// The numeric dispersed inputs that vary over the landings, the most influential on
     /// stability first.
     pub influence: Vec<Influence>,
+    /// How close the landings came to overturning and to each strut's capacity, with the
+    /// closest landings as scenarios.
+    pub margins: Margins,
 }
 
 /// Pearson's correlation of `x` and `y`; `None` where it is not defined (either constant, or
@@ -218,15 +276,17 @@ const RELIABILITIES: [f64; 4] = [0.9, 0.95, 0.99, 0.999];
 impl Statistics {
     /// The statistics of `n` records with `columns` at confidence `confidence`, of the engine
     /// whose columns' names start with `prefix` ([`crate::record::prefix`]); `column(i, visit)`
-    /// calls `visit` with each cell of column `i`, in landing order. What is kept of the
-    /// records is counts, one number a landing (stable or not) and one column of numbers at a
-    /// time (its percentiles and correlations): 16 bytes a landing.
+    /// calls `visit` with each cell of column `i`, in landing order; `scenario_file(by,
+    /// landing)` names the file a closest landing is written to. What is kept of the records
+    /// is counts, one number a landing (stable or not) and one column of numbers at a time
+    /// (its percentiles, margins and correlations): 16 bytes a landing.
     pub fn from_columns<E>(
         columns: &[Column],
         n: u64,
         confidence: f64,
         prefix: &str,
         column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
+        scenario_file: &dyn Fn(&str, u64) -> String,
     ) -> Result<Statistics, E> {
         let index = |name: &str| {
             let name = format!("{prefix}{name}");
@@ -292,6 +352,7 @@ impl Statistics {
         let stable = landings_of(&outcomes, Status::Stable.name());
         let within = landings_of(&failures, Failure::None.name());
         let mut percentiles = Vec::new();
+        let mut margins = Margins::default();
         for (i, c) in columns.iter().enumerate() {
             let Some(name) = c.name.strip_prefix(prefix) else {
                 continue;
@@ -305,10 +366,20 @@ impl Statistics {
                 continue;
             }
             let mut v: Vec<f64> = Vec::with_capacity(n as usize);
+            // The landings of the least and of the largest value (the first of equals).
+            let (mut landing, mut least, mut largest) =
+                (0u64, (f64::INFINITY, 0), (f64::NEG_INFINITY, 0));
             column(i, &mut |c| {
                 if let Cell::Float(x) = c {
-                    v.push(x)
+                    v.push(x);
+                    if x < least.0 {
+                        least = (x, landing);
+                    }
+                    if x > largest.0 {
+                        largest = (x, landing);
+                    }
                 }
+                landing += 1;
             })?;
             if v.is_empty() {
                 continue;
@@ -316,6 +387,29 @@ impl Statistics {
             // Unstable: values equal under total_cmp have the same bits, so the order is the same, and
             // it sorts in place.
             v.sort_unstable_by(f64::total_cmp);
+            if name == "min_stability_distance_m" {
+                margins.stability_distance = Some(Margin {
+                    margin: name.to_string(),
+                    landings: v.len() as u64,
+                    min: v[0],
+                    p1: percentile(&v, 0.01),
+                    p10: percentile(&v, 0.1),
+                    p50: percentile(&v, 0.5),
+                    landing: least.1,
+                });
+            }
+            if let Some(strut) = name.strip_suffix("stroke_of_capacity") {
+                // The margin 1 − x falls as x rises: its lower percentiles are the upper ones of x.
+                margins.strokes.push(Margin {
+                    margin: format!("{strut}stroke_margin"),
+                    landings: v.len() as u64,
+                    min: 1.0 - v[v.len() - 1],
+                    p1: 1.0 - percentile(&v, 0.99),
+                    p10: 1.0 - percentile(&v, 0.9),
+                    p50: 1.0 - percentile(&v, 0.5),
+                    landing: largest.1,
+                });
+            }
             percentiles.push(Percentiles {
                 column: c.name.clone(),
                 landings: v.len() as u64,
@@ -325,6 +419,12 @@ impl Statistics {
                 max: v[v.len() - 1],
             });
         }
+        margins.strokes.sort_by(|a, b| {
+            a.min
+                .total_cmp(&b.min)
+                .then_with(|| a.margin.cmp(&b.margin))
+        });
+        margins.closest = closest(columns, &margins, column, scenario_file)?;
         let influence = correlations(columns, &stable_indicator, column)?
             .into_iter()
             .map(|(column, correlation_with_stable)| Influence {
@@ -352,8 +452,41 @@ impl Statistics {
                 .collect(),
             percentiles,
             influence,
+            margins,
         })
     }
+}
+
+/// The landings closest to failing by the stability distance and by the least stroke margin of
+/// any strut (`margins.strokes` sorted, the least first), with the values applied to them.
+fn closest<E>(
+    columns: &[Column],
+    margins: &Margins,
+    column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
+    scenario_file: &dyn Fn(&str, u64) -> String,
+) -> Result<Vec<ClosestLanding>, E> {
+    let mut out: Vec<ClosestLanding> = [
+        ("stability_distance", margins.stability_distance.as_ref()),
+        ("stroke", margins.strokes.first()),
+    ]
+    .into_iter()
+    .filter_map(|(by, m)| {
+        m.map(|m| ClosestLanding {
+            by: by.to_string(),
+            margin: m.margin.clone(),
+            value: m.min,
+            landing: m.landing,
+            applied: serde_json::Map::new(),
+            scenario_file: scenario_file(by, m.landing),
+        })
+    })
+    .collect();
+    crate::paired::read_applied(
+        columns,
+        out.iter_mut().map(|c| (c.landing, &mut c.applied)),
+        column,
+    )?;
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -432,6 +565,72 @@ mod tests {
         assert_eq!(zero_failure_landings(0.99, 0.95), 299);
         assert_eq!(zero_failure_landings(0.999, 0.95), 2995);
         assert_eq!(zero_failure_landings(0.9, 0.9), 22);
+    }
+
+    /// The margins' lower tails are those of the columns they come from (a stroke margin's the
+    /// upper tail of its fraction of capacity, turned over), each names the landing of its
+    /// least, and the closest landings carry their applied values and files.
+    #[test]
+    fn margins_are_the_lower_tails_with_their_landings() {
+        let col = |name: &str, kind| Column {
+            name: name.into(),
+            kind,
+        };
+        let columns = [
+            col("landing", Kind::Integer),
+            col("applied.v_m_s", Kind::Float),
+            col("outcome", Kind::Text),
+            col("leg1.primary.stroke_of_capacity", Kind::Float),
+            col("leg2.primary.stroke_of_capacity", Kind::Float),
+            col("min_stability_distance_m", Kind::Float),
+        ];
+        let v = [1.0, 2.0, 3.0, 4.0, 5.0];
+        let leg1 = [0.5, 0.9, 0.2, 0.9, 0.1];
+        let leg2 = [0.3, 0.3, 0.3, 0.3, 0.3];
+        let sd = [0.4, 0.1, 0.3, 0.05, 0.2];
+        let mut read = |i: usize, visit: &mut dyn FnMut(Cell)| {
+            for k in 0..5 {
+                visit(match i {
+                    0 => Cell::Integer(k as i64),
+                    1 => Cell::Float(v[k]),
+                    2 => Cell::Text("stable".into()),
+                    3 => Cell::Float(leg1[k]),
+                    4 => Cell::Float(leg2[k]),
+                    _ => Cell::Float(sd[k]),
+                });
+            }
+            Ok::<_, ()>(())
+        };
+        let s = Statistics::from_columns(&columns, 5, 0.95, "", &mut read, &|by, l| {
+            format!("closest/{by}-{l}.toml")
+        })
+        .unwrap();
+        let m = &s.margins;
+        let d = m.stability_distance.as_ref().unwrap();
+        assert_eq!((d.min, d.landing, d.landings), (0.05, 3, 5));
+        assert!((d.p50 - 0.2).abs() < 1e-15 && (d.p10 - 0.07).abs() < 1e-12);
+        // leg 1 reaches 0.9 of its capacity first on landing 1: margin 0.1 there.
+        let names: Vec<&str> = m.strokes.iter().map(|x| x.margin.as_str()).collect();
+        assert_eq!(
+            names,
+            ["leg1.primary.stroke_margin", "leg2.primary.stroke_margin"]
+        );
+        assert!((m.strokes[0].min - 0.1).abs() < 1e-15 && m.strokes[0].landing == 1);
+        assert!((m.strokes[0].p50 - 0.5).abs() < 1e-15);
+        assert_eq!(m.closest.len(), 2);
+        assert_eq!(
+            (m.closest[0].by.as_str(), m.closest[0].landing),
+            ("stability_distance", 3)
+        );
+        assert_eq!(
+            m.closest[0].applied["applied.v_m_s"],
+            serde_json::json!(4.0)
+        );
+        assert_eq!(m.closest[1].scenario_file, "closest/stroke-1.toml");
+        assert_eq!(
+            m.closest[1].applied["applied.v_m_s"],
+            serde_json::json!(2.0)
+        );
     }
 
     #[test]

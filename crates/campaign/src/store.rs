@@ -666,19 +666,29 @@ pub fn complete(dir: &Path, manifest: &mut Manifest) -> Result<Report, CampaignE
     let mut read = |i, visit: &mut dyn FnMut(Cell)| visit_column(&parquet_path, columns, i, visit);
     let confidence = manifest.confidence;
     let statistics = if manifest.engines.len() < 2 {
-        Report::One(Statistics::from_columns(
-            columns, landings, confidence, "", &mut read,
-        )?)
+        let statistics =
+            Statistics::from_columns(columns, landings, confidence, "", &mut read, &|by, l| {
+                closest_file(None, by, l)
+            })?;
+        write_closest(dir, manifest, &statistics)?;
+        Report::One(Box::new(statistics))
     } else {
         let names: Vec<&str> = manifest.engines.iter().map(String::as_str).collect();
         let prefixes: Vec<String> = names.iter().map(|e| prefix(e, names.len())).collect();
         let mut engines = Vec::with_capacity(names.len());
         for (engine, prefix) in names.iter().zip(&prefixes) {
+            let statistics = Statistics::from_columns(
+                columns,
+                landings,
+                confidence,
+                prefix,
+                &mut read,
+                &|by, l| closest_file(Some(engine), by, l),
+            )?;
+            write_closest(dir, manifest, &statistics)?;
             engines.push(EngineStatistics {
                 engine: engine.to_string(),
-                statistics: Statistics::from_columns(
-                    columns, landings, confidence, prefix, &mut read,
-                )?,
+                statistics,
             });
         }
         let mut pairs = Vec::new();
@@ -725,8 +735,40 @@ pub fn complete(dir: &Path, manifest: &mut Manifest) -> Result<Report, CampaignE
 /// The folder of a paired campaign's listed disagreements, as scenario files.
 pub const DISAGREEMENTS: &str = "disagreements";
 
-/// Writes each landing `pairs` list as the standalone scenario that ran it (the resolved base
-/// of the manifest with the values applied): `DISAGREEMENTS/landing-N.toml`.
+/// The folder of a campaign's closest landings (statistics.json's `margins.closest`), as
+/// scenario files.
+pub const CLOSEST: &str = "closest";
+
+/// The file of the landing `landing` closest to failing `by` a margin (of `engine`'s, in a
+/// paired campaign): `CLOSEST/[engine-]by-landing-N.toml`.
+fn closest_file(engine: Option<&str>, by: &str, landing: u64) -> String {
+    let by = by.replace('_', "-");
+    match engine {
+        Some(e) => format!("{CLOSEST}/{e}-{by}-landing-{landing}.toml"),
+        None => format!("{CLOSEST}/{by}-landing-{landing}.toml"),
+    }
+}
+
+/// Writes the closest landings of `statistics` as the standalone scenarios that ran them.
+fn write_closest(
+    dir: &Path,
+    manifest: &Manifest,
+    statistics: &Statistics,
+) -> Result<(), CampaignError> {
+    write_scenarios(
+        dir,
+        manifest,
+        CLOSEST,
+        statistics
+            .margins
+            .closest
+            .iter()
+            .map(|c| (c.landing, &c.applied, c.scenario_file.as_str())),
+    )
+}
+
+/// Writes each landing `pairs` list as the standalone scenario that ran it:
+/// `DISAGREEMENTS/landing-N.toml`.
 fn write_disagreements(
     dir: &Path,
     manifest: &Manifest,
@@ -737,20 +779,40 @@ fn write_disagreements(
         .flat_map(|p| &p.worst)
         .map(|w| (w.landing, w))
         .collect();
-    if listed.is_empty() {
+    write_scenarios(
+        dir,
+        manifest,
+        DISAGREEMENTS,
+        listed
+            .values()
+            .map(|w| (w.landing, &w.applied, w.scenario_file.as_str())),
+    )
+}
+
+/// Writes each landing of `landings` (its index, the values applied to it by column, its file
+/// under `dir`) as the standalone scenario that ran it: the resolved base of the manifest with
+/// the values applied. Nothing, not even `folder`, when there is none.
+fn write_scenarios<'a>(
+    dir: &Path,
+    manifest: &Manifest,
+    folder: &str,
+    landings: impl Iterator<Item = (u64, &'a serde_json::Map<String, serde_json::Value>, &'a str)>,
+) -> Result<(), CampaignError> {
+    let mut landings = landings.peekable();
+    if landings.peek().is_none() {
         return Ok(());
     }
     let base_file = &manifest.base_scenario_file;
     let base = touchdown_scenario::ScenarioBase::from_toml(base_file, &manifest.base_scenario)
         .map_err(|e| CampaignError::store(Path::new(base_file), e))?;
-    let folder = dir.join(DISAGREEMENTS);
+    let folder = dir.join(folder);
     std::fs::create_dir_all(&folder).map_err(|e| CampaignError::store(&folder, e))?;
-    for (landing, w) in listed {
+    for (landing, applied_values, scenario_file) in landings {
         let applied = manifest
             .columns
             .iter()
             .filter(|c| c.name.starts_with("applied."))
-            .map(|c| w.applied.get(&c.name));
+            .map(|c| applied_values.get(&c.name));
         let overrides: Vec<(&str, toml::Value)> = manifest
             .dispersed_fields
             .iter()
@@ -765,7 +827,7 @@ fn write_disagreements(
                 Some((field.as_str(), v))
             })
             .collect();
-        let path = dir.join(&w.scenario_file);
+        let path = dir.join(scenario_file);
         let sc = base
             .with(&overrides)
             .map_err(|e| CampaignError::store(&path, format!("landing {landing}: {e}")))?;

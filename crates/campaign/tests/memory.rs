@@ -100,8 +100,12 @@ fn statistics_hold_sixteen_bytes_a_landing_and_a_pair_fifty() {
         Ok::<_, ()>(())
     };
     let n = LANDINGS as u64;
-    let (statistics, held) =
-        peak_of(|| Statistics::from_columns(&columns, n, 0.95, "core.", &mut visit).unwrap());
+    let (statistics, held) = peak_of(|| {
+        Statistics::from_columns(&columns, n, 0.95, "core.", &mut visit, &|by, l| {
+            format!("closest/{by}-landing-{l}.toml")
+        })
+        .unwrap()
+    });
     let per_landing = held as f64 / LANDINGS as f64;
     println!("one engine's statistics: {per_landing:.2} bytes a landing at their peak");
     assert!(

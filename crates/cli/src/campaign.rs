@@ -473,6 +473,55 @@ fn engine_text(s: &Statistics) -> String {
             ]
         }),
     );
+    t += &margins_text(&s.margins);
+    t
+}
+
+/// The margins: how close the landings came to overturning and to each strut's capacity, and
+/// the closest landings' scenario files.
+fn margins_text(m: &touchdown_campaign::statistics::Margins) -> String {
+    let mut t = String::from(
+        "
+margins, the least first: the closest approach to overturn (each landing's minimum stability\ndistance, m) and each strut's stroke margin (1 − its largest stroke over its capacity; the\nstruts with the least)\n",
+    );
+    let rows = m
+        .stability_distance
+        .iter()
+        .chain(m.strokes.iter().take(6))
+        .map(|x| {
+            vec![
+                x.margin.clone(),
+                x.landings.to_string(),
+                format!("{:.4}", x.min),
+                format!("{:.4}", x.p1),
+                format!("{:.4}", x.p10),
+                format!("{:.4}", x.p50),
+                x.landing.to_string(),
+            ]
+        });
+    t += &text_table(
+        &[
+            "margin",
+            "landings",
+            "min",
+            "p1",
+            "p10",
+            "p50",
+            "landing of min",
+        ],
+        &[1, 2, 3, 4, 5, 6],
+        rows,
+    );
+    for c in &m.closest {
+        t += &format!(
+            "closest by {}: landing {} ({} {:.4}), as a scenario: {}\n",
+            c.by.replace('_', " "),
+            c.landing,
+            c.margin,
+            c.value,
+            c.scenario_file
+        );
+    }
     t
 }
 
