@@ -210,17 +210,14 @@ fn stroke_times(o: &mut String, s: &Summary) {
         o,
         "\ntime of each maximum stroke, s (a touchdown peak or a late rock)"
     );
-    let rows = s.max_primary_stroke_m.iter().enumerate().map(|(i, p)| {
-        let (c, t) = (
-            s.max_secondary_compression_m[i],
-            s.max_secondary_tension_m[i],
-        );
+    let rows = (0..s.max_primary_stroke_time_s.len()).map(|i| {
         let (ct, tt) = (
             s.max_secondary_compression_time_s[i],
             s.max_secondary_tension_time_s[i],
         );
-        let at = |stroke: f64, time: f64| {
-            if stroke > 0.0 {
+        // A maximum never reached past the time resolution keeps the run's start: "—".
+        let at = |time: f64| {
+            if time > 0.0 {
                 format!("{time:.4}")
             } else {
                 "—".to_string()
@@ -228,11 +225,11 @@ fn stroke_times(o: &mut String, s: &Summary) {
         };
         vec![
             (i + 1).to_string(),
-            at(*p, s.max_primary_stroke_time_s[i]),
-            at(c[0], ct[0]),
-            at(t[0], tt[0]),
-            at(c[1], ct[1]),
-            at(t[1], tt[1]),
+            at(s.max_primary_stroke_time_s[i]),
+            at(ct[0]),
+            at(tt[0]),
+            at(ct[1]),
+            at(tt[1]),
         ]
     });
     o.push_str(&touchdown_compare::report::text_table(

@@ -16,10 +16,21 @@ struct LegExtremes {
     primary_time: f64,
     sec_compression_time: [f64; 2],
     sec_tension_time: [f64; 2],
+    /// The strokes at those times (each within [`TIME_RESOLUTION`] of a capacity of its
+    /// maximum).
+    primary_timed: f64,
+    sec_compression_timed: [f64; 2],
+    sec_tension_timed: [f64; 2],
     primary_force: f64,
     sec_compression_force: [f64; 2],
     sec_tension_force: [f64; 2],
 }
+
+/// The fraction of a strut's capacity within which a stroke counts as having reached its
+/// maximum: a maximum's time moves only when the stroke passes the stroke at that time by more,
+/// so that rounding (a mirror image's stroke 1e-16 m apart, dwelling at its maximum) cannot move
+/// it across a whole dwell (docs/outputs.md, the summary's `max_*_time_s`).
+pub const TIME_RESOLUTION: f64 = 1e-9;
 
 /// Running extremes of the strokes, the strut forces, the vehicle's acceleration and the pitch
 /// rate.
@@ -58,7 +69,8 @@ impl Extremes {
 
     /// Updates leg `i` at time `t` (s) with its primary compression stroke (m) and force (N,
     /// compression positive), and its secondary strokes (m) and forces (N), tension positive.
-    /// Each stroke's maximum keeps the time it was first reached.
+    /// Each stroke's maximum keeps the time it was first reached to within
+    /// [`TIME_RESOLUTION`] of its strut's capacity.
     #[inline]
     pub fn update_leg(
         &mut self,
@@ -72,28 +84,55 @@ impl Extremes {
         if self.closed {
             return;
         }
-        /// Raises `max` to `x`, and `time` to `t` with it.
-        fn raise(max: &mut f64, time: &mut f64, x: f64, t: f64) {
+        /// Raises `max` to `x`; `time` to `t` (and `timed` to `x`) where `x` passes the stroke
+        /// at `time` by more than `resolution`.
+        fn raise(
+            max: &mut f64,
+            (time, timed): (&mut f64, &mut f64),
+            x: f64,
+            t: f64,
+            resolution: f64,
+        ) {
             if x > *max {
                 *max = x;
-                *time = t;
+                if x > *timed + resolution {
+                    (*time, *timed) = (t, x);
+                }
             }
         }
+        let c = &self.capacities;
+        let resolution = [
+            c.primary.stroke_m,
+            c.secondary_tension.stroke_m,
+            c.secondary_compression.stroke_m,
+        ]
+        .map(|s| TIME_RESOLUTION * s);
         let leg = &mut self.legs[i];
-        raise(&mut leg.primary, &mut leg.primary_time, primary, t);
+        raise(
+            &mut leg.primary,
+            (&mut leg.primary_time, &mut leg.primary_timed),
+            primary,
+            t,
+            resolution[0],
+        );
         leg.primary_force = leg.primary_force.max(primary_force);
         for j in 0..2 {
             raise(
                 &mut leg.sec_tension[j],
-                &mut leg.sec_tension_time[j],
+                (&mut leg.sec_tension_time[j], &mut leg.sec_tension_timed[j]),
                 secondary[j],
                 t,
+                resolution[1],
             );
             raise(
                 &mut leg.sec_compression[j],
-                &mut leg.sec_compression_time[j],
+                (
+                    &mut leg.sec_compression_time[j],
+                    &mut leg.sec_compression_timed[j],
+                ),
                 -secondary[j],
                 t,
+                resolution[2],
             );
             leg.sec_tension_force[j] = leg.sec_tension_force[j].max(secondary_force[j]);
             leg.sec_compression_force[j] = leg.sec_compression_force[j].max(-secondary_force[j]);
@@ -169,8 +208,9 @@ pub struct Summary {
     pub max_secondary_compression_m: Vec<[f64; 2]>,
     /// Maximum tension stroke of the two secondaries per leg, m (positive).
     pub max_secondary_tension_m: Vec<[f64; 2]>,
-    /// Time each leg's maximum primary stroke was first reached, s (the run's start where the
-    /// strut never compressed: its maximum is then 0).
+    /// Time each leg's maximum primary stroke was first reached to within 1e-9 of the strut's
+    /// capacity, s (so that rounding cannot move it; the run's start where the strut never
+    /// compressed).
     pub max_primary_stroke_time_s: Vec<f64>,
     /// Time each maximum secondary compression stroke was first reached, s (the start where
     /// it is 0).
@@ -347,6 +387,19 @@ mod tests {
         x.update_leg(0.7, 1, 0.05, [-0.01, 0.04], 700.0, [10.0, -5.0]);
         // An equal stroke later keeps the time the maximum was first reached.
         x.update_leg(0.9, 1, 0.1, [0.0, 0.0], 0.0, [0.0, 0.0]);
+        // With capacities, a rise within 1e-9 of the capacity keeps the time too; a larger
+        // one moves it.
+        let mut c = StrutCapacities::default();
+        c.primary.stroke_m = 0.2;
+        let mut y = Extremes::new(1, c);
+        y.update_leg(0.1, 0, 0.1, [0.0; 2], 0.0, [0.0; 2]);
+        y.update_leg(0.2, 0, 0.1 + 1e-11, [0.0; 2], 0.0, [0.0; 2]);
+        assert_eq!(
+            (y.legs[0].primary, y.legs[0].primary_time),
+            (0.1 + 1e-11, 0.1)
+        );
+        y.update_leg(0.3, 0, 0.1 + 1e-9, [0.0; 2], 0.0, [0.0; 2]);
+        assert_eq!(y.legs[0].primary_time, 0.3);
         assert_eq!(x.per_leg(|l| l.primary), vec![0.0, 0.1]);
         assert_eq!(x.per_leg(|l| l.primary_time), vec![0.0, 0.5]);
         assert_eq!(x.legs[1].sec_tension, [0.02, 0.04]);

@@ -180,7 +180,7 @@ fn strokes(o: &mut String, s: &Summary) {
             } else {
                 0.0
             };
-            let at = if stroke > 0.0 {
+            let at = if time > 0.0 {
                 format!("{time:.4}")
             } else {
                 "—".into()
