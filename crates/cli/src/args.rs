@@ -72,63 +72,7 @@ pub(crate) enum Command {
     /// written beside it, from the bundled robotic lander's proportions) and DIR/landing.toml,
     /// then reviews them as `touchdown check` does. Numbers in the --units given; angles in
     /// degrees.
-    New {
-        /// Folder to write vehicle.toml and landing.toml into (created; existing files are
-        /// never overwritten).
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// The vehicle's name.
-        #[arg(long)]
-        name: String,
-        /// The unit system of every number given and of the files: si (m, kg, N, s) or
-        /// ft-slug-lbf (ft, slug, lbf, s).
-        #[arg(long, value_enum)]
-        units: DraftUnits,
-        /// Gear arrangement.
-        #[arg(long, value_enum, default_value_t = DraftArrangement::Cantilever)]
-        arrangement: DraftArrangement,
-        /// Number of legs, evenly spaced.
-        #[arg(long, default_value_t = 4)]
-        legs: usize,
-        /// Vehicle mass at touchdown, without the footpads; mass.
-        #[arg(long, allow_hyphen_values = true)]
-        mass: f64,
-        /// Local gravity (1.62 m/s² on the Moon); length/time².
-        #[arg(long, allow_hyphen_values = true)]
-        gravity: f64,
-        /// Principal moments of inertia about the centre of mass, XX,YY,ZZ; mass·length².
-        #[arg(
-            long,
-            value_delimiter = ',',
-            num_args = 1,
-            required = true,
-            allow_hyphen_values = true,
-            value_name = "XX,YY,ZZ"
-        )]
-        inertia: Vec<f64>,
-        /// Radius of the circle through the footpads, seen from above; length.
-        #[arg(long, allow_hyphen_values = true)]
-        footprint_radius: f64,
-        /// Height of the centre of mass above the footpads, gear undeformed; length.
-        #[arg(long, allow_hyphen_values = true)]
-        centre_of_mass_height: f64,
-        /// The primary strut's first crush load; force.
-        #[arg(long, allow_hyphen_values = true)]
-        crush_load: f64,
-        /// The primary strut's stroke capacity; length.
-        #[arg(long, allow_hyphen_values = true)]
-        stroke: f64,
-        /// Touchdown vertical velocity, negative down; length/time.
-        #[arg(long, allow_hyphen_values = true)]
-        vertical_velocity: f64,
-        /// Touchdown horizontal velocity along +Y (downhill on a slope; toward leg 2 of four);
-        /// length/time.
-        #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
-        horizontal_velocity: f64,
-        /// Surface slope about X, deg (+Y downhill).
-        #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
-        slope: f64,
-    },
+    New(DraftArgs),
     /// Review a vehicle and its landing before it runs (docs/authoring.md, "Checked before it
     /// lands"): the gear's crush load against the weight, its stroke energy against the
     /// touchdown energy, the static tip-over angle against the slope, the principal moments,
@@ -659,6 +603,66 @@ pub(crate) enum ValidationProtocol {
     TwoRow,
     /// Leave-one-out cross-validation (reference/cross-validation-protocol.toml).
     Cv,
+}
+
+/// `touchdown new`: the numbers a first vehicle and landing are drafted from.
+#[derive(clap::Args)]
+pub(crate) struct DraftArgs {
+    /// Folder to write vehicle.toml and landing.toml into (created; existing files are
+    /// never overwritten).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: PathBuf,
+    /// The vehicle's name.
+    #[arg(long)]
+    pub(crate) name: String,
+    /// The unit system of every number given and of the files: si (m, kg, N, s) or
+    /// ft-slug-lbf (ft, slug, lbf, s).
+    #[arg(long, value_enum)]
+    pub(crate) units: DraftUnits,
+    /// Gear arrangement.
+    #[arg(long, value_enum, default_value_t = DraftArrangement::Cantilever)]
+    pub(crate) arrangement: DraftArrangement,
+    /// Number of legs, evenly spaced.
+    #[arg(long, default_value_t = 4)]
+    pub(crate) legs: usize,
+    /// Vehicle mass at touchdown, without the footpads; mass.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) mass: f64,
+    /// Local gravity (1.62 m/s² on the Moon); length/time².
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) gravity: f64,
+    /// Principal moments of inertia about the centre of mass, XX,YY,ZZ; mass·length².
+    #[arg(
+        long,
+        value_delimiter = ',',
+        num_args = 1,
+        required = true,
+        allow_hyphen_values = true,
+        value_name = "XX,YY,ZZ"
+    )]
+    pub(crate) inertia: Vec<f64>,
+    /// Radius of the circle through the footpads, seen from above; length.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) footprint_radius: f64,
+    /// Height of the centre of mass above the footpads, gear undeformed; length.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) centre_of_mass_height: f64,
+    /// The primary strut's first crush load; force.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) crush_load: f64,
+    /// The primary strut's stroke capacity; length.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) stroke: f64,
+    /// Touchdown vertical velocity, negative down; length/time.
+    #[arg(long, allow_hyphen_values = true)]
+    pub(crate) vertical_velocity: f64,
+    /// Touchdown horizontal velocity along +Y (downhill on a slope; toward leg 2 of four);
+    /// length/time.
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+    pub(crate) horizontal_velocity: f64,
+    /// Surface slope about X, deg (+Y downhill).
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
+    pub(crate) slope: f64,
 }
 
 /// `touchdown new --units`.

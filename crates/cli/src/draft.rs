@@ -1,41 +1,21 @@
 //! `touchdown new`: a first vehicle and landing drafted from a handful of numbers
 //! (`touchdown_scenario::draft`), written and reviewed.
 
-use crate::args::{DraftArrangement, DraftUnits, Format};
+use crate::args::{DraftArgs, DraftArrangement, DraftUnits, Format};
 use crate::{out, outln};
 use anyhow::{bail, Context, Result};
-use std::path::Path;
 use touchdown_scenario::draft::{Draft, UnitSystem};
 use touchdown_scenario::schema::Arrangement;
 
-/// The numbers of `touchdown new`, as given.
-pub struct Numbers {
-    /// The vehicle's name.
-    pub name: String,
-    /// Their unit system.
-    pub units: DraftUnits,
-    /// The gear arrangement.
-    pub arrangement: DraftArrangement,
-    /// Legs.
-    pub legs: usize,
-    /// [mass, gravity, footprint radius, centre-of-mass height, crush load, stroke,
-    /// vertical velocity, horizontal velocity, slope], in `units`.
-    pub values: [f64; 9],
-    /// The principal moments, as given (three expected).
-    pub inertia: Vec<f64>,
-}
-
-/// `touchdown new`: writes `out`/vehicle.toml and `out`/landing.toml from `n`, then prints
-/// their review.
-pub fn new(out: &Path, n: Numbers) -> Result<()> {
+/// `touchdown new`: writes `n.out`/vehicle.toml and `n.out`/landing.toml from the numbers `n`,
+/// then prints their review.
+pub fn new(n: DraftArgs) -> Result<()> {
     let inertia: [f64; 3] = n.inertia.as_slice().try_into().map_err(|_| {
         anyhow::anyhow!(
             "--inertia: expected three principal moments XX,YY,ZZ, got {}",
             n.inertia.len()
         )
     })?;
-    let [mass, gravity, footprint_radius, centre_of_mass_height, crush_load, stroke, vertical_velocity, horizontal_velocity, slope] =
-        n.values;
     let draft = Draft {
         name: n.name,
         units: match n.units {
@@ -47,17 +27,18 @@ pub fn new(out: &Path, n: Numbers) -> Result<()> {
             DraftArrangement::Tripod => Arrangement::Tripod,
         },
         legs: n.legs,
-        mass,
-        gravity,
+        mass: n.mass,
+        gravity: n.gravity,
         inertia,
-        footprint_radius,
-        centre_of_mass_height,
-        crush_load,
-        stroke,
-        vertical_velocity,
-        horizontal_velocity,
-        slope,
+        footprint_radius: n.footprint_radius,
+        centre_of_mass_height: n.centre_of_mass_height,
+        crush_load: n.crush_load,
+        stroke: n.stroke,
+        vertical_velocity: n.vertical_velocity,
+        horizontal_velocity: n.horizontal_velocity,
+        slope: n.slope,
     };
+    let out = n.out.as_path();
     let (vehicle, landing) = draft
         .files("vehicle.toml")
         .map_err(|e| anyhow::anyhow!("--{}: {}", e.field.replace('_', "-"), e.message))?;
