@@ -813,7 +813,7 @@ fn write_scenarios<'a>(
             .iter()
             .filter(|c| c.name.starts_with("applied."))
             .map(|c| applied_values.get(&c.name));
-        let overrides: Vec<(&str, toml::Value)> = manifest
+        let mut overrides: Vec<(&str, toml::Value)> = manifest
             .dispersed_fields
             .iter()
             .zip(applied)
@@ -827,6 +827,26 @@ fn write_scenarios<'a>(
                 Some((field.as_str(), v))
             })
             .collect();
+        // Named for what it is, not for the base it was drawn from.
+        let values: Vec<String> = overrides
+            .iter()
+            .map(|(field, v)| format!("{field} = {v}"))
+            .collect();
+        overrides.push((
+            "name",
+            toml::Value::String(format!("{}: landing {landing}", manifest.campaign_name)),
+        ));
+        overrides.push((
+            "description",
+            toml::Value::String(format!(
+                "Landing {landing} of the campaign {:?} (seed {}), on {}: the base scenario {} with {} (the file's units).",
+                manifest.campaign_name,
+                manifest.seed,
+                manifest.engines.join(" and "),
+                manifest.base_scenario_file,
+                values.join(", ")
+            )),
+        ));
         let path = dir.join(scenario_file);
         let sc = base
             .with(&overrides)

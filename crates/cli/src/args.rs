@@ -70,8 +70,8 @@ pub(crate) enum Command {
     /// Draft a first vehicle and landing from a handful of numbers (docs/authoring.md, "A
     /// vehicle in minutes"): writes DIR/vehicle.toml (every value not given derived by a rule
     /// written beside it, from the bundled robotic lander's proportions) and DIR/landing.toml,
-    /// then reviews them as `touchdown check` does. Numbers in the --units given; angles in
-    /// degrees.
+    /// then reviews them as `touchdown check` does (exit 3 when it finds something). Numbers in
+    /// the --units given; angles in degrees.
     New(DraftArgs),
     /// Review a vehicle and its landing before it runs (docs/authoring.md, "Checked before it
     /// lands"): the gear's crush load against the weight, its stroke energy against the
@@ -550,6 +550,13 @@ impl std::str::FromStr for Set {
             .and_then(|mut t| t.remove("v").ok_or_else(|| "no value".to_string()));
         let value = match parsed {
             Ok(v) => v,
+            // A number with a unit after it (`-3 m/s`, `5deg`): the file's units are implied.
+            Err(_) if number_with_unit(value).is_some() => {
+                return Err(format!(
+                    "{field}: a value is in the scenario file's own units, written as the number alone: {field}={} (the file's [units] say which)",
+                    number_with_unit(value).unwrap_or_default()
+                ))
+            }
             Err(_) if bare_word => toml::Value::String(value.to_string()),
             Err(reason) => {
                 return Err(format!(
@@ -562,6 +569,16 @@ impl std::str::FromStr for Set {
             value,
         })
     }
+}
+
+/// The number at the start of `value` when a unit follows it (`-3 m/s` → `-3`).
+fn number_with_unit(value: &str) -> Option<&str> {
+    let end = value
+        .find(|c: char| !(c.is_ascii_digit() || matches!(c, '-' | '+' | '.' | 'e' | 'E')))
+        .filter(|&i| i > 0)?;
+    let (number, rest) = value.split_at(end);
+    (number.parse::<f64>().is_ok() && rest.trim_start().starts_with(|c: char| c.is_alphabetic()))
+        .then_some(number)
 }
 
 impl std::fmt::Display for Set {

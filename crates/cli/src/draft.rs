@@ -2,14 +2,14 @@
 //! (`touchdown_scenario::draft`), written and reviewed.
 
 use crate::args::{DraftArgs, DraftArrangement, DraftUnits, Format};
-use crate::{out, outln};
+use crate::outln;
 use anyhow::{bail, Context, Result};
 use touchdown_scenario::draft::{Draft, UnitSystem};
 use touchdown_scenario::schema::Arrangement;
 
 /// `touchdown new`: writes `n.out`/vehicle.toml and `n.out`/landing.toml from the numbers `n`,
-/// then prints their review.
-pub fn new(n: DraftArgs) -> Result<()> {
+/// then prints their review; whether it found nothing.
+pub fn new(n: DraftArgs) -> Result<bool> {
     let inertia: [f64; 3] = n.inertia.as_slice().try_into().map_err(|_| {
         anyhow::anyhow!(
             "--inertia: expected three principal moments XX,YY,ZZ, got {}",
@@ -60,9 +60,17 @@ pub fn new(n: DraftArgs) -> Result<()> {
         vehicle_path.display(),
         landing_path.display()
     )?;
-    crate::check::check(&landing_path, &[], Format::Text)?;
-    out!(
-        "\nnext: touchdown run {} (then replace each estimate, tag E, with your own values)\n",
-        landing_path.display()
-    )
+    let clean = crate::check::check(&landing_path, &[], Format::Text)?;
+    if clean {
+        outln!(
+            "\nnext: touchdown run {} (then replace each estimate, tag E, with your own values)",
+            landing_path.display()
+        )?;
+    } else {
+        outln!(
+            "\nnext: the findings above first (the files are written; touchdown check {} reviews them again)",
+            landing_path.display()
+        )?;
+    }
+    Ok(clean)
 }

@@ -53,7 +53,8 @@ pub fn run(
         }
         _ => None,
     };
-    let landed = touchdown_registry::land(engine, scenario, &sc, &mut recorder, out);
+    let landed = touchdown_registry::land(engine, scenario, &sc, &mut recorder, out)
+        .map_err(|f| energy_hint(f, &sc, engine));
     // An engine that refuses the step it was given blames the argument first.
     let summary = match timestep {
         Some(t) => landed.with_context(|| format!("--timestep {t:e} s"))?,
@@ -63,13 +64,12 @@ pub fn run(
     if let (Some(r), Some(dir)) = (recorder, out) {
         r.finish().with_context(|| written(dir, "history.csv"))?;
     }
+    let mut rows = 0;
     if let Some(dir) = out {
         // Every engine has written the same history.csv: one thinning for all.
         let every = every.unwrap_or_else(|| history_every(&sc, &summary));
-        if every > 1 {
-            touchdown_record::history::decimate(&dir.join("history.csv"), every)
-                .with_context(|| written(dir, "history.csv"))?;
-        }
+        rows = touchdown_record::history::decimate(&dir.join("history.csv"), every)
+            .with_context(|| written(dir, "history.csv"))?;
         std::fs::write(
             dir.join("scenario.resolved.toml"),
             report::resolved_scenario(&sc),
@@ -107,6 +107,15 @@ pub fn run(
                 .with_context(|| written(dir, "report.html"))?;
         }
     }
+    if let Some(dir) = out {
+        if !crate::QUIET.load(std::sync::atomic::Ordering::Relaxed) {
+            eprintln!(
+                "wrote {}: summary.json, history.csv ({rows} rows), scenario.resolved.toml{}",
+                dir.display(),
+                if page { ", report.html" } else { "" }
+            );
+        }
+    }
     match format {
         Format::Text => {
             out!("{}", report::text(&sc, &summary, set))?;
@@ -131,5 +140,30 @@ fn history_every(sc: &touchdown_scenario::Scenario, summary: &touchdown_record::
     match step {
         Some(step) if step > 0.0 => ((sc.integrator.dt_max / step).floor() as usize).max(1),
         _ => 1,
+    }
+}
+
+/// A core run stopped on the energy balance, followed by the setting that resolves a stiffer
+/// mode: a quarter of `integrator.dt_max`, in the file's time unit (a stop loading or
+/// unloading, a bottoming strut, resolved by a step too long for it). Any other failure as
+/// it is.
+fn energy_hint(
+    f: touchdown_registry::EngineFailure,
+    sc: &touchdown_scenario::Scenario,
+    engine: Engine,
+) -> anyhow::Error {
+    match &f.error {
+        touchdown_record::RunError::Stopped(d)
+            if engine == Engine::Core && d.law == touchdown_record::Law::EnergyBalance =>
+        {
+            let dt_max = sc.integrator.dt_max / sc.units().time();
+            let hint = format!(
+                "a stiffer mode than integrator.dt_max = {} resolves (a strut bottoming onto its stop, or unloading from it): try --set integrator.dt_max={} (in the file's time unit), and see docs/errata.md, \"End stops\"",
+                touchdown_scenario::units::short(dt_max),
+                touchdown_scenario::units::short(dt_max / 4.0)
+            );
+            anyhow::anyhow!("{f}\n  {hint}")
+        }
+        _ => f.into(),
     }
 }

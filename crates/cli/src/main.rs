@@ -164,7 +164,10 @@ fn run(cli: Cli) -> Result<Verdict> {
             (out.as_deref(), every, report),
             (engine, timestep, rounding),
         ),
-        Command::New(numbers) => draft::new(numbers),
+        Command::New(numbers) => {
+            let passed = draft::new(numbers)?;
+            return Ok(verdict(passed, false));
+        }
         Command::Check {
             scenario,
             set,

@@ -35,7 +35,7 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
         let list: Vec<String> = s
             .mechanisms
             .iter()
-            .map(|(m, n)| format!("{m} ({n} evaluations)"))
+            .map(|(m, n)| format!("{m} ({n} evaluations, one a leg or a footpad)"))
             .collect();
         let _ = writeln!(o, "mechanisms: {}", list.join(", "));
     }

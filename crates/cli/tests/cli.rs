@@ -382,6 +382,34 @@ fn new_drafts_a_vehicle_a_first_landing_runs_from() {
     let v: serde_json::Value = serde_json::from_slice(&ran.stdout).unwrap();
     assert_eq!(v["outcome"], "stable");
     assert!(v["past_capacity"].as_array().unwrap().is_empty());
+    // Past the capacity it still lands: the drafted step resolves a footpad on a bottomed
+    // stop; four times coarser, the energy guard stops it and names the setting to change.
+    let hard = touchdown(&[
+        "run",
+        landing.to_str().unwrap(),
+        "--set",
+        "touchdown.vertical_velocity=-7.0",
+    ]);
+    let text = String::from_utf8_lossy(&hard.stdout);
+    assert!(
+        hard.status.success(),
+        "{}",
+        String::from_utf8_lossy(&hard.stderr)
+    );
+    assert!(text.contains("PAST THEIR CAPACITY"), "{text}");
+    let coarse = touchdown(&[
+        "run",
+        landing.to_str().unwrap(),
+        "--set",
+        "touchdown.vertical_velocity=-5.0",
+        "--set",
+        "integrator.dt_max=2.5e-4",
+    ]);
+    let err = String::from_utf8_lossy(&coarse.stderr);
+    assert!(
+        err.contains("energy balance") && err.contains("try --set integrator.dt_max=6.25e-05"),
+        "{err}"
+    );
     // Never over a file.
     let again = run(&args(dir.to_str().unwrap(), "650"));
     assert_eq!(again.status.code(), Some(1));
@@ -395,6 +423,35 @@ fn new_drafts_a_vehicle_a_first_landing_runs_from() {
         "error: --mass: expected a positive number, got -3"
     );
     assert!(!other.exists());
+    // A finding (a crush load typed in kN): the files are written, and the exit says so.
+    let mut weak = args(dir.join("weak").to_str().unwrap(), "650");
+    let at = weak.iter().position(|a| a == "--crush-load").unwrap();
+    weak[at + 1] = "4".into();
+    let out = run(&weak);
+    assert_eq!(out.status.code(), Some(3));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("next: the findings above first"), "{text}");
+}
+
+/// A `--set` value with a unit after it is told that the file's units are implied.
+#[test]
+fn a_set_value_with_a_unit_is_told_to_drop_it() {
+    for (value, number) in [("-3 m/s", "-3"), ("5deg", "5")] {
+        let out = touchdown(&[
+            "run",
+            "scenarios/flat-drop.toml",
+            "--set",
+            &format!("touchdown.vertical_velocity={value}"),
+        ]);
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(&format!(
+                "a value is in the scenario file's own units, written as the number alone: touchdown.vertical_velocity={number}"
+            )),
+            "{err}"
+        );
+    }
 }
 
 /// `run --out DIR --report` writes one self-contained page of the landing, the same bytes
