@@ -82,15 +82,21 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     );
     let _ = writeln!(
         o,
-        "minimum stability distance: {}",
-        len(s.min_stability_distance_m)
+        "minimum stability distance: {} at t = {:.4} s{}",
+        len(s.min_stability_distance_m),
+        s.min_stability_distance_time_s,
+        if s.min_stability_distance_time_s == 0.0 {
+            " (touchdown: the vehicle never came closer to a wall)"
+        } else {
+            ""
+        }
     );
     let e = &s.energy;
     // The balance of the record's EnergyLedger::report: the initial kinetic energy plus the
-    // residual is the sum of the lines signed + and −.
+    // residual is the sum of the lines marked +.
     let _ = writeln!(
         o,
-        "\nenergy since touchdown, J: initial kinetic energy + residual = the sum of the lines signed + and −"
+        "\nenergy since touchdown, J: initial kinetic energy + residual = the sum of the lines marked +"
     );
     let line = |o: &mut String, sign: &str, name: &str, v: f64, note: &str| {
         let text = format!("  {sign} {name:<30}{v:12.4}  {note}");
@@ -134,10 +140,10 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
             "work done on them; thrust and RCS count negative",
         ),
         (
-            "−",
-            "contact events",
-            e.contact_events_j,
-            "given to the footpads by contact; negative: absorbed by impacts",
+            "+",
+            "absorbed by footpad impacts",
+            -e.contact_events_j,
+            "by contact; negative: given to the footpads",
         ),
     ];
     for (sign, name, v, note) in terms {

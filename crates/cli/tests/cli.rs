@@ -1598,7 +1598,7 @@ fn a_copied_binary_runs_mujoco_with_touchdown_home_alone() {
 }
 
 /// `run`'s energy lines say which side of the balance each is on: the initial kinetic energy
-/// plus the residual equals the sum of the lines signed + and −, as printed (to their rounding),
+/// plus the residual equals the sum of the lines marked + (or −), as printed (to their rounding),
 /// on a sliding landing and on one with thrust (a mechanism that puts energy in).
 #[test]
 fn the_energy_lines_of_run_add_up_with_their_signs() {

@@ -65,6 +65,40 @@ pub struct PadView {
     pub touched: bool,
 }
 
+/// A running minimum with the time it was first reached to within a resolution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Timed {
+    /// The minimum.
+    value: f64,
+    /// When it was reached, s.
+    time: f64,
+    /// The value at `time`.
+    at_time: f64,
+}
+
+impl Default for Timed {
+    fn default() -> Timed {
+        Timed {
+            value: f64::INFINITY,
+            time: 0.0,
+            at_time: f64::INFINITY,
+        }
+    }
+}
+
+impl Timed {
+    /// Lowers the minimum to `x` at time `t`; the time moves only where `x` is below the value
+    /// at the time by more than `resolution`.
+    fn lower(&mut self, x: f64, t: f64, resolution: f64) {
+        if x < self.value {
+            self.value = x;
+            if !(x >= self.at_time - resolution) {
+                (self.time, self.at_time) = (t, x);
+            }
+        }
+    }
+}
+
 /// Stability distances over time and the decision of eqs. (105)-(107).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilityTracker {
@@ -74,10 +108,13 @@ pub struct StabilityTracker {
     sd: Vec<f64>,
     /// Outward normals per wall.
     normal: Vec<Vector3<f64>>,
-    /// Minimum over time of the smallest counted SD, m.
-    min_sd: f64,
-    /// Minimum over time of the smallest SD of any wall, counted or not, m.
-    min_any: f64,
+    /// Minimum over time of the smallest counted SD, m, with the time it was first reached
+    /// to within [`crate::summary::TIME_RESOLUTION`] of the footprint's size.
+    min_sd: Timed,
+    /// Minimum over time of the smallest SD of any wall, counted or not, m, and its time.
+    min_any: Timed,
+    /// The first smallest SD, m: the footprint's size the times' resolution is a fraction of.
+    sd_scale: f64,
     /// Vehicle kinetic energy at first contact, J.
     ke0: f64,
     /// When the four stable conditions first held, s.
@@ -106,8 +143,9 @@ impl StabilityTracker {
             },
             sd: vec![f64::NAN; legs],
             normal: vec![Vector3::zeros(); legs],
-            min_sd: f64::INFINITY,
-            min_any: f64::INFINITY,
+            min_sd: Timed::default(),
+            min_any: Timed::default(),
+            sd_scale: 0.0,
             ke0,
             stable_conditions: None,
             crossing: None,
@@ -134,6 +172,7 @@ impl StabilityTracker {
         let n = pads.len();
         let failed = self.overturned();
         let mut min_now = f64::INFINITY;
+        let mut any_now = f64::INFINITY;
         let mut min_wall = usize::MAX;
         let mut crossing: Option<(usize, f64)> = None;
         for i in 0..n {
@@ -147,9 +186,7 @@ impl StabilityTracker {
                 Some((sd, normal)) => {
                     self.sd[i] = sd;
                     self.normal[i] = normal;
-                    if !failed {
-                        self.min_any = self.min_any.min(sd);
-                    }
+                    any_now = any_now.min(sd);
                     if counted && sd < min_now {
                         min_now = sd;
                         min_wall = i;
@@ -172,9 +209,12 @@ impl StabilityTracker {
             // measures nothing of it (docs/errata.md, "Stability decisions and maxima").
             return;
         }
-        if min_now < self.min_sd {
-            self.min_sd = min_now;
+        if self.sd_scale == 0.0 && any_now.is_finite() {
+            self.sd_scale = any_now.abs();
         }
+        let resolution = crate::summary::TIME_RESOLUTION * self.sd_scale;
+        self.min_sd.lower(min_now, t, resolution);
+        self.min_any.lower(any_now, t, resolution);
         // A crossing decides the landing unstable even after the stable conditions held: they
         // are a prediction, the crossing is the event.
         if let Some((wall, f)) = crossing {
@@ -225,7 +265,17 @@ impl StabilityTracker {
     /// counted (walls counted only once touched down, and no two neighbouring footpads down),
     /// the smallest distance of any wall.
     pub fn min_distance(&self) -> f64 {
-        if self.min_sd.is_finite() {
+        self.min_timed().value
+    }
+
+    /// When [`Self::min_distance`] was first reached, to within 1e-9 of the footprint's size
+    /// (so that rounding cannot move it along a dwell), s.
+    pub fn min_distance_time(&self) -> f64 {
+        self.min_timed().time
+    }
+
+    fn min_timed(&self) -> Timed {
+        if self.min_sd.value.is_finite() {
             self.min_sd
         } else {
             self.min_any
@@ -265,6 +315,18 @@ impl StabilityTracker {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A running minimum's time moves only past the resolution: rounding along a dwell keeps
+    /// the time it was first reached.
+    #[test]
+    fn a_minimums_time_moves_only_past_its_resolution() {
+        let mut m = Timed::default();
+        m.lower(1.0, 0.0, 1e-9);
+        m.lower(1.0 - 1e-12, 0.5, 1e-9);
+        assert_eq!((m.value, m.time), (1.0 - 1e-12, 0.0));
+        m.lower(0.9, 0.7, 1e-9);
+        assert_eq!((m.value, m.time), (0.9, 0.7));
+    }
 
     fn square() -> [Vector3<f64>; 4] {
         [

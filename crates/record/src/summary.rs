@@ -239,6 +239,9 @@ pub struct Summary {
     pub past_capacity: Vec<PastCapacity>,
     /// Minimum over time of the smallest stability distance, m.
     pub min_stability_distance_m: f64,
+    /// When that minimum was first reached, to within 1e-9 of the footprint's size, s (0: the
+    /// vehicle never came closer to a wall than at touchdown).
+    pub min_stability_distance_time_s: f64,
     /// Overturning velocity at the wall crossing, m/s (left out of the JSON unless unstable).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub overturn_velocity_m_s: Option<f64>,
@@ -367,6 +370,7 @@ impl Summary {
             strut_capacity: extremes.capacities,
             past_capacity,
             min_stability_distance_m: stability.min_distance(),
+            min_stability_distance_time_s: stability.min_distance_time(),
             overturn_velocity_m_s: stability.overturn_velocity(),
             first_contact_s: progress.first_contact_s,
             energy_residual_j: energy.residual_j,
