@@ -1177,10 +1177,19 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
         let written =
             touchdown_scenario::Scenario::load(whole.join(w["scenario_file"].as_str().unwrap()))
                 .unwrap();
-        let ran = campaign
-            .base
-            .with(&campaign.overrides(&draws(&campaign, landing)))
-            .unwrap();
+        // The landing that ran, named and described as the file names it: every other value
+        // the same.
+        let mut overrides = campaign.overrides(&draws(&campaign, landing));
+        assert_eq!(
+            written.file.name,
+            format!("{}: landing {landing}", campaign.name)
+        );
+        overrides.push(("name", toml::Value::String(written.file.name.clone())));
+        overrides.push((
+            "description",
+            toml::Value::String(written.file.description.clone()),
+        ));
+        let ran = campaign.base.with(&overrides).unwrap();
         assert_eq!(written.sha256(), ran.sha256(), "landing {landing}");
     }
     // The multi-fidelity estimate reads this folder with 12 core landings of the same draws.

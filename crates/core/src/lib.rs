@@ -48,8 +48,12 @@ mod summation;
 mod surface;
 mod vehicle;
 
+// The types `Simulation`'s accessors return (`footpads`, `gear`, `mechanisms`,
+// `mechanism_state`), nameable where they are read.
+pub use gear::GearState;
+pub use mechanisms::{MechanismState, Mechanisms};
 pub use simulation::Simulation;
-pub use surface::ContactState;
+pub use surface::{ContactState, Footpad};
 pub use touchdown_record::{EnergyReport, Landing, Observer, Outcome, RunError, Summary};
 pub use vehicle::VehicleState;
 

@@ -313,16 +313,20 @@ pub(crate) fn parametric_legs(
             z1_si
         }
         (schema::Arrangement::Cantilever, None) => {
-            return Err(c.err(
+            return Err(c.conflict(
                 "gear.parametric.z1",
+                "gear.arrangement",
                 "expected Z1 (length), the height of point 1, for the cantilever gear",
             ))
         }
         (schema::Arrangement::Tripod, None) => 0.0,
+        // Named where it was set last: a tripod arrangement over a cantilever's parameters
+        // is the arrangement's line.
         (schema::Arrangement::Tripod, Some(_)) => {
-            return Err(c.err(
+            return Err(c.conflict(
                 "gear.parametric.z1",
-                "the tripod's secondaries meet the primary at the footpad: leave Z1 out",
+                "gear.arrangement",
+                "the tripod's secondaries meet the primary at the footpad: its parametric form leaves Z1 out (or give the tripod's points in gear.legs)",
             ))
         }
     };

@@ -1001,7 +1001,7 @@ fn the_tripod_takes_the_parametric_form_without_point_1() {
     let (_, field, message) =
         field_error(Scenario::load_with(&path, &[("gear.parametric.z1", 0.49)]));
     assert_eq!(field, "gear.parametric.z1");
-    assert!(message.contains("leave Z1 out"), "{message}");
+    assert!(message.contains("leaves Z1 out"), "{message}");
     let cantilever = folder.path().join("cantilever.toml");
     std::fs::write(
         &cantilever,
