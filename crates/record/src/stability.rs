@@ -92,7 +92,7 @@ impl Timed {
     fn lower(&mut self, x: f64, t: f64, resolution: f64) {
         if x < self.value {
             self.value = x;
-            if !(x >= self.at_time - resolution) {
+            if x < self.at_time - resolution {
                 (self.time, self.at_time) = (t, x);
             }
         }
