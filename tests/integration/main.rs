@@ -10,6 +10,7 @@
 //! * `allocation`: the core's step loop does not allocate;
 //! * `docs`: docs/scenario-format.md documents every scenario field;
 //! * `layering`: the crate dependency layers (engines never depend on each other);
+//! * `module_cycles`: no import circle between the modules of any crate;
 //! * `mechanisms`: each optional mechanism (soil, curbs, bending, trunnion springs, thrust,
 //!   RCS, slosh, tripod) against an analytic or limiting case; absent ones never evaluated;
 //! * `plots`: the validation plots regenerate from the committed data with the project's venv;
@@ -38,6 +39,7 @@ mod fuzz;
 mod integrators;
 mod layering;
 mod mechanisms;
+mod module_cycles;
 mod mujoco;
 mod physics;
 mod plots;

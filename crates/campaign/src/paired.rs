@@ -131,39 +131,6 @@ pub struct Disagreement {
     pub scenario_file: String,
 }
 
-/// Fills each target's map with the values applied to its landing (the `landing`-th record),
-/// by column: one pass over each `applied.*` column for all of them.
-pub(crate) fn read_applied<'a, E>(
-    columns: &[Column],
-    targets: impl IntoIterator<Item = (u64, &'a mut serde_json::Map<String, serde_json::Value>)>,
-    column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
-) -> Result<(), E> {
-    let mut targets: Vec<_> = targets.into_iter().collect();
-    if targets.is_empty() {
-        return Ok(());
-    }
-    for (i, c) in columns.iter().enumerate() {
-        if !c.name.starts_with("applied.") {
-            continue;
-        }
-        let mut landing = 0;
-        column(i, &mut |cell| {
-            for (_, applied) in targets.iter_mut().filter(|(l, _)| *l == landing) {
-                let value = match &cell {
-                    Cell::Float(x) => serde_json::json!(x),
-                    Cell::Integer(x) => serde_json::json!(x),
-                    Cell::Text(s) => serde_json::json!(s),
-                    Cell::Flag(b) => serde_json::json!(b),
-                    Cell::Missing => serde_json::Value::Null,
-                };
-                applied.insert(c.name.clone(), value);
-            }
-            landing += 1;
-        })?;
-    }
-    Ok(())
-}
-
 /// McNemar's exact two-sided p-value from the discordant counts `b` and `c`:
 /// min(1, 2·P(X ≤ min(b, c))) for X ~ Binomial(b + c, ½); 1 when b + c = 0.
 pub fn mcnemar_exact(b: u64, c: u64) -> f64 {
@@ -311,7 +278,7 @@ pub fn pair<E>(
             scenario_file: scenario_file(i as u64),
         })
         .collect();
-    read_applied(
+    crate::statistics::read_applied(
         columns,
         worst.iter_mut().map(|w| (w.landing, &mut w.applied)),
         column,

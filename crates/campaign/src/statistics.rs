@@ -481,12 +481,45 @@ fn closest<E>(
         })
     })
     .collect();
-    crate::paired::read_applied(
+    read_applied(
         columns,
         out.iter_mut().map(|c| (c.landing, &mut c.applied)),
         column,
     )?;
     Ok(out)
+}
+
+/// Fills each target's map with the values applied to its landing (the `landing`-th record),
+/// by column: one pass over each `applied.*` column for all of them.
+pub(crate) fn read_applied<'a, E>(
+    columns: &[Column],
+    targets: impl IntoIterator<Item = (u64, &'a mut serde_json::Map<String, serde_json::Value>)>,
+    column: &mut impl FnMut(usize, &mut dyn FnMut(Cell)) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut targets: Vec<_> = targets.into_iter().collect();
+    if targets.is_empty() {
+        return Ok(());
+    }
+    for (i, c) in columns.iter().enumerate() {
+        if !c.name.starts_with("applied.") {
+            continue;
+        }
+        let mut landing = 0;
+        column(i, &mut |cell| {
+            for (_, applied) in targets.iter_mut().filter(|(l, _)| *l == landing) {
+                let value = match &cell {
+                    Cell::Float(x) => serde_json::json!(x),
+                    Cell::Integer(x) => serde_json::json!(x),
+                    Cell::Text(s) => serde_json::json!(s),
+                    Cell::Flag(b) => serde_json::json!(b),
+                    Cell::Missing => serde_json::Value::Null,
+                };
+                applied.insert(c.name.clone(), value);
+            }
+            landing += 1;
+        })?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

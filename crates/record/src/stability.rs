@@ -65,6 +65,12 @@ pub struct PadView {
     pub touched: bool,
 }
 
+/// The fraction of a length scale (a strut's capacity, the footprint's size) within which an
+/// extreme counts as reached: an extreme's time moves only when the value passes the value at
+/// that time by more, so that rounding (a mirror image's stroke 1e-16 m apart, dwelling at its
+/// maximum) cannot move it across a whole dwell (docs/outputs.md, the summary's `*_time_s`).
+pub const TIME_RESOLUTION: f64 = 1e-9;
+
 /// A running minimum with the time it was first reached to within a resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Timed {
@@ -109,7 +115,7 @@ pub struct StabilityTracker {
     /// Outward normals per wall.
     normal: Vec<Vector3<f64>>,
     /// Minimum over time of the smallest counted SD, m, with the time it was first reached
-    /// to within [`crate::summary::TIME_RESOLUTION`] of the footprint's size.
+    /// to within [`TIME_RESOLUTION`] of the footprint's size.
     min_sd: Timed,
     /// Minimum over time of the smallest SD of any wall, counted or not, m, and its time.
     min_any: Timed,
@@ -212,7 +218,7 @@ impl StabilityTracker {
         if self.sd_scale == 0.0 && any_now.is_finite() {
             self.sd_scale = any_now.abs();
         }
-        let resolution = crate::summary::TIME_RESOLUTION * self.sd_scale;
+        let resolution = TIME_RESOLUTION * self.sd_scale;
         self.min_sd.lower(min_now, t, resolution);
         self.min_any.lower(any_now, t, resolution);
         // A crossing decides the landing unstable even after the stable conditions held: they

@@ -2,7 +2,7 @@
 
 use crate::capacity::{PastCapacity, StrutCapacities};
 use crate::energy::EnergyReport;
-use crate::stability::{Outcome, StabilityTracker};
+use crate::stability::{Outcome, StabilityTracker, TIME_RESOLUTION};
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
@@ -25,12 +25,6 @@ struct LegExtremes {
     sec_compression_force: [f64; 2],
     sec_tension_force: [f64; 2],
 }
-
-/// The fraction of a strut's capacity within which a stroke counts as having reached its
-/// maximum: a maximum's time moves only when the stroke passes the stroke at that time by more,
-/// so that rounding (a mirror image's stroke 1e-16 m apart, dwelling at its maximum) cannot move
-/// it across a whole dwell (docs/outputs.md, the summary's `max_*_time_s`).
-pub const TIME_RESOLUTION: f64 = 1e-9;
 
 /// Running extremes of the strokes, the strut forces, the vehicle's acceleration and the pitch
 /// rate.
