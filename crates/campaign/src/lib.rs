@@ -6,6 +6,7 @@
 //!
 //! | module | content |
 //! |---|---|
+//! | [`boundary`] | the stability boundary of the base configuration over the campaign's speeds, for its outcomes plot |
 //! | [`accuracy`] | the accuracy the campaign's integrator settings give: its first landings against runs refined eightfold |
 //! | [`spec`] | the campaign file: base scenario, dispersions and their units, correlations, landings, seed, engine, records |
 //! | [`distribution`] | the distributions' quantile functions and each landing's random stream |
@@ -18,6 +19,7 @@
 //! | [`run`] | landings in parallel, shards, merges and extensions |
 
 pub mod accuracy;
+pub mod boundary;
 pub mod distribution;
 pub mod fidelity;
 pub mod folder;
@@ -77,6 +79,10 @@ pub enum CampaignError {
     /// Parts that are not of one campaign, or do not hold each landing once.
     #[error("{0}")]
     Mismatch(String),
+    /// The stability boundary of the base configuration (for the outcomes plot) cannot be
+    /// searched.
+    #[error("the base configuration's stability boundary: {0}")]
+    Boundary(#[from] touchdown_validation::ValidationError),
     /// The thread pool cannot be built.
     #[error("cannot start the landing threads: {0}")]
     Threads(String),

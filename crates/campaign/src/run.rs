@@ -585,7 +585,7 @@ pub fn merge(
         .map(|p| {
             let m = store::read_manifest(p)?;
             m.check_files(p)?;
-            Ok((m, *p))
+            Ok::<_, CampaignError>((m, *p))
         })
         .collect::<Result<_, _>>()?;
     let Some((first, _)) = read.first() else {

@@ -113,12 +113,9 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
     if let (true, Some(dir), Report::Paired(_)) = (plot, out, &statistics) {
         crate::plots::paired(dir)?;
     } else if let (true, Some(dir)) = (plot, out) {
-        let boundary = dir.join("boundary.json");
-        let _ = std::fs::remove_file(&boundary);
-        if let Some(json) = base_boundary(&campaign, dir, &manifest, statistics.first())? {
-            std::fs::write(&boundary, json)
-                .with_context(|| format!("cannot write {}", boundary.display()))?;
-        }
+        touchdown_campaign::boundary::write(&campaign, dir, &manifest, statistics.first(), || {
+            eprintln!("the engine's boundary of the base configuration, for the plot ...")
+        })?;
         crate::plots::campaign(dir)?;
     }
     report(&manifest, &statistics, output)
@@ -138,99 +135,6 @@ fn views(campaign: &Campaign, dir: &Path, pair: &Pair, k: usize) -> Result<()> {
         eprintln!("landing {}: {}", w.landing, page.display());
     }
     Ok(())
-}
-
-/// The engine's stability boundary of the base configuration over the campaign's range of
-/// descent and horizontal speeds, as JSON for the outcomes plot (`boundary.json`), when those
-/// two are the campaign's most influential inputs and the base scenario moves along the
-/// dispersed horizontal axis; `None` otherwise. The boundary holds the other inputs at their
-/// base values: beside a campaign that disperses them, a reference, not a dividing line.
-fn base_boundary(
-    campaign: &Campaign,
-    dir: &Path,
-    manifest: &Manifest,
-    statistics: &Statistics,
-) -> Result<Option<String>> {
-    use touchdown_validation::boundary::{search_engines, Settings};
-    let top: Vec<&str> = statistics
-        .influence
-        .iter()
-        .take(2)
-        .map(|i| i.column.as_str())
-        .collect();
-    let column = |field: &str| {
-        campaign
-            .dispersions
-            .iter()
-            .find(|d| d.field == field)
-            .map(|d| format!("applied.{}", d.column))
-    };
-    let [hx, hy] = campaign.base_scenario.file.touchdown.horizontal_velocity;
-    let (axis, along) = match (hx == 0.0, hy == 0.0) {
-        (true, false) => ("touchdown.horizontal_velocity[1]", hy.signum()),
-        (false, true) => ("touchdown.horizontal_velocity[0]", hx.signum()),
-        _ => return Ok(None),
-    };
-    let (Some(vv_col), Some(vh_col)) = (column("touchdown.vertical_velocity"), column(axis)) else {
-        return Ok(None);
-    };
-    if !(top.contains(&vv_col.as_str()) && top.contains(&vh_col.as_str())) {
-        return Ok(None);
-    }
-    // The two columns, read from the campaign's Parquet file one at a time.
-    let values = |name: &str| -> Result<Vec<f64>> {
-        let Some(i) = manifest.columns.iter().position(|c| c.name == name) else {
-            return Ok(Vec::new());
-        };
-        let cells = store::read_column(&dir.join("landings.parquet"), &manifest.columns, i)?;
-        Ok(cells
-            .into_iter()
-            .filter_map(|c| match c {
-                touchdown_campaign::record::Cell::Float(x) => Some(x),
-                _ => None,
-            })
-            .collect())
-    };
-    let (vv, vh) = (values(&vv_col)?, values(&vh_col)?);
-    let span = |v: &[f64]| {
-        v.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(*x), b.max(*x))
-            })
-    };
-    // Along the base's horizontal direction: the search's Vh is the dispersed component times
-    // that direction's sign; descent speeds positive down.
-    let (h0, h1) = span(&vh.iter().map(|x| x * along).collect::<Vec<_>>());
-    let (v0, v1) = span(&vv.iter().map(|x| -x).collect::<Vec<_>>());
-    if !(h1 > h0 && v1 > v0) {
-        return Ok(None);
-    }
-    let settings = Settings {
-        vh_start: h0,
-        vh_step: (h1 - h0) / 16.0,
-        vh_max: h1,
-        tolerance: (h1 - h0) / 400.0,
-        scan_step: None,
-    };
-    let vvs: Vec<f64> = (0..=6).map(|k| v0 + (v1 - v0) * k as f64 / 6.0).collect();
-    let engine = campaign.engines[0];
-    let base = touchdown_scenario::ScenarioBase::load(&campaign.scenario_path)?;
-    eprintln!("the engine's boundary of the base configuration, for the plot ...");
-    let points = search_engines(&base, &[], &vvs, settings, &[engine], &[], &|| (), &|_| ())?;
-    let line: Vec<serde_json::Value> = points
-        .iter()
-        .filter_map(|p| {
-            p.point.vh.map(|vh| {
-                serde_json::json!({ vh_col.as_str(): vh * along, vv_col.as_str(): -p.point.vv })
-            })
-        })
-        .collect();
-    Ok(Some(serde_json::to_string_pretty(&serde_json::json!({
-        "engine": engine.name(),
-        "base_scenario": campaign.scenario_path.display().to_string(),
-        "note": "the stability boundary of the base configuration (every other input at its base value), found by touchdown boundary's search",
-        "points": line,
-    }))?))
 }
 
 /// `touchdown campaign merge DIR... --out DIR`.

@@ -14,9 +14,7 @@ use touchdown_compare::CompareError;
 use touchdown_record::{History, RunError};
 use touchdown_registry::{Engine, EngineFailure};
 use touchdown_scenario::{ScenarioBase, ScenarioError};
-use touchdown_validation::boundary::{
-    descent_speeds, document_line, options, search_engines, Asked,
-};
+use touchdown_validation::boundary::{Asked, Request};
 use touchdown_validation::ValidationError;
 
 pyo3::create_exception!(
@@ -418,35 +416,25 @@ fn boundary(
         scan_step,
     };
     py.detach(|| -> Result<Vec<String>, Box<Failed>> {
-        let speeds = descent_speeds(&vv, "vv").map_err(|e| Box::new(Failed::Boundary(e)))?;
-        let (b, source) = base(scenario).map_err(|e| Box::new(Failed::Scenario(e)))?;
-        let sc = b
-            .with(&as_refs(&values))
-            .map_err(|e| Box::new(Failed::Scenario(e)))?;
-        let settings = asked
-            .settings(&sc)
-            .map_err(|e| Box::new(Failed::Boundary(e)))?;
-        let points = search_engines(
-            &b,
-            &as_refs(&values),
-            &speeds,
-            settings,
-            &engines,
-            &stop_restitution,
-            &|| (),
-            &|_| (),
-        )
-        .map_err(|e| Box::new(Failed::Boundary(e)))?;
-        let unit = format!("{}/s", sc.file.units.length_label());
-        let id = touchdown_record::ScenarioId::new(source, &sc);
-        let settings = self::settings(
-            &values,
-            options(&vv, settings, &unit, &engines, &stop_restitution),
-        );
-        let velocity = sc.units().velocity();
+        let (b, _) = base(scenario).map_err(|e| Box::new(Failed::Scenario(e)))?;
+        let overrides = as_refs(&values);
+        let boundary = |e| Box::new(Failed::Boundary(e));
+        let study = Request {
+            base: &b,
+            overrides: &overrides,
+            vv: &vv,
+            vv_argument: "vv",
+            asked,
+            engines: &engines,
+            restitutions: &stop_restitution,
+        }
+        .resolve()
+        .map_err(boundary)?;
+        let points = study.run(&|| (), &|_| ()).map_err(boundary)?;
+        let (id, settings) = (study.scenario_id(), study.document_settings());
         Ok(points
             .iter()
-            .map(|p| document_line(p, velocity, &id, &settings))
+            .map(|p| study.document_line(p, &id, &settings))
             .collect())
     })
     .map_err(|f| f.into_py_err(py))

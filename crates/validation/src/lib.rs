@@ -49,6 +49,9 @@ pub enum ValidationError {
     /// The optimiser failed.
     #[error("calibration: {0}")]
     Calibration(String),
+    /// A table could not be written (the stability-boundary search's CSV).
+    #[error("CSV: {0}")]
+    Csv(#[from] csv::Error),
     /// A setting is out of its range (the stability-boundary search's, for one).
     #[error("{argument}: expected {expected}, got {got}")]
     Setting {
