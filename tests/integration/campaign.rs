@@ -5,8 +5,9 @@
 
 use std::path::{Path, PathBuf};
 use touchdown_campaign::distribution::Value;
+use touchdown_campaign::landing::draws;
 use touchdown_campaign::record::Cell;
-use touchdown_campaign::run::{draws, run};
+use touchdown_campaign::run::run;
 use touchdown_campaign::{merge, Campaign, CampaignError, Shard};
 use touchdown_tests::{python, root, scenario};
 
@@ -370,7 +371,7 @@ fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
             .accuracy
             .expect("a campaign on the core states its accuracy");
         assert_eq!((a.sample_landings, a.refinement), (1, 8.0));
-        let sc = touchdown_campaign::run::scenario(&campaign, &draws(&campaign, 0)).unwrap();
+        let sc = touchdown_campaign::landing::scenario(&campaign, &draws(&campaign, 0)).unwrap();
         let finer = |f: f64| {
             let sc = sc.clone().with_integrator(|it| {
                 it.dist /= f;
@@ -1075,7 +1076,7 @@ fn mutated_campaign_files_are_refused_by_name_or_land_cleanly() {
                 }
                 Ok(c) => {
                     for i in 0..c.landings.min(2) {
-                        let row = touchdown_campaign::run::land(&c, i, None)
+                        let row = touchdown_campaign::landing::land(&c, i, None)
                             .map_err(|e| TestCaseError::fail(format!("{what}: {e}")))?;
                         prop_assert!(
                             row.iter()

@@ -11,7 +11,8 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::path::Path;
-use touchdown_campaign::run::{draws, land, run_range};
+use touchdown_campaign::landing::{draws, land};
+use touchdown_campaign::run::run_range;
 use touchdown_campaign::Campaign;
 
 const LANDINGS: u64 = 16;

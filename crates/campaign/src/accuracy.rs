@@ -9,8 +9,8 @@
 //! It measures the error of the steps, not of the model: both runs are of the same laws.
 
 use crate::distribution::Value;
+use crate::landing::{draws, outcome, pool, scenario};
 use crate::record::Status;
-use crate::run::{draws, outcome, pool, scenario};
 use crate::spec::Campaign;
 use crate::CampaignError;
 use rayon::prelude::*;

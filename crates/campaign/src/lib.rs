@@ -14,15 +14,19 @@
 //! | [`statistics`] | P(stable) with its Clopper-Pearson lower bound, the zero-failure sizes, counts, percentiles |
 //! | [`fidelity`] | a multi-fidelity (control-variate) estimate of a probability on an expensive engine from a paired campaign and a larger one on a cheap engine |
 //! | [`paired`] | a paired campaign's statistics: each engine's, and between engines the disagreement rate, McNemar's test, paired differences, the worst landings |
-//! | [`store`] | the manifest, `landings.jsonl`, `landings.parquet`, `statistics.json` |
+//! | [`store`] | the campaign's files, read and written: the manifest, `landings.jsonl`, `landings.parquet`, `statistics.json` |
+//! | [`analysis`] | the statistics of the stored records, and the landings they name written as scenarios |
 //! | [`folder`] | the campaign's folder: built beside `--out`, locked, exchanged when complete |
+//! | [`landing`] | one landing: drawn, resolved, read back, landed on each engine; its record |
 //! | [`run`] | landings in parallel, shards, merges and extensions |
 
 pub mod accuracy;
+pub mod analysis;
 pub mod boundary;
 pub mod distribution;
 pub mod fidelity;
 pub mod folder;
+pub mod landing;
 pub mod paired;
 pub mod record;
 pub mod run;

@@ -4,14 +4,13 @@
 //!
 //! Nothing holds the records: `landings.jsonl` is written a line at a time as the landings
 //! finish (the [`Journal`], which a stopped run resumes from), the Parquet file is written from
-//! it a row group at a time, and the statistics are computed from the Parquet file a column at
-//! a time ([`complete`]); the manifest is written last.
+//! it a row group at a time ([`write_parquet`]), and read back a column at a time
+//! ([`visit_column`]) by the analysis (`crate::analysis`); the statistics it computes and the
+//! manifest are written last ([`seal`]). This module reads and writes; it computes nothing.
 
 use crate::accuracy::Accuracy;
-use crate::paired::{self, Disagreement, EngineStatistics, Pair, Paired, Report};
-use crate::record::{prefix, Cell, Column, Kind, Row};
+use crate::record::{Cell, Column, Kind, Row};
 use crate::spec::Campaign;
-use crate::statistics::Statistics;
 use crate::CampaignError;
 use parquet::data_type::{BoolType, ByteArray, ByteArrayType, DoubleType, Int64Type};
 use parquet::file::properties::WriterProperties;
@@ -647,15 +646,11 @@ pub fn visit_column(
     Ok(())
 }
 
-/// Completes the campaign folder `dir` whose `landings.jsonl` is written (and closed): its
-/// Parquet file (from the records, a row group at a time), its statistics (from the Parquet
-/// file, a column at a time; a paired campaign's also each pair's, and the landings they list
-/// as standalone scenario files in `disagreements/`) and, last, its manifest. Returns the
-/// statistics.
-pub fn complete(dir: &Path, manifest: &mut Manifest) -> Result<Report, CampaignError> {
+/// Writes the Parquet file of the campaign folder `dir` whose `landings.jsonl` is written (and
+/// closed), from its records a row group at a time; returns how many landings it holds.
+pub fn write_parquet(dir: &Path, manifest: &Manifest) -> Result<u64, CampaignError> {
     let columns = &manifest.columns;
-    let parquet_path = dir.join("landings.parquet");
-    let mut parquet = Parquet::create(&parquet_path, columns)?;
+    let mut parquet = Parquet::create(&dir.join(PARQUET), columns)?;
     let landings = for_each_record(
         &dir.join("landings.jsonl"),
         columns,
@@ -663,56 +658,17 @@ pub fn complete(dir: &Path, manifest: &mut Manifest) -> Result<Report, CampaignE
         |row| parquet.push(row),
     )?;
     parquet.close()?;
-    let mut read = |i, visit: &mut dyn FnMut(Cell)| visit_column(&parquet_path, columns, i, visit);
-    let confidence = manifest.confidence;
-    let statistics = if manifest.engines.len() < 2 {
-        let statistics =
-            Statistics::from_columns(columns, landings, confidence, "", &mut read, &|by, l| {
-                closest_file(None, by, l)
-            })?;
-        write_closest(dir, manifest, &statistics)?;
-        Report::One(Box::new(statistics))
-    } else {
-        let names: Vec<&str> = manifest.engines.iter().map(String::as_str).collect();
-        let prefixes: Vec<String> = names.iter().map(|e| prefix(e, names.len())).collect();
-        let mut engines = Vec::with_capacity(names.len());
-        for (engine, prefix) in names.iter().zip(&prefixes) {
-            let statistics = Statistics::from_columns(
-                columns,
-                landings,
-                confidence,
-                prefix,
-                &mut read,
-                &|by, l| closest_file(Some(engine), by, l),
-            )?;
-            write_closest(dir, manifest, &statistics)?;
-            engines.push(EngineStatistics {
-                engine: engine.to_string(),
-                statistics,
-            });
-        }
-        let mut pairs = Vec::new();
-        for a in 0..names.len() {
-            for b in a + 1..names.len() {
-                pairs.push(paired::pair(
-                    columns,
-                    landings,
-                    confidence,
-                    [names[a], names[b]],
-                    [&prefixes[a], &prefixes[b]],
-                    &mut read,
-                    &|l| format!("{DISAGREEMENTS}/landing-{l}.toml"),
-                )?);
-            }
-        }
-        write_disagreements(dir, manifest, &pairs)?;
-        Report::Paired(Paired {
-            landings,
-            confidence,
-            engines,
-            pairs,
-        })
-    };
+    Ok(landings)
+}
+
+/// Writes `statistics` (`statistics.json`, any serialisable document) into the folder `dir`
+/// whose records and Parquet file are written and, last, its manifest sealed with the digests
+/// of its files.
+pub fn seal<T: Serialize>(
+    dir: &Path,
+    manifest: &mut Manifest,
+    statistics: &T,
+) -> Result<(), CampaignError> {
     let write = |name: &str, text: String| {
         let path = dir.join(name);
         let file = std::fs::File::create(&path).map_err(|e| CampaignError::store(&path, e))?;
@@ -722,139 +678,18 @@ pub fn complete(dir: &Path, manifest: &mut Manifest) -> Result<Report, CampaignE
             .and_then(|()| file.get_ref().sync_all())
             .map_err(|e| CampaignError::store(&path, e))
     };
-    write("statistics.json", pretty(&statistics) + "\n")?;
+    write("statistics.json", pretty(statistics) + "\n")?;
     manifest.files_sha256 = SEALED
         .iter()
         .map(|name| Ok((name.to_string(), file_sha256(&dir.join(name))?)))
         .collect::<Result<_, CampaignError>>()?;
     manifest.seal_sha256 = manifest.seal();
     write("manifest.json", pretty(manifest) + "\n")?;
-    Ok(statistics)
-}
-
-/// The folder of a paired campaign's listed disagreements, as scenario files.
-pub const DISAGREEMENTS: &str = "disagreements";
-
-/// The folder of a campaign's closest landings (statistics.json's `margins.closest`), as
-/// scenario files.
-pub const CLOSEST: &str = "closest";
-
-/// The file of the landing `landing` closest to failing `by` a margin (of `engine`'s, in a
-/// paired campaign): `CLOSEST/[engine-]by-landing-N.toml`.
-fn closest_file(engine: Option<&str>, by: &str, landing: u64) -> String {
-    let by = by.replace('_', "-");
-    match engine {
-        Some(e) => format!("{CLOSEST}/{e}-{by}-landing-{landing}.toml"),
-        None => format!("{CLOSEST}/{by}-landing-{landing}.toml"),
-    }
-}
-
-/// Writes the closest landings of `statistics` as the standalone scenarios that ran them.
-fn write_closest(
-    dir: &Path,
-    manifest: &Manifest,
-    statistics: &Statistics,
-) -> Result<(), CampaignError> {
-    write_scenarios(
-        dir,
-        manifest,
-        CLOSEST,
-        statistics
-            .margins
-            .closest
-            .iter()
-            .map(|c| (c.landing, &c.applied, c.scenario_file.as_str())),
-    )
-}
-
-/// Writes each landing `pairs` list as the standalone scenario that ran it:
-/// `DISAGREEMENTS/landing-N.toml`.
-fn write_disagreements(
-    dir: &Path,
-    manifest: &Manifest,
-    pairs: &[Pair],
-) -> Result<(), CampaignError> {
-    let listed: std::collections::BTreeMap<u64, &Disagreement> = pairs
-        .iter()
-        .flat_map(|p| &p.worst)
-        .map(|w| (w.landing, w))
-        .collect();
-    write_scenarios(
-        dir,
-        manifest,
-        DISAGREEMENTS,
-        listed
-            .values()
-            .map(|w| (w.landing, &w.applied, w.scenario_file.as_str())),
-    )
-}
-
-/// Writes each landing of `landings` (its index, the values applied to it by column, its file
-/// under `dir`) as the standalone scenario that ran it: the resolved base of the manifest with
-/// the values applied. Nothing, not even `folder`, when there is none.
-fn write_scenarios<'a>(
-    dir: &Path,
-    manifest: &Manifest,
-    folder: &str,
-    landings: impl Iterator<Item = (u64, &'a serde_json::Map<String, serde_json::Value>, &'a str)>,
-) -> Result<(), CampaignError> {
-    let mut landings = landings.peekable();
-    if landings.peek().is_none() {
-        return Ok(());
-    }
-    let base_file = &manifest.base_scenario_file;
-    let base = touchdown_scenario::ScenarioBase::from_toml(base_file, &manifest.base_scenario)
-        .map_err(|e| CampaignError::store(Path::new(base_file), e))?;
-    let folder = dir.join(folder);
-    std::fs::create_dir_all(&folder).map_err(|e| CampaignError::store(&folder, e))?;
-    for (landing, applied_values, scenario_file) in landings {
-        let applied = manifest
-            .columns
-            .iter()
-            .filter(|c| c.name.starts_with("applied."))
-            .map(|c| applied_values.get(&c.name));
-        let mut overrides: Vec<(&str, toml::Value)> = manifest
-            .dispersed_fields
-            .iter()
-            .zip(applied)
-            .filter_map(|(field, v)| {
-                let v = match v? {
-                    serde_json::Value::Bool(b) => toml::Value::Boolean(*b),
-                    serde_json::Value::String(s) => toml::Value::String(s.clone()),
-                    serde_json::Value::Number(x) => toml::Value::Float(x.as_f64()?),
-                    _ => return None,
-                };
-                Some((field.as_str(), v))
-            })
-            .collect();
-        // Named for what it is, not for the base it was drawn from.
-        let values: Vec<String> = overrides
-            .iter()
-            .map(|(field, v)| format!("{field} = {v}"))
-            .collect();
-        overrides.push((
-            "name",
-            toml::Value::String(format!("{}: landing {landing}", manifest.campaign_name)),
-        ));
-        overrides.push((
-            "description",
-            toml::Value::String(format!(
-                "Landing {landing} of the campaign {:?} (seed {}), on {}: the base scenario {} with {} (the file's units).",
-                manifest.campaign_name,
-                manifest.seed,
-                manifest.engines.join(" and "),
-                manifest.base_scenario_file,
-                values.join(", ")
-            )),
-        ));
-        let path = dir.join(scenario_file);
-        let sc = base
-            .with(&overrides)
-            .map_err(|e| CampaignError::store(&path, format!("landing {landing}: {e}")))?;
-        std::fs::write(&path, sc.to_toml()).map_err(|e| CampaignError::store(&path, e))?;
-    }
     Ok(())
 }
+
+/// The campaign's Parquet file in its folder.
+pub const PARQUET: &str = "landings.parquet";
 
 /// Pretty JSON of a value made of plain numbers and strings.
 pub fn pretty<T: Serialize>(value: &T) -> String {
