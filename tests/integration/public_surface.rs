@@ -86,8 +86,11 @@ fn the_multibody_crate_exports_only_what_the_engines_use() {
     assert_surface(
         "crates/multibody/src/lib.rs",
         &[
+            "use VehicleLoads",
             "use BodyEnergy",
-            "use GearBook",
+            "use GearModel",
+            "use GearState",
+            "use StepTaken",
             "use PadStep",
             "use Reading",
             "use CONTACT_FLAG_SETTINGS",

@@ -21,7 +21,8 @@
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use touchdown_multibody::{
-    BodyEnergy, BodyMotion, Fault, GearBook, MujocoSettings, PadStep, Reading, StrutKinematics,
+    BodyEnergy, BodyMotion, Fault, GearModel, GearState, MujocoSettings, PadStep, Reading,
+    StepTaken, StrutKinematics,
 };
 use touchdown_record::{EnergyReport, History, Law, Sample, Summary};
 use touchdown_scenario::schema::Engine;
@@ -127,8 +128,14 @@ pub struct MjArrays<'a> {
 /// A landing driven on MuJoCo's arrays (see the module documentation).
 pub struct MujocoLanding {
     name: String,
-    /// The gear's laws, memories, kinematics, contacts, ledger, stability and extremes.
-    book: GearBook,
+    /// The gear as set up: geometry, surfaces, laws, curbs, criteria.
+    gear: GearModel,
+    /// The gear's memories, kinematics, contacts, ledger, stability and extremes.
+    gear_state: GearState,
+    /// Each gear's kinematics as read at this state.
+    kin: Vec<StrutKinematics>,
+    /// Each footpad's contact over the last step.
+    pad_steps: Vec<PadStep>,
     index: Vec<GearIndex>,
     sizes: ModelSizes,
     mass: f64,
@@ -170,10 +177,10 @@ fn check(what: &str, leg: usize, id: i32, len: i32) -> Result<usize, MujocoError
 /// The gear book of a MuJoCo landing of `sc`, or why the engine refuses the scenario: not
 /// applicable, a mechanism it does not model, laws that do not build, or a time step too large
 /// for the stiffest strut law; with the settings it runs with.
-fn book_for(sc: &Scenario) -> Result<(GearBook, MujocoSettings), ScenarioError> {
+fn book_for(sc: &Scenario) -> Result<((GearModel, GearState), MujocoSettings), ScenarioError> {
     sc.require_engine(Engine::Mujoco, crate::unsupported)?;
     let settings = MujocoSettings::new(sc)?;
-    Ok((GearBook::new(sc, settings.timestep)?, settings))
+    Ok((GearModel::new(sc, settings.timestep)?, settings))
 }
 
 /// Refuses `sc` as a MuJoCo landing would, in this process: the command line asks before it
@@ -194,7 +201,7 @@ impl MujocoLanding {
         mujoco_version: &str,
         history: Option<History>,
     ) -> Result<MujocoLanding, MujocoError> {
-        let (book, mj) = book_for(sc)?;
+        let ((gear, gear_state), mj) = book_for(sc)?;
         let n = sc.legs.len();
         if index.len() != n {
             return Err(MujocoError::Binding(format!(
@@ -227,7 +234,10 @@ impl MujocoLanding {
         }
         Ok(MujocoLanding {
             name: sc.file.name.clone(),
-            book,
+            gear,
+            gear_state,
+            kin: vec![StrutKinematics::default(); n],
+            pad_steps: vec![PadStep::default(); n],
             index,
             sizes,
             mass: sc.vehicle.mass,
@@ -268,14 +278,13 @@ impl MujocoLanding {
     /// Whether the run has ended (an unstable decision, if the scenario terminates on one, or
     /// the end time).
     pub fn finished(&self) -> bool {
-        self.book.finished(self.t)
+        self.gear.finished(&self.gear_state, self.t)
     }
 
     /// One call per step, between `mj_step1` and `mj_step2` (module documentation). Returns
     /// whether the run has ended (then nothing is written and the runner stops stepping).
     pub fn advance(&mut self, mj: &mut MjArrays) -> Result<bool, MujocoError> {
         self.check_warnings(mj)?;
-        self.book.begin_step();
         let before = self.vehicle;
         self.read_state(mj);
         let first = !self.started;
@@ -292,9 +301,15 @@ impl MujocoLanding {
         let now = self.reading(&vehicle);
         let pads = &self.footpad_velocity;
         let booked = if first {
-            self.book.start_landing(&now, |i| pads[i])
+            (self.gear).start_landing(&mut self.gear_state, &self.kin, &now, |i| pads[i])
         } else {
-            self.book.finish_step(&before, self.dt, &now, |i| pads[i])
+            let step = StepTaken {
+                before: &before,
+                dt: self.dt,
+                kinematics: &self.kin,
+                pads: &self.pad_steps,
+            };
+            (self.gear).finish_step(&mut self.gear_state, &step, &now, |i| pads[i])
         };
         booked.map_err(|f| self.diverged(f))?;
         self.record();
@@ -339,7 +354,7 @@ impl MujocoLanding {
             Vector3::new(a[k], a[k + 1], a[k + 2])
         };
         let sensor = |adr: i32| point(&mj.sensordata[adr as usize..], 0);
-        for (i, (g, leg)) in self.index.iter().zip(&self.book.legs).enumerate() {
+        for (i, (g, leg)) in self.index.iter().zip(self.gear.legs()).enumerate() {
             let b2 = point(mj.xpos, g.outer);
             let footpad = point(mj.xpos, g.footpad);
             let point1 = point(mj.site_xpos, g.point1);
@@ -359,7 +374,7 @@ impl MujocoLanding {
                 k.s[j] = mj.ten_length[t] - l0;
                 k.s_dot[j] = mj.ten_velocity[t];
             }
-            self.book.kin[i] = k;
+            self.kin[i] = k;
             // The contact point: the bottom of the footpad's contact sphere.
             let r = Vector3::new(0.0, 0.0, -self.contact_radius[i]);
             self.footpad_velocity[i] = sensor(g.pad_velocity);
@@ -367,7 +382,7 @@ impl MujocoLanding {
         }
         let total = mj.energy[0] + mj.energy[1];
         self.gear_energy = total - self.kinetic_energy()
-            + self.mass * self.book.gravity().dot(&self.vehicle.position);
+            + self.mass * self.gear.gravity().dot(&self.vehicle.position);
     }
 
     /// Contact states, penetration and the work of the contact forces over the last step:
@@ -386,8 +401,8 @@ impl MujocoLanding {
             let impulse = force * self.dt;
             let v_mean = 0.5 * (self.old_pad_velocity[i] + self.pad_velocity[i]);
             // The contact sphere is centred on BP; its plane is lowered by its radius.
-            let depth = self.book.surfaces[i].plane() - self.book.kin[i].footpad.z;
-            self.book.pad_steps[i] = PadStep {
+            let depth = self.gear.surface(i).plane() - self.kin[i].footpad.z;
+            self.pad_steps[i] = PadStep {
                 impulse,
                 work: impulse.component_mul(&v_mean),
                 depth,
@@ -398,7 +413,8 @@ impl MujocoLanding {
 
     /// Writes the forces for the coming step (overwriting the last step's).
     fn apply(&self, mj: &mut MjArrays) {
-        for (g, f) in self.index.iter().zip(&self.book.forces) {
+        for (i, g) in self.index.iter().enumerate() {
+            let f = self.gear_state.forces(i);
             // A compression-positive strut force pushes the footpad away: it extends q.
             mj.ctrl[g.primary as usize] = f.honeycomb + f.viscous;
             // A tension pulls the tendon shorter.
@@ -407,20 +423,21 @@ impl MujocoLanding {
             }
             mj.dof_frictionloss[g.stroke_dof as usize] = f.bearing_bound + f.crush_load;
         }
-        if !self.book.applied.is_empty() {
+        if !self.gear_state.applied().is_empty() {
             // eqs. (72)-(74), (80)-(82): the free joint's generalized forces are the force in
             // world axes and the torque in body axes.
-            let a = &self.book.applied;
+            let a = self.gear_state.applied();
             let torque = self.vehicle.rotation.transpose() * a.torque;
             mj.qfrc_applied[..3].copy_from_slice(a.force.as_slice());
             mj.qfrc_applied[3..6].copy_from_slice(torque.as_slice());
         }
-        if self.book.loads_footpads() {
+        if self.gear.loads_footpads() {
             // eqs. (94)-(95) and the obstacle walls: the force on each footpad body, at BP (its
             // centre of mass).
             for (i, g) in self.index.iter().enumerate() {
                 let k = 6 * g.footpad as usize;
-                mj.xfrc_applied[k..k + 3].copy_from_slice(self.book.pad_force(i).as_slice());
+                let force = self.gear_state.pad_force(i);
+                mj.xfrc_applied[k..k + 3].copy_from_slice(force.as_slice());
             }
         }
     }
@@ -433,12 +450,13 @@ impl MujocoLanding {
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        self.book.energy(&self.energies())
+        self.gear.energy(&self.gear_state, &self.energies())
     }
 
     /// The summary at the current state.
     pub fn summary(&self) -> Summary {
-        self.book.summary(
+        self.gear.summary(
+            &self.gear_state,
             "mujoco",
             &self.name,
             self.settings.clone(),
@@ -458,7 +476,7 @@ impl MujocoLanding {
 
     /// Writes the current state into `out` (a sample made for as many legs).
     pub fn sample(&self, out: &mut Sample) {
-        self.book.sample(out, self.t, &self.vehicle, self.energy());
+        (self.gear).sample(&self.gear_state, out, self.t, &self.vehicle, self.energy());
     }
 
     fn record(&mut self) {
@@ -479,7 +497,7 @@ impl MujocoLanding {
             kinetic_j: self.kinetic_energy(),
             potential_change_j: -self.mass
                 * self
-                    .book
+                    .gear
                     .gravity()
                     .dot(&(self.vehicle.position - self.position0)),
             gear_j: self.gear_energy - self.gear_energy0,

@@ -5,16 +5,23 @@
 //! and the loads applied to its bodies: the engine and RCS on the vehicle, the curbs on the
 //! footpads (eqs. 86-95, the crush memory committed once per step).
 //!
-//! An engine, with `book: GearBook`, at touchdown: reads its kinematics into `book.kin` and calls
-//! [`GearBook::start_landing`]. Then each step: applies `book.forces` to its joints,
-//! `book.applied` to its vehicle and, if [`GearBook::loads_footpads`], [`GearBook::pad_force`]
-//! to its footpads (its own way); calls
-//! [`GearBook::begin_step`]; steps; reads the new kinematics into `book.kin` and each footpad's
-//! contact over the step into `book.pad_steps`; and calls [`GearBook::finish_step`], which books
-//! the step in one order for every engine: the contacts, the struts' work and the honeycomb
-//! memories committed, the applied loads' work, the laws at the new state, the divergence
-//! checks, the stability criteria, the extremes, and the applied loads for the next step (if
-//! the landing goes on).
+//! As the core splits its `Model` from its `State` (MuJoCo's `mjModel` and `mjData`), the book
+//! is two values: a [`GearModel`], the gear as set up, which no step changes, and a
+//! [`GearState`], what the steps change; every call that books takes the model by reference and
+//! the state by mutable reference, and the order of a step is in the arguments:
+//!
+//! - at touchdown, [`GearModel::new`] gives both, and [`GearModel::start_landing`] takes the
+//!   engine's kinematics read at touchdown;
+//! - before each step the engine applies what the state holds for it, its own way: each gear's
+//!   strut forces ([`GearState::forces`], on [`GearState::kinematics`]), the vehicle loads
+//!   ([`GearState::applied`]) and, if [`GearModel::loads_footpads`], each footpad's force
+//!   ([`GearState::pad_force`]);
+//! - after it, [`GearModel::finish_step`] takes the step as a [`StepTaken`]: the vehicle before
+//!   it, its length, the kinematics the engine read after it and each footpad's contact over it,
+//!   and books it in one order for every engine: the contacts, the struts' work and the
+//!   honeycomb memories committed, the applied loads' work, the laws at the new state, the
+//!   divergence checks, the stability criteria, the extremes, and the applied loads for the
+//!   next step (if the landing goes on).
 
 use crate::applied::VehicleLoads;
 use crate::motion::{BodyMotion, Fault};
@@ -83,7 +90,7 @@ impl PadContact {
     }
 }
 
-/// One footpad's contact over a step, as the engine read it (see [`GearBook::finish_step`]).
+/// One footpad's contact over a step, as the engine read it (see [`GearModel::finish_step`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PadStep {
     /// The impulse its surface gave it over the step, N·s, inertial.
@@ -99,7 +106,7 @@ pub struct PadStep {
 }
 
 /// The energies of an engine's bodies at a state, for the energy report
-/// ([`GearBook::energy`]).
+/// ([`GearModel::energy`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyEnergy {
     /// The vehicle's kinetic energy, J.
@@ -110,7 +117,7 @@ pub struct BodyEnergy {
     pub gear_j: f64,
 }
 
-/// What an engine read of its bodies at a state (see [`GearBook::finish_step`]).
+/// What an engine read of its bodies at a state (see [`GearModel::finish_step`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Reading<'a> {
     /// Time, s.
@@ -125,54 +132,36 @@ pub struct Reading<'a> {
     pub steps: u64,
 }
 
-/// Per-gear state and bookkeeping of a multibody landing (see the module documentation).
-pub struct GearBook {
+/// A step an engine has taken, as [`GearModel::finish_step`] books it.
+#[derive(Debug, Clone, Copy)]
+pub struct StepTaken<'a> {
+    /// The vehicle before the step.
+    pub before: &'a BodyMotion,
+    /// The step's length, s.
+    pub dt: f64,
+    /// Each gear's kinematics after the step, as the engine read them.
+    pub kinematics: &'a [StrutKinematics],
+    /// Each footpad's contact over the step, as the engine read it.
+    pub pads: &'a [PadStep],
+}
+
+/// The gear of a multibody landing as set up, which no step changes (see the module
+/// documentation).
+pub struct GearModel {
     /// The gear geometry.
-    pub legs: Vec<Leg>,
+    legs: Vec<Leg>,
     /// Each footpad's surface.
-    pub surfaces: Vec<PadSurface>,
+    surfaces: Vec<PadSurface>,
     /// The shared laws.
-    pub laws: GearLaws,
-    /// Committed honeycomb memories.
-    pub memory: Vec<GearMemory>,
-    /// Kinematics at the current state.
-    pub kin: Vec<StrutKinematics>,
-    /// Kinematics before the current step.
-    pub previous: Vec<StrutKinematics>,
-    /// The laws' forces at the current state (applied over the next step).
-    pub forces: Vec<StrutForces>,
-    /// Contact states.
-    pub contacts: Vec<PadContact>,
-    /// Each footpad's contact over the step just taken, as the engine read it.
-    pub pad_steps: Vec<PadStep>,
-    /// The engine and RCS loads on the vehicle (nothing without them).
-    pub applied: VehicleLoads,
+    laws: GearLaws,
     /// The curbs with their footpad crushing (nothing without them).
-    pub curbs: Option<Curbs>,
-    /// The curbs' committed crush memories, one per curb of `curbs`.
-    curb_memory: Vec<CrushMemory>,
-    /// The curbs' force on each footpad over the current step, N, inertial axes (z = 0).
-    curb_forces: Vec<Vector3<f64>>,
-    /// Each locked footpad's obstacle wall (none where OBST ≤ 0).
-    walls: Vec<Option<ObstacleWall>>,
-    /// The walls' force on each footpad over the current step, N, inertial axes (z = 0).
-    wall_forces: Vec<Vector3<f64>>,
-    /// Work exchanged with each mechanism.
-    pub ledger: EnergyLedger,
-    /// Deepest footpad penetration into its plane so far, m.
-    pub max_penetration: f64,
-    /// Stability criteria, eqs. (105)-(107).
-    pub stability: StabilityTracker,
-    /// Running extremes.
-    pub extremes: Extremes,
+    curbs: Option<Curbs>,
+    /// Whether any footpad has an obstacle wall (OBST > 0).
+    walls: bool,
     criteria: Stability,
     gravity: Vector3<f64>,
-    pad_views: Vec<PadView>,
-    /// Each footpad's first contact point (XPI, YPI), m (eq. 86).
-    touchdown_xy: Vec<Vector2<f64>>,
     /// Undeformed footpad radius PR, m (eq. 93).
     pad_radius: f64,
-    curb_evaluations: u64,
     /// The divergence guard's tolerance, a fraction of the energy put in
     /// (`integrator.energy_tolerance`).
     energy_tolerance: f64,
@@ -184,10 +173,74 @@ pub struct GearBook {
     t_end: f64,
 }
 
-impl GearBook {
-    /// The bookkeeping of `sc`'s gear at touchdown, nothing booked yet, for an engine stepping
+/// What the steps of a multibody landing change (see the module documentation).
+pub struct GearState {
+    /// Committed honeycomb memories.
+    memory: Vec<GearMemory>,
+    /// Kinematics at the current state.
+    kin: Vec<StrutKinematics>,
+    /// Kinematics before the step being booked.
+    previous: Vec<StrutKinematics>,
+    /// The laws' forces at the current state (applied over the next step).
+    forces: Vec<StrutForces>,
+    /// Contact states.
+    contacts: Vec<PadContact>,
+    /// The engine and RCS loads on the vehicle (nothing without them).
+    applied: VehicleLoads,
+    /// The curbs' committed crush memories, one per curb of the model's curbs.
+    curb_memory: Vec<CrushMemory>,
+    /// The curbs' force on each footpad over the current step, N, inertial axes (z = 0).
+    curb_forces: Vec<Vector3<f64>>,
+    /// Each locked footpad's obstacle wall (none where OBST ≤ 0).
+    walls: Vec<Option<ObstacleWall>>,
+    /// The walls' force on each footpad over the current step, N, inertial axes (z = 0).
+    wall_forces: Vec<Vector3<f64>>,
+    /// Work exchanged with each mechanism.
+    ledger: EnergyLedger,
+    /// Deepest footpad penetration into its plane so far, m.
+    max_penetration: f64,
+    /// Stability criteria, eqs. (105)-(107).
+    stability: StabilityTracker,
+    /// Running extremes.
+    extremes: Extremes,
+    pad_views: Vec<PadView>,
+    /// Each footpad's first contact point (XPI, YPI), m (eq. 86).
+    touchdown_xy: Vec<Vector2<f64>>,
+    curb_evaluations: u64,
+}
+
+impl GearState {
+    /// Gear `i`'s kinematics at the current state.
+    pub fn kinematics(&self, i: usize) -> &StrutKinematics {
+        &self.kin[i]
+    }
+
+    /// The laws' forces on gear `i` at the current state, applied over the coming step.
+    pub fn forces(&self, i: usize) -> &StrutForces {
+        &self.forces[i]
+    }
+
+    /// The engine and RCS loads on the vehicle over the coming step.
+    pub fn applied(&self) -> &VehicleLoads {
+        &self.applied
+    }
+
+    /// The force on footpad `i` over the coming step (at BP, its centre of mass), N, inertial
+    /// axes: its curbs' (eqs. 94-95) and its obstacle wall's (`crate::wall`).
+    pub fn pad_force(&self, i: usize) -> Vector3<f64> {
+        self.curb_forces[i] + self.wall_forces[i]
+    }
+
+    /// Deepest footpad penetration into its plane so far, m.
+    pub fn max_penetration(&self) -> f64 {
+        self.max_penetration
+    }
+}
+
+impl GearModel {
+    /// The gear of `sc` and its state at touchdown, nothing booked yet, for an engine stepping
     /// `dt` (s).
-    pub fn new(sc: &Scenario, dt: f64) -> Result<GearBook, ScenarioError> {
+    pub fn new(sc: &Scenario, dt: f64) -> Result<(GearModel, GearState), ScenarioError> {
         let n = sc.legs.len();
         let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         let laws = GearLaws::from_scenario(sc)?;
@@ -200,37 +253,50 @@ impl GearBook {
             })
             .collect();
         let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
-        Ok(GearBook {
-            legs: sc.legs.clone(),
-            surfaces: sc.surface.pads.clone(),
-            laws,
+        let state = GearState {
             memory: vec![GearMemory::default(); n],
             kin: vec![StrutKinematics::default(); n],
             previous: vec![StrutKinematics::default(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
-            pad_steps: vec![PadStep::default(); n],
             applied: VehicleLoads::new(sc)?,
             curb_memory: curbs.as_ref().map_or_else(Vec::new, Curbs::memories),
-            curbs,
             curb_forces: vec![Vector3::zeros(); n],
-            walls,
             wall_forces: vec![Vector3::zeros(); n],
             ledger: EnergyLedger::default(),
             max_penetration: 0.0,
             stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
             extremes: Extremes::new(n, capacities),
-            criteria: sc.stability.clone(),
-            gravity,
             pad_views: vec![PadView::default(); n],
             touchdown_xy: vec![Vector2::zeros(); n],
-            pad_radius: sc.footpad.radius,
             curb_evaluations: 0,
+            walls,
+        };
+        let model = GearModel {
+            legs: sc.legs.clone(),
+            surfaces: sc.surface.pads.clone(),
+            laws,
+            walls: state.walls.iter().any(Option::is_some),
+            curbs,
+            criteria: sc.stability.clone(),
+            gravity,
+            pad_radius: sc.footpad.radius,
             energy_tolerance: sc.integrator.energy_tolerance,
             energy_floor_j: sc.energy_floor_j(),
             max_steps: sc.integrator.max_steps,
             t_end: sc.integrator.t_end,
-        })
+        };
+        Ok((model, state))
+    }
+
+    /// The gear geometry, one leg per gear.
+    pub fn legs(&self) -> &[Leg] {
+        &self.legs
+    }
+
+    /// Footpad `i`'s surface.
+    pub fn surface(&self, i: usize) -> &PadSurface {
+        &self.surfaces[i]
     }
 
     /// Gravity in the inertial frame, m/s².
@@ -238,79 +304,77 @@ impl GearBook {
         self.gravity
     }
 
-    /// Whether the book applies forces to the footpads ([`GearBook::pad_force`]): curbs or
+    /// Whether the gear applies forces to the footpads ([`GearState::pad_force`]): curbs or
     /// obstacle walls.
     pub fn loads_footpads(&self) -> bool {
-        self.curbs.is_some() || self.walls.iter().any(Option::is_some)
+        self.curbs.is_some() || self.walls
     }
 
-    /// The force on footpad `i` over the coming step (at BP, its centre of mass), N, inertial
-    /// axes: its curbs' (eqs. 94-95) and its obstacle wall's (`crate::wall`).
-    pub fn pad_force(&self, i: usize) -> Vector3<f64> {
-        self.curb_forces[i] + self.wall_forces[i]
+    /// Whether the landing in `state` has ended at time `t` (s): an unstable decision, if the
+    /// scenario terminates on one, or the end time.
+    pub fn finished(&self, state: &GearState, t: f64) -> bool {
+        t >= self.t_end * (1.0 - 1e-12) || state.stability.terminates()
     }
 
-    /// Whether the landing has ended at time `t` (s): an unstable decision, if the scenario
-    /// terminates on one, or the end time.
-    pub fn finished(&self, t: f64) -> bool {
-        t >= self.t_end * (1.0 - 1e-12) || self.stability.terminates()
-    }
-
-    /// Starts the landing at touchdown, the engine's kinematics read into `kin` and its bodies
-    /// in `now`: the stability criteria started with the vehicle's kinetic energy, the laws
-    /// evaluated, the checks, the stability distances, and the applied loads for the first step
-    /// (the footpads' velocities at BP `pad_velocity(i)`, m/s, inertial). Returns the energy
-    /// report of the state.
+    /// Starts the landing in `state` at touchdown, with the engine's gear `kinematics` and its
+    /// bodies as read (`now`): the stability criteria started with the vehicle's kinetic energy,
+    /// the laws evaluated, the checks, the stability distances, and the applied loads for the
+    /// first step (the footpads' velocities at BP `pad_velocity(i)`, m/s, inertial). Returns the
+    /// energy report of the state.
     pub fn start_landing(
-        &mut self,
+        &self,
+        state: &mut GearState,
+        kinematics: &[StrutKinematics],
         now: &Reading,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<EnergyReport, Fault> {
-        self.stability = StabilityTracker::new(
+        state.kin.copy_from_slice(kinematics);
+        state.stability = StabilityTracker::new(
             &self.criteria,
             self.gravity,
             self.legs.len(),
             now.energy.kinetic_j,
         );
-        self.evaluate()?;
-        self.settle(now, None, pad_velocity)
+        self.evaluate(state)?;
+        self.settle(state, now, None, pad_velocity)
     }
 
-    /// Keeps the current kinematics as the state before the coming step: call it before the
-    /// engine steps.
-    pub fn begin_step(&mut self) {
-        self.previous.copy_from_slice(&self.kin);
-    }
-
-    /// Books the step just taken (`dt` s long, from the vehicle state `before` to `now`; the
-    /// new kinematics in `kin`, the footpads' contacts in `pad_steps`), in one order for every
-    /// engine: the contacts, the struts' work with the honeycomb memories committed at the new
-    /// strokes, the applied loads' work, the laws at the new state, the divergence checks
-    /// ([`GearBook::check`]), the stability criteria, the extremes, and, if the landing goes
-    /// on, the applied loads for the next step (the footpads' velocities at BP
+    /// Books the `step` just taken into `state`, the bodies as read after it in `now`, in one
+    /// order for every engine: the contacts, the struts' work with the honeycomb memories
+    /// committed at the new strokes, the applied loads' work, the laws at the new state, the
+    /// divergence checks ([`GearModel::check`]), the stability criteria, the extremes, and, if
+    /// the landing goes on, the applied loads for the next step (the footpads' velocities at BP
     /// `pad_velocity(i)`, m/s, inertial). Returns the energy report of the new state.
     pub fn finish_step(
-        &mut self,
-        before: &BodyMotion,
-        dt: f64,
+        &self,
+        state: &mut GearState,
+        step: &StepTaken,
         now: &Reading,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<EnergyReport, Fault> {
-        for i in 0..self.legs.len() {
-            self.book_contact(i, now.t, dt);
+        let StepTaken {
+            before,
+            dt,
+            kinematics,
+            pads,
+        } = *step;
+        state.previous.copy_from_slice(&state.kin);
+        state.kin.copy_from_slice(kinematics);
+        for (i, pad) in pads.iter().enumerate() {
+            self.book_contact(state, i, pad, now.t, dt);
         }
-        self.book_struts();
-        self.book_applied(before, now.vehicle, dt);
-        self.evaluate()?;
-        let energy = self.settle(now, Some(&before.velocity), pad_velocity)?;
-        self.update_extremes(now.t, now.vehicle);
-        self.extremes.update_acceleration(
+        self.book_struts(state);
+        self.book_applied(state, before, now.vehicle, dt);
+        self.evaluate(state)?;
+        let energy = self.settle(state, now, Some(&before.velocity), pad_velocity)?;
+        Self::update_extremes(state, now.t, now.vehicle);
+        state.extremes.update_acceleration(
             &before.velocity,
             &now.vehicle.velocity,
             dt,
             &self.gravity,
         );
-        self.extremes.follow(&self.stability);
+        state.extremes.follow(&state.stability);
         Ok(energy)
     }
 
@@ -318,75 +382,78 @@ impl GearBook {
     /// `now` whose laws are evaluated; `old_velocity` is the vehicle's velocity before the step
     /// (m/s; `None` at touchdown).
     fn settle(
-        &mut self,
+        &self,
+        state: &mut GearState,
         now: &Reading,
         old_velocity: Option<&Vector3<f64>>,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<EnergyReport, Fault> {
-        let energy = self.energy(&now.energy);
-        self.check(&energy, now.finite, now.steps)?;
-        self.update_stability(now.t, now.vehicle, old_velocity, &energy);
-        if !self.finished(now.t) {
-            self.evaluate_applied(now.t, now.vehicle, pad_velocity)?;
+        let energy = self.energy(state, &now.energy);
+        self.check(state, &energy, now.finite, now.steps)?;
+        Self::update_stability(state, now.t, now.vehicle, old_velocity, &energy);
+        if !self.finished(state, now.t) {
+            self.evaluate_applied(state, now.t, now.vehicle, pad_velocity)?;
         }
         Ok(energy)
     }
 
     /// Books the work of the laws' forces over the step just taken (`previous` → `kin`) and
     /// commits the honeycomb memories at the new strokes.
-    fn book_struts(&mut self) {
-        let steps = self.previous.iter().zip(&self.kin).zip(&self.forces);
-        for (((a, b), f), memory) in steps.zip(&mut self.memory) {
+    fn book_struts(&self, state: &mut GearState) {
+        let steps = state.previous.iter().zip(&state.kin).zip(&state.forces);
+        for (((a, b), f), memory) in steps.zip(&mut state.memory) {
             let w = f.work(a, b);
-            self.ledger.honeycomb += w.honeycomb;
-            self.ledger.viscous += w.viscous;
-            self.ledger.bearing += w.bearing;
+            state.ledger.honeycomb += w.honeycomb;
+            state.ledger.viscous += w.viscous;
+            state.ledger.bearing += w.bearing;
             self.laws.commit(b.c, b.s, memory);
         }
     }
 
-    /// Books footpad `i`'s contact over the step ending at time `t` (s), as `pad_steps[i]`
-    /// holds it: the normal part of its work (and a locked footpad's lateral part) into the
-    /// contact-event account, sliding friction into the sliding account; its penetration; whether
-    /// it is in contact ([`PadContact::update`]); the step was `dt` s long.
-    fn book_contact(&mut self, i: usize, t: f64, dt: f64) {
+    /// Books footpad `i`'s contact `pad` over the step ending at time `t` (s): the normal part of
+    /// its work (and a locked footpad's lateral part) into the contact-event account, sliding
+    /// friction into the sliding account; its penetration; whether it is in contact
+    /// ([`PadContact::update`]); the step was `dt` s long.
+    fn book_contact(&self, state: &mut GearState, i: usize, pad: &PadStep, t: f64, dt: f64) {
         let PadStep {
             impulse,
             work,
             depth,
             touching,
-        } = self.pad_steps[i];
+        } = *pad;
         let normal_work = work.z;
         let lateral_work = work.x + work.y;
-        self.ledger.events += normal_work;
+        state.ledger.events += normal_work;
         if self.surfaces[i].locked() {
-            self.ledger.events += lateral_work;
+            state.ledger.events += lateral_work;
         } else {
-            self.ledger.sliding -= lateral_work;
+            state.ledger.sliding -= lateral_work;
         }
-        self.max_penetration = self.max_penetration.max(depth);
-        let clearance = self.kin[i].footpad.z - self.surfaces[i].plane();
+        state.max_penetration = state.max_penetration.max(depth);
+        let clearance = state.kin[i].footpad.z - self.surfaces[i].plane();
         let pushed = touching && impulse.z > 0.0;
-        if let Some(wall) = &mut self.walls[i] {
-            wall.update(pushed, self.kin[i].footpad.xy(), clearance);
+        if let Some(wall) = &mut state.walls[i] {
+            wall.update(pushed, state.kin[i].footpad.xy(), clearance);
         }
-        let c = &mut self.contacts[i];
+        let c = &mut state.contacts[i];
         let first = c.first_contact.is_none();
         c.update(pushed, t, dt, clearance);
         if first && c.first_contact.is_some() {
-            self.touchdown_xy[i] = self.kin[i].footpad.xy();
+            state.touchdown_xy[i] = state.kin[i].footpad.xy();
         }
     }
 
     /// Evaluates the laws at the current kinematics with the committed memories.
-    fn evaluate(&mut self) -> Result<(), Fault> {
+    fn evaluate(&self, state: &mut GearState) -> Result<(), Fault> {
         for i in 0..self.legs.len() {
-            self.forces[i] = strut_forces(&self.laws, &self.memory[i], &self.legs[i], &self.kin[i])
-                .map_err(|e| Fault {
-                    law: Law::BearingFriction,
-                    leg: Some(i),
-                    message: e.to_string(),
-                })?;
+            state.forces[i] =
+                strut_forces(&self.laws, &state.memory[i], &self.legs[i], &state.kin[i]).map_err(
+                    |e| Fault {
+                        law: Law::BearingFriction,
+                        leg: Some(i),
+                        message: e.to_string(),
+                    },
+                )?;
         }
         Ok(())
     }
@@ -399,38 +466,39 @@ impl GearBook {
     /// Each is evaluated with the memory of the state before and committed after, as the core
     /// does at an accepted state.
     fn evaluate_applied(
-        &mut self,
+        &self,
+        state: &mut GearState,
         t: f64,
         v: &BodyMotion,
         pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) -> Result<(), Fault> {
-        let contacts = &self.contacts;
+        let contacts = &state.contacts;
         let first_contact = || {
             contacts
                 .iter()
                 .filter_map(|c| c.first_contact)
                 .reduce(f64::min)
         };
-        self.applied.evaluate(t, v, first_contact)?;
-        for (i, wall) in self.walls.iter().enumerate() {
+        state.applied.evaluate(t, v, first_contact)?;
+        for (i, wall) in state.walls.iter().enumerate() {
             if let Some(w) = wall {
-                self.wall_forces[i] = w.force(self.kin[i].footpad.xy(), &pad_velocity(i));
+                state.wall_forces[i] = w.force(state.kin[i].footpad.xy(), &pad_velocity(i));
             }
         }
         let Some(curbs) = &self.curbs else {
             return Ok(());
         };
-        self.curb_evaluations += 1;
-        for (i, f) in self.curb_forces.iter_mut().enumerate() {
+        state.curb_evaluations += 1;
+        for (i, f) in state.curb_forces.iter_mut().enumerate() {
             *f = Vector3::zeros();
             // The curbs stand from the surface up (their height is not modelled): they act on
             // a footpad from its first contact on, bearing or not. (The core applies them in
             // the footpad's sliding equations, eq. 97, while it bears.)
-            if self.contacts[i].first_contact.is_none() {
+            if state.contacts[i].first_contact.is_none() {
                 continue;
             }
-            let (td, xy) = (self.touchdown_xy[i], self.kin[i].footpad.xy());
-            let memory = &mut self.curb_memory;
+            let (td, xy) = (state.touchdown_xy[i], state.kin[i].footpad.xy());
+            let memory = &mut state.curb_memory;
             let on_pad = curbs.force(memory, i, td, xy, pad_velocity(i).xy(), self.pad_radius);
             curbs.commit(memory, i, td, xy, self.pad_radius);
             if !on_pad.norm().is_finite() {
@@ -449,21 +517,27 @@ impl GearBook {
     /// into the mechanisms account (done on the vehicle and the footpads, so it counts
     /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements;
     /// the thrust's and the RCS's positive work is also booked as energy put in.
-    fn book_applied(&mut self, before: &BodyMotion, after: &BodyMotion, dt: f64) {
-        let applied = self.applied.step_work(before, after, dt);
-        self.ledger.mechanisms -= applied.applied;
-        self.ledger.driving_input += applied.driving.max(0.0);
+    fn book_applied(
+        &self,
+        state: &mut GearState,
+        before: &BodyMotion,
+        after: &BodyMotion,
+        dt: f64,
+    ) {
+        let applied = state.applied.step_work(before, after, dt);
+        state.ledger.mechanisms -= applied.applied;
+        state.ledger.driving_input += applied.driving.max(0.0);
         let work = |forces: &[Vector3<f64>]| -> f64 {
-            let steps = self.previous.iter().zip(&self.kin).zip(forces);
+            let steps = state.previous.iter().zip(&state.kin).zip(forces);
             steps
                 .map(|((a, b), f)| f.dot(&(b.footpad - a.footpad)))
                 .sum()
         };
         if self.curbs.is_some() {
-            self.ledger.mechanisms -= work(&self.curb_forces);
+            state.ledger.mechanisms -= work(&state.curb_forces);
         }
         // The walls' work is the contact's, as a locked footpad's lateral impulses are.
-        self.ledger.events += work(&self.wall_forces);
+        state.ledger.events += work(&state.wall_forces);
     }
 
     /// The divergence checks after a step: the run budget (`integrator.max_steps`) spent after
@@ -471,14 +545,20 @@ impl GearBook {
     /// the first non-finite force or gear geometry, a non-finite body state (`state_finite`
     /// false, as the engine reads its bodies), or an energy balance `e` (this landing's report)
     /// beyond `integrator.energy_tolerance` of the energy scale.
-    fn check(&self, e: &EnergyReport, state_finite: bool, steps: u64) -> Result<(), Fault> {
+    fn check(
+        &self,
+        state: &GearState,
+        e: &EnergyReport,
+        state_finite: bool,
+        steps: u64,
+    ) -> Result<(), Fault> {
         // One force evaluation a step.
         touchdown_record::check_budget(steps, steps, self.max_steps).map_err(|budget| Fault {
             law: Law::RunBudget,
             leg: None,
             message: budget.to_string(),
         })?;
-        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
+        for (i, (k, f)) in state.kin.iter().zip(&state.forces).enumerate() {
             let geometry = k.c + k.s[0] + k.s[1] + k.footpad.norm() + k.axis.norm();
             let bad = f
                 .non_finite()
@@ -498,7 +578,8 @@ impl GearBook {
                 message: "non-finite body state".into(),
             });
         }
-        self.ledger
+        state
+            .ledger
             .check_balance(
                 e,
                 self.energy_tolerance,
@@ -508,14 +589,14 @@ impl GearBook {
             .map_err(|imbalance| Fault {
                 law: Law::EnergyBalance,
                 leg: None,
-                message: format!("{imbalance}; {}", self.stiffest_strut_law()),
+                message: format!("{imbalance}; {}", self.stiffest_strut_law(state)),
             })
     }
 
     /// The stiffest strut law engaged at the current state, with its leg, strut, branch, rate,
     /// force and stroke (a diagnostic's text, [`StrutLoad::stiffest`]).
-    fn stiffest_strut_law(&self) -> String {
-        let loads = (self.kin.iter().zip(&self.forces).zip(&self.memory))
+    fn stiffest_strut_law(&self, state: &GearState) -> String {
+        let loads = (state.kin.iter().zip(&state.forces).zip(&state.memory))
             .enumerate()
             .flat_map(|(i, ((k, f), m))| {
                 let primary = f.honeycomb + f.crush_load + f.viscous;
@@ -527,66 +608,70 @@ impl GearBook {
 
     /// Updates the stability criteria at time `t` (s) with the vehicle in state `v`, its
     /// velocity before the step `old_velocity` (m/s; `None` at touchdown) and the energy report
-    /// of this state `energy` (the one [`GearBook::check`] was given).
+    /// of this state `energy` (the one [`GearModel::check`] was given).
     fn update_stability(
-        &mut self,
+        state: &mut GearState,
         t: f64,
         v: &BodyMotion,
         old_velocity: Option<&Vector3<f64>>,
         energy: &EnergyReport,
     ) {
-        for i in 0..self.legs.len() {
-            self.pad_views[i] = PadView {
-                position: self.kin[i].footpad,
-                in_contact: self.contacts[i].in_contact,
-                touched: self.contacts[i].first_contact.is_some(),
+        for i in 0..state.pad_views.len() {
+            state.pad_views[i] = PadView {
+                position: state.kin[i].footpad,
+                in_contact: state.contacts[i].in_contact,
+                touched: state.contacts[i].first_contact.is_some(),
             };
         }
-        self.stability.update(
+        state.stability.update(
             t,
             &v.position,
             &v.velocity,
             old_velocity,
             energy,
-            &self.pad_views,
+            &state.pad_views,
         );
     }
 
     /// Updates the extremes with the current strokes, strut forces and the pitch rate at time
     /// `t`, s.
-    fn update_extremes(&mut self, t: f64, v: &BodyMotion) {
-        for (i, (k, f)) in self.kin.iter().zip(&self.forces).enumerate() {
-            self.extremes
+    fn update_extremes(state: &mut GearState, t: f64, v: &BodyMotion) {
+        for (i, (k, f)) in state.kin.iter().zip(&state.forces).enumerate() {
+            state
+                .extremes
                 .update_leg(t, i, k.c, k.s, f.primary(k.c_dot), f.secondary());
         }
-        self.extremes.update_pitch_rate(t, v.pitch_rate());
+        state.extremes.update_pitch_rate(t, v.pitch_rate());
     }
 
-    /// The energy report with the bodies' energies `bodies`.
-    pub fn energy(&self, bodies: &BodyEnergy) -> EnergyReport {
-        self.ledger.report(
-            self.stability.initial_kinetic_energy(),
+    /// The energy report of `state` with the bodies' energies `bodies`.
+    pub fn energy(&self, state: &GearState, bodies: &BodyEnergy) -> EnergyReport {
+        state.ledger.report(
+            state.stability.initial_kinetic_energy(),
             bodies.kinetic_j,
             bodies.potential_change_j,
             bodies.gear_j,
-            self.stored_energy(),
+            self.stored_energy(state),
         )
     }
 
     /// Elastic energy stored in the gear's honeycombs at the current strokes, J.
-    fn stored_energy(&self) -> f64 {
-        self.kin
+    fn stored_energy(&self, state: &GearState) -> f64 {
+        state
+            .kin
             .iter()
-            .zip(&self.memory)
+            .zip(&state.memory)
             .map(|(k, m)| self.laws.stored_energy(k.c, k.s, m))
             .sum()
     }
 
-    /// The summary of `engine`'s run on scenario `name` at time `t` (s) after `steps` steps,
-    /// with the engine's `settings` (the deepest footpad penetration added) and the energy
+    /// The summary of `engine`'s run on scenario `name` in `state` at time `t` (s) after `steps`
+    /// steps, with the engine's `settings` (the deepest footpad penetration added) and the energy
     /// report `energy`.
+    #[allow(clippy::too_many_arguments)]
     pub fn summary(
         &self,
+        state: &GearState,
         engine: &str,
         name: &str,
         mut settings: serde_json::Map<String, serde_json::Value>,
@@ -596,29 +681,28 @@ impl GearBook {
     ) -> Summary {
         settings.insert(
             "max_footpad_penetration_m".into(),
-            self.max_penetration.into(),
+            state.max_penetration.into(),
         );
         let progress = Progress {
             t,
             steps,
             force_evaluations: steps,
-            first_contact_s: self.contacts.iter().map(|c| c.first_contact).collect(),
+            first_contact_s: state.contacts.iter().map(|c| c.first_contact).collect(),
         };
         let mut summary = Summary::new(
             engine,
             name,
             settings,
             progress,
-            &self.stability,
-            &self.extremes,
+            &state.stability,
+            &state.extremes,
             energy,
         );
         let curbs = self
             .curbs
             .is_some()
-            .then_some((Mechanism::Curbs, self.curb_evaluations));
-        summary.mechanisms = self
-            .applied
+            .then_some((Mechanism::Curbs, state.curb_evaluations));
+        summary.mechanisms = (state.applied)
             .evaluations()
             .chain(curbs)
             .map(|(m, n)| (m.name().to_string(), n))
@@ -626,9 +710,16 @@ impl GearBook {
         summary
     }
 
-    /// Writes the state at time `t` (s), the vehicle in state `v`, into `out` (a sample made for
-    /// as many legs), with the energy report `energy`.
-    pub fn sample(&self, out: &mut Sample, t: f64, v: &BodyMotion, energy: EnergyReport) {
+    /// Writes `state` at time `t` (s), the vehicle in state `v`, into `out` (a sample made for as
+    /// many legs), with the energy report `energy`.
+    pub fn sample(
+        &self,
+        state: &GearState,
+        out: &mut Sample,
+        t: f64,
+        v: &BodyMotion,
+        energy: EnergyReport,
+    ) {
         let r = v.rotation;
         out.t = t;
         out.position = v.position;
@@ -637,14 +728,14 @@ impl GearBook {
         out.omega = r.transpose() * v.angular_velocity;
         out.pitch_rate = v.pitch_rate();
         for (i, slot) in out.legs.iter_mut().enumerate() {
-            let (k, f, c) = (&self.kin[i], &self.forces[i], &self.contacts[i]);
+            let (k, f, c) = (&state.kin[i], &state.forces[i], &state.contacts[i]);
             slot.primary_stroke = k.c;
             slot.primary_force = f.primary(k.c_dot);
             slot.secondary_stroke = k.s;
             slot.secondary_force = f.secondary();
-            slot.stop_force = self.laws.stop_forces(k.c, k.s, &self.memory[i]);
+            slot.stop_force = self.laws.stop_forces(k.c, k.s, &state.memory[i]);
             slot.pad_position = k.footpad;
-            slot.restraint_force = self.wall_forces[i].norm();
+            slot.restraint_force = state.wall_forces[i].norm();
             slot.contact = match (c.in_contact, c.first_contact) {
                 (true, _) => 1,
                 (false, Some(_)) => 2,
@@ -652,7 +743,7 @@ impl GearBook {
             };
         }
         out.stability_distance
-            .copy_from_slice(self.stability.distances());
+            .copy_from_slice(state.stability.distances());
         out.energy = energy;
     }
 }

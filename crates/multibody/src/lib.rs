@@ -9,7 +9,7 @@
 //! | `motion` | the vehicle body's motion after a step, and what stops a run before it is placed in time and state |
 //! | `applied` | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
 //! | `wall` | the obstacle wall that holds a locked footpad laterally from its landing until it rises above the wall (fig. 17) |
-//! | `book` | the gear bookkeeping: kinematics before and after a step, hysteresis committed once per step, contact work, the curbs' force on the footpads (eqs. 86-95) with their crush committed once per step, energy ledger, stability criteria, extremes, summary and history samples |
+//! | `book` | the gear bookkeeping, a model no step changes and a state: kinematics before and after a step, hysteresis committed once per step, contact work, the curbs' force on the footpads (eqs. 86-95) with their crush committed once per step, energy ledger, stability criteria, extremes, summary and history samples |
 
 mod applied;
 mod book;
@@ -19,7 +19,10 @@ mod step;
 mod strut;
 mod wall;
 
-pub use book::{BodyEnergy, GearBook, PadStep, Reading, CONTACT_FLAG_SETTINGS};
+pub use applied::VehicleLoads;
+pub use book::{
+    BodyEnergy, GearModel, GearState, PadStep, Reading, StepTaken, CONTACT_FLAG_SETTINGS,
+};
 pub use capabilities::unsupported;
 pub use motion::{BodyMotion, Fault};
 pub use step::{MujocoSettings, RapierSettings};

@@ -17,7 +17,10 @@ use crate::assembly::{
 use crate::struts;
 use nalgebra::Vector3;
 use rapier3d_f64::prelude::*;
-use touchdown_multibody::{BodyEnergy, BodyMotion, GearBook, PadStep, RapierSettings, Reading};
+use touchdown_multibody::{
+    BodyEnergy, BodyMotion, GearModel, GearState, PadStep, RapierSettings, Reading, StepTaken,
+    StrutKinematics,
+};
 use touchdown_record::{EnergyReport, Landing, RunError, Sample, Summary};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -26,8 +29,14 @@ use touchdown_scenario::Scenario;
 pub struct RapierSimulation {
     name: String,
     assembly: Assembly,
-    /// The gear's laws, memories, kinematics, contacts, ledger, stability and extremes.
-    book: GearBook,
+    /// The gear as set up: geometry, surfaces, laws, curbs, criteria.
+    gear: GearModel,
+    /// The gear's memories, kinematics, contacts, ledger, stability and extremes.
+    gear_state: GearState,
+    /// Each gear's kinematics as read after the last step.
+    kin: Vec<StrutKinematics>,
+    /// Each footpad's contact over the last step.
+    pad_steps: Vec<PadStep>,
     /// Vehicle, then per gear outer link and footpad: handle, mass and inertia.
     bodies: Vec<(RigidBodyHandle, Inertia)>,
     settings: serde_json::Map<String, serde_json::Value>,
@@ -48,12 +57,16 @@ impl RapierSimulation {
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RunError> {
         scenario.require_engine(Engine::Rapier, crate::unsupported)?;
         let rs = RapierSettings::new(scenario)?;
-        let book = GearBook::new(scenario, rs.timestep)?;
+        let (gear, gear_state) = GearModel::new(scenario, rs.timestep)?;
+        let n = scenario.legs.len();
         let assembly = assembly::build(scenario, &rs)?;
         let settings = settings(&rs, &assembly.masses);
         let mut sim = RapierSimulation {
             name: scenario.file.name.clone(),
-            book,
+            gear,
+            gear_state,
+            kin: vec![StrutKinematics::default(); n],
+            pad_steps: vec![PadStep::default(); n],
             bodies: std::iter::once((
                 assembly.vehicle,
                 Inertia {
@@ -84,8 +97,13 @@ impl RapierSimulation {
         sim.read_kinematics();
         let v = sim.vehicle_state();
         let now = sim.reading(&v);
-        sim.book
-            .start_landing(&now, footpad_velocity(&sim.assembly))
+        (sim.gear)
+            .start_landing(
+                &mut sim.gear_state,
+                &sim.kin,
+                &now,
+                footpad_velocity(&sim.assembly),
+            )
             .map_err(|f| f.at(sim.t, &v))?;
         Ok(sim)
     }
@@ -102,7 +120,7 @@ impl RapierSimulation {
 
     /// Deepest footpad penetration into its plane so far, m.
     pub fn max_penetration(&self) -> f64 {
-        self.book.max_penetration
+        self.gear_state.max_penetration()
     }
 
     fn state(&self, body: RigidBodyHandle) -> BodyState {
@@ -132,7 +150,7 @@ impl RapierSimulation {
         inertia.kinetic_energy(&s)
             - inertia.mass
                 * self
-                    .book
+                    .gear
                     .gravity()
                     .dot(&(s.point(&Vector3::zeros()) - self.position0[i]))
     }
@@ -147,7 +165,7 @@ impl RapierSimulation {
 
     /// Energy report at the current state.
     pub fn energy(&self) -> EnergyReport {
-        self.book.energy(&self.energies())
+        self.gear.energy(&self.gear_state, &self.energies())
     }
 
     /// The bodies' energies now.
@@ -172,9 +190,8 @@ impl RapierSimulation {
     }
 
     fn read_kinematics(&mut self) {
-        let b = &mut self.book;
-        for (i, (g, leg)) in self.assembly.gears.iter().zip(&b.legs).enumerate() {
-            b.kin[i] = struts::kinematics(&self.assembly.world, self.assembly.vehicle, g, leg);
+        for (i, (g, leg)) in self.assembly.gears.iter().zip(self.gear.legs()).enumerate() {
+            self.kin[i] = struts::kinematics(&self.assembly.world, self.assembly.vehicle, g, leg);
         }
     }
 
@@ -235,7 +252,7 @@ impl RapierSimulation {
             let pushed = impulse.z - mass * (after.linvel.z - before.linvel.z);
             let v_mean = 0.5 * (self.contact_velocity(before) + self.contact_velocity(&after));
             let work = impulse.component_mul(&v_mean) + Vector3::z() * (pushed * drift_rate);
-            self.book.pad_steps[i] = PadStep {
+            self.pad_steps[i] = PadStep {
                 impulse,
                 work,
                 depth,
@@ -282,32 +299,31 @@ impl Landing for RapierSimulation {
             rb.reset_forces(false);
             rb.reset_torques(false);
         }
-        for i in 0..self.book.legs.len() {
+        for i in 0..self.gear.legs().len() {
             let g = self.assembly.gears[i];
             struts::apply(
                 &mut self.assembly.world,
                 self.assembly.vehicle,
                 &g,
-                &self.book.kin[i],
-                &self.book.forces[i],
+                self.gear_state.kinematics(i),
+                self.gear_state.forces(i),
             );
         }
-        if !self.book.applied.is_empty() {
+        if !self.gear_state.applied().is_empty() {
             // eqs. (72)-(74), (80)-(82): the engine and RCS loads, held over the step.
-            let a = &self.book.applied;
+            let a = self.gear_state.applied();
             let rb = &mut self.assembly.world.bodies[self.assembly.vehicle];
             rb.add_force(to_rapier(&a.force), true);
             rb.add_torque(to_rapier(&a.torque), true);
         }
-        if self.book.loads_footpads() {
+        if self.gear.loads_footpads() {
             // eqs. (94)-(95) and the obstacle walls: the force on each footpad (at BP, its
             // centre of mass).
             for (i, g) in self.assembly.gears.iter().enumerate() {
                 let rb = &mut self.assembly.world.bodies[g.footpad];
-                rb.add_force(to_rapier(&self.book.pad_force(i)), true);
+                rb.add_force(to_rapier(&self.gear_state.pad_force(i)), true);
             }
         }
-        self.book.begin_step();
         let before = self.vehicle_state();
         self.assembly.world.step();
         self.t += dt;
@@ -316,26 +332,43 @@ impl Landing for RapierSimulation {
         self.book_contacts(dt);
         let v = self.vehicle_state();
         let now = self.reading(&v);
-        self.book
-            .finish_step(&before, dt, &now, footpad_velocity(&self.assembly))
+        let step = StepTaken {
+            before: &before,
+            dt,
+            kinematics: &self.kin,
+            pads: &self.pad_steps,
+        };
+        (self.gear)
+            .finish_step(
+                &mut self.gear_state,
+                &step,
+                &now,
+                footpad_velocity(&self.assembly),
+            )
             .map_err(|f| f.at(self.t, &v))?;
         Ok(())
     }
 
     /// Whether the run has ended.
     fn finished(&self) -> bool {
-        self.book.finished(self.t)
+        self.gear.finished(&self.gear_state, self.t)
     }
 
     /// Writes the current state into `out` (a sample made for as many legs).
     fn sample(&self, out: &mut Sample) {
-        self.book
-            .sample(out, self.t, &self.vehicle_state(), self.energy());
+        (self.gear).sample(
+            &self.gear_state,
+            out,
+            self.t,
+            &self.vehicle_state(),
+            self.energy(),
+        );
     }
 
     /// The summary at the current state.
     fn summary(&self) -> Summary {
-        self.book.summary(
+        self.gear.summary(
+            &self.gear_state,
             "rapier",
             &self.name,
             self.settings.clone(),
