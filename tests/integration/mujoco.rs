@@ -6,7 +6,7 @@
 //! fails with the command that creates it.
 
 use std::process::Command;
-use touchdown_mujoco::landing::{GearIndex, MjArrays, ModelSizes};
+use touchdown_mujoco::{GearIndex, MjArrays, ModelSizes};
 use touchdown_mujoco::{MujocoError, MujocoLanding};
 use touchdown_record::Outcome;
 use touchdown_scenario::schema::Detached;
@@ -105,7 +105,7 @@ fn the_export_is_deterministic_and_names_its_scenario() {
     assert_eq!(a, b);
     let hash = sc.sha256();
     assert_eq!(hash.len(), 64);
-    assert!(a.contains(&hash) && a.contains(touchdown_mujoco::mjcf::GENERATOR));
+    assert!(a.contains(&hash) && a.contains(touchdown_mujoco::GENERATOR));
     let other = Scenario::load(scenario("table-i-2-2-vv8.toml")).unwrap();
     assert_ne!(other.sha256(), hash);
 }

@@ -96,8 +96,8 @@ pub fn run(
         std::fs::write(dir.join("summary.json"), &document)
             .with_context(|| written(dir, "summary.json"))?;
         if page {
-            let series = touchdown_view::report::Series::read(&dir.join("history.csv"))?;
-            let html = touchdown_view::report::landing_page(
+            let series = touchdown_view::Series::read(&dir.join("history.csv"))?;
+            let html = touchdown_view::landing_page(
                 &sc.file.name,
                 &scenario.display().to_string(),
                 &summary,

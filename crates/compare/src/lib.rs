@@ -290,7 +290,7 @@ pub fn trajectory_files<'v>(
     let id = touchdown_record::ScenarioId::new(path.display(), sc);
     let json = touchdown_record::Document::new("trajectory", Some(&id), &settings, &body).line();
     let title = format!("{}: touchdown view", sc.file.name);
-    let html = touchdown_view::page::page(&title, &json);
+    let html = touchdown_view::page(&title, &json);
     (json, html)
 }
 

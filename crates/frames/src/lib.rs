@@ -4,15 +4,15 @@
 //!
 //! | module | report |
 //! |---|---|
-//! | [`frames`] | the inertial, gravity and body frames and the rotations between them, eqs. (1)-(4) |
-//! | [`euler`] | Euler-angle kinematics, eqs. (5)-(9) |
+//! | `frames` | the inertial, gravity and body frames and the rotations between them, eqs. (1)-(4) |
+//! | `euler` | Euler-angle kinematics, eqs. (5)-(9) |
 //!
 //! Frames: I (inertial) has its X-Y plane on the sloped surface and Z up its normal; G (gravity)
 //! shares X with I and has Z_G up along −g; B (body) has its origin at the rigid-vehicle centre
 //! of mass and Z_B up the vehicle centre line. `v_I = T_BI·v_B`. Angles in rad.
 
-pub mod euler;
-pub mod frames;
+mod euler;
+mod frames;
 
 pub use euler::{t_be, t_eb, GIMBAL_LOCK_COS};
 pub use frames::{

@@ -3,27 +3,27 @@
 //!
 //! | module | content |
 //! |---|---|
-//! | [`mjcf`] | the MJCF document: vehicle, gear links, joints, secondary tendons, actuators, sensors, footpad planes, touchdown keyframe |
-//! | [`landing`] | one law-driven landing over MuJoCo's arrays: kinematics in, strut laws out, with the bookkeeping shared with the rapier rebuild (`touchdown_multibody`): hysteresis committed once per step, energy ledger, stability criteria, history |
-//! | [`ffi`] | the C ABI of [`landing`] (this crate is also built as a `cdylib`), loaded with ctypes by the Python runner `python/mujoco/run.py` |
-//! | [`launch`] | runs a scenario end to end: the project's Python environment, the runner and this library |
+//! | `mjcf` | the MJCF document: vehicle, gear links, joints, secondary tendons, actuators, sensors, footpad planes, touchdown keyframe |
+//! | `landing` | one law-driven landing over MuJoCo's arrays: kinematics in, strut laws out, with the bookkeeping shared with the rapier rebuild (`touchdown_multibody`): hysteresis committed once per step, energy ledger, stability criteria, history |
+//! | `ffi` | the C ABI of `landing` (this crate is also built as a `cdylib`), loaded with ctypes by the Python runner `python/mujoco/run.py` |
+//! | `launch` | runs a scenario end to end: the project's Python environment, the runner and this library |
 //!
 //! Frames: MuJoCo's world frame is the report's inertial (surface) frame, Z normal to the
 //! surface, so the slope is a tilted gravity vector, as in the other engines.
 //!
 //! One step of the runner: `mj_step1` (positions, velocities, tendons, sensors of the state),
-//! then [`landing::MujocoLanding::advance`] (book the last step, commit the honeycombs, evaluate
+//! then [`MujocoLanding::advance`] (book the last step, commit the honeycombs, evaluate
 //! the laws, write the actuator controls, force ranges and bearing friction), then `mj_step2`
 //! (forces, constraints, integration).
 
-pub mod ffi;
-pub mod landing;
-pub mod launch;
-pub mod mjcf;
+mod ffi;
+mod landing;
+mod launch;
+mod mjcf;
 
-pub use landing::{refusal, MujocoLanding};
-pub use launch::Launch;
-pub use mjcf::export;
+pub use landing::{refusal, GearIndex, MjArrays, ModelSizes, MujocoLanding};
+pub use launch::{Launch, Worker};
+pub use mjcf::{export, GENERATOR};
 pub use touchdown_multibody::unsupported;
 
 /// Errors of the MuJoCo engine.

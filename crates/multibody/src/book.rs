@@ -49,7 +49,7 @@ pub const CONTACT_HOLD_S: f64 = 1.0e-3;
 pub const CONTACT_CLEARANCE_M: f64 = 1.0e-3;
 
 /// The contact flag's rule as the summaries' `engine_settings` state it: names (with units)
-/// and values of [`CONTACT_HOLD_S`] and [`CONTACT_CLEARANCE_M`].
+/// and values of `CONTACT_HOLD_S` and `CONTACT_CLEARANCE_M`.
 pub const CONTACT_FLAG_SETTINGS: [(&str, f64); 2] = [
     ("contact_hold_s", CONTACT_HOLD_S),
     ("contact_clearance_m", CONTACT_CLEARANCE_M),
@@ -342,9 +342,10 @@ impl GearModel {
     /// Books the `step` just taken into `state`, the bodies as read after it in `now`, in one
     /// order for every engine: the contacts, the struts' work with the honeycomb memories
     /// committed at the new strokes, the applied loads' work, the laws at the new state, the
-    /// divergence checks ([`GearModel::check`]), the stability criteria, the extremes, and, if
-    /// the landing goes on, the applied loads for the next step (the footpads' velocities at BP
-    /// `pad_velocity(i)`, m/s, inertial). Returns the energy report of the new state.
+    /// divergence checks (the run budget, non-finite values, the energy balance), the stability
+    /// criteria, the extremes, and, if the landing goes on, the applied loads for the next step
+    /// (the footpads' velocities at BP `pad_velocity(i)`, m/s, inertial). Returns the energy
+    /// report of the new state.
     pub fn finish_step(
         &self,
         state: &mut GearState,

@@ -19,11 +19,11 @@ mod step;
 mod strut;
 mod wall;
 
-pub use applied::VehicleLoads;
+pub use applied::{StepWork, VehicleLoads};
 pub use book::{
     BodyEnergy, GearModel, GearState, PadStep, Reading, StepTaken, CONTACT_FLAG_SETTINGS,
 };
 pub use capabilities::unsupported;
 pub use motion::{BodyMotion, Fault};
 pub use step::{MujocoSettings, RapierSettings};
-pub use strut::{StrutForces, StrutKinematics};
+pub use strut::{StrutForces, StrutKinematics, StrutWork};

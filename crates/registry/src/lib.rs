@@ -89,7 +89,7 @@ pub fn scratch_folder(engine: Engine) -> Result<tempfile::TempDir, RunError> {
 }
 
 /// As [`land`], but a MuJoCo landing goes to a runner this thread keeps serving
-/// ([`touchdown_mujoco::launch::Worker`]): Python's and MuJoCo's start-up are paid once per
+/// ([`touchdown_mujoco::Worker`]): Python's and MuJoCo's start-up are paid once per
 /// thread, not once per landing (a campaign's landings). Results are those of [`land`].
 pub fn land_reusing_runner<O>(
     engine: Engine,
@@ -128,7 +128,7 @@ where
 
 thread_local! {
     /// This thread's serving MuJoCo runner, started by its first MuJoCo landing.
-    static MUJOCO_RUNNER: std::cell::RefCell<Option<touchdown_mujoco::launch::Worker>> =
+    static MUJOCO_RUNNER: std::cell::RefCell<Option<touchdown_mujoco::Worker>> =
         const { std::cell::RefCell::new(None) };
 }
 

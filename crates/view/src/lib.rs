@@ -4,18 +4,23 @@
 //!
 //! | module | content |
 //! |---|---|
-//! | [`trajectory`] | the scene (vehicle and ground) and an engine's frames, decimated with every contact event kept, from the samples every engine records |
-//! | [`page`] | the HTML page: the trajectory embedded, the page's script and the vendored plotting library inlined |
-//! | [`report`] | one page per landing: the outcome and why, strokes against capacity with their times, the energy ledger, the time histories, as inline SVG |
+//! | `trajectory` | the scene (vehicle and ground) and an engine's frames, decimated with every contact event kept, from the samples every engine records |
+//! | `page` | the HTML page: the trajectory embedded, the page's script and the vendored plotting library inlined |
+//! | `report` | one page per landing: the outcome and why, strokes against capacity with their times, the energy ledger, the time histories, as inline SVG |
 
-pub mod page;
-pub mod report;
-pub mod trajectory;
+mod page;
+mod report;
+mod trajectory;
 
+pub use page::page;
+pub use report::{landing_page, Series};
 use serde::Serialize;
 use touchdown_record::{Outcome, PastCapacity, Summary};
 use touchdown_scenario::schema::Engine;
-pub use trajectory::{Recorder, Recording, Scene, DEFAULT_FRAME_INTERVAL};
+pub use trajectory::{
+    ContactEvent, CurbView, Frames, LegFrames, LegView, PadGround, Recorder, Recording, Scene,
+    SurfaceView, VehicleView, WallFrames, DEFAULT_FRAME_INTERVAL,
+};
 
 /// One engine's landing in a trajectory file.
 #[derive(Debug, Clone, PartialEq, Serialize)]
