@@ -3,7 +3,7 @@
 //! (the closest to failing each margin, the disagreements) written as standalone scenario files.
 
 use crate::paired::{self, Disagreement, EngineStatistics, Pair, Paired, Report};
-use crate::record::{prefix, Cell};
+use crate::record::{prefix, Cell, Role};
 use crate::statistics::Statistics;
 use crate::store::{visit_column, Manifest, PARQUET};
 use crate::CampaignError;
@@ -146,7 +146,7 @@ fn write_scenarios<'a>(
         let applied = manifest
             .columns
             .iter()
-            .filter(|c| c.name.starts_with("applied."))
+            .filter(|c| c.role() == Some(Role::Applied))
             .map(|c| applied_values.get(&c.name));
         let mut overrides: Vec<(&str, toml::Value)> = manifest
             .dispersed_fields

@@ -12,7 +12,7 @@
 //! Wilson's rather than the normal's because a proportion near 0 or 1 is what a landing
 //! campaign estimates, and there the normal interval undercovers.
 
-use crate::record::{prefix, Cell, Failure, Status};
+use crate::record::{prefix, Cell, Failure, Role, Status};
 use crate::store::{self, Manifest};
 use crate::CampaignError;
 use serde::Serialize;
@@ -234,7 +234,7 @@ pub fn from_folders(
             store::read_column(&dir.join("landings.parquet"), &manifest.columns, i)
         };
     // The same draws: every applied value of the first n landings.
-    for c in p.columns.iter().filter(|c| c.name.starts_with("applied.")) {
+    for c in p.columns.iter().filter(|c| c.role() == Some(Role::Applied)) {
         let (x, y) = (column(paired, &p, &c.name)?, column(low, &l, &c.name)?);
         if x[..] != y[..n as usize] {
             return Err(refuse(format!(

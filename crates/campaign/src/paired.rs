@@ -5,7 +5,7 @@
 //! maximum stroke and of the minimum stability distance, which inputs go with disagreement, and
 //! the landings that disagree most.
 
-use crate::record::{Cell, Column, Status};
+use crate::record::{Cell, Column, Measure, Status};
 use crate::statistics::{correlations, Interval, Statistics};
 use serde::Serialize;
 use statrs::distribution::{Binomial, DiscreteCDF};
@@ -141,12 +141,6 @@ pub fn mcnemar_exact(b: u64, c: u64) -> f64 {
     }
 }
 
-/// The measurements whose paired differences a pair reports: each strut's maximum stroke and
-/// the minimum stability distance (column names without the engine).
-fn compared(name: &str) -> bool {
-    name.ends_with(".stroke_m") || name == "min_stability_distance_m"
-}
-
 /// The statistics of the pair of engines whose columns start with `prefixes` (A, B) among
 /// `columns` of `n` landings, `column(i, visit)` calling `visit` with each cell of column `i`
 /// in landing order (what is kept: two columns of numbers at a time and a few numbers a
@@ -204,9 +198,9 @@ pub fn pair<E>(
         let Some(name) = c.name.strip_prefix(prefixes[0]) else {
             continue;
         };
-        if name.starts_with("applied.") || !compared(name) {
+        let Some(measure) = c.measure().filter(|m| m.paired()) else {
             continue;
-        }
+        };
         let Some(j) = index(prefixes[1], name) else {
             continue;
         };
@@ -223,7 +217,7 @@ pub fn pair<E>(
             if let (Some(Some(a)), Cell::Float(b)) = (a.get(landing), b) {
                 d.push(b - a);
                 let slot = &mut largest[landing];
-                if name.ends_with(".stroke_m") && (b - a).abs() > slot.0 {
+                if measure == Measure::Stroke && (b - a).abs() > slot.0 {
                     *slot = ((b - a).abs(), i);
                 }
             }

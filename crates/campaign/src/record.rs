@@ -34,6 +34,178 @@ pub struct Column {
     pub kind: Kind,
 }
 
+/// What a column is to the analysis. The statistics, the pairing of engines and the records'
+/// checks select their columns by role ([`Column::role`]), read here from the tables the
+/// columns are made from ([`columns`]), never by a reading of names of their own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// The landing's index (`landing`).
+    Landing,
+    /// A value applied to the landing (`applied.<column>`).
+    Applied,
+    /// An engine's outcome (`outcome`: a [`Status`] name).
+    Outcome,
+    /// An engine's failure mode (`failure`: a [`Failure`] name).
+    Failure,
+    /// The struts an engine's landing stroked out (`stroke_outs`).
+    StrokeOuts,
+    /// One of an engine's measurements of the landing.
+    Measure(Measure),
+    /// Why an engine did not complete the landing (`stop.*`, `refusal.*`).
+    Diagnostic,
+}
+
+/// An engine's measurement of a landing: of the landing as a whole, or of one strut (a column
+/// `leg<N>.<strut>.<quantity>`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    /// When the outcome was decided, s.
+    DecisionTime,
+    /// When the run ended, s.
+    EndTime,
+    /// The centre of mass's speed across a stability wall, m/s.
+    OverturnVelocity,
+    /// The least stability distance, m.
+    MinStabilityDistance,
+    /// The largest specific force at the centre of mass, m/s².
+    PeakSpecificForce,
+    /// The peak pitch rate, rad/s.
+    PeakPitchRate,
+    /// The energy balance's residual, J.
+    EnergyResidual,
+    /// The energy balance's scale, J.
+    EnergyScale,
+    /// A strut's largest stroke, m.
+    Stroke,
+    /// A strut's largest stroke as a fraction of its capacity.
+    StrokeOfCapacity,
+    /// A strut's largest force, N.
+    Force,
+}
+
+impl Measure {
+    /// Whether the statistics give its percentiles over the landings (`statistics.json`,
+    /// `percentiles`).
+    pub fn has_percentiles(self) -> bool {
+        matches!(
+            self,
+            Measure::StrokeOfCapacity
+                | Measure::Force
+                | Measure::PeakSpecificForce
+                | Measure::MinStabilityDistance
+        )
+    }
+
+    /// Whether a paired campaign reports its paired differences between engines.
+    pub fn paired(self) -> bool {
+        matches!(self, Measure::Stroke | Measure::MinStabilityDistance)
+    }
+}
+
+/// Each engine's account of a landing: the columns after its prefix, in order.
+const ACCOUNT: [(&str, Role); 3] = [
+    ("outcome", Role::Outcome),
+    ("failure", Role::Failure),
+    ("stroke_outs", Role::StrokeOuts),
+];
+
+/// Each engine's measurements of the landing as a whole, in order.
+const LANDING_MEASURES: [(&str, Measure); 8] = [
+    ("decision_time_s", Measure::DecisionTime),
+    ("t_end_s", Measure::EndTime),
+    ("overturn_velocity_m_s", Measure::OverturnVelocity),
+    ("min_stability_distance_m", Measure::MinStabilityDistance),
+    ("peak_specific_force_m_s2", Measure::PeakSpecificForce),
+    ("peak_pitch_rate_rad_s", Measure::PeakPitchRate),
+    ("energy_residual_j", Measure::EnergyResidual),
+    ("energy_scale_j", Measure::EnergyScale),
+];
+
+/// Each strut's measurements (`leg<N>.<strut>.<quantity>`), in order.
+const STRUT_MEASURES: [(&str, Measure); 3] = [
+    ("stroke_m", Measure::Stroke),
+    ("stroke_of_capacity", Measure::StrokeOfCapacity),
+    ("force_n", Measure::Force),
+];
+
+/// Each engine's diagnostics of a landing it did not complete, in order.
+const DIAGNOSTICS: [(&str, Kind); 7] = [
+    ("stop.time_s", Kind::Float),
+    ("stop.law", Kind::Text),
+    ("stop.leg", Kind::Integer),
+    ("stop.message", Kind::Text),
+    ("refusal.file", Kind::Text),
+    ("refusal.field", Kind::Text),
+    ("refusal.message", Kind::Text),
+];
+
+impl Column {
+    /// Its role, read from its name against the tables the columns are made from: `landing`,
+    /// `applied.*`, and an engine's columns after its prefix ([`prefix`]). `None` for a name no
+    /// campaign writes.
+    pub fn role(&self) -> Option<Role> {
+        let name = self.name.as_str();
+        if name == "landing" {
+            return Some(Role::Landing);
+        }
+        if name.starts_with("applied.") {
+            return Some(Role::Applied);
+        }
+        let own = unprefixed(name);
+        let find = |table: &[(&str, Role)]| table.iter().find(|(n, _)| *n == own).map(|r| r.1);
+        if let Some(role) = find(&ACCOUNT) {
+            return Some(role);
+        }
+        if let Some((_, m)) = LANDING_MEASURES.iter().find(|(n, _)| *n == own) {
+            return Some(Role::Measure(*m));
+        }
+        if let Some((_, quantity)) = strut_parts(own) {
+            let m = STRUT_MEASURES.iter().find(|(n, _)| *n == quantity)?;
+            return Some(Role::Measure(m.1));
+        }
+        DIAGNOSTICS
+            .iter()
+            .any(|(n, _)| *n == own)
+            .then_some(Role::Diagnostic)
+    }
+
+    /// Its measurement, if it is one.
+    pub fn measure(&self) -> Option<Measure> {
+        match self.role() {
+            Some(Role::Measure(m)) => Some(m),
+            _ => None,
+        }
+    }
+}
+
+/// A column's name without its engine's prefix (`core.outcome` → `outcome`; unchanged on a
+/// single engine's columns, which have none).
+fn unprefixed(name: &str) -> &str {
+    match name.split_once('.') {
+        Some((engine, rest)) if engine.parse::<touchdown_scenario::schema::Engine>().is_ok() => {
+            rest
+        }
+        _ => name,
+    }
+}
+
+/// A strut measurement's strut and quantity: `leg2.primary.force_n` → (`leg2.primary.`,
+/// `force_n`); `None` for a name that is not `leg<N>.<...>.<quantity>`.
+fn strut_parts(own: &str) -> Option<(&str, &str)> {
+    let digits = own.strip_prefix("leg")?;
+    if !digits.starts_with(|c: char| c.is_ascii_digit()) {
+        return None;
+    }
+    let dot = own.rfind('.')?;
+    Some((&own[..=dot], &own[dot + 1..]))
+}
+
+/// The strut a strut measurement's name (after the engine's prefix) is of, with its dot:
+/// `leg2.secondary_3_1.tension.stroke_of_capacity` → `leg2.secondary_3_1.tension.`.
+pub fn strut_of(name: &str) -> Option<&str> {
+    strut_parts(unprefixed(name)).map(|(strut, _)| strut)
+}
+
 /// One cell of a record.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Cell {
@@ -207,41 +379,28 @@ fn engine_columns(prefix: &str, legs: usize, c: &mut Vec<Column>) {
             kind,
         })
     };
-    for name in ["outcome", "failure", "stroke_outs"] {
+    for (name, _) in ACCOUNT {
         col(name.into(), Kind::Text);
     }
-    for name in [
-        "decision_time_s",
-        "t_end_s",
-        "overturn_velocity_m_s",
-        "min_stability_distance_m",
-        "peak_specific_force_m_s2",
-        "peak_pitch_rate_rad_s",
-        "energy_residual_j",
-        "energy_scale_j",
-    ] {
+    for (name, _) in LANDING_MEASURES {
         col(name.into(), Kind::Float);
     }
     for leg in 1..=legs {
-        for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
+        for (name, _) in STRUT_MEASURES {
             col(format!("leg{leg}.primary.{name}"), Kind::Float);
         }
         // Each leg's primary, then each secondary (3-1, 4-1) in compression and in tension.
         for s in SECONDARY_NAMES {
             for side in ["compression", "tension"] {
-                for name in ["stroke_m", "stroke_of_capacity", "force_n"] {
+                for (name, _) in STRUT_MEASURES {
                     col(format!("leg{leg}.secondary_{s}.{side}.{name}"), Kind::Float);
                 }
             }
         }
     }
-    col("stop.time_s".into(), Kind::Float);
-    col("stop.law".into(), Kind::Text);
-    col("stop.leg".into(), Kind::Integer);
-    col("stop.message".into(), Kind::Text);
-    col("refusal.file".into(), Kind::Text);
-    col("refusal.field".into(), Kind::Text);
-    col("refusal.message".into(), Kind::Text);
+    for (name, kind) in DIAGNOSTICS {
+        col(name.into(), kind);
+    }
 }
 
 /// A landing's record: one cell per column of [`columns`].
@@ -254,9 +413,8 @@ pub fn check(columns: &[Column], row: &Row) -> Result<(), String> {
     // Each engine's block: `outcome` itself, or `<engine>.outcome`.
     let prefixes: Vec<&str> = columns
         .iter()
-        .filter(|c| !c.name.starts_with("applied."))
+        .filter(|c| c.role() == Some(Role::Outcome))
         .filter_map(|c| c.name.strip_suffix("outcome"))
-        .filter(|p| p.is_empty() || p.ends_with('.'))
         .collect();
     if prefixes.is_empty() {
         return Err("no `outcome` column: every record has one per engine".into());
@@ -301,7 +459,11 @@ pub fn row(
     results: &[Result<&Summary, &RunError>],
 ) -> Row {
     let legs = campaign.base_scenario.legs.len();
-    let mut r: Row = Vec::with_capacity(1 + applied.len() + results.len() * (18 + legs * 15));
+    let per_engine = ACCOUNT.len()
+        + LANDING_MEASURES.len()
+        + legs * 5 * STRUT_MEASURES.len()
+        + DIAGNOSTICS.len();
+    let mut r: Row = Vec::with_capacity(1 + applied.len() + results.len() * per_engine);
     r.push(Cell::Integer(landing as i64));
     r.extend(applied.iter().map(Cell::from));
     for result in results {
@@ -371,7 +533,10 @@ fn block(r: &mut Row, legs: usize, result: Result<&Summary, &RunError>) {
                 }
             }
         }
-        None => r.extend(std::iter::repeat_n(Cell::Missing, 8 + legs * 15)),
+        None => r.extend(std::iter::repeat_n(
+            Cell::Missing,
+            LANDING_MEASURES.len() + legs * 5 * STRUT_MEASURES.len(),
+        )),
     }
     match result {
         Err(RunError::Stopped(d)) => {
@@ -407,4 +572,53 @@ fn law_name(law: touchdown_record::Law) -> String {
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every column a campaign on one engine or on two writes has the role of the table it is
+    /// made from, whatever the engine's prefix; a name no campaign writes has none.
+    #[test]
+    fn every_column_has_the_role_of_its_table() {
+        for prefix in ["", "core.", "mujoco."] {
+            let mut c = Vec::new();
+            engine_columns(prefix, 4, &mut c);
+            let role = |name: &str| {
+                let full = format!("{prefix}{name}");
+                let column = c.iter().find(|c| c.name == full).expect("a column");
+                column.role()
+            };
+            assert_eq!(role("outcome"), Some(Role::Outcome));
+            assert_eq!(role("failure"), Some(Role::Failure));
+            assert_eq!(role("stroke_outs"), Some(Role::StrokeOuts));
+            assert_eq!(
+                role("min_stability_distance_m"),
+                Some(Role::Measure(Measure::MinStabilityDistance))
+            );
+            assert_eq!(
+                role("leg4.secondary_4_1.tension.stroke_of_capacity"),
+                Some(Role::Measure(Measure::StrokeOfCapacity))
+            );
+            assert_eq!(
+                role("leg1.primary.stroke_m"),
+                Some(Role::Measure(Measure::Stroke))
+            );
+            assert_eq!(role("stop.leg"), Some(Role::Diagnostic));
+            assert!(c.iter().all(|c| c.role().is_some()), "{c:?}");
+            // 3 accounts, 8 landing measures, 4 legs of 5 struts of 3, 7 diagnostics.
+            assert_eq!(c.len(), 3 + 8 + 4 * 5 * 3 + 7);
+            let strut = c.iter().find(|c| c.name.ends_with("leg2.primary.force_n"));
+            assert_eq!(strut.and_then(|c| strut_of(&c.name)), Some("leg2.primary."));
+        }
+        let named = |name: &str| Column {
+            name: name.into(),
+            kind: Kind::Float,
+        };
+        assert_eq!(named("landing").role(), Some(Role::Landing));
+        assert_eq!(named("applied.vv_ft_s").role(), Some(Role::Applied));
+        assert_eq!(named("core.leg2.primary.colour").role(), None);
+        assert_eq!(named("speed_m_s").role(), None);
+    }
 }

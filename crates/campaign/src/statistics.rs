@@ -4,7 +4,7 @@
 //! percentiles of the strokes against their capacities and of the peak loads
 //! (docs/campaigns.md, "Statistics").
 
-use crate::record::{Cell, Column, Failure, Kind, Status};
+use crate::record::{strut_of, Cell, Column, Failure, Kind, Measure, Role, Status};
 use serde::Serialize;
 use statrs::distribution::{Beta, ContinuousCDF};
 use touchdown_sampling::percentile;
@@ -213,7 +213,7 @@ pub fn correlations<E>(
 ) -> Result<Vec<(String, Option<f64>)>, E> {
     let mut out = Vec::new();
     for (i, c) in columns.iter().enumerate() {
-        if !(c.name.starts_with("applied.") && c.kind == Kind::Float) {
+        if !(c.role() == Some(Role::Applied) && c.kind == Kind::Float) {
             continue;
         }
         let mut x: Vec<f64> = Vec::with_capacity(indicator.len());
@@ -357,14 +357,9 @@ impl Statistics {
             let Some(name) = c.name.strip_prefix(prefix) else {
                 continue;
             };
-            let measured = !name.starts_with("applied.")
-                && (name.ends_with("stroke_of_capacity")
-                    || name.ends_with("force_n")
-                    || name == "peak_specific_force_m_s2"
-                    || name == "min_stability_distance_m");
-            if !measured {
+            let Some(measure) = c.measure().filter(|m| m.has_percentiles()) else {
                 continue;
-            }
+            };
             let mut v: Vec<f64> = Vec::with_capacity(n as usize);
             // The landings of the least and of the largest value (the first of equals).
             let (mut landing, mut least, mut largest) =
@@ -387,7 +382,7 @@ impl Statistics {
             // Unstable: values equal under total_cmp have the same bits, so the order is the same, and
             // it sorts in place.
             v.sort_unstable_by(f64::total_cmp);
-            if name == "min_stability_distance_m" {
+            if measure == Measure::MinStabilityDistance {
                 margins.stability_distance = Some(Margin {
                     margin: name.to_string(),
                     landings: v.len() as u64,
@@ -398,7 +393,7 @@ impl Statistics {
                     landing: least.1,
                 });
             }
-            if let Some(strut) = name.strip_suffix("stroke_of_capacity") {
+            if let (Measure::StrokeOfCapacity, Some(strut)) = (measure, strut_of(name)) {
                 // The margin 1 − x falls as x rises: its lower percentiles are the upper ones of x.
                 margins.strokes.push(Margin {
                     margin: format!("{strut}stroke_margin"),
@@ -501,7 +496,7 @@ pub(crate) fn read_applied<'a, E>(
         return Ok(());
     }
     for (i, c) in columns.iter().enumerate() {
-        if !c.name.starts_with("applied.") {
+        if c.role() != Some(Role::Applied) {
             continue;
         }
         let mut landing = 0;

@@ -9,7 +9,7 @@
 //! manifest are written last ([`seal`]). This module reads and writes; it computes nothing.
 
 use crate::accuracy::Accuracy;
-use crate::record::{Cell, Column, Kind, Row};
+use crate::record::{Cell, Column, Kind, Role, Row};
 use crate::spec::Campaign;
 use crate::CampaignError;
 use parquet::data_type::{BoolType, ByteArray, ByteArrayType, DoubleType, Int64Type};
@@ -463,7 +463,7 @@ fn schema(columns: &[Column]) -> Result<Type, parquet::errors::ParquetError> {
                 Kind::Text => (Physical::BYTE_ARRAY, Some(LogicalType::String)),
                 Kind::Flag => (Physical::BOOLEAN, None),
             };
-            let repetition = if c.name == "landing" {
+            let repetition = if c.role() == Some(Role::Landing) {
                 Repetition::REQUIRED
             } else {
                 Repetition::OPTIONAL
@@ -527,7 +527,7 @@ impl Parquet {
         let mut i = 0;
         while let Some(mut col) = rg.next_column().map_err(|e| err(&e))? {
             let cells = self.group.iter().map(|r| &r[i]);
-            let required = self.columns[i].name == "landing";
+            let required = self.columns[i].role() == Some(Role::Landing);
             let levels: Vec<i16> = cells
                 .clone()
                 .map(|c| i16::from(!matches!(c, Cell::Missing)))
