@@ -1583,3 +1583,51 @@ fn snapshot(dir: &Path) -> Vec<(PathBuf, Option<Vec<u8>>)> {
         })
         .collect()
 }
+
+/// A campaign statistic added by the checklist of CONTRIBUTING.md ("Adding a campaign
+/// statistic"): each landing's energy imbalance, |residual| / scale, is its summary's, every
+/// completed landing keeps it within the energy guard's tolerance (the guard stops a run
+/// beyond it), and the statistics give its percentiles, which never pass the largest.
+#[test]
+fn the_energy_imbalance_is_each_landing_s_and_within_the_guard() {
+    let tmp = tempfile::tempdir().unwrap();
+    let campaign = Campaign::load(small()).unwrap();
+    let columns = touchdown_campaign::record::columns(&campaign);
+    let at = |name: &str| columns.iter().position(|c| c.name == name).unwrap();
+    let (imbalance, residual, scale) = (
+        at("energy_imbalance_of_scale"),
+        at("energy_residual_j"),
+        at("energy_scale_j"),
+    );
+    let tolerance = campaign.base_scenario.integrator.energy_tolerance;
+    let floor = campaign.base_scenario.energy_floor_j();
+    let mut largest: f64 = 0.0;
+    let mut measured = 0;
+    let (_, report) = run(
+        &campaign,
+        None,
+        Some(2),
+        Some(&tmp.path().join("c")),
+        false,
+        |r| {
+            if let (Cell::Float(i), Cell::Float(res), Cell::Float(s)) =
+                (&r[imbalance], &r[residual], &r[scale])
+            {
+                assert_eq!(*i, res.abs() / s, "landing {:?}", r[0]);
+                if *s >= floor {
+                    assert!(*i <= tolerance, "landing {:?}: {i} of its scale", r[0]);
+                }
+                largest = largest.max(*i);
+                measured += 1;
+            }
+        },
+    )
+    .unwrap();
+    assert!(measured > 0);
+    let p = (report.first().percentiles.iter())
+        .find(|p| p.column == "energy_imbalance_of_scale")
+        .expect("the imbalance's percentiles");
+    assert_eq!(p.landings, measured);
+    assert_eq!(p.max, largest);
+    assert!(p.p50 <= p.p90 && p.p90 <= p.p99 && p.p99 <= p.max, "{p:?}");
+}

@@ -75,6 +75,9 @@ pub enum Measure {
     EnergyResidual,
     /// The energy balance's scale, J.
     EnergyScale,
+    /// The energy balance's residual, in magnitude, as a fraction of its scale: how closely the
+    /// engine's integration kept the landing's energy.
+    EnergyImbalance,
     /// A strut's largest stroke, m.
     Stroke,
     /// A strut's largest stroke as a fraction of its capacity.
@@ -93,6 +96,7 @@ impl Measure {
                 | Measure::Force
                 | Measure::PeakSpecificForce
                 | Measure::MinStabilityDistance
+                | Measure::EnergyImbalance
         )
     }
 
@@ -110,7 +114,7 @@ const ACCOUNT: [(&str, Role); 3] = [
 ];
 
 /// Each engine's measurements of the landing as a whole, in order.
-const LANDING_MEASURES: [(&str, Measure); 8] = [
+const LANDING_MEASURES: [(&str, Measure); 9] = [
     ("decision_time_s", Measure::DecisionTime),
     ("t_end_s", Measure::EndTime),
     ("overturn_velocity_m_s", Measure::OverturnVelocity),
@@ -119,6 +123,7 @@ const LANDING_MEASURES: [(&str, Measure); 8] = [
     ("peak_pitch_rate_rad_s", Measure::PeakPitchRate),
     ("energy_residual_j", Measure::EnergyResidual),
     ("energy_scale_j", Measure::EnergyScale),
+    ("energy_imbalance_of_scale", Measure::EnergyImbalance),
 ];
 
 /// Each strut's measurements (`leg<N>.<strut>.<quantity>`), in order.
@@ -504,6 +509,7 @@ fn block(r: &mut Row, legs: usize, result: Result<&Summary, &RunError>) {
             r.push(Some(s.peak_pitch_rate_rad_s).into());
             r.push(Some(s.energy_residual_j).into());
             r.push(Some(s.energy.scale()).into());
+            r.push(Some(s.energy_residual_j.abs() / s.energy.scale()).into());
             let caps = &s.strut_capacity;
             for leg in 0..legs {
                 let strut = |stroke: f64, cap: f64, force: f64, r: &mut Row| {
@@ -607,8 +613,8 @@ mod tests {
             );
             assert_eq!(role("stop.leg"), Some(Role::Diagnostic));
             assert!(c.iter().all(|c| c.role().is_some()), "{c:?}");
-            // 3 accounts, 8 landing measures, 4 legs of 5 struts of 3, 7 diagnostics.
-            assert_eq!(c.len(), 3 + 8 + 4 * 5 * 3 + 7);
+            // 3 accounts, 9 landing measures, 4 legs of 5 struts of 3, 7 diagnostics.
+            assert_eq!(c.len(), 3 + 9 + 4 * 5 * 3 + 7);
             let strut = c.iter().find(|c| c.name.ends_with("leg2.primary.force_n"));
             assert_eq!(strut.and_then(|c| strut_of(&c.name)), Some("leg2.primary."));
         }
