@@ -27,46 +27,7 @@ pub(crate) struct Cli {
 #[derive(Subcommand)]
 pub(crate) enum Command {
     /// Run one landing and print its summary.
-    Run {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Output format of the summary on standard output.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also write report.html into the --out folder: one self-contained page of the landing
-        /// (the outcome and why, each strut's maximum stroke against its capacity with its
-        /// time, the energy ledger as bars, the time histories), no script, no network.
-        #[arg(long, requires = "out")]
-        report: bool,
-        /// history.csv: keep every Nth step's row (and the last). By default rows are no closer
-        /// than the core's largest step integrator.dt_max: every step on the core, every Nth on
-        /// rapier and MuJoCo with N = floor(dt_max / timestep) (10 on the 1/6-scale model);
-        /// --every 1 keeps every step.
-        #[arg(long, value_name = "N", requires = "out")]
-        every: Option<usize>,
-        /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
-        /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
-        /// in the project's Python environment with the shared laws; settings in
-        /// [engines.mujoco]; set up by scripts/setup-python). The scenario's engines.applicable
-        /// must list it.
-        #[arg(long, default_value = "core", value_parser = str::parse::<Engine>)]
-        engine: Engine,
-        /// rapier and MuJoCo engines: fixed time step, s (overrides engines.rapier.timestep or
-        /// engines.mujoco.timestep).
-        #[arg(long)]
-        timestep: Option<f64>,
-        /// Also land two copies with the touchdown velocity moved by one unit in the last place
-        /// across, each way, and name the maxima (and the outcome) they move by more than the
-        /// tolerance `touchdown compare` judges them by: not determined at this precision
-        /// (docs/engines.md, "Rounding-decided channels"). Three more landings.
-        #[arg(long)]
-        rounding: bool,
-    },
+    Run(RunArgs),
     /// Draft a first vehicle and landing from a handful of numbers (docs/authoring.md, "A
     /// vehicle in minutes"): writes DIR/vehicle.toml (every value not given derived by a rule
     /// written beside it, from the bundled robotic lander's proportions) and DIR/landing.toml,
@@ -78,307 +39,402 @@ pub(crate) enum Command {
     /// touchdown energy, the static tip-over angle against the slope, the principal moments,
     /// and every finding with the file that set the value. Exits 3 when there is a finding;
     /// `run` prints the findings as warnings.
-    Check {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Output format: text, or the review as one JSON document
-        /// (docs/schemas/check.schema.json).
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-    },
+    Check(CheckArgs),
     /// Run scenarios through several engines and report how far apart they land, channel by
     /// channel against written tolerances (docs/engines.md, "Comparing the engines").
-    Compare {
-        /// Scenario files (TOML).
-        #[arg(required = true)]
-        scenarios: Vec<PathBuf>,
-        #[command(flatten)]
-        set: Overrides,
-        /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
-        /// those its engines.applicable lists.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// Also write each scenario's comparison into DIR: DIR/<scenario>.json (its document, as
-        /// --format json prints it) and the traces the metrics were computed from,
-        /// DIR/<scenario>.<engine>.csv.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
-        /// window, pitch rate, strokes against time, each channel's verdict) into
-        /// DIR/<scenario>.png (matplotlib, in the project's Python environment).
-        #[arg(long, requires = "out")]
-        plot: bool,
-        /// Also write each scenario's landings to watch into DIR: DIR/<scenario>.html (a
-        /// self-contained page playing the engines side by side) and the trajectory file it
-        /// plays, DIR/<scenario>.trajectory.json (as `touchdown view` writes them).
-        #[arg(long, value_name = "DIR")]
-        view: Option<PathBuf>,
-        /// With --view: landing time between the frames kept, s (every contact event is kept
-        /// besides).
-        #[arg(long, value_name = "S", requires = "view", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
-        frame_interval: f64,
-        /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
-        #[arg(long)]
-        report_only: bool,
-    },
+    Compare(CompareArgs),
     /// Watch a landing: run the scenario on each engine and write a page that plays them side by
     /// side or overlaid in a browser (struts coloured by force, footpad contact, the ground, the
     /// stability walls; strokes and pitch rate linked to a time slider), with the trajectory file
     /// it plays (docs/engines.md, "Watching the engines land").
-    View {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Engines to run, comma-separated: those the scenario's engines.applicable lists.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Landing time between the frames kept, s (every contact event is kept besides).
-        #[arg(long, value_name = "S", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
-        frame_interval: f64,
-        /// Write DIR/<scenario>.html and DIR/<scenario>.trajectory.json here.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-    },
+    View(ViewArgs),
     /// Work-precision: each engine and integration scheme over a ladder of step sizes or
     /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
     /// final attitude) against its cost (steps, force evaluations, wall time). Build with
     /// --release: wall times of a debug build say nothing.
-    Precision {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Engines to measure, comma-separated (the core with each of its three schemes);
-        /// those the scenario's engines.applicable lists.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Timed runs per rung (the wall time is their median).
-        #[arg(long, default_value_t = 3)]
-        repeats: usize,
-        /// Only the first N (coarsest) rungs of each ladder.
-        #[arg(long, value_name = "N")]
-        rungs: Option<usize>,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// Also write the study into DIR/precision-<scenario>.json (its document, as --format
-        /// json prints it).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also draw the log-log work-precision plot into DIR/precision-<scenario>.png
-        /// (matplotlib, in the project's Python environment).
-        #[arg(long, requires = "out")]
-        plot: bool,
-    },
+    Precision(PrecisionArgs),
     /// The stiff and extreme catalogue (docs/robustness.md): every case on every engine that
     /// applies, classified as completed (bounded energy, strokes within the struts), stopped or
     /// refused with a diagnostic, or failed; with --search, the largest stable step of each
     /// stiff case and fixed-step method. Build with --release.
-    Robustness {
-        /// Engines, comma-separated.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core,rapier,mujoco",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Only these cases, comma-separated (default: the whole catalogue).
-        #[arg(long, value_delimiter = ',')]
-        cases: Option<Vec<String>>,
-        /// Also search the largest stable step of each stiff case.
-        #[arg(long)]
-        search: bool,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// The project's folder, holding scenarios/ (default: $TOUCHDOWN_HOME, else the project
-        /// found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
+    Robustness(RobustnessArgs),
     /// Write the scenario's lander as a standalone MuJoCo model (MJCF); docs/engines.md tells
     /// how to open it in MuJoCo's viewer.
-    ExportMjcf {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Folder to write the model into, as DIR/<scenario>.xml.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-    },
+    ExportMjcf(ExportMjcfArgs),
     /// Run every Table I landing and the figure 25-26 landing against the report.
-    Validate {
-        /// Which protocol: `two-row` (reference/calibration-protocol.toml: the calibrated
-        /// scenarios against the rows they were not fitted to) or `cv` (reference/
-        /// cross-validation-protocol.toml: leave-one-out over every row, what the rows
-        /// determine, an interval on every prediction; about 2.4 million landings, about 5
-        /// hours on 2 cores, release).
-        #[arg(long, value_enum, default_value_t = ValidationProtocol::TwoRow)]
-        protocol: ValidationProtocol,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-        /// Also write the data behind the plots here: validation.json and fig-25-26-series.json
-        /// (two-row), cross-validation.json (cv).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Exit 0 whatever the verdict (by default a target not met exits with status 3).
-        #[arg(long)]
-        report_only: bool,
-    },
+    Validate(ValidateArgs),
     /// Fit the estimated parameters to the calibration rows (reference/calibration-protocol.toml)
     /// and write the calibrated vehicle and the record into --out, or over the tracked
     /// scenarios/vehicles/lm-1-6-calibrated.toml and reference/calibration-result.toml with
     /// --update-tracked. Refused when the rows are fewer than the parameters; parameters the
     /// rows do not determine are flagged, and never written over the tracked files.
-    Calibrate {
-        /// Table I rows to calibrate on, e.g. 3,7 (default: the protocol's).
-        #[arg(long, value_delimiter = ',')]
-        rows: Option<Vec<u32>>,
-        /// Write the calibrated vehicle and the record into this folder.
-        #[arg(
-            long,
-            required_unless_present = "update_tracked",
-            conflicts_with = "update_tracked"
-        )]
-        out: Option<PathBuf>,
-        /// Write them over the tracked files the Table I scenarios extend.
-        #[arg(long)]
-        update_tracked: bool,
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
+    Calibrate(CalibrateArgs),
     /// Estimate the figure 25-26 landing's touchdown velocities from the facts the text states
     /// (reference/fig-25-26-velocity-protocol.toml) and write reference/fig-25-26-velocities.toml.
-    Estimate {
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
+    Estimate(EstimateArgs),
     /// How each estimated parameter (±fraction) moves each Table I stroke.
-    Sensitivity {
-        /// Relative change of each parameter.
-        #[arg(long, default_value_t = 0.2)]
-        fraction: f64,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
-        /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
-        /// else the project found above the executable or the current directory).
-        #[arg(long)]
-        root: Option<PathBuf>,
-    },
+    Sensitivity(SensitivityArgs),
     /// A Monte Carlo campaign: landings of a base scenario with dispersed touchdown conditions,
     /// in parallel, with the probability of a stable landing and its lower confidence bound,
     /// failure modes, strokes against capacities and peak loads (docs/campaigns.md).
     Campaign(CampaignArgs),
     /// Print the shell completion script for SHELL (bash, zsh, fish, elvish, powershell), e.g.
     /// `touchdown completions bash > ~/.local/share/bash-completion/completions/touchdown`.
-    Completions {
-        /// The shell.
-        shell: clap_complete::Shell,
-    },
+    Completions(CompletionsArgs),
     /// Write the manual pages (roff): touchdown.1 and one touchdown-COMMAND.1 per command, into
     /// DIR (read with `man -l DIR/touchdown.1`).
-    Man {
-        /// Folder for the pages.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-    },
+    Man(ManArgs),
     /// The report's stability-boundary search: for each vertical velocity, every horizontal
     /// speed at which the landing changes between stable and unstable (a band where it
     /// alternates), the first at which a strut goes past its capacity, and the safe envelope,
     /// found on a grid of Vh, scanned finer around the changes and bisected; undecided
     /// landings are listed, never counted as either (settings in the scenario's length unit
     /// per second, the horizontal direction the scenario's; JSON and CSV in SI).
-    Boundary {
-        /// Scenario file (TOML).
-        scenario: PathBuf,
-        #[command(flatten)]
-        set: Overrides,
-        /// Vertical velocities FROM:TO:STEP as the scenario files write them, negative down, in
-        /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12), or one
-        /// (`--vv=-8`).
-        #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
-        vv: String,
-        /// First horizontal speed of the grid, in the scenario's length unit per second
-        /// [default: 0].
-        #[arg(long, allow_negative_numbers = true, value_name = "VH")]
-        vh_start: Option<f64>,
-        /// Step of the horizontal-speed grid: every grid point is landed, and every change of
-        /// outcome between neighbours is bisected [default: 0.25 of the vehicle's velocity
-        /// scale √(g·footprint radius), 2.11 ft/s on the 1/6-scale model].
-        #[arg(long, value_name = "STEP")]
-        vh_step: Option<f64>,
-        /// Largest horizontal speed of the grid [default: 3.5 of the velocity scale, 29.6 ft/s
-        /// on the 1/6-scale model].
-        #[arg(long, allow_negative_numbers = true, value_name = "VH")]
-        vh_max: Option<f64>,
-        /// Bisection tolerance on the horizontal speed [default: 0.006 of the velocity scale,
-        /// 0.051 ft/s on the 1/6-scale model].
-        #[arg(long, value_name = "TOL")]
-        tol: Option<f64>,
-        /// Step of the finer scan from a grid step below the first change the grid finds to a
-        /// grid step above the last, so that an outcome alternating faster than the grid is
-        /// seen [default: an eighth of --vh-step; 0: the grid only].
-        #[arg(long, value_name = "STEP")]
-        scan_step: Option<f64>,
-        /// Search once per end-stop coefficient of restitution in this comma-separated list,
-        /// set on every strut's load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and
-        /// report the spread: how much of the boundary the estimated stop law decides.
-        #[arg(long, value_delimiter = ',', value_name = "E,...")]
-        stop_restitution: Vec<f64>,
-        /// Engines that search, comma-separated; each searches the same configuration and the
-        /// output has one row per engine and descent speed.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "core",
-            value_parser = str::parse::<Engine>
-        )]
-        engines: Vec<Engine>,
-        /// Output format.
-        #[arg(long, value_enum, default_value_t = TableFormat::Text)]
-        format: TableFormat,
-        /// Also write the points into DIR/boundary-<scenario>.jsonl (as --format json prints
-        /// them).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Also draw the engines' boundaries, overlaid, into DIR/boundary-<scenario>.png
-        /// (matplotlib, in the project's Python environment).
-        #[arg(long, requires = "out")]
-        plot: bool,
-    },
+    Boundary(BoundaryArgs),
+}
+
+/// The arguments of `touchdown run` (the command's documentation is on [`Command::Run`]).
+#[derive(clap::Args)]
+pub(crate) struct RunArgs {
+    /// Scenario file (TOML).
+    pub(crate) scenario: PathBuf,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Output format of the summary on standard output.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// Also write summary.json, history.csv and scenario.resolved.toml into this folder.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Also write report.html into the --out folder: one self-contained page of the landing
+    /// (the outcome and why, each strut's maximum stroke against its capacity with its
+    /// time, the energy ledger as bars, the time histories), no script, no network.
+    #[arg(long, requires = "out")]
+    pub(crate) report: bool,
+    /// history.csv: keep every Nth step's row (and the last). By default rows are no closer
+    /// than the core's largest step integrator.dt_max: every step on the core, every Nth on
+    /// rapier and MuJoCo with N = floor(dt_max / timestep) (10 on the 1/6-scale model);
+    /// --every 1 keeps every step.
+    #[arg(long, value_name = "N", requires = "out")]
+    pub(crate) every: Option<usize>,
+    /// Engine to run: core (the report-faithful core), rapier (the multibody rebuild,
+    /// settings in [engines.rapier]) or mujoco (the MuJoCo export, run by the pinned `mujoco`
+    /// in the project's Python environment with the shared laws; settings in
+    /// [engines.mujoco]; set up by scripts/setup-python). The scenario's engines.applicable
+    /// must list it.
+    #[arg(long, default_value = "core", value_parser = str::parse::<Engine>)]
+    pub(crate) engine: Engine,
+    /// rapier and MuJoCo engines: fixed time step, s (overrides engines.rapier.timestep or
+    /// engines.mujoco.timestep).
+    #[arg(long)]
+    pub(crate) timestep: Option<f64>,
+    /// Also land two copies with the touchdown velocity moved by one unit in the last place
+    /// across, each way, and name the maxima (and the outcome) they move by more than the
+    /// tolerance `touchdown compare` judges them by: not determined at this precision
+    /// (docs/engines.md, "Rounding-decided channels"). Three more landings.
+    #[arg(long)]
+    pub(crate) rounding: bool,
+}
+
+/// The arguments of `touchdown check` (the command's documentation is on [`Command::Check`]).
+#[derive(clap::Args)]
+pub(crate) struct CheckArgs {
+    /// Scenario file (TOML).
+    pub(crate) scenario: PathBuf,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Output format: text, or the review as one JSON document
+    /// (docs/schemas/check.schema.json).
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+}
+
+/// The arguments of `touchdown compare` (the command's documentation is on [`Command::Compare`]).
+#[derive(clap::Args)]
+pub(crate) struct CompareArgs {
+    /// Scenario files (TOML).
+    #[arg(required = true)]
+    pub(crate) scenarios: Vec<PathBuf>,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Engines to compare, comma-separated (every pair is compared); each scenario runs on
+    /// those its engines.applicable lists.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "core,rapier,mujoco",
+        value_parser = str::parse::<Engine>
+    )]
+    pub(crate) engines: Vec<Engine>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// Also write each scenario's comparison into DIR: DIR/<scenario>.json (its document, as
+    /// --format json prints it) and the traces the metrics were computed from,
+    /// DIR/<scenario>.<engine>.csv.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Also draw each scenario's engines overlaid (vertical acceleration over the 2 ms
+    /// window, pitch rate, strokes against time, each channel's verdict) into
+    /// DIR/<scenario>.png (matplotlib, in the project's Python environment).
+    #[arg(long, requires = "out")]
+    pub(crate) plot: bool,
+    /// Also write each scenario's landings to watch into DIR: DIR/<scenario>.html (a
+    /// self-contained page playing the engines side by side) and the trajectory file it
+    /// plays, DIR/<scenario>.trajectory.json (as `touchdown view` writes them).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) view: Option<PathBuf>,
+    /// With --view: landing time between the frames kept, s (every contact event is kept
+    /// besides).
+    #[arg(long, value_name = "S", requires = "view", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
+    pub(crate) frame_interval: f64,
+    /// Exit 0 whatever the verdict (by default a failing pair exits with status 3).
+    #[arg(long)]
+    pub(crate) report_only: bool,
+}
+
+/// The arguments of `touchdown view` (the command's documentation is on [`Command::View`]).
+#[derive(clap::Args)]
+pub(crate) struct ViewArgs {
+    /// Scenario file (TOML).
+    pub(crate) scenario: PathBuf,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Engines to run, comma-separated: those the scenario's engines.applicable lists.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "core,rapier,mujoco",
+        value_parser = str::parse::<Engine>
+    )]
+    pub(crate) engines: Vec<Engine>,
+    /// Landing time between the frames kept, s (every contact event is kept besides).
+    #[arg(long, value_name = "S", default_value_t = touchdown_view::DEFAULT_FRAME_INTERVAL)]
+    pub(crate) frame_interval: f64,
+    /// Write DIR/<scenario>.html and DIR/<scenario>.trajectory.json here.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: PathBuf,
+}
+
+/// The arguments of `touchdown precision` (the command's documentation is on [`Command::Precision`]).
+#[derive(clap::Args)]
+pub(crate) struct PrecisionArgs {
+    /// Scenario file (TOML).
+    pub(crate) scenario: PathBuf,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Engines to measure, comma-separated (the core with each of its three schemes);
+    /// those the scenario's engines.applicable lists.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "core,rapier,mujoco",
+        value_parser = str::parse::<Engine>
+    )]
+    pub(crate) engines: Vec<Engine>,
+    /// Timed runs per rung (the wall time is their median).
+    #[arg(long, default_value_t = 3)]
+    pub(crate) repeats: usize,
+    /// Only the first N (coarsest) rungs of each ladder.
+    #[arg(long, value_name = "N")]
+    pub(crate) rungs: Option<usize>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// Also write the study into DIR/precision-<scenario>.json (its document, as --format
+    /// json prints it).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Also draw the log-log work-precision plot into DIR/precision-<scenario>.png
+    /// (matplotlib, in the project's Python environment).
+    #[arg(long, requires = "out")]
+    pub(crate) plot: bool,
+}
+
+/// The arguments of `touchdown robustness` (the command's documentation is on [`Command::Robustness`]).
+#[derive(clap::Args)]
+pub(crate) struct RobustnessArgs {
+    /// Engines, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "core,rapier,mujoco",
+        value_parser = str::parse::<Engine>
+    )]
+    pub(crate) engines: Vec<Engine>,
+    /// Only these cases, comma-separated (default: the whole catalogue).
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) cases: Option<Vec<String>>,
+    /// Also search the largest stable step of each stiff case.
+    #[arg(long)]
+    pub(crate) search: bool,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// The project's folder, holding scenarios/ (default: $TOUCHDOWN_HOME, else the project
+    /// found above the executable or the current directory).
+    #[arg(long)]
+    pub(crate) root: Option<PathBuf>,
+}
+
+/// The arguments of `touchdown export-mjcf` (the command's documentation is on [`Command::ExportMjcf`]).
+#[derive(clap::Args)]
+pub(crate) struct ExportMjcfArgs {
+    /// Scenario file (TOML).
+    pub(crate) scenario: PathBuf,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Folder to write the model into, as DIR/<scenario>.xml.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: PathBuf,
+}
+
+/// The arguments of `touchdown validate` (the command's documentation is on [`Command::Validate`]).
+#[derive(clap::Args)]
+pub(crate) struct ValidateArgs {
+    /// Which protocol: `two-row` (reference/calibration-protocol.toml: the calibrated
+    /// scenarios against the rows they were not fitted to) or `cv` (reference/
+    /// cross-validation-protocol.toml: leave-one-out over every row, what the rows
+    /// determine, an interval on every prediction; about 2.4 million landings, about 5
+    /// hours on 2 cores, release).
+    #[arg(long, value_enum, default_value_t = ValidationProtocol::TwoRow)]
+    pub(crate) protocol: ValidationProtocol,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+    /// else the project found above the executable or the current directory).
+    #[arg(long)]
+    pub(crate) root: Option<PathBuf>,
+    /// Also write the data behind the plots here: validation.json and fig-25-26-series.json
+    /// (two-row), cross-validation.json (cv).
+    #[arg(long)]
+    pub(crate) out: Option<PathBuf>,
+    /// Exit 0 whatever the verdict (by default a target not met exits with status 3).
+    #[arg(long)]
+    pub(crate) report_only: bool,
+}
+
+/// The arguments of `touchdown calibrate` (the command's documentation is on [`Command::Calibrate`]).
+#[derive(clap::Args)]
+pub(crate) struct CalibrateArgs {
+    /// Table I rows to calibrate on, e.g. 3,7 (default: the protocol's).
+    #[arg(long, value_delimiter = ',')]
+    pub(crate) rows: Option<Vec<u32>>,
+    /// Write the calibrated vehicle and the record into this folder.
+    #[arg(
+        long,
+        required_unless_present = "update_tracked",
+        conflicts_with = "update_tracked"
+    )]
+    pub(crate) out: Option<PathBuf>,
+    /// Write them over the tracked files the Table I scenarios extend.
+    #[arg(long)]
+    pub(crate) update_tracked: bool,
+    /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+    /// else the project found above the executable or the current directory).
+    #[arg(long)]
+    pub(crate) root: Option<PathBuf>,
+}
+
+/// The arguments of `touchdown estimate` (the command's documentation is on [`Command::Estimate`]).
+#[derive(clap::Args)]
+pub(crate) struct EstimateArgs {
+    /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+    /// else the project found above the executable or the current directory).
+    #[arg(long)]
+    pub(crate) root: Option<PathBuf>,
+}
+
+/// The arguments of `touchdown sensitivity` (the command's documentation is on [`Command::Sensitivity`]).
+#[derive(clap::Args)]
+pub(crate) struct SensitivityArgs {
+    /// Relative change of each parameter.
+    #[arg(long, default_value_t = 0.2)]
+    pub(crate) fraction: f64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub(crate) format: Format,
+    /// The project's folder, holding reference/ and scenarios/ (default: $TOUCHDOWN_HOME,
+    /// else the project found above the executable or the current directory).
+    #[arg(long)]
+    pub(crate) root: Option<PathBuf>,
+}
+
+/// The arguments of `touchdown completions` (the command's documentation is on [`Command::Completions`]).
+#[derive(clap::Args)]
+pub(crate) struct CompletionsArgs {
+    /// The shell.
+    pub(crate) shell: clap_complete::Shell,
+}
+
+/// The arguments of `touchdown man` (the command's documentation is on [`Command::Man`]).
+#[derive(clap::Args)]
+pub(crate) struct ManArgs {
+    /// Folder for the pages.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: PathBuf,
+}
+
+/// The arguments of `touchdown boundary` (the command's documentation is on [`Command::Boundary`]).
+#[derive(clap::Args)]
+pub(crate) struct BoundaryArgs {
+    /// Scenario file (TOML).
+    pub(crate) scenario: PathBuf,
+    #[command(flatten)]
+    pub(crate) set: Overrides,
+    /// Vertical velocities FROM:TO:STEP as the scenario files write them, negative down, in
+    /// the scenario's length unit per second (`--vv=-4:-12:2`: −4, −6, ... −12), or one
+    /// (`--vv=-8`).
+    #[arg(long, allow_hyphen_values = true, value_name = "FROM:TO:STEP")]
+    pub(crate) vv: String,
+    /// First horizontal speed of the grid, in the scenario's length unit per second
+    /// [default: 0].
+    #[arg(long, allow_negative_numbers = true, value_name = "VH")]
+    pub(crate) vh_start: Option<f64>,
+    /// Step of the horizontal-speed grid: every grid point is landed, and every change of
+    /// outcome between neighbours is bisected [default: 0.25 of the vehicle's velocity
+    /// scale √(g·footprint radius), 2.11 ft/s on the 1/6-scale model].
+    #[arg(long, value_name = "STEP")]
+    pub(crate) vh_step: Option<f64>,
+    /// Largest horizontal speed of the grid [default: 3.5 of the velocity scale, 29.6 ft/s
+    /// on the 1/6-scale model].
+    #[arg(long, allow_negative_numbers = true, value_name = "VH")]
+    pub(crate) vh_max: Option<f64>,
+    /// Bisection tolerance on the horizontal speed [default: 0.006 of the velocity scale,
+    /// 0.051 ft/s on the 1/6-scale model].
+    #[arg(long, value_name = "TOL")]
+    pub(crate) tol: Option<f64>,
+    /// Step of the finer scan from a grid step below the first change the grid finds to a
+    /// grid step above the last, so that an outcome alternating faster than the grid is
+    /// seen [default: an eighth of --vh-step; 0: the grid only].
+    #[arg(long, value_name = "STEP")]
+    pub(crate) scan_step: Option<f64>,
+    /// Search once per end-stop coefficient of restitution in this comma-separated list,
+    /// set on every strut's load-stroke diagram (`--stop-restitution 0.1,0.25,0.5,1`), and
+    /// report the spread: how much of the boundary the estimated stop law decides.
+    #[arg(long, value_delimiter = ',', value_name = "E,...")]
+    pub(crate) stop_restitution: Vec<f64>,
+    /// Engines that search, comma-separated; each searches the same configuration and the
+    /// output has one row per engine and descent speed.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "core",
+        value_parser = str::parse::<Engine>
+    )]
+    pub(crate) engines: Vec<Engine>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = TableFormat::Text)]
+    pub(crate) format: TableFormat,
+    /// Also write the points into DIR/boundary-<scenario>.jsonl (as --format json prints
+    /// them).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Also draw the engines' boundaries, overlaid, into DIR/boundary-<scenario>.png
+    /// (matplotlib, in the project's Python environment).
+    #[arg(long, requires = "out")]
+    pub(crate) plot: bool,
 }
 
 #[derive(clap::Args)]
@@ -506,7 +562,7 @@ pub(crate) struct Overrides {
     pub(crate) set: Vec<Set>,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum TableFormat {
     Text,
     Json,
@@ -700,7 +756,7 @@ pub(crate) enum DraftArrangement {
     Tripod,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum Format {
     Text,
     Json,

@@ -1,10 +1,9 @@
 //! `touchdown boundary`: its vertical velocities read from `--vv`, the study asked of
 //! `touchdown_validation::boundary`, its output written where the arguments say.
 
+use crate::args::{BoundaryArgs, TableFormat};
 use crate::{out, outln};
 use anyhow::{bail, Context, Result};
-use std::path::Path;
-use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
 use touchdown_validation::boundary::{self, EnginePoint};
 
@@ -48,28 +47,33 @@ fn range(spec: &str) -> Result<Vec<f64>> {
         .collect())
 }
 
-/// Output of `touchdown boundary`.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub enum BoundaryFormat {
-    /// Readable table.
-    Text,
-    /// JSON array.
-    Json,
-    /// CSV.
-    Csv,
-}
-
 /// `touchdown boundary`.
-pub fn boundary(
-    scenario: &Path,
-    set: &[crate::Set],
-    vv: &str,
-    asked: boundary::Asked,
-    (engines, restitutions): (&[Engine], &[f64]),
-    format: BoundaryFormat,
-    (out, plot): (Option<&Path>, bool),
-) -> Result<()> {
-    let vvs = range(vv)?;
+pub fn boundary(args: BoundaryArgs) -> Result<()> {
+    let BoundaryArgs {
+        scenario,
+        set,
+        vv,
+        vh_start,
+        vh_step,
+        vh_max,
+        tol,
+        scan_step,
+        stop_restitution: restitutions,
+        engines,
+        format,
+        out,
+        plot,
+    } = args;
+    let asked = boundary::Asked {
+        vh_start,
+        vh_step,
+        vh_max,
+        tolerance: tol,
+        scan_step,
+    };
+    let (scenario, set, out) = (scenario.as_path(), set.set.as_slice(), out.as_deref());
+    let (engines, restitutions) = (engines.as_slice(), restitutions.as_slice());
+    let vvs = range(&vv)?;
     let (base, _) = crate::load(scenario, set)?;
     let overrides = crate::overrides(set);
     let study = boundary::Request {
@@ -89,7 +93,7 @@ pub fn boundary(
     // writing them ends the command once the search returns.
     let unwritten = std::sync::Mutex::new(None);
     let stream = |p: &EnginePoint| {
-        if format == BoundaryFormat::Json {
+        if format == TableFormat::Json {
             let line = study.document_line(p, &id, &settings);
             if let Err(e) = bar.suspend(|| outln!("{line}")) {
                 if let Ok(mut first) = unwritten.lock() {
@@ -104,9 +108,9 @@ pub fn boundary(
         return Err(e);
     }
     match format {
-        BoundaryFormat::Json => {}
-        BoundaryFormat::Csv => out!("{}", study.csv(&points)?)?,
-        BoundaryFormat::Text => out!("{}", study.text(&points))?,
+        TableFormat::Json => {}
+        TableFormat::Csv => out!("{}", study.csv(&points)?)?,
+        TableFormat::Text => out!("{}", study.text(&points))?,
     }
     if let Some(dir) = out {
         let lines: Vec<String> = points

@@ -1,6 +1,7 @@
 //! `touchdown campaign`: a Monte Carlo campaign of dispersed landings (docs/campaigns.md), its
 //! shards, merges and extensions, and its statistics as text or JSON.
 
+use crate::args::{CampaignAction, CampaignArgs, Format};
 use crate::{out, outln};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -8,9 +9,8 @@ use touchdown_campaign::fidelity::MultiFidelity;
 use touchdown_campaign::paired::{Pair, Report};
 use touchdown_campaign::record::Row;
 use touchdown_campaign::store::{self, Manifest};
-use touchdown_campaign::{Campaign, Shard, Statistics};
+use touchdown_campaign::{Campaign, Statistics};
 use touchdown_compare::report::text_table;
-use touchdown_scenario::schema::Engine;
 
 /// How a campaign reports on standard output.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -22,30 +22,38 @@ pub enum Output {
     JsonLines,
 }
 
-/// What `touchdown campaign FILE` is asked to do besides running the campaign.
-pub struct Options<'a> {
-    /// Only this shard.
-    pub shard: Option<Shard>,
-    /// Add this many landings to the finished campaign in `out`.
-    pub add: Option<u64>,
-    /// Threads (default: one per core).
-    pub threads: Option<usize>,
-    /// The engines to land on instead of the file's (`--engines`).
-    pub engines: Option<Vec<Engine>>,
-    /// The campaign's folder.
-    pub out: Option<&'a Path>,
-    /// Go on with a stopped run into `out`.
-    pub resume: bool,
-    /// Whether to draw the plots into `out`.
-    pub plot: bool,
-    /// How many of a paired campaign's worst landings to write as pages into `out/views`.
-    pub view: Option<usize>,
+/// `touchdown campaign`: a campaign file run (or a shard of it, or landings added to a finished
+/// campaign), or one of its actions (`merge`, `estimate`).
+pub fn command(mut args: CampaignArgs) -> Result<()> {
+    let output = |f| match f {
+        Format::Text => Output::Text,
+        Format::Json => Output::JsonLines,
+    };
+    match (args.action.take(), args.file.take()) {
+        (Some(CampaignAction::Merge { parts, out, format }), _) => {
+            merge(&parts, &out, output(format))
+        }
+        (
+            Some(CampaignAction::Estimate {
+                paired,
+                low,
+                cost_ratio,
+                format,
+            }),
+            _,
+        ) => estimate(&paired, &low, cost_ratio, format == Format::Json),
+        (None, Some(file)) => {
+            let format = output(args.format);
+            run(&file, args, format)
+        }
+        (None, None) => anyhow::bail!("name a campaign file (docs/campaigns.md)"),
+    }
 }
 
 /// `touchdown campaign FILE`: runs the campaign (or a shard of it, or landings added to the
 /// finished campaign in `out`).
-pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
-    let Options {
+fn run(file: &Path, args: CampaignArgs, output: Output) -> Result<()> {
+    let CampaignArgs {
         shard,
         add,
         threads,
@@ -54,7 +62,9 @@ pub fn run(file: &Path, options: Options, output: Output) -> Result<()> {
         resume,
         plot,
         view,
-    } = options;
+        ..
+    } = args;
+    let out = out.as_deref();
     let mut campaign = Campaign::load(file)?;
     if let Some(engines) = engines {
         campaign = campaign.with_engines(engines, "--engines")?;

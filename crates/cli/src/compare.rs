@@ -1,26 +1,31 @@
 //! `touchdown compare`: scenarios through several engines, every pair compared.
 
-use crate::args::{Format, Set};
+use crate::args::{CompareArgs, Format};
 use crate::{load, out, outln, plots, settings, view, warn};
 use anyhow::{Context, Result};
-use std::path::{Path, PathBuf};
+
 use touchdown_compare::metrics::Verdict;
-use touchdown_scenario::schema::Engine;
 
 /// `touchdown compare`: every scenario through every engine asked for, every pair compared;
 /// whether no pair failed on any scenario (a pair rounding decides does not fail).
-pub fn compare(
-    scenarios: &[PathBuf],
-    set: &[Set],
-    engines: &[Engine],
-    format: Format,
-    (out, plot): (Option<&Path>, bool),
-    watch: Option<(&Path, f64)>,
-) -> Result<bool> {
-    let engines = touchdown_compare::engine_set(engines).context("--engines")?;
+pub fn compare(args: CompareArgs) -> Result<bool> {
+    let CompareArgs {
+        scenarios,
+        set,
+        engines,
+        format,
+        out,
+        plot,
+        view,
+        frame_interval,
+        report_only: _,
+    } = args;
+    let (set, out) = (set.set.as_slice(), out.as_deref());
+    let watch = view.as_deref().map(|dir| (dir, frame_interval));
+    let engines = touchdown_compare::engine_set(&engines).context("--engines")?;
     let settings = settings(set, serde_json::json!({ "engines": engines }));
     let mut passed = true;
-    for path in scenarios {
+    for path in &scenarios {
         let sc = load(path, set)?.1;
         warn(&sc);
         let interval = watch.map(|(_, f)| f);

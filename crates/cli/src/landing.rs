@@ -1,23 +1,29 @@
 //! `touchdown run`: one landing on one engine.
 
-use crate::args::{Format, Set};
+use crate::args::{Format, RunArgs};
 use crate::{load, out, outln, report, settings, warn};
 use anyhow::{Context, Result};
 use std::path::Path;
 use touchdown_record::History;
 use touchdown_scenario::schema::Engine;
 
-/// `touchdown run`: one landing on one engine, its summary on standard output and, with `out`,
+/// `touchdown run`: one landing on one engine, its summary on standard output and, with `--out`,
 /// summary.json, history.csv and scenario.resolved.toml in that folder (and report.html, the
-/// landing's page, with `page`); with `rounding`, what the rounding ensemble says of it (its
-/// `rounding` field and section).
-pub fn run(
-    scenario: &Path,
-    set: &[Set],
-    format: Format,
-    (out, every, page): (Option<&Path>, Option<usize>, bool),
-    (engine, timestep, rounding): (Engine, Option<f64>, bool),
-) -> Result<()> {
+/// landing's page, with `--report`); with `--rounding`, what the rounding ensemble says of it
+/// (its `rounding` field and section).
+pub fn run(args: RunArgs) -> Result<()> {
+    let RunArgs {
+        scenario,
+        set,
+        format,
+        out,
+        report: page,
+        every,
+        engine,
+        timestep,
+        rounding,
+    } = args;
+    let (scenario, set, out) = (scenario.as_path(), set.set.as_slice(), out.as_deref());
     if every == Some(0) {
         anyhow::bail!("--every: expected at least 1 (every Nth step's row)");
     }

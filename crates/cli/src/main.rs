@@ -17,7 +17,7 @@ mod validation;
 mod view;
 
 use anyhow::{bail, Context, Result};
-use args::{CampaignAction, Cli, Command, Format, TableFormat, ValidationProtocol};
+use args::{Cli, Command, Format, ValidationProtocol};
 use std::path::{Path, PathBuf};
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
@@ -146,196 +146,51 @@ fn verdict(passed: bool, report_only: bool) -> Verdict {
 }
 
 fn run(cli: Cli) -> Result<Verdict> {
-    let () = match cli.command {
-        Command::Run {
-            scenario,
-            set,
-            format,
-            out,
-            report,
-            every,
-            engine,
-            timestep,
-            rounding,
-        } => landing::run(
-            &scenario,
-            &set.set,
-            format,
-            (out.as_deref(), every, report),
-            (engine, timestep, rounding),
-        ),
-        Command::New(numbers) => {
-            let passed = draft::new(numbers)?;
-            return Ok(verdict(passed, false));
+    let done = |r: Result<()>| r.map(|()| Verdict::Pass);
+    match cli.command {
+        Command::Run(a) => done(landing::run(a)),
+        Command::New(a) => draft::new(a).map(|passed| verdict(passed, false)),
+        Command::Check(a) => {
+            check::check(&a.scenario, &a.set.set, a.format).map(|passed| verdict(passed, false))
         }
-        Command::Check {
-            scenario,
-            set,
-            format,
-        } => {
-            let passed = check::check(&scenario, &set.set, format)?;
-            return Ok(verdict(passed, false));
+        Command::Compare(a) => {
+            let report_only = a.report_only;
+            compare::compare(a).map(|passed| verdict(passed, report_only))
         }
-        Command::Compare {
-            scenarios,
-            set,
-            engines,
-            format,
-            out,
-            plot,
-            view,
-            frame_interval,
-            report_only,
-        } => {
-            let passed = compare::compare(
-                &scenarios,
-                &set.set,
-                &engines,
-                format,
-                (out.as_deref(), plot),
-                view.as_deref().map(|dir| (dir, frame_interval)),
-            )?;
-            return Ok(verdict(passed, report_only));
+        Command::View(a) => done(view::view(a)),
+        Command::Precision(a) => done(precision::precision(a)),
+        Command::Robustness(a) => done(robustness::robustness(
+            &home(a.root)?,
+            &a.engines,
+            a.cases,
+            a.search,
+            a.format,
+        )),
+        Command::ExportMjcf(a) => done(export_mjcf(&a.scenario, &a.set.set, &a.out)),
+        Command::Validate(a) => {
+            let (root, json) = (home(a.root)?, a.format == Format::Json);
+            let passed = match a.protocol {
+                ValidationProtocol::TwoRow => validation::validate(&root, json, a.out.as_deref()),
+                ValidationProtocol::Cv => validation::cross_validate(&root, json, a.out.as_deref()),
+            }?;
+            Ok(verdict(passed, a.report_only))
         }
-        Command::View {
-            scenario,
-            set,
-            engines,
-            frame_interval,
-            out,
-        } => view::view(&scenario, &set.set, &engines, frame_interval, &out),
-        Command::Precision {
-            scenario,
-            set,
-            engines,
-            repeats,
-            rungs,
-            format,
-            out,
-            plot,
-        } => precision::precision(
-            &scenario,
-            &set.set,
-            &engines,
-            (repeats, rungs),
-            format,
-            out.as_deref(),
-            plot,
-        ),
-        Command::Robustness {
-            engines,
-            cases,
-            search,
-            format,
-            root,
-        } => robustness::robustness(&home(root)?, &engines, cases, search, format),
-        Command::ExportMjcf { scenario, set, out } => export_mjcf(&scenario, &set.set, &out),
-        Command::Validate {
-            protocol,
-            format,
-            root,
-            out,
-            report_only,
-        } => {
-            let json = matches!(format, Format::Json);
-            let passed = match protocol {
-                ValidationProtocol::TwoRow => {
-                    validation::validate(&home(root)?, json, out.as_deref())?
-                }
-                ValidationProtocol::Cv => {
-                    validation::cross_validate(&home(root)?, json, out.as_deref())?
-                }
-            };
-            return Ok(verdict(passed, report_only));
-        }
-        Command::Calibrate {
-            rows,
-            out,
-            update_tracked: _,
-            root,
-        } => validation::calibrate(&home(root)?, rows, out.as_deref()),
-        Command::Estimate { root } => validation::estimate(&home(root)?),
-        Command::Sensitivity {
-            fraction,
-            format,
-            root,
-        } => validation::sensitivity(&home(root)?, fraction, matches!(format, Format::Json)),
-        Command::Boundary {
-            scenario,
-            set,
-            vv,
-            vh_start,
-            vh_step,
-            vh_max,
-            tol,
-            scan_step,
-            stop_restitution,
-            engines,
-            format,
-            out,
-            plot,
-        } => {
-            let settings = touchdown_validation::boundary::Asked {
-                vh_start,
-                vh_step,
-                vh_max,
-                tolerance: tol,
-                scan_step,
-            };
-            let format = match format {
-                TableFormat::Text => boundary::BoundaryFormat::Text,
-                TableFormat::Json => boundary::BoundaryFormat::Json,
-                TableFormat::Csv => boundary::BoundaryFormat::Csv,
-            };
-            boundary::boundary(
-                &scenario,
-                &set.set,
-                &vv,
-                settings,
-                (&engines, &stop_restitution),
-                format,
-                (out.as_deref(), plot),
-            )
-        }
-        Command::Completions { shell } => manual::completions(shell),
-        Command::Man { out } => manual::man_pages(&out),
-        Command::Campaign(args) => {
-            let output = |f| match f {
-                Format::Text => campaign::Output::Text,
-                Format::Json => campaign::Output::JsonLines,
-            };
-            match (args.action, args.file) {
-                (Some(CampaignAction::Merge { parts, out, format }), _) => {
-                    campaign::merge(&parts, &out, output(format))
-                }
-                (
-                    Some(CampaignAction::Estimate {
-                        paired,
-                        low,
-                        cost_ratio,
-                        format,
-                    }),
-                    _,
-                ) => campaign::estimate(&paired, &low, cost_ratio, matches!(format, Format::Json)),
-                (None, Some(file)) => campaign::run(
-                    &file,
-                    campaign::Options {
-                        shard: args.shard,
-                        add: args.add,
-                        threads: args.threads,
-                        engines: args.engines,
-                        out: args.out.as_deref(),
-                        resume: args.resume,
-                        plot: args.plot,
-                        view: args.view,
-                    },
-                    output(args.format),
-                ),
-                (None, None) => anyhow::bail!("name a campaign file (docs/campaigns.md)"),
-            }
-        }
-    }?;
-    Ok(Verdict::Pass)
+        Command::Calibrate(a) => done(validation::calibrate(
+            &home(a.root)?,
+            a.rows,
+            a.out.as_deref(),
+        )),
+        Command::Estimate(a) => done(validation::estimate(&home(a.root)?)),
+        Command::Sensitivity(a) => done(validation::sensitivity(
+            &home(a.root)?,
+            a.fraction,
+            a.format == Format::Json,
+        )),
+        Command::Boundary(a) => done(boundary::boundary(a)),
+        Command::Completions(a) => done(manual::completions(a.shell)),
+        Command::Man(a) => done(manual::man_pages(&a.out)),
+        Command::Campaign(a) => done(campaign::command(a)),
+    }
 }
 
 /// The file `DIR/<prefix><scenario's stem>.<ext>` of an output folder `dir`, the folder

@@ -1,21 +1,22 @@
 //! `touchdown precision`: a scenario's work-precision study (error against run time).
 
-use crate::args::{Format, Set};
+use crate::args::{Format, PrecisionArgs};
 use crate::{load, out, out_file, outln, plots, settings, warn};
 use anyhow::{Context, Result};
-use std::path::Path;
-use touchdown_scenario::schema::Engine;
 
 /// `touchdown precision`: the work-precision study of a scenario.
-pub fn precision(
-    scenario: &Path,
-    set: &[Set],
-    engines: &[Engine],
-    (repeats, rungs): (usize, Option<usize>),
-    format: Format,
-    out: Option<&Path>,
-    plot: bool,
-) -> Result<()> {
+pub fn precision(args: PrecisionArgs) -> Result<()> {
+    let PrecisionArgs {
+        scenario,
+        set,
+        engines,
+        repeats,
+        rungs,
+        format,
+        out,
+        plot,
+    } = args;
+    let (scenario, set, engines, out) = (scenario.as_path(), &set.set, &engines, out.as_deref());
     use touchdown_compare::precision::{self, Method};
     if repeats == 0 {
         anyhow::bail!("--repeats: expected at least 1 timed run per rung");

@@ -2,12 +2,12 @@
 //! plays it (docs/engines.md, "Watching the engines land"; docs/outputs.md, "The trajectory
 //! file").
 
+use crate::args::ViewArgs;
 use crate::outln;
 use crate::{load, out_file, warn, Set};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use touchdown_compare::EngineRun;
-use touchdown_scenario::schema::Engine;
 use touchdown_scenario::Scenario;
 
 /// Writes `DIR/<scenario>.trajectory.json` (the trajectory document of the runs of the scenario
@@ -31,13 +31,15 @@ pub fn write(
 
 /// `touchdown view`: the scenario on each of `engines` it applies to, recorded, written as a
 /// trajectory file and its page into `dir`.
-pub fn view(
-    scenario: &Path,
-    set: &[Set],
-    engines: &[Engine],
-    frame_interval: f64,
-    dir: &Path,
-) -> Result<()> {
+pub fn view(args: ViewArgs) -> Result<()> {
+    let ViewArgs {
+        scenario,
+        set,
+        engines,
+        frame_interval,
+        out,
+    } = args;
+    let (scenario, set, engines, dir) = (scenario.as_path(), &set.set, &engines, out.as_path());
     let sc = load(scenario, set)?.1;
     warn(&sc);
     let (runs, skipped) = touchdown_compare::watch(scenario, &sc, engines, frame_interval)?;
