@@ -164,7 +164,7 @@ fn every_bundled_landing_ends_when_its_maxima_are_final() {
         let run = |s: &Scenario| {
             touchdown_compare::run(Engine::Core, &path, s).unwrap_or_else(|e| panic!("{e}"))
         };
-        let pair = touchdown_compare::metrics::compare(&run(&sc), &run(&longer));
+        let pair = touchdown_compare::pair::compare(&run(&sc), &run(&longer));
         let history_or_energy = [
             ENERGY.quantity,
             PITCH_RATE_RMS.quantity,

@@ -4,6 +4,7 @@
 //! |---|---|
 //! | [`trace`] | the time series a comparison needs (vertical velocity, pitch rate), from any engine |
 //! | [`metrics`] | divergence of two engines, channel by channel, against written tolerances |
+//! | [`pair`] | two engines' runs of a landing compared over their rounding ensembles: each channel's verdict and the pair's |
 //! | [`report`] | a scenario's comparison as text (rounded for snapshot review) and JSON |
 //! | [`rounding`] | each landing again with its touchdown velocity moved by a unit in the last place: the verdicts rounding decides |
 //! | [`plot`] | the traces behind the metrics, as CSV for `python/figures/plot_compare.py` |
@@ -14,6 +15,7 @@
 //! compared, the first engine of the pair being the reference of its relative channels.
 
 pub mod metrics;
+pub mod pair;
 pub mod plot;
 pub mod precision;
 pub mod report;
@@ -411,7 +413,7 @@ pub fn compare_recorded(
     let mut pairs = Vec::new();
     for (i, a) in runs.iter().enumerate() {
         for b in &runs[i + 1..] {
-            pairs.push(metrics::compare(a, b));
+            pairs.push(pair::compare(a, b));
         }
     }
     Ok(ScenarioComparison {

@@ -134,7 +134,7 @@ pub struct Protocol {
     /// Table I row ids used for calibration.
     pub rows: Vec<u32>,
     /// How the fit is restarted from its end point.
-    pub restarts: crate::calibrate::Restarts,
+    pub restarts: Restarts,
     /// Parameters fitted.
     pub parameter: Vec<FitParameter>,
 }
@@ -167,4 +167,37 @@ pub struct CalibrationRecord {
     pub objective: f64,
     /// Fitted parameters.
     pub parameter: Vec<Fitted>,
+}
+
+/// Restarts of a fit: Nelder-Mead run again from its end point with a fresh simplex, until a
+/// restart no longer improves the objective (a collapsed simplex is not a minimum: the strokes
+/// respond to the crush loads through thresholds, a stage reached or a footpad let go).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Restarts {
+    /// Each restart's simplex: a step of this fraction of each parameter's range (towards the
+    /// middle of its bounds).
+    pub simplex: f64,
+    /// Most restarts.
+    pub most: u32,
+    /// A restart that improves the objective by less than this fraction of it ends the fit.
+    pub improvement: f64,
+}
+
+impl Restarts {
+    /// Checks the settings read from `file`: every error names the file and the field.
+    pub fn check(&self, file: &str, prefix: &str) -> Result<(), ValidationError> {
+        let refuse = |field: &str, expected: &str| {
+            Err(ValidationError::Reference(format!(
+                "{file}: {prefix}{field}: expected {expected}"
+            )))
+        };
+        if !(self.simplex > 0.0 && self.simplex <= 0.5) {
+            return refuse("simplex", "a fraction in (0, 0.5]");
+        }
+        if !(self.improvement >= 0.0 && self.improvement < 1.0) {
+            return refuse("improvement", "a fraction in [0, 1)");
+        }
+        Ok(())
+    }
 }

@@ -1,44 +1,14 @@
 //! The search's documents: its points in SI, one conversion of every speed the search found in
-//! the scenario's velocity unit, as the lines of `touchdown boundary --format json` (JSON
+//! the scenario's velocity unit ([`super::speed`]), as the lines of `touchdown boundary --format json` (JSON
 //! Lines, docs/schemas/boundary.schema.json) and the rows of its CSV, and the options a
 //! document records.
 
 use super::engines::EnginePoint;
 use super::search::{Band, BoundaryPoint, CapacityEdge, Direction, Limit, SafeEdge, Transition};
 use super::settings::Settings;
+use super::speed::{MetresPerSecond, SiSpeed};
 use crate::ValidationError;
-use serde::{Serialize, Serializer};
 use touchdown_scenario::schema::Engine;
-
-/// A speed in metres per second, written as the number.
-#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Serialize)]
-#[serde(transparent)]
-pub struct MetresPerSecond(pub f64);
-
-/// The speeds a boundary document is written in: metres per second only, so that a point still
-/// in the scenario's velocity unit cannot be written under the `_m_s` names.
-pub trait SiSpeed: Serialize + Copy + private::Sealed {
-    /// The speed with its sign changed.
-    fn negated(self) -> Self;
-}
-
-impl SiSpeed for MetresPerSecond {
-    fn negated(self) -> Self {
-        MetresPerSecond(-self.0)
-    }
-}
-
-mod private {
-    /// Only the SI speed is a [`super::SiSpeed`].
-    pub trait Sealed {}
-    impl Sealed for super::MetresPerSecond {}
-}
-
-/// Writes a descent speed (positive down) as the vertical velocity of the scenario files,
-/// negative down.
-pub(super) fn negative_down<V: SiSpeed, S: Serializer>(v: &V, s: S) -> Result<S::Ok, S::Error> {
-    v.negated().serialize(s)
-}
 
 impl BoundaryPoint {
     /// The point in SI, `velocity` being the scenario's velocity unit in m/s: every speed the

@@ -1,9 +1,9 @@
 //! The search on a scenario, landed by each engine asked for: the landing of one point, and
 //! the points of every engine and end-stop law.
 
-use super::document::SiSpeed;
 use super::search::{search_streaming, BoundaryPoint, Landed};
 use super::settings::Settings;
+use super::speed::SiSpeed;
 use crate::ValidationError;
 use serde::Serialize;
 use std::path::Path;

@@ -27,19 +27,20 @@
 //!
 //! One folder, a module a job: [`Request`] (the study as asked, checked once into a
 //! [`Study`]), `settings` (the grid and its defaults), `search` (the search at each descent
-//! speed and what it finds), `engines` (the landings of a scenario on each engine and end-stop
-//! law), `document` (the points in SI, their JSON Lines and CSV) and `text` (the table).
+//! speed and what it finds), `speed` (the SI speed documents are written in), `engines` (the
+//! landings of a scenario on each engine and end-stop law), `document` (the points in SI, their
+//! JSON Lines and CSV) and `text` (the table).
 
 mod document;
 mod engines;
 mod request;
 mod search;
 mod settings;
+mod speed;
 #[cfg(test)]
 mod tests;
 mod text;
 
-pub use document::{MetresPerSecond, SiSpeed};
 pub use engines::{scenario_landing, EnginePoint};
 pub use request::{Request, Study};
 pub use search::{
@@ -50,3 +51,4 @@ pub use settings::{
     Asked, Settings, DEFAULT_SCAN_STEP, DEFAULT_TOLERANCE, DEFAULT_VH_MAX, DEFAULT_VH_STEP,
     MAX_GRID_POINTS, MAX_RELATIVE_RESOLUTION,
 };
+pub use speed::{MetresPerSecond, SiSpeed};

@@ -2,8 +2,8 @@
 //! the bisections of every transition and of the first speed past a capacity, and the safe
 //! envelope; what it finds, in the scenario's velocity unit.
 
-use super::document::{negative_down, SiSpeed};
 use super::settings::{refuse, Settings};
+use super::speed::{negative_down, SiSpeed};
 use crate::ValidationError;
 use rayon::prelude::*;
 use serde::Serialize;

@@ -1,7 +1,7 @@
 //! The protocol file, `reference/cross-validation-protocol.toml`: its settings and their check.
 
-use crate::calibrate::Restarts;
 use crate::reference::FitParameter;
+use crate::reference::Restarts;
 use crate::ValidationError;
 use serde::{Deserialize, Serialize};
 
