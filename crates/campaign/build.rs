@@ -1,15 +1,44 @@
 //! The source revision the campaign manifests name: `git rev-parse HEAD` of the workspace at
 //! build time, or `unknown` outside a git checkout.
+//!
+//! It is read again whenever HEAD moves: cargo is told to watch `.git/HEAD` and the file of the
+//! branch HEAD names (`.git/refs/heads/<branch>`, which a commit rewrites; watching the folder
+//! `refs/heads` would not see it, a folder's time changing only when a branch is added or
+//! removed), and `packed-refs`. In a linked worktree `.git` is a file naming the git folder.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
+
+/// The git folder of the checkout at `root`: `.git`, or the folder a worktree's `.git` file
+/// names (`gitdir: <path>`).
+fn git_dir(root: &Path) -> Option<PathBuf> {
+    let dot = root.join(".git");
+    if dot.is_dir() {
+        return Some(dot);
+    }
+    let text = std::fs::read_to_string(&dot).ok()?;
+    let dir = text.strip_prefix("gitdir:")?.trim();
+    Some(root.join(dir))
+}
 
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let git = root.join(".git");
-    for watched in ["HEAD", "refs/heads", "packed-refs"] {
-        if git.join(watched).exists() {
-            println!("cargo:rerun-if-changed={}", git.join(watched).display());
+    if let Some(git) = git_dir(&root) {
+        let head = git.join("HEAD");
+        let mut watched = vec![head.clone(), git.join("packed-refs")];
+        // `ref: refs/heads/main`: the branch's file, in this git folder or, for a worktree, in
+        // the repository's (its `commondir`).
+        if let Some(branch) = std::fs::read_to_string(&head)
+            .ok()
+            .and_then(|h| h.strip_prefix("ref:").map(|r| r.trim().to_string()))
+        {
+            watched.push(git.join(&branch));
+            if let Ok(common) = std::fs::read_to_string(git.join("commondir")) {
+                watched.push(git.join(common.trim()).join(&branch));
+            }
+        }
+        for path in watched.iter().filter(|p| p.exists()) {
+            println!("cargo:rerun-if-changed={}", path.display());
         }
     }
     let revision = Command::new("git")
