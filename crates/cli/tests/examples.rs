@@ -77,7 +77,7 @@ fn classify(line: &str) -> Example {
             Example::Elsewhere("every example runs with TOUCHDOWN_HOME set")
         }
         ["cargo", "install", ..] => Example::Elsewhere(
-            "a release build; an installed binary is a copied one, tested by a_copied_binary_runs_mujoco_with_touchdown_home_alone (tests/cli.rs)",
+            "a release build; an installed binary is a copied one, tested by a_copied_binary_runs_mujoco_with_touchdown_home_alone (tests/cli/engines.rs)",
         ),
         ["pip", "install", "."] => Example::Elsewhere(
             "a release build into another environment; the package installed outside the project is tested by test_mujoco_runs_from_the_package_installed_elsewhere_with_no_variable (python/tests)",
