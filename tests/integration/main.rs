@@ -22,8 +22,10 @@
 //!   within its step convergence;
 //! * `symmetry`: every landing against its mirror image and its legs renumbered;
 //! * `campaign`: campaigns give the same bytes on any threads and shards, extend without
-//!   change, apply what they draw, meet a closed-form probability, refuse bad files and merges,
-//!   and write Parquet that pandas, polars and DuckDB read;
+//!   change, resume, apply what they draw, state their accuracy, meet a closed-form probability,
+//!   keep each landing's energy within the guard, refuse bad files, merges and hostile folders,
+//!   pair engines with a multi-fidelity interval that covers, and write Parquet that pandas,
+//!   polars and DuckDB read;
 //! * `fuzz`: mutated scenarios are refused naming a field or run to a clean end (proptest).
 //!
 //! Determinism and the command line are tested against the `touchdown` binary in

@@ -1,7 +1,9 @@
 //! Campaigns (docs/campaigns.md): the same bytes whatever the threads, shards or order;
-//! extensions that leave the first landings alone; the values applied are the values drawn and
-//! reach the model; a probability known in closed form comes out; bad files and bad merges are
-//! refused by name; the Parquet records read back in pandas, polars and DuckDB.
+//! extensions that leave the first landings alone; folders replaced only when complete and
+//! resumed to the same bytes; the values applied are the values drawn and reach the model; the
+//! accuracy statement, a probability known in closed form and the energy imbalance; bad files,
+//! bad merges and hostile folders refused by name; paired campaigns and the multi-fidelity
+//! interval; the Parquet records read back in pandas, polars and DuckDB.
 
 use std::path::{Path, PathBuf};
 use touchdown_campaign::run::run;
