@@ -415,11 +415,13 @@ pub type Row = Vec<Cell>;
 /// `outcome` one of [`Status`]'s names and its `failure` one of [`Failure`]'s, both present
 /// (the statistics count every landing once by each). `Err` says which column holds what.
 pub fn check(columns: &[Column], row: &Row) -> Result<(), String> {
-    // Each engine's block: `outcome` itself, or `<engine>.outcome`.
+    // Each engine's block: `outcome` itself, or `<engine>.outcome`. This runs for every record
+    // read back, so a column's role is read only where its name can be an outcome's.
     let prefixes: Vec<&str> = columns
         .iter()
-        .filter(|c| c.role() == Some(Role::Outcome))
-        .filter_map(|c| c.name.strip_suffix("outcome"))
+        .filter_map(|c| Some((c.name.strip_suffix("outcome")?, c)))
+        .filter(|(_, c)| c.role() == Some(Role::Outcome))
+        .map(|(p, _)| p)
         .collect();
     if prefixes.is_empty() {
         return Err("no `outcome` column: every record has one per engine".into());
