@@ -3,6 +3,8 @@
 use nalgebra::Vector3;
 use std::path::PathBuf;
 use touchdown_laws::{GearLaws, LoadStroke};
+use touchdown_record::{Outcome, Summary};
+use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::Scenario;
 
 /// The workspace root.
@@ -112,30 +114,44 @@ fn area(curve: &LoadStroke, x: f64) -> f64 {
 }
 
 /// Maximum primary stroke, m, of a symmetric vertical drop on flat ground with locked
-/// footpads, frictionless and without viscous forces, computed independently of any engine: at
-/// maximum stroke the vehicle is at rest, so its initial kinetic energy plus the potential
-/// energy released by the drop h equals the work of monotonic loading of every strut. The
-/// balance is solved for h (pure translation: the footpad fixed in space moves up by h in body
-/// axes). Gear masses are left out (the report's gear is massless).
+/// footpads ([`analytic_drop_strokes`]).
 pub fn analytic_drop_stroke(sc: &Scenario) -> f64 {
+    analytic_drop_strokes(sc)[0]
+}
+
+/// Maximum strokes of leg 1, m, of a symmetric vertical drop on flat ground with locked
+/// footpads, frictionless and without viscous forces, computed independently of any engine:
+/// the primary's compression c and the secondaries' S31, S41 (tension positive). At maximum
+/// stroke the vehicle is at rest, so its initial kinetic energy plus the potential energy
+/// released by the drop h equals the work of monotonic loading of every strut. The balance is
+/// solved for h (pure translation: the footpad fixed in space moves up by h in body axes), and
+/// the strokes are the gear's at h: point 1 at L21 along the primary for the cantilever, the
+/// footpad itself for the tripod (eqs. 27-34). Gear masses are left out (the report's gear is
+/// massless).
+pub fn analytic_drop_strokes(sc: &Scenario) -> [f64; 3] {
     assert_eq!(sc.primary.bearing_friction, 0.0);
     assert_eq!(sc.primary.viscous.coefficient, 0.0);
     let laws = GearLaws::from_scenario(sc).unwrap();
     let m = sc.vehicle.mass;
     let g = sc.vehicle.gravity;
     let v = sc.touchdown.velocity_g.norm();
-    let strokes = |h: f64| -> Vec<(f64, f64, f64)> {
+    let tripod = sc.arrangement == Arrangement::Tripod;
+    let strokes = |h: f64| -> Vec<[f64; 3]> {
         sc.legs
             .iter()
             .map(|leg| {
                 let bp = leg.bp + Vector3::new(0.0, 0.0, h);
                 let v2p = bp - leg.b2;
-                let b1 = leg.b2 + v2p.normalize() * leg.l21;
-                (
+                let b1 = if tripod {
+                    bp
+                } else {
+                    leg.b2 + v2p.normalize() * leg.l21
+                };
+                [
                     leg.l2p - v2p.norm(),
                     (b1 - leg.b3).norm() - leg.l31,
                     (b1 - leg.b4).norm() - leg.l41,
-                )
+                ]
             })
             .collect()
     };
@@ -149,7 +165,7 @@ pub fn analytic_drop_stroke(sc: &Scenario) -> f64 {
     let work = |h: f64| -> f64 {
         strokes(h)
             .iter()
-            .map(|(c, s3, s4)| {
+            .map(|[c, s3, s4]| {
                 area(&laws.primary.honeycomb.curve, *c) + secondary_area(*s3) + secondary_area(*s4)
             })
             .sum()
@@ -165,7 +181,47 @@ pub fn analytic_drop_stroke(sc: &Scenario) -> f64 {
             hi = mid
         }
     }
-    strokes(lo)[0].0
+    strokes(lo)[0]
+}
+
+/// Asserts that a symmetric vertical drop's `summary` strokes as [`analytic_drop_strokes`]
+/// of its scenario `sc`: every leg's primary within 1 % of the analytic stroke, each secondary
+/// within 1 % of the primary's; the energy balance closed to 0.2 % of the initial kinetic
+/// energy, and the landing stable.
+pub fn assert_drop_strokes_to_the_energy_balance(sc: &Scenario, summary: &Summary) {
+    let [c, s3, s4] = analytic_drop_strokes(sc);
+    let engine = &summary.engine;
+    let name = &sc.file.name;
+    for i in 0..sc.legs.len() {
+        let stroke = summary.max_primary_stroke_m[i];
+        let err = (stroke - c).abs() / c;
+        assert!(
+            err < 0.01,
+            "{name}, {engine}, leg {}: primary stroke {stroke:.6} m vs analytic {c:.6} m ({:.3} %)",
+            i + 1,
+            100.0 * err
+        );
+        for (j, s) in [s3, s4].into_iter().enumerate() {
+            let got = if s < 0.0 {
+                -summary.max_secondary_compression_m[i][j]
+            } else {
+                summary.max_secondary_tension_m[i][j]
+            };
+            assert!(
+                (got - s).abs() < 0.01 * c,
+                "{name}, {engine}, leg {}: secondary {} stroke {got:.6} m vs analytic {s:.6} m",
+                i + 1,
+                j + 3
+            );
+        }
+    }
+    let e = &summary.energy;
+    assert!(
+        e.residual_j.abs() < 2e-3 * e.kinetic_initial_j,
+        "{name}, {engine}: residual {} J",
+        e.residual_j
+    );
+    assert_eq!(summary.outcome, Outcome::Stable, "{name}, {engine}");
 }
 
 /// The seeded proptest runner of the fuzz harnesses (`tests/integration/fuzz.rs`,

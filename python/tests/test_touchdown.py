@@ -385,7 +385,7 @@ def test_a_view_is_the_command_lines(tmp_path):
     with pytest.raises(ValueError, match="frame_interval: expected a time between frames > 0 s"):
         touchdown.view(scenario, frame_interval=0.0)
     with pytest.raises(touchdown.TouchdownError, match="none of the engines asked for"):
-        touchdown.view(ROOT / "scenarios" / "tripod-drop.toml", engines=["rapier"])
+        touchdown.view(ROOT / "scenarios" / "slosh-drop.toml", engines=["rapier"])
 
 
 def test_a_boundary_is_the_command_lines_and_overrides_move_it():

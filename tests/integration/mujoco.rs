@@ -8,10 +8,11 @@
 use std::process::Command;
 use touchdown_mujoco::{GearIndex, MjArrays, ModelSizes};
 use touchdown_mujoco::{MujocoError, MujocoLanding};
-use touchdown_record::Outcome;
 use touchdown_scenario::schema::Detached;
 use touchdown_scenario::{Scenario, ScenarioError};
-use touchdown_tests::{analytic_drop_stroke, mujoco, python, root, scenario, validation_landings};
+use touchdown_tests::{
+    assert_drop_strokes_to_the_energy_balance, mujoco, python, root, scenario, validation_landings,
+};
 
 #[test]
 fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
@@ -110,28 +111,17 @@ fn the_export_is_deterministic_and_names_its_scenario() {
     assert_ne!(other.sha256(), hash);
 }
 
+/// The symmetric vertical drop strokes to the energy balance on MuJoCo, on both gear
+/// arrangements (`tests/integration/physics.rs` for the core and rapier).
 #[test]
 fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
-    let path = scenario("flat-drop.toml");
-    let sc = Scenario::load(&path).unwrap();
-    let expected = analytic_drop_stroke(&sc);
-    let s = mujoco(&path, "engine");
-    assert_eq!(s.engine, "mujoco");
-    for (i, c) in s.max_primary_stroke_m.iter().enumerate() {
-        assert!(
-            (c - expected).abs() < 0.01 * expected,
-            "leg {}: {c} m vs analytic {expected} m",
-            i + 1
-        );
+    for name in ["flat-drop.toml", "tripod-drop.toml"] {
+        let path = scenario(name);
+        let sc = Scenario::load(&path).unwrap();
+        let s = mujoco(&path, "engine");
+        assert_eq!(s.engine, "mujoco");
+        assert_drop_strokes_to_the_energy_balance(&sc, &s);
     }
-    let e = &s.energy;
-    assert!(
-        e.residual_j.abs() < 2e-3 * e.kinetic_initial_j,
-        "balance residual {} J of {} J",
-        e.residual_j,
-        e.kinetic_initial_j
-    );
-    assert_eq!(s.outcome, Outcome::Stable);
 }
 
 /// The maxima the engines part on that no engine settles: the uphill primary of leg 4 on

@@ -552,7 +552,8 @@ fn settings(
     );
     m.insert(
         "outer_cylinder_length_m".into(),
-        l.outer_cylinder_length(leg, &sc.primary).into(),
+        l.outer_cylinder_length(leg, &sc.primary, sc.arrangement)
+            .into(),
     );
     m.insert("footpad_body_mass_kg".into(), sc.footpad.mass.into());
     m.insert("link_radius_m".into(), l.radius(leg).into());

@@ -9,8 +9,9 @@
 //!   footpad ball joint BP on the slide joint `legN_stroke` along V̂2P (joint coordinate
 //!   q = extension, so the compression stroke is c = −q), with the effective footpad mass PMASS
 //!   and a small contact sphere; the secondary struts are massless spatial tendons
-//!   `legN_s31`, `legN_s41` from the trunnions B3, B4 on the vehicle to point 1 on the outer
-//!   cylinder (two-force members: a tendon carries force along itself only).
+//!   `legN_s31`, `legN_s41` from the trunnions B3, B4 on the vehicle to point 1 (site
+//!   `legN_point1`), on the outer cylinder for the cantilever and at BP on the footpad body for
+//!   the tripod (two-force members: a tendon carries force along itself only).
 //! - Actuators, all driven by the runner from the shared laws: `legN_primary` (force along the
 //!   stroke joint, N, positive extends), `legN_s31`, `legN_s41` (tendon forces, N, positive
 //!   lengthens). The stroke joint's dry friction (`frictionloss`, set every step) is the bearing
@@ -26,14 +27,14 @@
 //!   settings on both geoms of the pair.
 //!
 //! Only what the scene needs is written: a frictionless footpad gets a frictionless contact
-//! (`condim` 1), no lock is written for a surface without obstacles. (The scenario loader
-//! refuses the tripod arrangement, so only the cantilever gear is exported.)
+//! (`condim` 1), no lock is written for a surface without obstacles.
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::fmt::Write;
 use touchdown_frames::gravity_inertial;
 use touchdown_multibody::MujocoSettings;
 use touchdown_scenario::initial::initial_state;
+use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Contact friction that stands for an obstacle lock (OBST > 0): the footpad sticks laterally
@@ -142,14 +143,28 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         let axis = (leg.bp - leg.b2) / leg.l2p;
         let (e1, e2) = hinge_axes(&axis);
         let prim = &sc.primary;
-        let l_outer = sc.links.outer_cylinder_length(leg, prim);
+        let l_outer = sc.links.outer_cylinder_length(leg, prim, sc.arrangement);
         let radius = sc.links.radius(leg);
         let i_outer = sc.links.moment(leg, m_outer, l_outer);
         let i_pad = sc.links.moment(leg, pmass, prim.inner_cylinder_length);
         let r = sc.links.contact_radius(leg);
+        // Point 1, where the secondaries' tendons end: on the outer cylinder (cantilever), at
+        // the footpad ball joint BP (tripod).
+        let site =
+            |pos: &Vector3<f64>| format!("<site name=\"leg{n}_point1\" pos=\"{}\"/>", vec3(pos));
+        let (point1_on_outer, point1_on_footpad) = match sc.arrangement {
+            Arrangement::Cantilever => (
+                format!("{}\n        ", site(&(leg.b1() - leg.b2))),
+                String::new(),
+            ),
+            Arrangement::Tripod => (
+                String::new(),
+                format!("{}\n          ", site(&Vector3::zeros())),
+            ),
+        };
         let _ = writeln!(
             w,
-            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        <site name=\"leg{n}_point1\" pos=\"{}\"/>\n        <body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the contacts -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          <geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the contacts -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
             vec3(&leg.b3),
             vec3(&leg.b4),
             vec3(&leg.b2),
@@ -162,7 +177,6 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
             nums(&[i_outer, i_outer, i_outer]),
             vec3(&(axis * l_outer)),
             nums(&[radius]),
-            vec3(&(leg.b1() - leg.b2)),
             vec3(&(leg.bp - leg.b2)),
             vec3(&axis),
             nums(&[pmass]),

@@ -35,6 +35,7 @@ use touchdown_record::{
     StrutCapacities, Summary,
 };
 use touchdown_scenario::model::{Leg, Mechanism, PadSurface, Stability};
+use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// How long a footpad stays in contact after its last pushing normal impulse, s: longer than
@@ -150,6 +151,8 @@ pub struct StepTaken<'a> {
 pub struct GearModel {
     /// The gear geometry.
     legs: Vec<Leg>,
+    /// Where the secondaries meet the primary (point 1 or the footpad).
+    arrangement: Arrangement,
     /// Each footpad's surface.
     surfaces: Vec<PadSurface>,
     /// The shared laws.
@@ -274,6 +277,7 @@ impl GearModel {
         };
         let model = GearModel {
             legs: sc.legs.clone(),
+            arrangement: sc.arrangement,
             surfaces: sc.surface.pads.clone(),
             laws,
             walls: state.walls.iter().any(Option::is_some),
@@ -447,14 +451,18 @@ impl GearModel {
     /// Evaluates the laws at the current kinematics with the committed memories.
     fn evaluate(&self, state: &mut GearState) -> Result<(), Fault> {
         for i in 0..self.legs.len() {
-            state.forces[i] =
-                strut_forces(&self.laws, &state.memory[i], &self.legs[i], &state.kin[i]).map_err(
-                    |e| Fault {
-                        law: Law::BearingFriction,
-                        leg: Some(i),
-                        message: e.to_string(),
-                    },
-                )?;
+            state.forces[i] = strut_forces(
+                &self.laws,
+                &state.memory[i],
+                &self.legs[i],
+                self.arrangement,
+                &state.kin[i],
+            )
+            .map_err(|e| Fault {
+                law: Law::BearingFriction,
+                leg: Some(i),
+                message: e.to_string(),
+            })?;
         }
         Ok(())
     }

@@ -6,19 +6,18 @@ use touchdown_scenario::model::Mechanism;
 
 /// Why a multibody engine does not model `mechanism`, or `None` if it does. They take the
 /// trunnion springs through the shared strut laws, the engine and RCS as loads on the vehicle
-/// body and the curbs as loads on the footpads.
+/// body, the curbs as loads on the footpads and the tripod gear with its secondaries attached
+/// at the footpad body.
 pub fn unsupported(mechanism: Mechanism) -> Option<&'static str> {
     match mechanism {
         Mechanism::TrunnionSprings
         | Mechanism::Thrust
         | Mechanism::NozzleCrushing
         | Mechanism::Rcs
-        | Mechanism::Curbs => None,
+        | Mechanism::Curbs
+        | Mechanism::Tripod => None,
         Mechanism::Bending => Some(
             "its primary strut is a rigid stroke joint; a beam-column would need a flexible link",
-        ),
-        Mechanism::Tripod => Some(
-            "its gear is built as the cantilever arrangement, the secondaries meeting the primary at point 1 above the footpad",
         ),
         Mechanism::Soil => Some(
             "soil holds a resting footpad rigid-plastically (eq. 103), a load-limited constraint its contact solver cannot take from an applied force",

@@ -3,14 +3,16 @@
 //!
 //! Both engines apply the strut laws explicitly once per step, so the step must resolve the
 //! stiffest gear mode: the primary strut's stiffest rate on the footpad mass, the secondaries'
-//! on the gear's rotation about its trunnion (eqs. 49-52). A setting the scenario states is
-//! used as stated (and checked); one it leaves out is derived from that mode's angular
-//! frequency ω_max and the contact sphere's radius, with the dimensionless rules below. Every
-//! rule is a ratio of like quantities, so a dynamically similar vehicle (`[similarity]`, a
-//! Froude twin) gets the similar step and contact, and lands as the original does within the
-//! engine's own step convergence (`tests/physics.rs`, Froude twins).
+//! on the gear's rotation about its trunnion (the tripod's on the footpad they meet at)
+//! (eqs. 49-52). A setting the scenario states is used as stated (and checked); one it leaves
+//! out is derived from that mode's angular frequency ω_max and the contact sphere's radius,
+//! with the dimensionless rules below. Every rule is a ratio of like quantities, so a
+//! dynamically similar vehicle (`[similarity]`, a Froude twin) gets the similar step and
+//! contact, and lands as the original does within the engine's own step convergence
+//! (`tests/physics.rs`, Froude twins).
 
 use touchdown_laws::{GearLaws, Honeycomb};
+use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// Default ω_max·Δt: about 39 steps per period of the stiffest gear mode. The 1/6-scale
@@ -58,29 +60,40 @@ pub fn stiffest_rate(h: &Honeycomb) -> f64 {
 }
 
 /// The two explicit gear modes of `sc` with its `laws`: the primary's stiffest rate on the
-/// footpad mass PMASS, the secondaries' on the outer link's rotation about its trunnion seen
-/// at point 1 (links as in `sc.links`).
+/// footpad mass PMASS, and the secondaries': for the cantilever on the outer link's rotation
+/// about its trunnion seen at point 1 (links as in `sc.links`), for the tripod on the footpad
+/// they meet at, together with the primary (the footpad node on its three struts, bounded by
+/// the trace of its stiffness over PMASS).
 pub fn gear_modes(sc: &Scenario, laws: &GearLaws) -> [Mode; 2] {
     let k_primary = stiffest_rate(&laws.primary.honeycomb);
     let sec = &laws.secondary.honeycomb;
     let k_secondary = stiffest_rate(&sec.tension).max(stiffest_rate(&sec.compression));
-    let leg = &sc.legs[0];
     let pmass = sc.footpad.mass;
-    let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
-    let l_outer = sc.links.outer_cylinder_length(leg, &sc.primary);
-    // Rotation about the trunnion seen at point 1: I_B2 / L21².
-    let i_b2 = m_outer * l_outer * l_outer / 3.0 + pmass * leg.l2p * leg.l2p;
-    let m_point1 = i_b2 / (leg.l21 * leg.l21);
-    [
-        Mode {
-            what: "primary strut on the footpad mass",
-            omega: (k_primary / pmass).sqrt(),
+    let primary = Mode {
+        what: "primary strut on the footpad mass",
+        omega: (k_primary / pmass).sqrt(),
+    };
+    let secondaries = match sc.arrangement {
+        Arrangement::Cantilever => {
+            let leg = &sc.legs[0];
+            let m_outer = sc.links.outer_cylinder_mass_ratio * pmass;
+            let l_outer = sc
+                .links
+                .outer_cylinder_length(leg, &sc.primary, sc.arrangement);
+            // Rotation about the trunnion seen at point 1: I_B2 / L21².
+            let i_b2 = m_outer * l_outer * l_outer / 3.0 + pmass * leg.l2p * leg.l2p;
+            let m_point1 = i_b2 / (leg.l21 * leg.l21);
+            Mode {
+                what: "secondary struts on the gear's rotation about its trunnion",
+                omega: (k_secondary / m_point1).sqrt(),
+            }
+        }
+        Arrangement::Tripod => Mode {
+            what: "the three struts on the footpad mass they meet at",
+            omega: ((k_primary + 2.0 * k_secondary) / pmass).sqrt(),
         },
-        Mode {
-            what: "secondary struts on the gear's rotation about its trunnion",
-            omega: (k_secondary / m_point1).sqrt(),
-        },
-    ]
+    };
+    [primary, secondaries]
 }
 
 /// A multibody engine's fixed time step: `stated` (the value of the scenario field `field`) as

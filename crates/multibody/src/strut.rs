@@ -7,14 +7,17 @@
 //!   (compressing on its virgin curve) is a one-sided force bound, the crush load, that the
 //!   engine's joint motor may use to stop the stroke but never to drive it; bearing friction is
 //!   a dry-friction bound μB·(F1 + F2) from the report's statics (eqs. 53-63), with the side load
-//!   FM of the massless-strut closed form;
+//!   FM of the massless-strut closed form; the tripod's primary, a two-force member, has neither
+//!   (FM = 0, FBR = 0: docs/errata.md, "Tripod gear");
 //! - secondary struts: massless two-force members between their trunnions on the vehicle and
-//!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws.
+//!   point 1, on the outer cylinder for the cantilever and at the footpad ball joint BP for the
+//!   tripod, with the double-acting honeycomb and viscous laws.
 
 use nalgebra::Vector3;
 use touchdown_laws::{side_load, GearLaws, GearMemory, LawError};
 use touchdown_record::Law;
 use touchdown_scenario::model::Leg;
+use touchdown_scenario::schema::Arrangement;
 
 /// Geometry and rates of one gear at one state (inertial axes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -31,7 +34,7 @@ pub struct StrutKinematics {
     pub u: [Vector3<f64>; 2],
     /// Secondary trunnions B3, B4, m.
     pub trunnion: [Vector3<f64>; 2],
-    /// Point 1 on the outer cylinder, m.
+    /// Point 1, m: on the outer cylinder (cantilever), the footpad ball joint BP (tripod).
     pub point1: Vector3<f64>,
     /// Strut axis V̂2P (trunnion to footpad, unit).
     pub axis: Vector3<f64>,
@@ -126,19 +129,25 @@ impl StrutForces {
     }
 }
 
-/// The shared laws at one gear state (eqs. 49-63).
+/// The shared laws at one gear state (eqs. 49-63) of a gear in `arrangement`.
 pub fn strut_forces(
     laws: &GearLaws,
     memory: &GearMemory,
     leg: &Leg,
+    arrangement: Arrangement,
     k: &StrutKinematics,
 ) -> Result<StrutForces, LawError> {
     let sec = laws.secondary.forces(k.s, k.s_dot, &k.u, &memory.secondary); // eqs. (49), (51)-(52)
-    let fs = sec.fs;
-    let length = leg.l2p - k.c;
-    let fm = side_load(&fs, &k.axis, leg.l21, length).norm(); // eqs. (53)-(58)
     let p = &laws.primary;
-    let bearing_bound = p.bearing.friction_bound(fm, k.c)?; // eqs. (59)-(63)
+    let bearing_bound = match arrangement {
+        Arrangement::Cantilever => {
+            let length = leg.l2p - k.c;
+            let fm = side_load(&sec.fs, &k.axis, leg.l21, length).norm(); // eqs. (53)-(58)
+            p.bearing.friction_bound(fm, k.c)? // eqs. (59)-(63)
+        }
+        // eqs. (50), (64)-(65) with B1 = BP: no side load, no bearing friction.
+        Arrangement::Tripod => 0.0,
+    };
     let crushing = if k.c_dot > 0.0 {
         p.honeycomb.crush_load(k.c, memory.primary.compression)
     } else {

@@ -6,7 +6,8 @@
 //!   prismatic joint along the undeformed strut axis V̂2P to the inner cylinder, whose origin is
 //!   the footpad ball joint BP (joint coordinate q = extension, so the compression stroke is
 //!   c = −q); the inner body carries the effective footpad mass PMASS and a ball collider of the
-//!   footpad radius PR.
+//!   footpad radius PR. The secondaries attach at point 1 on the outer link (cantilever) or at
+//!   BP on the footpad body (tripod).
 //! - Ground: one fixed body with one half-space per footpad, lowered by PR below the footpad's
 //!   plane Z = −HOLE so that the ball joint BP sits on the plane when the ball touches;
 //!   collision groups pair each footpad with its own plane only.
@@ -18,7 +19,7 @@ use touchdown_frames::gravity_inertial;
 use touchdown_multibody::RapierSettings;
 use touchdown_record::RunError;
 use touchdown_scenario::initial::initial_state;
-use touchdown_scenario::schema::Engine;
+use touchdown_scenario::schema::{Arrangement, Engine};
 use touchdown_scenario::Scenario;
 
 /// Friction coefficient that stands for an obstacle lock (OBST > 0): the footpad sticks
@@ -136,7 +137,10 @@ pub struct GearBodies {
     pub stroke_joint: MultibodyJointHandle,
     /// Index of the stroke degree of freedom in the multibody's generalised coordinates.
     pub stroke_dof: usize,
-    /// Point 1 (secondary attachment) in the outer link's local frame, m.
+    /// The body the secondaries attach to at point 1: the outer link (cantilever) or the
+    /// footpad body (tripod, point 1 at BP).
+    pub point1_body: RigidBodyHandle,
+    /// Point 1 (secondary attachment) in that body's local frame, m.
     pub point1_local: Vector3<f64>,
     /// Strut axis V̂2P in the outer link's local frame (unit).
     pub axis_local: Vector3<f64>,
@@ -236,7 +240,7 @@ pub fn build(sc: &Scenario, rs: &RapierSettings) -> Result<Assembly, RunError> {
     for (i, (leg, surface)) in sc.legs.iter().zip(&sc.surface.pads).enumerate() {
         let axis = (leg.bp - leg.b2) / leg.l2p;
         // Outer cylinder: trunnion B2 to the gland bearing at D1 − D2 above the footpad.
-        let l_outer = sc.links.outer_cylinder_length(leg, prim);
+        let l_outer = sc.links.outer_cylinder_length(leg, prim, sc.arrangement);
         let radius = sc.links.radius(leg);
         let pr = sc.links.contact_radius(leg);
         masses.contact_radius = pr;
@@ -320,6 +324,10 @@ pub fn build(sc: &Scenario, rs: &RapierSettings) -> Result<Assembly, RunError> {
             .multibody_joints
             .insert(outer, footpad, stroke, true)
             .ok_or_else(|| not_built("the stroke joint could not be inserted"))?;
+        let (point1_body, point1_local) = match sc.arrangement {
+            Arrangement::Cantilever => (outer, leg.b1() - outer_com),
+            Arrangement::Tripod => (footpad, Vector3::zeros()),
+        };
         gears.push(GearBodies {
             outer,
             footpad,
@@ -327,7 +335,8 @@ pub fn build(sc: &Scenario, rs: &RapierSettings) -> Result<Assembly, RunError> {
             plane_collider,
             stroke_joint,
             stroke_dof: 0, // set below, once every link is in
-            point1_local: leg.b1() - outer_com,
+            point1_body,
+            point1_local,
             axis_local: axis,
             outer_inertia,
             footpad_inertia,

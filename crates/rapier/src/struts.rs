@@ -10,7 +10,8 @@
 //!   per-DOF `frictionloss`) bounded by μB·(F1 + F2) from the report's statics (eqs. 53-63),
 //!   with the side load FM of the massless-strut closed form.
 //! - Secondary struts: massless two-force members between their trunnions on the vehicle and
-//!   point 1 on the outer cylinder, with the double-acting honeycomb and viscous laws; explicit.
+//!   point 1, on the outer cylinder (cantilever) or at the footpad (tripod), with the
+//!   double-acting honeycomb and viscous laws; explicit.
 
 use crate::assembly::{body_state, to_na, to_rapier, GearBodies};
 use nalgebra::Vector3;
@@ -35,8 +36,9 @@ pub fn kinematics(
         ),
         None => (0.0, 0.0),
     };
-    let point1 = outer.point(&gear.point1_local);
-    let point1_velocity = outer.velocity_at(&point1);
+    let attached = body_state(world, gear.point1_body);
+    let point1 = attached.point(&gear.point1_local);
+    let point1_velocity = attached.velocity_at(&point1);
     let mut k = StrutKinematics {
         c: -q,
         c_dot: -q_dot,
@@ -78,7 +80,7 @@ pub fn apply(
     for (j, force) in f.secondary().into_iter().enumerate() {
         let on_vehicle = k.u[j] * force;
         push(world, vehicle, &on_vehicle, &k.trunnion[j]);
-        push(world, gear.outer, &-on_vehicle, &k.point1);
+        push(world, gear.point1_body, &-on_vehicle, &k.point1);
     }
     if let Some((mb, link)) = world.multibody_joints.get_mut(gear.stroke_joint) {
         mb.frictions_mut()[gear.stroke_dof] = f.bearing_bound;

@@ -381,7 +381,6 @@ t_end = {t_end}            # E: a landing runs to its end time (the decision, st
     }
 
     fn landing(&self, vehicle_file: &str) -> String {
-        let tripod = self.arrangement == crate::schema::Arrangement::Tripod;
         format!(
             r#"# A first landing of {name} (drafted by `touchdown new`): the touchdown given (G), on rigid
 # ground, the footpads sliding on it with the friction of regolith on a metal pad (E).
@@ -404,22 +403,12 @@ vertical_velocity = {vv}   # G: negative down
 horizontal_velocity = [0.0, {vh}]   # G: along +Y (downhill; toward leg 2 of four)
 
 [engines]
-applicable = [{engines}]   # {engines_note}
+applicable = ["core", "rapier", "mujoco"]   # every engine (docs/which-engine.md)
 "#,
             name = self.name.replace('"', "'"),
             vv = num(self.vertical_velocity),
             vh = num(self.horizontal_velocity),
             slope = num(self.slope),
-            engines = if tripod {
-                r#""core""#
-            } else {
-                r#""core", "rapier", "mujoco""#
-            },
-            engines_note = if tripod {
-                "the multibody engines do not build the tripod yet (docs/which-engine.md)"
-            } else {
-                "every engine (docs/which-engine.md)"
-            },
         )
     }
 }

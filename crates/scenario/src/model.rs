@@ -594,9 +594,19 @@ pub struct GearLinks {
 
 impl GearLinks {
     /// Length of a gear's outer-cylinder link, m: trunnion B2 to the gland bearing at D1 − D2
-    /// above the footpad (at least L21, so that point 1 is on it).
-    pub fn outer_cylinder_length(&self, leg: &Leg, primary: &PrimaryStrut) -> f64 {
-        (leg.l2p - primary.inner_cylinder_length + primary.initial_overlap).max(leg.l21)
+    /// above the footpad; for the cantilever at least L21, so that point 1 is on it (the
+    /// tripod's point 1 is the footpad, on the inner cylinder).
+    pub fn outer_cylinder_length(
+        &self,
+        leg: &Leg,
+        primary: &PrimaryStrut,
+        arrangement: Arrangement,
+    ) -> f64 {
+        let gland = leg.l2p - primary.inner_cylinder_length + primary.initial_overlap;
+        match arrangement {
+            Arrangement::Cantilever => gland.max(leg.l21),
+            Arrangement::Tripod => gland,
+        }
     }
 
     /// Radius of a footpad's contact sphere, m: 0.002 L2P. The footpad body turns with the
