@@ -113,12 +113,6 @@ fn area(curve: &LoadStroke, x: f64) -> f64 {
     a + 0.5 * (prev.1 + f) * (x - prev.0)
 }
 
-/// Maximum primary stroke, m, of a symmetric vertical drop on flat ground with locked
-/// footpads ([`analytic_drop_strokes`]).
-pub fn analytic_drop_stroke(sc: &Scenario) -> f64 {
-    analytic_drop_strokes(sc)[0]
-}
-
 /// Maximum strokes of leg 1, m, of a symmetric vertical drop on flat ground with locked
 /// footpads, frictionless and without viscous forces, computed independently of any engine:
 /// the primary's compression c and the secondaries' S31, S41 (tension positive). At maximum

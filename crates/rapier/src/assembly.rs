@@ -137,8 +137,8 @@ pub struct GearBodies {
     pub stroke_joint: MultibodyJointHandle,
     /// Index of the stroke degree of freedom in the multibody's generalised coordinates.
     pub stroke_dof: usize,
-    /// The body the secondaries attach to at point 1: the outer link (cantilever) or the
-    /// footpad body (tripod, point 1 at BP).
+    /// The body the secondaries attach to at point 1: `outer` (cantilever) or `footpad`
+    /// (tripod, point 1 at BP), never another.
     pub point1_body: RigidBodyHandle,
     /// Point 1 (secondary attachment) in that body's local frame, m.
     pub point1_local: Vector3<f64>,

@@ -36,7 +36,12 @@ pub fn kinematics(
         ),
         None => (0.0, 0.0),
     };
-    let attached = body_state(world, gear.point1_body);
+    // Point 1 is on the outer link or the footpad body, both read above.
+    let attached = if gear.point1_body == gear.footpad {
+        pad
+    } else {
+        outer
+    };
     let point1 = attached.point(&gear.point1_local);
     let point1_velocity = attached.velocity_at(&point1);
     let mut k = StrutKinematics {
