@@ -124,16 +124,24 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
     }
 }
 
-/// The maxima the engines part on that no engine settles: the uphill primary of leg 4 on
-/// `fig-25-26`, made when the vehicle, tipped up by its downhill legs' strike, falls back onto
-/// its uphill legs at 0.66 s, after their footpads left their spikes at 0.01 s and hopped on
-/// their gears (docs/engines.md, "Rounding-decided channels"). On that mirror-symmetric
-/// landing the core strokes them 16.0 and 16.6 mm, rapier 16.5 and 19.0 mm, MuJoCo 14.9 and
-/// 12.7 mm: each multibody engine parts from its own mirror image by 14-15 %, so neither is a
-/// reference for the other (leg 3's two are within the 3 % asked, and the core's copies leave
-/// its verdict against the core undetermined). An open defect: the test fails once a pair on this list agrees,
-/// to take it off.
-const ROCK_BACK_DISAGREEMENTS: &[(&str, usize)] = &[("fig-25-26.toml", 4)];
+/// The maxima the engines part on that no engine settles: the uphill primaries the vehicle
+/// makes when, tipped up by its downhill legs' strike, it falls back onto its uphill legs
+/// (docs/engines.md, "Rounding-decided channels"). On these mirror-symmetric landings the
+/// core's mirror legs are equal to the last bit and its copies move them by a few per cent;
+/// MuJoCo parts from its own mirror image (on `fig-25-26` its mirror footpads' spike forces
+/// differ by 4e-7 of their value after the first step, its near-rigid contacts and the spikes'
+/// friction of 100 amplifying the rounding of its contact solve):
+/// - `fig-25-26` leg 4 (after the uphill footpads left their spikes at 0.01 s and hopped on
+///   their gears, the fall back at 0.66 s): core 16.0 and 16.6 mm on legs 3 and 4, rapier
+///   16.5 and 19.0 mm, MuJoCo 17.7 and 10.0 mm;
+/// - `table-i-2-2-vv6` leg 3: core 8.01 and 7.19 mm (its copies 7.19-8.59 mm), rapier 8.38
+///   and 8.40 mm, MuJoCo 7.15 and 8.16 mm.
+///
+/// MuJoCo's mirror legs part by 56 % and 13 % (14.9 and 12.7, 7.61 and 8.52 mm before its
+/// contacts got their margin, docs/engines.md "Froude twins"), so it is no reference for rapier
+/// there. An open defect: the test fails once a pair on this list agrees, to take it off.
+const ROCK_BACK_DISAGREEMENTS: &[(&str, usize)] =
+    &[("fig-25-26.toml", 4), ("table-i-2-2-vv6.toml", 3)];
 
 #[test]
 fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier() {

@@ -65,29 +65,8 @@ fn differences(
         .collect()
 }
 
-/// Measures of an engine's twin known to part from the model by more than its step convergence,
-/// an open defect: MuJoCo's twin parts from the model from its first step, for a reason not
-/// found (docs/engines.md, "Froude twins"). On `fig-25-26` standing on spikes, whose uphill
-/// footpads leave their spikes and rattle on their gears as the vehicle rocks, every measure
-/// parts by more than its step convergence: the twin 0.39, 0.59, 0.44, 0.61, 0.18 and 0.094 %
-/// (primary strokes, secondary tensions and compressions, stability distance, peak pitch rate,
-/// peak specific force) against 0.16, 0.39, 0.35, 0.086, 0.0065 and 0.048 % at half the step
-/// (`cargo test --test integration similarity -- --nocapture` prints them). With the footpads
-/// held by a 1 ft wall instead the twin parts by 0.26, 0.59, 0.71, 0.038 and 0.10 % on the
-/// first five: the defect is MuJoCo's, not the restraint's. A listed measure must still fail,
-/// or the list is out of date.
-const TWIN_OPEN: &[(&str, &str)] = &[
-    ("MuJoCo", "maximum primary strokes"),
-    ("MuJoCo", "maximum secondary tensions"),
-    ("MuJoCo", "maximum secondary compressions"),
-    ("MuJoCo", "minimum stability distance"),
-    ("MuJoCo", "peak pitch rate"),
-    ("MuJoCo", "peak specific force"),
-];
-
 /// The twin's difference from the model is within the model's own step convergence (its
-/// difference at half the step), measure by measure, and the outcome is the same; a measure of
-/// [`TWIN_OPEN`] must still part by more.
+/// difference at half the step), measure by measure, and the outcome is the same.
 fn assert_twins(engine: &str, model: &Summary, half_step: &Summary, twin: &Summary) {
     assert_eq!(model.outcome, twin.outcome, "{engine}: outcome");
     let m = measures(model, 1.0, 1.0);
@@ -106,17 +85,8 @@ fn assert_twins(engine: &str, model: &Summary, half_step: &Summary, twin: &Summa
         .collect();
     eprintln!("{engine}: {}", table.join("; "));
     for ((name, s), (_, t)) in step.iter().zip(&similar) {
-        let within = *t <= s.max(1e-9);
-        if TWIN_OPEN.contains(&(engine, *name)) {
-            assert!(
-                !within,
-                "{engine}: the Froude twin's {name} is now within the step convergence: take it off TWIN_OPEN\n{}",
-                table.join("\n")
-            );
-            continue;
-        }
         assert!(
-            within,
+            *t <= s.max(1e-9),
             "{engine}: the Froude twin's {name} differs by more than the step convergence\n{}",
             table.join("\n")
         );

@@ -24,7 +24,8 @@
 //!   enabled for the runner's energy balance.
 //! - One ground plane per footpad at its HOLE depth (lowered by the contact radius), paired
 //!   with its footpad only by collision bitmasks (bit n on both), with the same contact
-//!   settings on both geoms of the pair.
+//!   settings on both geoms of the pair; a footpad bears from a margin of a millionth of the
+//!   contact width above its plane ([`CONTACT_MARGIN_PER_WIDTH`]).
 //!
 //! Only what the scene needs is written: a frictionless footpad gets a frictionless contact
 //! (`condim` 1), no lock is written for a surface without obstacles.
@@ -45,6 +46,16 @@ pub const LOCK_FRICTION: f64 = 100.0;
 /// over the contact width (`solimp[2]`, `MujocoSettings::contact_width`), i.e. nearly a hard
 /// contact, so that footpads do not sink.
 pub const CONTACT_IMPEDANCE: [f64; 2] = [0.99, 0.999];
+
+/// `margin` of the footpad contacts per contact width (`solimp[2]`): a footpad bears on its
+/// plane from 1e-6 of the width above it (0.1 nm on the 1/6-scale model). The touchdown state
+/// puts the first footpad on its plane, where MuJoCo (which takes a contact only below its
+/// margin) would otherwise let the rounding of the vehicle's pose decide whether it bears in
+/// the first step: on `fig-25-26` the model missed its first step's contact (56 µm deep at the
+/// next) while its Froude twin, 1e-16 lower, took it. A ratio of the width, so a similar
+/// vehicle gets the similar margin (docs/engines.md, "Froude twins";
+/// `tests/integration/similarity.rs`).
+pub const CONTACT_MARGIN_PER_WIDTH: f64 = 1e-6;
 
 /// Version of this generator, written into every exported file.
 pub const GENERATOR: &str = concat!("touchdown-mujoco ", env!("CARGO_PKG_VERSION"));
@@ -83,6 +94,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
     let solref = nums(&[mj.contact_timeconst, mj.contact_damping_ratio]);
     let [i0, i1] = CONTACT_IMPEDANCE;
     let solimp = nums(&[i0, i1, mj.contact_width]);
+    let margin = nums(&[CONTACT_MARGIN_PER_WIDTH * mj.contact_width]);
     let quat = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(init.t_bi));
     let j: &Matrix3<f64> = &sc.vehicle.inertia;
 
@@ -122,7 +134,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         let r = sc.links.contact_radius(leg);
         let _ = writeln!(
             w,
-            "    <!-- leg {n}'s ground plane: Z = -HOLE = {} m, lowered by the contact radius so that BP is on it when the sphere touches -->\n    <geom name=\"leg{n}_plane\" type=\"plane\" pos=\"0 0 {}\" size=\"0 0 1\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{}/>",
+            "    <!-- leg {n}'s ground plane: Z = -HOLE = {} m, lowered by the contact radius so that BP is on it when the sphere touches -->\n    <geom name=\"leg{n}_plane\" type=\"plane\" pos=\"0 0 {}\" size=\"0 0 1\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{}/>",
             nums(&[pad.plane()]),
             nums(&[pad.plane() - r]),
             contact_friction(pad.locked(), pad.friction),
@@ -164,7 +176,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         };
         let _ = writeln!(
             w,
-            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the contacts -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the contacts -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
             vec3(&leg.b3),
             vec3(&leg.b4),
             vec3(&leg.b2),
