@@ -16,8 +16,8 @@
 //!   stroke joint, N, positive extends), `legN_s31`, `legN_s41` (tendon forces, N, positive
 //!   lengthens). The stroke joint's dry friction (`frictionloss`, set every step) is the bearing
 //!   friction bound plus, while the honeycomb crushes on a plateau, the crush load: a bound that
-//!   can stop the stroke but never drive it, solved by MuJoCo's constraint solver with the
-//!   contacts' stiffness.
+//!   can stop the stroke but never drive it, solved by MuJoCo's constraint solver as stiff as
+//!   the step allows (time constant 2Δt, MuJoCo's floor).
 //! - Sensors for the runner, per gear: `legN_contact` (the net force of the plane on the
 //!   footpad, world axes, and the number of contacts), `legN_pad_velocity`, `legN_pad_rate`
 //!   (the footpad's velocity and angular velocity, world axes); MuJoCo's energy computation is
@@ -94,6 +94,12 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
     let solref = nums(&[mj.contact_timeconst, mj.contact_damping_ratio]);
     let [i0, i1] = CONTACT_IMPEDANCE;
     let solimp = nums(&[i0, i1, mj.contact_width]);
+    // The stroke joint's dry friction holds the crush plateau as stiff as the step allows
+    // (MuJoCo's floor, twice the step), whatever the contacts' time constant.
+    let solref_friction = nums(&[
+        touchdown_scenario::model::Mujoco::MIN_TIMECONST_PER_STEP * mj.timestep,
+        mj.contact_damping_ratio,
+    ]);
     let margin = nums(&[CONTACT_MARGIN_PER_WIDTH * mj.contact_width]);
     let quat = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(init.t_bi));
     let j: &Matrix3<f64> = &sc.vehicle.inertia;
@@ -176,7 +182,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         };
         let _ = writeln!(
             w,
-            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the contacts -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the step allows -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref_friction}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
             vec3(&leg.b3),
             vec3(&leg.b4),
             vec3(&leg.b2),
