@@ -8,10 +8,12 @@
 use std::process::Command;
 use touchdown_mujoco::{GearIndex, MjArrays, ModelSizes};
 use touchdown_mujoco::{MujocoError, MujocoLanding};
+use touchdown_registry::{time_step, Engine};
 use touchdown_scenario::schema::Detached;
 use touchdown_scenario::{Scenario, ScenarioError};
 use touchdown_tests::{
     assert_drop_strokes_to_the_energy_balance, mujoco, python, root, scenario, validation_landings,
+    variant,
 };
 
 #[test]
@@ -92,7 +94,7 @@ fn every_scenario_exports_to_a_model_mujoco_loads_in_the_touchdown_state() {
             };
             assert_eq!(r["footpad_condim"][i], want, "{name}: leg {} condim", i + 1);
         }
-        let step = touchdown_registry::time_step(touchdown_registry::Engine::Mujoco, sc).unwrap();
+        let step = time_step(Engine::Mujoco, sc).unwrap();
         assert_eq!(r["timestep_s"], step, "{name}");
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -121,6 +123,29 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
         let s = mujoco(&path, "engine");
         assert_eq!(s.engine, "mujoco");
         assert_drop_strokes_to_the_energy_balance(&sc, &s);
+    }
+}
+
+/// A footpad that starts on its plane bears from the first step, on the model and on its Froude
+/// twin alike: the contacts' margin of a millionth of the contact width (docs/engines.md,
+/// "Froude twins") keeps the last bit of the touchdown pose from deciding it. Without it the
+/// flat drop's four footpads, exactly on their planes, first bore at the end of the second
+/// step, and `fig-25-26`'s twin parted from its model from that step on.
+#[test]
+fn footpads_on_their_planes_at_touchdown_bear_from_the_first_step_on_mujoco() {
+    let window = "[integrator]\nt_end = 0.001\n";
+    let twin = "[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n";
+    for (name, extra) in [
+        ("model", window.to_string()),
+        ("twin", format!("{twin}{window}")),
+    ] {
+        let path = variant("flat-drop.toml", &format!("first-step-{name}"), &extra);
+        let sc = Scenario::load(&path).unwrap();
+        let step = time_step(Engine::Mujoco, &sc).unwrap();
+        let s = mujoco(&path, &format!("first-step-{name}"));
+        for (leg, first) in s.first_contact_s.iter().enumerate() {
+            assert_eq!(*first, Some(step), "{name} leg {}: {first:?}", leg + 1);
+        }
     }
 }
 
