@@ -49,6 +49,10 @@ pub fn scenario(name: &str) -> PathBuf {
     root().join("scenarios").join(name)
 }
 
+/// The `[similarity]` table of the Froude twin: the 1/6-scale model six times as large under a
+/// sixth of the gravity (length 6, mass 216, time 6), TOML for [`variant`]'s `extra`.
+pub const FROUDE_TWIN: &str = "[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n";
+
 /// A variant of scenario `base` (under `scenarios/`) named `name`, with `extra` TOML on top,
 /// written to a temporary file (the MuJoCo runner and the CLI read files).
 pub fn variant(base: &str, name: &str, extra: &str) -> PathBuf {

@@ -13,7 +13,7 @@ use touchdown_scenario::schema::Detached;
 use touchdown_scenario::{Scenario, ScenarioError};
 use touchdown_tests::{
     assert_drop_strokes_to_the_energy_balance, mujoco, python, root, scenario, validation_landings,
-    variant,
+    variant, FROUDE_TWIN,
 };
 
 #[test]
@@ -134,10 +134,9 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
 #[test]
 fn footpads_on_their_planes_at_touchdown_bear_from_the_first_step_on_mujoco() {
     let window = "[integrator]\nt_end = 0.001\n";
-    let twin = "[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n";
     for (name, extra) in [
         ("model", window.to_string()),
-        ("twin", format!("{twin}{window}")),
+        ("twin", format!("{FROUDE_TWIN}{window}")),
     ] {
         let path = variant("flat-drop.toml", &format!("first-step-{name}"), &extra);
         let sc = Scenario::load(&path).unwrap();

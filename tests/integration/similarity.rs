@@ -7,7 +7,7 @@
 use touchdown_record::Summary;
 use touchdown_registry::{time_step, Engine};
 use touchdown_scenario::Scenario;
-use touchdown_tests::{mujoco, variant};
+use touchdown_tests::{mujoco, variant, FROUDE_TWIN};
 
 const LENGTH: f64 = 6.0;
 const TIME: f64 = 6.0;
@@ -15,7 +15,6 @@ const BASE: &str = "fig-25-26.toml";
 /// The landing's first 0.3 s: first contact at 0.053 s, every maximum, the pitch-rate peak at
 /// 0.057 s and the stops' engagement; the twin's window is six times as long.
 const WINDOW: &str = "[integrator]\nt_end = 0.3\n";
-const TWIN: &str = "[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n";
 
 /// The landing's measures in the model's dimensions, each a list over the legs or struts:
 /// a twin's lengths divided by [`LENGTH`], its rates multiplied by [`TIME`].
@@ -105,7 +104,7 @@ fn core_twins(engine: &str, integrator: &str) {
             it.dist /= 2.0;
         })
         .unwrap();
-    let twin = Scenario::load(variant(BASE, engine, &format!("{TWIN}{window}"))).unwrap();
+    let twin = Scenario::load(variant(BASE, engine, &format!("{FROUDE_TWIN}{window}"))).unwrap();
     assert_eq!(twin.vehicle.gravity * LENGTH, model.vehicle.gravity);
     let run = |sc: &Scenario| touchdown_core::run(sc).unwrap();
     assert_twins("core", &run(&model), &run(&half), &run(&twin));
@@ -132,7 +131,12 @@ fn froude_twins_land_alike_on_the_rapier_rebuild() {
         .clone()
         .with_rapier(|r| r.timestep = Some(step / 2.0))
         .unwrap();
-    let twin = Scenario::load(variant(BASE, "twin-rapier", &format!("{TWIN}{WINDOW}"))).unwrap();
+    let twin = Scenario::load(variant(
+        BASE,
+        "twin-rapier",
+        &format!("{FROUDE_TWIN}{WINDOW}"),
+    ))
+    .unwrap();
     let twin_step = time_step(Engine::Rapier, &twin).unwrap();
     assert!((twin_step / step - TIME).abs() < 1e-12, "{twin_step} s");
     let run = |sc: &Scenario| touchdown_rapier::run(sc).unwrap();
@@ -148,7 +152,7 @@ fn froude_twins_land_alike_on_mujoco() {
         "twin-mujoco-half-step",
         &format!("{WINDOW}[engines.mujoco]\ntimestep = {:e}\n", step / 2.0),
     );
-    let twin_path = variant(BASE, "twin-mujoco", &format!("{TWIN}{WINDOW}"));
+    let twin_path = variant(BASE, "twin-mujoco", &format!("{FROUDE_TWIN}{WINDOW}"));
     assert_twins(
         "MuJoCo",
         &mujoco(&model_path, "twin-model"),
@@ -160,7 +164,7 @@ fn froude_twins_land_alike_on_mujoco() {
 #[test]
 fn a_similar_vehicle_is_every_quantity_scaled_by_its_dimensions() {
     let model = Scenario::load(variant(BASE, "twin-units-model", "")).unwrap();
-    let twin = Scenario::load(variant(BASE, "twin-units", TWIN)).unwrap();
+    let twin = Scenario::load(variant(BASE, "twin-units", FROUDE_TWIN)).unwrap();
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
     assert!(close(twin.vehicle.mass, 216.0 * model.vehicle.mass));
     assert!(close(
@@ -190,8 +194,12 @@ fn a_similar_vehicle_is_every_quantity_scaled_by_its_dimensions() {
         "",
     ))
     .unwrap();
-    let lander_twin =
-        Scenario::load(variant("robotic-lander-nominal.toml", "twin-derived", TWIN)).unwrap();
+    let lander_twin = Scenario::load(variant(
+        "robotic-lander-nominal.toml",
+        "twin-derived",
+        FROUDE_TWIN,
+    ))
+    .unwrap();
     for engine in [Engine::Rapier, Engine::Mujoco] {
         let (a, b) = (
             time_step(engine, &lander).unwrap(),

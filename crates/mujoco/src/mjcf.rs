@@ -53,8 +53,8 @@ pub const CONTACT_IMPEDANCE: [f64; 2] = [0.99, 0.999];
 /// margin) would otherwise let the rounding of the vehicle's pose decide whether it bears in
 /// the first step: on `fig-25-26` the model missed its first step's contact (56 µm deep at the
 /// next) while its Froude twin, 1e-16 lower, took it. A ratio of the width, so a similar
-/// vehicle gets the similar margin (docs/engines.md, "Froude twins";
-/// `tests/integration/similarity.rs`).
+/// vehicle gets the similar margin (docs/engines.md, "Froude twins"; `tests/integration/mujoco.rs`,
+/// `footpads_on_their_planes_at_touchdown_bear_from_the_first_step_on_mujoco`).
 pub const CONTACT_MARGIN_PER_WIDTH: f64 = 1e-6;
 
 /// Version of this generator, written into every exported file.
