@@ -148,6 +148,16 @@ fn footpads_on_their_planes_at_touchdown_bear_from_the_first_step_on_mujoco() {
     }
 }
 
+/// A fully plastic end stop (e = 0) lands on MuJoCo, to its bottomed secondaries, with its
+/// balance within 1 % of the energy put in (0.03 %); the core and rapier:
+/// `physics::a_plastic_stop_lands_on_every_engine`.
+#[test]
+fn a_plastic_stop_lands_on_mujoco() {
+    let (name, extra) = crate::physics::PLASTIC_STOPS_TO_THE_BOTTOMING;
+    let s = mujoco(&variant("fig-25-26.toml", name, extra), name);
+    crate::physics::assert_plastic_stops_land(&s);
+}
+
 /// The maxima the engines part on that no engine settles: the uphill primaries the vehicle
 /// makes when, tipped up by its downhill legs' strike, it falls back onto its uphill legs
 /// (docs/engines.md, "Rounding-decided channels"). On these mirror-symmetric landings the

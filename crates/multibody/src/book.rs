@@ -198,6 +198,8 @@ pub struct GearState {
     walls: Vec<Option<ObstacleWall>>,
     /// The walls' force on each footpad over the current step, N, inertial axes (z = 0).
     wall_forces: Vec<Vector3<f64>>,
+    /// Each footpad's velocity at BP at the start of the current step, m/s, inertial.
+    pad_velocity: Vec<Vector3<f64>>,
     /// Work exchanged with each mechanism.
     ledger: EnergyLedger,
     /// Deepest footpad penetration into its plane so far, m.
@@ -266,6 +268,7 @@ impl GearModel {
             curb_memory: curbs.as_ref().map_or_else(Vec::new, Curbs::memories),
             curb_forces: vec![Vector3::zeros(); n],
             wall_forces: vec![Vector3::zeros(); n],
+            pad_velocity: vec![Vector3::zeros(); n],
             ledger: EnergyLedger::default(),
             max_penetration: 0.0,
             stability: StabilityTracker::new(&sc.stability, gravity, n, 0.0),
@@ -368,8 +371,8 @@ impl GearModel {
         for (i, pad) in pads.iter().enumerate() {
             self.book_contact(state, i, pad, now.t, dt);
         }
-        self.book_struts(state);
-        self.book_applied(state, before, now.vehicle, dt);
+        self.book_struts(state)?;
+        self.book_applied(state, before, now.vehicle, dt, &pad_velocity);
         self.evaluate(state)?;
         let energy = self.settle(state, now, Some(&before.velocity), pad_velocity)?;
         Self::update_extremes(state, now.t, now.vehicle);
@@ -402,17 +405,21 @@ impl GearModel {
         Ok(energy)
     }
 
-    /// Books the work of the laws' forces over the step just taken (`previous` → `kin`) and
-    /// commits the honeycomb memories at the new strokes.
-    fn book_struts(&self, state: &mut GearState) {
-        let steps = state.previous.iter().zip(&state.kin).zip(&state.forces);
-        for (((a, b), f), memory) in steps.zip(&mut state.memory) {
-            let w = f.work(a, b);
+    /// Books the work of the laws over the step just taken (`previous` → `kin`), their path
+    /// integral from their forces at both ends ([`StrutForces::work`]; at the end with the
+    /// memory committed before the step, the memory the step's strokes load), and commits the
+    /// honeycomb memories at the new strokes.
+    fn book_struts(&self, state: &mut GearState) -> Result<(), Fault> {
+        for i in 0..self.legs.len() {
+            let (a, b) = (&state.previous[i], &state.kin[i]);
+            let end = self.forces_at(i, &state.memory[i], b)?;
+            let w = state.forces[i].work(&end, a, b);
             state.ledger.honeycomb += w.honeycomb;
             state.ledger.viscous += w.viscous;
             state.ledger.bearing += w.bearing;
-            self.laws.commit(b.c, b.s, memory);
+            self.laws.commit(b.c, b.s, &mut state.memory[i]);
         }
+        Ok(())
     }
 
     /// Books footpad `i`'s contact `pad` over the step ending at time `t` (s): the normal part of
@@ -448,21 +455,24 @@ impl GearModel {
         }
     }
 
+    /// The laws' forces on gear `i` at the kinematics `k` with the honeycomb memory `memory`.
+    fn forces_at(
+        &self,
+        i: usize,
+        memory: &GearMemory,
+        k: &StrutKinematics,
+    ) -> Result<StrutForces, Fault> {
+        strut_forces(&self.laws, memory, &self.legs[i], self.arrangement, k).map_err(|e| Fault {
+            law: Law::BearingFriction,
+            leg: Some(i),
+            message: e.to_string(),
+        })
+    }
+
     /// Evaluates the laws at the current kinematics with the committed memories.
     fn evaluate(&self, state: &mut GearState) -> Result<(), Fault> {
         for i in 0..self.legs.len() {
-            state.forces[i] = strut_forces(
-                &self.laws,
-                &state.memory[i],
-                &self.legs[i],
-                self.arrangement,
-                &state.kin[i],
-            )
-            .map_err(|e| Fault {
-                law: Law::BearingFriction,
-                leg: Some(i),
-                message: e.to_string(),
-            })?;
+            state.forces[i] = self.forces_at(i, &state.memory[i], &state.kin[i])?;
         }
         Ok(())
     }
@@ -490,8 +500,9 @@ impl GearModel {
         };
         state.applied.evaluate(t, v, first_contact)?;
         for (i, wall) in state.walls.iter().enumerate() {
+            state.pad_velocity[i] = pad_velocity(i);
             if let Some(w) = wall {
-                state.wall_forces[i] = w.force(state.kin[i].footpad.xy(), &pad_velocity(i));
+                state.wall_forces[i] = w.force(state.kin[i].footpad.xy(), &state.pad_velocity[i]);
             }
         }
         let Some(curbs) = &self.curbs else {
@@ -524,29 +535,45 @@ impl GearModel {
 
     /// Books the work of the applied loads over the step from `before` to `after` (`dt` s long)
     /// into the mechanisms account (done on the vehicle and the footpads, so it counts
-    /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements;
-    /// the thrust's and the RCS's positive work is also booked as energy put in.
+    /// negative): the engine and RCS loads', and the curbs' on the footpads' displacements (a
+    /// crush law's plateau); the thrust's and the RCS's positive work is also booked as energy
+    /// put in. The walls' work is the contact's, as a locked footpad's lateral impulses are,
+    /// booked as their impulses' on the mean of the footpad's velocities at BP before and after
+    /// the step (`pad_velocity(i)` after, m/s, inertial): the stiff spring-damper's work on the
+    /// footpad's motion, not its force on a displacement one step late.
     fn book_applied(
         &self,
         state: &mut GearState,
         before: &BodyMotion,
         after: &BodyMotion,
         dt: f64,
+        pad_velocity: impl Fn(usize) -> Vector3<f64>,
     ) {
         let applied = state.applied.step_work(before, after, dt);
         state.ledger.mechanisms -= applied.applied;
         state.ledger.driving_input += applied.driving.max(0.0);
-        let work = |forces: &[Vector3<f64>]| -> f64 {
-            let steps = state.previous.iter().zip(&state.kin).zip(forces);
-            steps
-                .map(|((a, b), f)| f.dot(&(b.footpad - a.footpad)))
-                .sum()
-        };
         if self.curbs.is_some() {
-            state.ledger.mechanisms -= work(&state.curb_forces);
+            let steps = state
+                .previous
+                .iter()
+                .zip(&state.kin)
+                .zip(&state.curb_forces);
+            let work: f64 = steps
+                .map(|((a, b), f)| f.dot(&(b.footpad - a.footpad)))
+                .sum();
+            state.ledger.mechanisms -= work;
         }
-        // The walls' work is the contact's, as a locked footpad's lateral impulses are.
-        state.ledger.events += work(&state.wall_forces);
+        if self.walls {
+            let pads = state
+                .wall_forces
+                .iter()
+                .zip(&state.pad_velocity)
+                .enumerate();
+            let work: f64 = pads
+                .map(|(i, (f, v))| f.dot(&(0.5 * (v + pad_velocity(i)) * dt)))
+                .sum();
+            state.ledger.events += work;
+        }
     }
 
     /// The divergence checks after a step: the run budget (`integrator.max_steps`) spent after

@@ -34,14 +34,6 @@ pub const WIDTH_PER_CONTACT_RADIUS: f64 = 0.1;
 /// stable below 2).
 pub const MAX_OMEGA_DT: f64 = 1.0;
 
-/// The smallest end-stop coefficient of restitution the multibody engines model. Below it the
-/// unloading curve starts n = 2/e² − 1 ≥ 199 times as steep as the stop's loading rate, which
-/// their explicit step does not resolve: at e = 0 and 0.02 both stop on the energy guard (2 %
-/// of the energy put in) on `fig-25-26` and `near-boundary-overturn`, at 0.05 they end within
-/// 0.1 % of it, at 0.1 within 1.2 % (docs/errata.md, "End stops"). The core models every e in
-/// [0, 1].
-pub const MIN_STOP_RESTITUTION: f64 = 0.1;
-
 /// A gear mode the explicit step must resolve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Mode {
@@ -193,10 +185,10 @@ impl MujocoSettings {
 /// Checks a multibody engine's fixed time step `dt` (s) against the run budget
 /// (`integrator.max_steps` steps to `integrator.t_end`) and the explicit gear `modes`
 /// ([`gear_modes`]). (The obstacle walls are built no stiffer than the step resolves,
-/// `crate::wall`, so they never refuse it.) The error, on the scenario field `field` that sets
-/// the step (`stated`: the file states it; otherwise it was derived), says which mode is too
-/// stiff and the largest step allowed. An end stop less elastic than [`MIN_STOP_RESTITUTION`]
-/// is refused on its field.
+/// `crate::wall`, so they never refuse it; nor does an end stop's unloading, steep as it is at
+/// small restitutions, which releases the stop rather than loading a stiffness.) The error, on
+/// the scenario field `field` that sets the step (`stated`: the file states it; otherwise it
+/// was derived), says which mode is too stiff and the largest step allowed.
 fn check_step(
     sc: &Scenario,
     modes: &[Mode; 2],
@@ -204,19 +196,6 @@ fn check_step(
     field: &str,
     stated: bool,
 ) -> Result<(), ScenarioError> {
-    for (diagram, ls) in sc.strut_diagrams() {
-        if ls.stop_restitution < MIN_STOP_RESTITUTION {
-            let field = format!("{diagram}.stop_restitution");
-            return Err(ScenarioError::field(
-                sc.file_of(&field),
-                field.as_str(),
-                format!(
-                    "{} is below {MIN_STOP_RESTITUTION}, the least elastic end stop the multibody engines model: their explicit step does not resolve the start of its unloading curve (2/e² − 1 times as steep as the stop's loading rate) and the energy balance fails; expected a coefficient of restitution in [{MIN_STOP_RESTITUTION}, 1] on this engine (the core models [0, 1])",
-                    ls.stop_restitution
-                ),
-            ));
-        }
-    }
     let origin = if stated {
         String::new()
     } else {

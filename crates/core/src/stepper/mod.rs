@@ -213,7 +213,7 @@ impl State {
     /// that went deeper would load and release it within the step, unresolved (a secondary
     /// resting at its capacity on `fig-25-26` grazed a 39 kN plastic stop so, each graze
     /// putting 0.19 J into the balance at the report's 0.2 ms step,
-    /// `tests/integration/physics.rs`, `a_plastic_stop_lands_on_the_core_and_is_refused_where_unresolved`).
+    /// `tests/integration/physics.rs`, `a_plastic_stop_lands_on_every_engine`).
     /// Unbounded when no plastic stop is engaged or approached.
     pub(crate) fn plastic_stop_step(&self, model: &Model, i: usize) -> f64 {
         let (g, laws) = (&self.gear[i], &model.laws);
