@@ -7,7 +7,7 @@ whether the two routes' folders are byte-identical (docs/performance.md, "Campai
 
 The campaign is `scenarios/campaigns/lm-1-6-d3117.toml` with `landings` changed and each
 landing's horizon set to `--t-end` seconds (a one-value list dispersion of `integrator.t_end`,
-as `lm-1-6-d3117-paired.toml` sets 0.5 s): it is written to OUT/campaign.toml. The horizon
+as `lm-1-6-d3117-paired.toml` sets its 1.5 s): it is written to OUT/campaign.toml. The horizon
 sets the cost of a landing, not what is measured of the machinery (records streamed, memory,
 shards, merge); the cost of a whole landing is measured beside it (docs/performance.md,
 "Campaigns").

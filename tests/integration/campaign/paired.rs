@@ -164,9 +164,9 @@ fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagr
 }
 
 /// The multi-fidelity interval's coverage, measured: the 1,000 paired core/MuJoCo landings of
-/// `lm-1-6-d3117-paired` (tests/data/fidelity/d3117-core-mujoco-stable.csv, from
-/// docs/campaigns/d3117-paired-mujoco.txt's run) taken as the population, whose MuJoCo P(stable)
-/// is known; 2,000 seeds each draw m landings from it with replacement, the first n paired.
+/// `lm-1-6-d3117-paired` (tests/data/fidelity/d3117-core-mujoco-stable.csv, from its run on
+/// the wall at 0.5 s, docs/campaigns.md "Multi-fidelity estimate") taken as the population,
+/// whose MuJoCo P(stable) is known; 2,000 seeds each draw m landings from it with replacement, the first n paired.
 /// From n = `MIN_PAIRED_LANDINGS` on (at m = 10·n and 100·n) the 95 % interval must cover the
 /// truth as often as stated, within three binomial standard errors; at n = 8 it must not (the
 /// minimum is needed). The variance reduction is what the engines' correlation allows
