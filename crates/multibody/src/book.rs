@@ -18,8 +18,8 @@
 //!   ([`GearState::pad_force`]);
 //! - after it, [`GearModel::finish_step`] takes the step as a [`StepTaken`]: the vehicle before
 //!   it, its length, the kinematics the engine read after it and each footpad's contact over it,
-//!   and books it in one order for every engine: the contacts, the struts' work and the
-//!   honeycomb memories committed, the applied loads' work, the laws at the new state, the
+//!   and books it in one order for every engine: the contacts, the struts' work, the
+//!   honeycomb memories committed and the laws at the new state, the applied loads' work, the
 //!   divergence checks, the stability criteria, the extremes, and the applied loads for the
 //!   next step (if the landing goes on).
 
@@ -348,7 +348,7 @@ impl GearModel {
 
     /// Books the `step` just taken into `state`, the bodies as read after it in `now`, in one
     /// order for every engine: the contacts, the struts' work with the honeycomb memories
-    /// committed at the new strokes, the applied loads' work, the laws at the new state, the
+    /// committed at the new strokes and the laws at the new state, the applied loads' work, the
     /// divergence checks (the run budget, non-finite values, the energy balance), the stability
     /// criteria, the extremes, and, if the landing goes on, the applied loads for the next step
     /// (the footpads' velocities at BP `pad_velocity(i)`, m/s, inertial). Returns the energy
@@ -373,7 +373,6 @@ impl GearModel {
         }
         self.book_struts(state)?;
         self.book_applied(state, before, now.vehicle, dt, &pad_velocity);
-        self.evaluate(state)?;
         let energy = self.settle(state, now, Some(&before.velocity), pad_velocity)?;
         Self::update_extremes(state, now.t, now.vehicle);
         state.extremes.update_acceleration(
@@ -407,8 +406,9 @@ impl GearModel {
 
     /// Books the work of the laws over the step just taken (`previous` → `kin`), their path
     /// integral from their forces at both ends ([`StrutForces::work`]; at the end with the
-    /// memory committed before the step, the memory the step's strokes load), and commits the
-    /// honeycomb memories at the new strokes.
+    /// memory committed before the step, the memory the step's strokes load), commits the
+    /// honeycomb memories at the new strokes, and leaves the laws' forces at the new state:
+    /// those at the end, unless the commit changed the memory they were evaluated with.
     fn book_struts(&self, state: &mut GearState) -> Result<(), Fault> {
         for i in 0..self.legs.len() {
             let (a, b) = (&state.previous[i], &state.kin[i]);
@@ -417,7 +417,13 @@ impl GearModel {
             state.ledger.honeycomb += w.honeycomb;
             state.ledger.viscous += w.viscous;
             state.ledger.bearing += w.bearing;
+            let loaded = state.memory[i];
             self.laws.commit(b.c, b.s, &mut state.memory[i]);
+            state.forces[i] = if state.memory[i] == loaded {
+                end
+            } else {
+                self.forces_at(i, &state.memory[i], b)?
+            };
         }
         Ok(())
     }
