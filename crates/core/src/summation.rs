@@ -65,11 +65,21 @@ impl SumOrder {
     }
 
     /// The sum of `terms` (one per leg) in this order.
+    #[inline]
     pub(crate) fn sum(&self, terms: &[Vector3<f64>]) -> Vector3<f64> {
-        self.sum_by(Vector3::zeros(), |i| terms[i])
+        let mut total = Vector3::zeros();
+        for &[i, j] in &self.groups {
+            total += if i == j {
+                terms[i]
+            } else {
+                terms[i] + terms[j]
+            };
+        }
+        total
     }
 
     /// The sum from `zero` of each leg's `term` (by index) in this order.
+    #[inline]
     pub(crate) fn sum_by<T: Copy + Add<Output = T>>(
         &self,
         zero: T,

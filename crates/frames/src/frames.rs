@@ -40,6 +40,13 @@ pub fn rot_z(a: f64) -> Matrix3<f64> {
 /// [`rot_z`], with the sine and cosine of `a` itself given if they are known: they are those of
 /// the rest when `a` is less than half a quarter turn (the rest is `a`, bit for bit).
 fn rot_z_with(a: f64, sin_cos: Option<(f64, f64)>) -> Matrix3<f64> {
+    let (s, c) = quarter_turns(a, sin_cos);
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// The sine and cosine [`rot_z`] turns by for `a` rad (whole quarter turns exact), with those
+/// of `a` itself given if they are known.
+fn quarter_turns(a: f64, sin_cos: Option<(f64, f64)>) -> (f64, f64) {
     let quarters = (a / std::f64::consts::FRAC_PI_2).round();
     let mut rest = a - quarters * std::f64::consts::FRAC_PI_2;
     if rest.abs() <= 4.0 * f64::EPSILON * a.abs() {
@@ -49,13 +56,12 @@ fn rot_z_with(a: f64, sin_cos: Option<(f64, f64)>) -> Matrix3<f64> {
         Some(sc) if rest.to_bits() == a.to_bits() => sc,
         _ => rest.sin_cos(),
     };
-    let (s, c) = match quarters.rem_euclid(4.0) as u8 {
+    match quarters.rem_euclid(4.0) as u8 {
         0 => (s0, c0),
         1 => (c0, -s0),
         2 => (-s0, -c0),
         _ => (-c0, s0),
-    };
-    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+    }
 }
 
 /// T_IG, inertial → gravity components, eq. (1), for slope `alpha` rad.
@@ -103,8 +109,25 @@ impl EulerTrig {
     /// T_BI, eq. (3): [`t_bi`] at θ.
     pub fn t_bi(&self) -> Matrix3<f64> {
         let (s, c) = (&self.sin, &self.cos);
-        rot_x_of((s.x, c.x)) * rot_y_of((s.y, c.y)) * rot_z_with(self.theta.z, Some((s.z, c.z)))
-        // eq. (3)
+        let (sz, cz) = quarter_turns(self.theta.z, Some((s.z, c.z)));
+        // eq. (3): Rx·Ry written out, then times Rz, each entry the product's without its
+        // terms in the rotations' zeros (`rot_x`·`rot_y`·`rot_z`, the test below, bit for bit)
+        let p = Matrix3::new(
+            c.y,
+            0.0,
+            s.y,
+            s.x * s.y,
+            c.x,
+            -(s.x * c.y),
+            -(c.x * s.y),
+            s.x,
+            c.x * c.y,
+        );
+        Matrix3::from_fn(|r, k| match k {
+            0 => p[(r, 0)] * cz + p[(r, 1)] * sz,
+            1 => p[(r, 1)] * cz - p[(r, 0)] * sz,
+            _ => p[(r, 2)],
+        })
     }
 }
 
@@ -128,6 +151,7 @@ pub fn gravity_inertial(g: f64, alpha: f64) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::{FRAC_PI_2, PI};
 
     #[test]
     fn an_attitude_s_matrices_are_those_of_their_own_functions_bit_for_bit() {
@@ -156,11 +180,7 @@ mod tests {
                     let theta = Vector3::new(x, y, z);
                     let e = EulerTrig::new(&theta);
                     let bits = |m: Matrix3<f64>| m.map(f64::to_bits);
-                    assert_eq!(
-                        bits(e.t_bi()),
-                        bits(rot_x(x) * rot_y(y) * rot_z(z)),
-                        "{theta}"
-                    );
+                    assert_eq!(bits(e.t_bi()), bits(crate::t_bi(&theta)), "{theta}");
                     assert_eq!(bits(e.t_be()), bits(crate::t_be(&theta)), "{theta}");
                     assert_eq!(bits(e.t_eb()), bits(crate::t_eb(&theta)), "{theta}");
                 }
@@ -188,6 +208,34 @@ mod tests {
                 (r[(0, 0)] - c).abs() < 1e-14 && (r[(1, 0)] - s).abs() < 1e-14,
                 "{a}"
             );
+        }
+    }
+
+    /// The closed form of T_BI is the product of its three rotations (eq. 3) entry by entry,
+    /// bit for bit (a zero entry's sign aside: the product adds the rotations' zero terms),
+    /// over quarter turns, zeros of either sign, small and large angles.
+    #[test]
+    fn t_bi_is_the_product_of_its_rotations_bit_for_bit() {
+        let angles = [
+            0.0, -0.0, 1e-300, -3e-17, 0.1, -0.7, 1.0, FRAC_PI_2, -FRAC_PI_2, PI, 2.5, -3.0, 7.0,
+            100.0,
+        ];
+        for x in angles {
+            for y in angles {
+                for z in angles {
+                    let theta = Vector3::new(x, y, z);
+                    let product = rot_x(x) * rot_y(y) * rot_z(z);
+                    let closed = t_bi(&theta);
+                    for (a, b) in closed.iter().zip(product.iter()) {
+                        let same = if *b == 0.0 {
+                            *a == 0.0
+                        } else {
+                            a.to_bits() == b.to_bits()
+                        };
+                        assert!(same, "θ = {theta:?}: {closed} vs {product}");
+                    }
+                }
+            }
         }
     }
 
