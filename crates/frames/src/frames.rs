@@ -180,7 +180,7 @@ mod tests {
                     let theta = Vector3::new(x, y, z);
                     let e = EulerTrig::new(&theta);
                     let bits = |m: Matrix3<f64>| m.map(f64::to_bits);
-                    assert_eq!(bits(e.t_bi()), bits(crate::t_bi(&theta)), "{theta}");
+                    assert_product_of_rotations(&e.t_bi(), &theta);
                     assert_eq!(bits(e.t_be()), bits(crate::t_be(&theta)), "{theta}");
                     assert_eq!(bits(e.t_eb()), bits(crate::t_eb(&theta)), "{theta}");
                 }
@@ -211,9 +211,22 @@ mod tests {
         }
     }
 
-    /// The closed form of T_BI is the product of its three rotations (eq. 3) entry by entry,
-    /// bit for bit (a zero entry's sign aside: the product adds the rotations' zero terms),
-    /// over quarter turns, zeros of either sign, small and large angles.
+    /// `t` is the product of the three rotations of `theta` (eq. 3) entry by entry, bit for bit
+    /// (a zero entry's sign aside: the product adds the rotations' zero terms).
+    fn assert_product_of_rotations(t: &Matrix3<f64>, theta: &Vector3<f64>) {
+        let product = rot_x(theta.x) * rot_y(theta.y) * rot_z(theta.z);
+        for (a, b) in t.iter().zip(product.iter()) {
+            let same = if *b == 0.0 {
+                *a == 0.0
+            } else {
+                a.to_bits() == b.to_bits()
+            };
+            assert!(same, "θ = {theta:?}: {t} vs {product}");
+        }
+    }
+
+    /// The closed form of T_BI is the product of its three rotations, over quarter turns, zeros
+    /// of either sign, small and large angles on every axis.
     #[test]
     fn t_bi_is_the_product_of_its_rotations_bit_for_bit() {
         let angles = [
@@ -224,16 +237,7 @@ mod tests {
             for y in angles {
                 for z in angles {
                     let theta = Vector3::new(x, y, z);
-                    let product = rot_x(x) * rot_y(y) * rot_z(z);
-                    let closed = t_bi(&theta);
-                    for (a, b) in closed.iter().zip(product.iter()) {
-                        let same = if *b == 0.0 {
-                            *a == 0.0
-                        } else {
-                            a.to_bits() == b.to_bits()
-                        };
-                        assert!(same, "θ = {theta:?}: {closed} vs {product}");
-                    }
+                    assert_product_of_rotations(&t_bi(&theta), &theta);
                 }
             }
         }
