@@ -12,6 +12,7 @@ use crate::distribution::Value;
 use crate::landing::{draws, outcome, pool, scenario};
 use crate::record::Status;
 use crate::spec::Campaign;
+use crate::statistics::clopper_pearson_lower;
 use crate::CampaignError;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -28,7 +29,8 @@ pub const LANDINGS_PER_SAMPLE: u64 = 100;
 /// The most landings an accuracy sample holds.
 pub const MAX_SAMPLE: u64 = 20;
 
-/// The landings whose accuracy a campaign of `landings` measures: landings `0..n`, one in
+/// The landings whose accuracy a campaign of `landings` measures unless its file says how
+/// many (`[accuracy] landings`, [`sample`]): landings `0..n`, one in
 /// [`LANDINGS_PER_SAMPLE`] rounded up, at least one and at most [`MAX_SAMPLE`]. Each is landed
 /// three times more: at the campaign's settings, with its step limits [`REFINEMENT`]/2 and
 /// [`REFINEMENT`] times finer (about 1 + 4 + 8 times the steps): about 13 % more work on 1,000
@@ -38,6 +40,43 @@ pub fn sample_size(landings: u64) -> u64 {
         .div_ceil(LANDINGS_PER_SAMPLE)
         .clamp(1, MAX_SAMPLE)
         .min(landings)
+}
+
+/// The landings of `campaign`'s accuracy sample when it has `landings` in all: the file's
+/// `[accuracy] landings` (at most `landings`), or [`sample_size`]. Its landings are draws of
+/// the campaign's distributions like any other, so that what the sample shows of them bounds
+/// the whole campaign ([`OutcomeBound`]).
+pub fn sample(campaign: &Campaign, landings: u64) -> u64 {
+    campaign
+        .accuracy_landings
+        .map_or_else(|| sample_size(landings), |n| n.min(landings))
+}
+
+/// An upper confidence bound on the fraction of a campaign's landings whose outcome its
+/// settings decide otherwise than the refined runs would: the one-sided Clopper-Pearson bound
+/// from the landings of the sample that differ among those measured. The sample's landings are
+/// independent draws of the campaign's distributions, so the bound is on the campaign's
+/// landings, not on the sample's. Twenty landings that all agree bound it by 13.9 % at 95 %
+/// confidence: a sample says "identical" of a fraction it cannot resolve (docs/campaigns.md,
+/// "Accuracy").
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OutcomeBound {
+    /// The bound, a fraction (dimensionless).
+    pub fraction: f64,
+    /// Its one-sided confidence, the campaign's (dimensionless, in (0, 1)).
+    pub confidence: f64,
+}
+
+impl OutcomeBound {
+    /// The bound from `differ` of `measured` landings at `confidence`: 1 when none was
+    /// measured.
+    pub fn new(differ: u64, measured: u64, confidence: f64) -> OutcomeBound {
+        let agree = measured.saturating_sub(differ);
+        OutcomeBound {
+            fraction: 1.0 - clopper_pearson_lower(agree, measured, confidence),
+            confidence,
+        }
+    }
 }
 
 /// The largest of one error over the sample and the landing it was found on.
@@ -95,6 +134,11 @@ pub struct Accuracy {
     pub outcomes_differ: Vec<u64>,
     /// The landings whose outcome differs between the refined runs and those half as refined.
     pub reference_outcomes_differ: Vec<u64>,
+    /// What `outcomes_differ` bounds of the whole campaign: the fraction of its landings whose
+    /// outcome its settings decide otherwise than the refined runs, at most, at the campaign's
+    /// confidence. Absent from manifests written before it was stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outcomes_differ_bound: Option<OutcomeBound>,
     /// Landings the three runs completed, whose maxima are compared.
     pub compared: u64,
     /// The largest errors of the maxima over them; absent when there are none.
@@ -116,7 +160,7 @@ struct Runs {
     refined: Result<Summary, RunError>,
 }
 
-/// The accuracy of `campaign`'s settings on the core, on the first [`sample_size`] landings of
+/// The accuracy of `campaign`'s settings on the core, on the first [`sample`] landings of
 /// the campaign planned with `landings` in all, landed on `threads` threads (all the machine's
 /// with `None`); `None` when the campaign does not land on the core. An engine that cannot be
 /// set up is an error, as in the campaign.
@@ -128,7 +172,7 @@ pub fn measure(
     if !campaign.engines.contains(&Engine::Core) {
         return Ok(None);
     }
-    let n = sample_size(landings);
+    let n = sample(campaign, landings);
     let runs: Vec<Option<Runs>> = pool(threads)?.install(|| {
         (0..n)
             .into_par_iter()
@@ -137,7 +181,7 @@ pub fn measure(
     })?;
     let not_refined = (0..n).filter(|i| runs[*i as usize].is_none()).collect();
     let runs: Vec<Runs> = runs.into_iter().flatten().collect();
-    Ok(Some(compare(&runs, n, not_refined)))
+    Ok(Some(compare(&runs, n, not_refined, campaign.confidence)))
 }
 
 /// Landing `landing` (its draws `drawn`) at the campaign's settings, half refined and refined;
@@ -264,8 +308,8 @@ fn comparison<'a>(
 }
 
 /// The sample's outcomes and maxima compared (`n` landings, of which `not_refined` could not
-/// be refined and are not in `runs`).
-fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>) -> Accuracy {
+/// be refined and are not in `runs`), the outcomes' bound at `confidence`.
+fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>, confidence: f64) -> Accuracy {
     let differ = |a: &Result<Summary, RunError>, b: &Result<Summary, RunError>| {
         Status::of(a.as_ref()) != Status::of(b.as_ref())
     };
@@ -289,13 +333,20 @@ fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>) -> Accuracy {
         (completed.iter().copied())
             .filter(|(_, a, b, c)| is_stable(a) && is_stable(b) && is_stable(c)),
     );
+    let measured = runs.len() as u64;
+    let outcomes_differ_bound = Some(OutcomeBound::new(
+        outcomes_differ.len() as u64,
+        measured,
+        confidence,
+    ));
     Accuracy {
         engine: Engine::Core.name().into(),
         sample_landings: n,
         refinement: REFINEMENT,
-        outcomes_identical: (runs.len() - outcomes_differ.len()) as u64,
+        outcomes_identical: measured - outcomes_differ.len() as u64,
         not_refined,
         outcomes_differ,
+        outcomes_differ_bound,
         reference_outcomes_differ,
         compared,
         maxima,
@@ -316,5 +367,27 @@ mod tests {
         assert_eq!(sample_size(1000), 10);
         assert_eq!(sample_size(2001), 20);
         assert_eq!(sample_size(100_000), 20);
+    }
+
+    /// The bound on the outcomes a sample cannot tell apart: none of 20 differing bounds the
+    /// fraction by 1 − 0.05^(1/20) = 13.9 % at 95 % (the rule of three's exact form), and it
+    /// narrows as the sample grows and widens with every landing that differs.
+    #[test]
+    fn a_sample_that_agrees_bounds_the_campaigns_differing_outcomes() {
+        let none_of_20 = OutcomeBound::new(0, 20, 0.95).fraction;
+        assert!((none_of_20 - (1.0 - 0.05f64.powf(1.0 / 20.0))).abs() < 1e-12);
+        assert!((none_of_20 - 0.139).abs() < 5e-4, "{none_of_20}");
+        let none_of_1000 = OutcomeBound::new(0, 1000, 0.95).fraction;
+        assert!(
+            none_of_1000 < 0.003 && none_of_1000 > 0.0029,
+            "{none_of_1000}"
+        );
+        let some_of_1000 = OutcomeBound::new(37, 1000, 0.95).fraction;
+        assert!(
+            some_of_1000 > 0.037 && some_of_1000 < 0.05,
+            "{some_of_1000}"
+        );
+        assert_eq!(OutcomeBound::new(0, 0, 0.95).fraction, 1.0);
+        assert_eq!(OutcomeBound::new(3, 3, 0.95).fraction, 1.0);
     }
 }

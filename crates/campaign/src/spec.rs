@@ -35,6 +35,8 @@ struct CampaignFile {
     confidence: f64,
     #[serde(default)]
     record: RecordFile,
+    #[serde(default)]
+    accuracy: AccuracyFile,
     #[serde(default, rename = "dispersion")]
     dispersions: Vec<DispersionFile>,
     #[serde(default, rename = "correlation")]
@@ -51,6 +53,14 @@ struct RecordFile {
     /// Landings whose time history is written (`histories/landing-N.csv`).
     #[serde(default)]
     histories: Vec<u64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AccuracyFile {
+    /// Landings of the accuracy sample (docs/campaigns.md, "Accuracy").
+    #[serde(default)]
+    landings: Option<u64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -145,6 +155,10 @@ pub struct Campaign {
     pub confidence: f64,
     /// Landings whose history is written.
     pub histories: Vec<u64>,
+    /// The landings of the accuracy sample the file asks for (`[accuracy] landings`, at least
+    /// one), or `None` for the default, one in a hundred between 1 and 20
+    /// ([`crate::accuracy::sample_size`]).
+    pub accuracy_landings: Option<u64>,
     /// The dispersed fields, in the file's order (the order of the draws).
     pub dispersions: Vec<Dispersion>,
     /// The lower Cholesky factor of the correlation matrix of the dispersions' normal scores
@@ -204,6 +218,14 @@ impl Campaign {
                     "landing {h} is not in the campaign (landings are numbered 0 to {})",
                     spec.landings - 1
                 ),
+            ));
+        }
+        if spec.accuracy.landings == Some(0) {
+            return Err(err(
+                "accuracy.landings",
+                "expected at least 1 landing in the accuracy sample, got 0 (leave the field out \
+                 for the default, one landing in a hundred between 1 and 20)"
+                    .into(),
             ));
         }
         let scenario_path = path.parent().unwrap_or(Path::new(".")).join(&spec.scenario);
@@ -274,6 +296,7 @@ impl Campaign {
             seed: spec.seed,
             confidence: spec.confidence,
             histories: spec.record.histories,
+            accuracy_landings: spec.accuracy.landings,
             dispersions,
             copula,
             draws_identity: crate::sha256_hex(

@@ -278,6 +278,13 @@ fn accuracy_text(m: &Manifest) -> String {
             landings(&a.reference_outcomes_differ)
         );
     }
+    if let Some(b) = &a.outcomes_differ_bound {
+        t += &format!(
+            "; of the whole campaign, at most {} of the outcomes differ from the refined runs' ({} one-sided confidence)",
+            percent(b.fraction),
+            percent(b.confidence)
+        );
+    }
     t += "\n";
     let maxima = |what: &str, count: u64, c: &Option<Comparison>| {
         let w = |w: &Worst, r: &Worst| {

@@ -58,6 +58,16 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "field `landings`: expected between 1 and",
         ),
         (
+            "confidence = 0.9",
+            "confidence = 0.9\n[accuracy]\nlandings = 0",
+            "field `accuracy.landings`: expected at least 1 landing in the accuracy sample, got 0",
+        ),
+        (
+            "confidence = 0.9",
+            "confidence = 0.9\n[accuracy]\nsample = 5",
+            "field `accuracy.sample`",
+        ),
+        (
             "distribution = \"uniform\"",
             "distribution = \"gamma\"",
             "field `dispersion[2]",

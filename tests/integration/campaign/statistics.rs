@@ -1,6 +1,7 @@
 //! What a campaign states: its accuracy, a closed-form probability, each landing's imbalance.
 
 use super::{small, small_with};
+use touchdown_campaign::accuracy::OutcomeBound;
 use touchdown_campaign::landing::draws;
 use touchdown_campaign::record::Cell;
 use touchdown_campaign::run::run;
@@ -50,6 +51,14 @@ fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
             x.steps
         );
         assert_eq!(a.outcomes_identical, u64::from(x.outcome == x_ref.outcome));
+        assert_eq!(
+            a.outcomes_differ_bound,
+            Some(OutcomeBound::new(
+                1 - a.outcomes_identical,
+                1,
+                campaign.confidence
+            ))
+        );
         let largest = |s: &touchdown_record::Summary| {
             s.max_primary_stroke_m.iter().fold(0.0f64, |m, x| m.max(*x))
         };
@@ -98,6 +107,36 @@ fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
     assert_eq!(a.not_refined, [0]);
     assert_eq!((a.outcomes_identical, a.compared), (0, 0));
     assert!(a.outcomes_differ.is_empty() && a.maxima.is_none());
+    // Nothing measured bounds nothing.
+    assert_eq!(a.outcomes_differ_bound.map(|b| b.fraction), Some(1.0));
+}
+
+/// `[accuracy] landings` sets the sample (docs/campaigns.md, "Accuracy"): three landings of a
+/// four-landing campaign instead of the default one, at most the campaign's landings, and the
+/// bound on the campaign's differing outcomes is the one-sided Clopper-Pearson bound of the
+/// three at the campaign's confidence (1 − 0.1^(1/3) = 53.6 % at 90 % when all three agree).
+#[test]
+fn a_campaign_file_sets_its_accuracy_sample() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("campaign.toml");
+    small_with(&file, 4);
+    let text = std::fs::read_to_string(&file).unwrap();
+    for (asked, sampled) in [(3, 3), (9, 4)] {
+        std::fs::write(&file, format!("{text}\n[accuracy]\nlandings = {asked}\n")).unwrap();
+        let campaign = Campaign::load(&file).unwrap();
+        assert_eq!(campaign.accuracy_landings, Some(asked));
+        let (manifest, _) = run(&campaign, None, Some(2), None, false, |_| ()).unwrap();
+        let a = manifest.accuracy.unwrap();
+        assert_eq!(a.sample_landings, sampled);
+        let differ = a.outcomes_differ.len() as u64;
+        assert_eq!(a.outcomes_identical + differ, sampled);
+        let bound = a.outcomes_differ_bound.unwrap();
+        assert_eq!(bound, OutcomeBound::new(differ, sampled, 0.9));
+        if differ == 0 {
+            let exact = 1.0 - 0.1f64.powf(1.0 / sampled as f64);
+            assert!((bound.fraction - exact).abs() < 1e-12, "{bound:?}");
+        }
+    }
 }
 
 /// A vertical drop on flat ground strokes its primaries out exactly when it lands faster than
