@@ -21,7 +21,7 @@ use touchdown_registry::Engine;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// How many times finer the reference runs' step limits are than the campaign's.
-pub const REFINEMENT: f64 = 8.0;
+pub const REFINEMENT: f64 = touchdown_scenario::schema::ACCURACY_REFINEMENT;
 
 /// A campaign's landings per landing of its accuracy sample.
 pub const LANDINGS_PER_SAMPLE: u64 = 100;

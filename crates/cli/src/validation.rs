@@ -376,6 +376,24 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Res
         record.iterations,
         record.objective
     )?;
+    if let Some(a) = &record.accuracy {
+        let rows: Vec<String> = (a.row.iter())
+            .map(|r| {
+                format!(
+                    "row {} {:.2} mm, {:.2} mm refined ({:+.2} %)",
+                    r.id,
+                    1e3 * r.stroke_m,
+                    1e3 * r.refined_stroke_m,
+                    100.0 * (r.stroke_m - r.refined_stroke_m) / r.refined_stroke_m
+                )
+            })
+            .collect();
+        outln!(
+            "  the rows at the fit against runs with every step limit {}x finer: {}",
+            a.refinement,
+            rows.join("; ")
+        )?;
+    }
     let determined = cross_validation::determination(&paths, &record, &protocol.parameter)?;
     for (p, d) in record.parameter.iter().zip(&determined.parameters) {
         outln!(

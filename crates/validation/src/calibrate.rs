@@ -5,8 +5,8 @@
 //! `reference/calibration-result.toml`. Held-out rows never enter the objective.
 
 use crate::reference::{
-    self, CalibrationRecord, Estimates, FitParameter, Fitted, Paths, Protocol, Restarts, Row,
-    TableI,
+    self, CalibrationRecord, Estimates, FitAccuracy, FitParameter, Fitted, Paths, Protocol,
+    Restarts, Row, RowAccuracy, TableI, INCH,
 };
 use crate::table::{land, stroke_in};
 use crate::ValidationError;
@@ -16,6 +16,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use touchdown_scenario::schema::ACCURACY_REFINEMENT;
 use touchdown_scenario::ScenarioBase;
 
 /// Most iterations of the optimiser.
@@ -30,12 +31,15 @@ const SIMPLEX: f64 = 0.1;
 pub type Predict<'a> = dyn Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a;
 
 /// The core's stroke for a Table I row of `rows` with each parameter's value written to its
-/// scenario `fields` (file units): the model every fit of the 1/6-scale model calibrates. Each
-/// row's scenario file is read and merged once, here, and resolved with the values at each call.
+/// scenario `fields` (file units): the model every fit of the 1/6-scale model calibrates, with
+/// every step limit of the row's scenario refined `refinement` times (1: its own settings;
+/// `Integrator::refine`). Each row's scenario file is read and merged once, here, and resolved
+/// with the values at each call.
 pub fn table_model<'a>(
     paths: &Paths,
     rows: &[Row],
     fields: &'a [Vec<String>],
+    refinement: f64,
 ) -> Result<impl Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a, ValidationError> {
     let mut bases: HashMap<String, (PathBuf, ScenarioBase)> = HashMap::new();
     for row in rows {
@@ -51,7 +55,11 @@ pub fn table_model<'a>(
             .into_iter()
             .map(|(f, v)| (f, toml::Value::Float(v)))
             .collect();
-        land(path, &base.with(&values)?).map(|s| stroke_in(&s, row.strut))
+        let mut sc = base.with(&values)?;
+        if refinement > 1.0 {
+            sc = sc.with_integrator(|it| it.refine(refinement))?;
+        }
+        land(path, &sc).map(|s| stroke_in(&s, row.strut))
     })
 }
 
@@ -274,7 +282,7 @@ pub fn calibrate(
     }
     let chosen = rows_of(&table, &ids)?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
-    let model = table_model(paths, &chosen, &fields)?;
+    let model = table_model(paths, &chosen, &fields, 1.0)?;
     protocol
         .restarts
         .check("calibration-protocol.toml", "restarts.")?;
@@ -297,12 +305,27 @@ pub fn calibrate(
             value: *v,
         })
         .collect();
+    let refined = table_model(paths, &chosen, &fields, ACCURACY_REFINEMENT)?;
+    let row = chosen
+        .par_iter()
+        .map(|r| {
+            Ok(RowAccuracy {
+                id: r.id,
+                stroke_m: model(r, &fitted.value)? * INCH,
+                refined_stroke_m: refined(r, &fitted.value)? * INCH,
+            })
+        })
+        .collect::<Result<_, ValidationError>>()?;
     Ok(CalibrationRecord {
         rows: ids,
         optimiser: "argmin Nelder-Mead".into(),
         iterations: fitted.iterations,
         objective: fitted.objective,
         parameter,
+        accuracy: Some(FitAccuracy {
+            refinement: ACCURACY_REFINEMENT,
+            row,
+        }),
     })
 }
 

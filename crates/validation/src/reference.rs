@@ -167,6 +167,34 @@ pub struct CalibrationRecord {
     pub objective: f64,
     /// Fitted parameters.
     pub parameter: Vec<Fitted>,
+    /// The accuracy the step settings give at the fit: each row landed again with every step
+    /// limit refined; absent from records written before it was stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<FitAccuracy>,
+}
+
+/// The rows of a fit landed at the fitted values with the scenarios' step settings and with
+/// every step limit `refinement` times finer (`Integrator::refine`): how far the settings'
+/// strokes, which the fit matched, are from the refined runs'.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FitAccuracy {
+    /// How many times finer the refined runs' step limits are (dimensionless).
+    pub refinement: f64,
+    /// Each row, in the fit's order.
+    pub row: Vec<RowAccuracy>,
+}
+
+/// One row of a fit at its fitted values, at the step settings and refined.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RowAccuracy {
+    /// Table I row.
+    pub id: u32,
+    /// Its stroke at the step settings, m.
+    pub stroke_m: f64,
+    /// Its stroke with every step limit refined, m.
+    pub refined_stroke_m: f64,
 }
 
 /// Restarts of a fit: Nelder-Mead run again from its end point with a fresh simplex, until a

@@ -362,6 +362,59 @@ fn cross_validation_of_the_core_end_to_end() {
     let _ = std::fs::remove_dir_all(&tmp);
 }
 
+/// A calibration states the accuracy its step settings give at its fit: its rows landed at the
+/// fitted values, at the settings (whose squared relative errors sum to the fit's objective)
+/// and with every step limit eight times finer, each equal to a landing of the row's tracked
+/// scenario (which extends the calibrated vehicle) refined by hand.
+#[test]
+fn a_calibration_states_its_rows_at_the_fit_against_refined_runs() {
+    let paths = Paths::new(root());
+    let protocol: Protocol =
+        reference::read(&paths.reference("calibration-protocol.toml")).unwrap();
+    let record = calibrate::calibrate(&paths, &protocol, None).unwrap();
+    let tracked = table::calibration_record(&paths).unwrap().unwrap();
+    assert_eq!(
+        record.parameter, tracked.parameter,
+        "the tracked calibration is this fit"
+    );
+    let a = record.accuracy.expect("a calibration states its accuracy");
+    assert_eq!(a.refinement, 8.0);
+    let ids: Vec<u32> = a.row.iter().map(|r| r.id).collect();
+    assert_eq!(ids, record.rows);
+    let t: TableI = reference::read(&paths.reference("table-i.toml")).unwrap();
+    let mut objective = 0.0;
+    for r in &a.row {
+        let row = t.row.iter().find(|x| x.id == r.id).unwrap();
+        let stroke_in = r.stroke_m / reference::INCH;
+        objective += ((stroke_in - row.experiment) / row.experiment).powi(2);
+        let path = paths.scenario(&row.scenario);
+        let sc = touchdown_scenario::Scenario::load(&path).unwrap();
+        let land = |sc: &touchdown_scenario::Scenario| {
+            table::stroke_in(&touchdown_core::run(sc).unwrap(), row.strut)
+        };
+        assert_eq!(r.stroke_m, land(&sc) * reference::INCH, "row {}", r.id);
+        let refined = sc.with_integrator(|it| {
+            it.dist /= 8.0;
+            it.dt_max /= 8.0;
+            it.max_steps *= 8.0;
+        });
+        assert_eq!(
+            r.refined_stroke_m,
+            land(&refined.unwrap()) * reference::INCH,
+            "row {}",
+            r.id
+        );
+        // The settings' error is the step's, and small: under 2 % of the stroke.
+        let error = (r.stroke_m - r.refined_stroke_m).abs() / r.refined_stroke_m;
+        assert!(error > 0.0 && error < 0.02, "row {}: {error}", r.id);
+    }
+    assert!(
+        (objective - record.objective).abs() <= 1e-9 * record.objective,
+        "{objective} against {}",
+        record.objective
+    );
+}
+
 /// A calibration to rows that say nothing of a parameter is flagged: rows 3 and 4 measure the
 /// primary strut only, so they cannot determine the secondary crush load; rows 3 and 7 (the
 /// protocol's) determine both. One row for two parameters is refused before any landing.

@@ -60,6 +60,12 @@ pub const DEFAULT_STRIDE: f64 = 8.0;
 /// file sets `integrator.mode_step`: the report's scheme is stable to 2.
 pub const DEFAULT_MODE_STEP: f64 = 1.0;
 
+/// How many times finer than a study's settings the runs are that state the accuracy those
+/// settings give ([`Integrator::refine`] by it): a campaign's accuracy sample and a
+/// calibration's rows at its fit are landed again so (docs/campaigns.md, "Accuracy";
+/// docs/validation.md, "Calibrating by hand").
+pub const ACCURACY_REFINEMENT: f64 = 8.0;
+
 /// Integration settings (eqs. 20-25).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

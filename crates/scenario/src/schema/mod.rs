@@ -19,7 +19,8 @@ mod vehicle;
 pub use comparison::Comparison;
 pub use engines::{Engine, Engines, GearLinks, Mujoco, Rapier};
 pub use integrator::{
-    AttitudeForm, Integrator, Scheme, DEFAULT_MAX_STEPS, DEFAULT_MODE_STEP, DEFAULT_STRIDE,
+    AttitudeForm, Integrator, Scheme, ACCURACY_REFINEMENT, DEFAULT_MAX_STEPS, DEFAULT_MODE_STEP,
+    DEFAULT_STRIDE,
 };
 pub use mechanisms::{
     Amplification, Curb, DownwardTranslation, NozzleCrushing, Rcs, RcsMode, Slosh, Soil, Thrust,

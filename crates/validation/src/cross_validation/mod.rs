@@ -130,7 +130,7 @@ pub fn cross_validate(
     let table: TableI = reference::read(&paths.reference("table-i.toml"))?;
     let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
-    let model = table_model(paths, &table.row, &fields)?;
+    let model = table_model(paths, &table.row, &fields, 1.0)?;
     let held_out: Vec<u32> = table
         .row
         .iter()
@@ -162,6 +162,6 @@ pub fn determination(
     let rows = rows_of(&table, &record.rows)?;
     let fields: Vec<Vec<String>> = record.parameter.iter().map(|p| p.fields.clone()).collect();
     let x: Vec<f64> = record.parameter.iter().map(|p| p.value).collect();
-    let model = table_model(paths, &rows, &fields)?;
+    let model = table_model(paths, &rows, &fields, 1.0)?;
     identifiability(&rows, parameters, &protocol, &x, &model).map(|(i, _)| i)
 }
