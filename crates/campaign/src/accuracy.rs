@@ -57,9 +57,9 @@ pub fn sample(campaign: &Campaign, landings: u64) -> u64 {
 /// from the landings of the sample that differ among those measured. The sample's landings are
 /// independent draws of the campaign's distributions, so the bound is on the campaign's
 /// landings, not on the sample's (but for a `list` dispersion, a sequence rather than a draw,
-/// of which the sample holds the first values). Twenty landings that all agree bound it by 13.9 % at 95 %
-/// confidence: a sample says "identical" of a fraction it cannot resolve (docs/campaigns.md,
-/// "Accuracy").
+/// of which the sample holds the first values). Twenty landings that all agree bound it by
+/// 13.9 % at 95 % confidence: a sample says "identical" of a fraction it cannot resolve
+/// (docs/campaigns.md, "Accuracy").
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct OutcomeBound {
     /// The bound, a fraction (dimensionless).
