@@ -3,7 +3,7 @@
 //! the struts, or stops with a diagnostic that names the time and the law; never a garbage
 //! result.
 
-use touchdown_compare::precision::{self, Method, REFERENCE_AGREEMENT};
+use touchdown_compare::precision::{self, Method, REFERENCE_STROKE_AGREEMENT};
 use touchdown_compare::robustness::{self, Verdict, CATALOGUE};
 use touchdown_compare::Engine;
 
@@ -134,9 +134,10 @@ fn work_precision_has_a_converged_reference_and_converging_ladders() {
     )
     .unwrap();
     let a = w.reference.agreement;
-    assert!(a.max_stroke <= REFERENCE_AGREEMENT.max_stroke, "{a:?}");
+    assert!(a.max_stroke <= REFERENCE_STROKE_AGREEMENT, "{a:?}");
+    // The flat drop comes to rest: its reference resolves the pitch rate and attitude too.
     assert!(
-        a.pitch_rate_rms <= REFERENCE_AGREEMENT.pitch_rate_rms,
+        a.pitch_rate_rms <= 1e-3 && a.final_attitude_rad <= 1e-5,
         "{a:?}"
     );
     assert_eq!(w.rungs.len(), 9);
