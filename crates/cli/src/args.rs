@@ -88,8 +88,10 @@ pub(crate) enum Command {
     /// speed at which the landing changes between stable and unstable (a band where it
     /// alternates), the first at which a strut goes past its capacity, and the safe envelope,
     /// found on a grid of Vh, scanned finer around the changes and bisected; undecided
-    /// landings are listed, never counted as either (settings in the scenario's length unit
-    /// per second, the horizontal direction the scenario's; JSON and CSV in SI).
+    /// landings are listed, never counted as either; on the core, each transition's bracket
+    /// ends are landed again with every step limit ÷ 8 to state whether the step moves it
+    /// (settings in the scenario's length unit per second, the horizontal direction the
+    /// scenario's; JSON and CSV in SI).
     Boundary(BoundaryArgs),
 }
 

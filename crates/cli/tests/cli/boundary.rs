@@ -88,6 +88,13 @@ fn boundary_prints_csv_and_json() {
         assert!(transitions[0].get(key).is_some(), "transition field {key}");
     }
     assert_eq!(transitions[0]["vh_m_s"], v["vh_m_s"]);
+    // The core's transitions state the step's accuracy: their ends landed again ÷ 8.
+    for t in transitions {
+        let r = &t["refined"];
+        assert_eq!(r["refinement"], 8.0, "{t}");
+        let holds = r["stable_at_outcome"] == "stable" && r["unstable_at_outcome"] == "unstable";
+        assert_eq!(r["holds"], holds, "{t}");
+    }
     assert_eq!(
         v["undecided_at_vh_m_s"].as_array().unwrap().len() as u64,
         v["undecided"].as_u64().unwrap()
@@ -99,6 +106,14 @@ fn boundary_prints_csv_and_json() {
     let table = touchdown(&args("text").iter().map(String::as_str).collect::<Vec<_>>());
     let table = String::from_utf8(table.stdout).unwrap();
     assert!(table.starts_with("stability boundary:"), "{table}");
+    assert!(
+        table.contains(&format!(
+            "accuracy (core): each transition's bracket ends landed again with every step limit ÷ 8: {} of {} hold",
+            transitions.iter().filter(|t| t["refined"]["holds"] == true).count(),
+            transitions.len()
+        )),
+        "{table}"
+    );
     assert!(
         table
             .lines()

@@ -31,6 +31,7 @@ impl BoundaryPoint {
                     undecided_at: all(&t.undecided_at),
                     stable_stops: t.stable_stops,
                     unstable_stops: t.unstable_stops,
+                    refined: t.refined,
                 })
                 .collect(),
             band: self.band.map(|b| Band {

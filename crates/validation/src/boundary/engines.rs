@@ -1,14 +1,14 @@
 //! The search on a scenario, landed by each engine asked for: the landing of one point, and
 //! the points of every engine and end-stop law.
 
-use super::search::{search_streaming, BoundaryPoint, Landed};
+use super::search::{search_streaming, BoundaryPoint, Landed, RefinedLanding};
 use super::settings::Settings;
 use super::speed::SiSpeed;
 use crate::ValidationError;
 use serde::Serialize;
 use std::path::Path;
 use touchdown_core::RunError;
-use touchdown_scenario::schema::Engine;
+use touchdown_scenario::schema::{Engine, ACCURACY_REFINEMENT};
 use touchdown_scenario::units::Short;
 use touchdown_scenario::{Scenario, ScenarioBase};
 
@@ -122,6 +122,18 @@ pub(super) fn search_engines(
                     .map(|s| Landed::of(&s))
                     .map_err(|f| f.error)
             })?;
+            // The core's transitions are landed again with every step limit refined
+            // (`Integrator::refine`); a multibody engine's step is its own, not refined here.
+            let refined = scenario_landing(base, &values, move |sc: &Scenario| {
+                let sc = (sc.clone())
+                    .with_integrator(|it| it.refine(ACCURACY_REFINEMENT))
+                    .map_err(RunError::Refused)?;
+                touchdown_registry::land(engine, path, &sc, &mut (), None)
+                    .map(|s| s.outcome)
+                    .map_err(|f| f.error)
+            })?;
+            let refined: Option<RefinedLanding> =
+                (engine == Engine::Core).then_some((ACCURACY_REFINEMENT, &refined));
             let point = |p: &BoundaryPoint| {
                 found(&EnginePoint {
                     engine,
@@ -129,14 +141,15 @@ pub(super) fn search_engines(
                     point: p.clone(),
                 })
             };
-            let found =
-                search_streaming(vvs, settings, landing, tick, &point).map_err(|e| match e {
+            let found = search_streaming(vvs, settings, landing, refined, tick, &point).map_err(
+                |e| match e {
                     ValidationError::Run { scenario, source } => ValidationError::Run {
                         scenario: format!("{engine} engine on {scenario}"),
                         source,
                     },
                     other => other,
-                })?;
+                },
+            )?;
             points.extend(found.into_iter().map(|point| EnginePoint {
                 engine,
                 stop_restitution,

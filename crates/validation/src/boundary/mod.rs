@@ -44,7 +44,7 @@ mod text;
 pub use engines::{scenario_landing, EnginePoint};
 pub use request::{Request, Study};
 pub use search::{
-    search, Band, BoundaryPoint, CapacityEdge, Direction, Landed, Limit, SafeEdge, Stops,
+    search, Band, BoundaryPoint, CapacityEdge, Direction, Landed, Limit, Refined, SafeEdge, Stops,
     Transition,
 };
 pub use settings::{

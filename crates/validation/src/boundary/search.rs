@@ -79,6 +79,43 @@ impl From<Outcome> for Landed {
     }
 }
 
+/// A transition's bracket ends landed again with every step limit of the core divided by
+/// `refinement` (`Integrator::refine`; docs/validation.md, "Stability boundary"). Where both
+/// ends keep their outcomes the finer steps change outcome within the same bracket too; where
+/// one does not, the transition moves with the step by at least the bracket's width.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Refined {
+    /// The divisor of every step limit.
+    pub refinement: f64,
+    /// The outcome at the bracket's stable end, refined.
+    #[serde(rename = "stable_at_outcome")]
+    pub stable_end: Outcome,
+    /// The outcome at the bracket's unstable end, refined.
+    #[serde(rename = "unstable_at_outcome")]
+    pub unstable_end: Outcome,
+    /// Both ends keep their outcomes.
+    pub holds: bool,
+}
+
+impl Refined {
+    /// The ends' outcomes `stable_end` and `unstable_end` with every step limit ÷ `refinement`.
+    pub fn new(refinement: f64, stable_end: Outcome, unstable_end: Outcome) -> Refined {
+        Refined {
+            refinement,
+            stable_end,
+            unstable_end,
+            holds: stable_end == Outcome::Stable && unstable_end == Outcome::Unstable,
+        }
+    }
+}
+
+/// One landing's outcome with every step limit refined, at a descent and a horizontal speed
+/// (scenario velocity unit), and the divisor of the step limits.
+pub(super) type RefinedLanding<'a> = (
+    f64,
+    &'a (dyn Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync),
+);
+
 /// One change of outcome between two neighbouring decided landings at one Vv, its speeds `V`
 /// in the scenario's velocity unit as the search finds them (written in SI by
 /// [`BoundaryPoint::in_si`]).
@@ -110,6 +147,10 @@ pub struct Transition<V = f64> {
     pub stable_stops: Stops,
     /// The end stops engaged by the landing at the unstable end.
     pub unstable_stops: Stops,
+    /// The bracket's ends landed again with every step limit refined (the core's searches;
+    /// left out of a document otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub refined: Option<Refined>,
 }
 
 impl Transition {
@@ -270,16 +311,18 @@ where
     F: Fn(f64, f64) -> Result<L, ValidationError> + Sync,
     L: Into<Landed>,
 {
-    search_streaming(vvs, settings, landing, tick, &|_| ())
+    search_streaming(vvs, settings, landing, None, tick, &|_| ())
 }
 
 /// [`search`], handing each point to `found` as soon as it and every point before it (in the
 /// order of `vvs`) are found: the points stream in the order of the result, whatever the
-/// threads, so that a stream of them is deterministic.
+/// threads, so that a stream of them is deterministic. With `refined`, every transition's
+/// bracket ends are landed again by it ([`Transition::refined`]).
 pub(super) fn search_streaming<F, L>(
     vvs: &[f64],
     settings: Settings,
     landing: F,
+    refined: Option<RefinedLanding>,
     tick: &(dyn Fn() + Sync),
     found: &(dyn Fn(&BoundaryPoint) + Sync),
 ) -> Result<Vec<BoundaryPoint>, ValidationError>
@@ -302,7 +345,24 @@ where
         .par_iter()
         .enumerate()
         .map(|(i, &vv)| {
-            let point = at_descent_speed(vv, &grid, &settings, &|vh| run(vv, vh))?;
+            let mut point = at_descent_speed(vv, &grid, &settings, &|vh| run(vv, vh))?;
+            if let Some((refinement, land)) = refined {
+                let refined = |vh: f64| -> Result<Outcome, ValidationError> {
+                    let o = land(vv, vh)?;
+                    tick();
+                    Ok(o)
+                };
+                let ends = (point.transitions.par_iter())
+                    .map(|t| {
+                        let (s, u) =
+                            rayon::join(|| refined(t.stable_at), || refined(t.unstable_at));
+                        Ok(Refined::new(refinement, s?, u?))
+                    })
+                    .collect();
+                for (t, r) in point.transitions.iter_mut().zip(in_order(ends)?) {
+                    t.refined = Some(r);
+                }
+            }
             let mut w = waiting.lock().unwrap_or_else(|e| e.into_inner());
             w.1.insert(i, point.clone());
             loop {
@@ -394,6 +454,7 @@ fn at_descent_speed(
             undecided_at: landed[i + 1..j].iter().map(|p| p.0).collect(),
             stable_stops: stable.stops,
             unstable_stops: unstable.stops,
+            refined: None,
         };
         if j == i + 1 {
             to_bisect.push(t);

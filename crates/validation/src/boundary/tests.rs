@@ -225,6 +225,7 @@ fn undecided_landings_are_counted_and_listed_never_taken_as_stable_or_unstable()
             undecided_at: vec![4.0, 5.0, 6.0],
             stable_stops: Stops::default(),
             unstable_stops: Stops::default(),
+            refined: None,
         }]
     );
     assert_eq!(
@@ -291,6 +292,7 @@ fn an_undecided_midpoint_leaves_its_transition_unresolved_with_its_bracket() {
             undecided_at: vec![5.75],
             stable_stops: Stops::default(),
             unstable_stops: Stops::default(),
+            refined: None,
         }]
     );
     assert_eq!(
@@ -501,6 +503,7 @@ fn transition(direction: Direction, s: f64, u: f64, vh: Option<f64>) -> Transiti
             struts_past_capacity: 2,
             peak_stop_force_n: 38_000.0,
         },
+        refined: None,
     }
 }
 
@@ -680,4 +683,57 @@ fn points_at(e: f64) -> EnginePoint {
     let mut p = points().remove(0);
     p.stop_restitution = Some(e);
     p
+}
+
+/// With a refined landing, every transition's bracket ends are landed again by it: a boundary
+/// the finer steps keep within the bracket holds; one they move past an end is said to move,
+/// with the ends' refined outcomes; every refined landing ticks the progress.
+#[test]
+fn refined_bracket_ends_hold_or_say_the_boundary_moved() {
+    let s = settings(1.0, 20.0, 0.01);
+    let at = |boundary: f64| {
+        move |_: f64, vh: f64| -> Result<Outcome, ValidationError> {
+            Ok(match vh < boundary {
+                true => Outcome::Stable,
+                false => Outcome::Unstable,
+            })
+        }
+    };
+    let ticks = AtomicUsize::new(0);
+    let tick = || {
+        ticks.fetch_add(1, Ordering::Relaxed);
+    };
+    let found = |refined_boundary: f64| {
+        let fine = at(refined_boundary);
+        let p = search::search_streaming(&[2.0], s, at(10.0), Some((8.0, &fine)), &tick, &|_| ())
+            .unwrap();
+        p[0].transitions[0].clone()
+    };
+    // The bracket is bisected from (9, 10] to (9.9921875, 10]: a boundary at 9.995 in the
+    // finer steps holds.
+    let before = ticks.load(Ordering::Relaxed);
+    let t = found(9.995);
+    assert_eq!(
+        (t.stable_at, t.unstable_at, t.resolved),
+        (9.9921875, 10.0, true)
+    );
+    assert_eq!(
+        t.refined,
+        Some(Refined::new(8.0, Outcome::Stable, Outcome::Unstable))
+    );
+    assert!(t.refined.unwrap().holds);
+    let plain = search(&[2.0], s, at(10.0), &|| {}).unwrap()[0].landings;
+    assert_eq!(ticks.load(Ordering::Relaxed) - before, plain + 2);
+    // Finer steps that overturn from 9.5: the stable end overturns, and it is said.
+    let moved = found(9.5).refined.unwrap();
+    assert_eq!(
+        (moved.stable_end, moved.unstable_end, moved.holds),
+        (Outcome::Unstable, Outcome::Unstable, false)
+    );
+    // Without a refined landing nothing is refined.
+    assert!(
+        search(&[2.0], s, at(10.0), &|| {}).unwrap()[0].transitions[0]
+            .refined
+            .is_none()
+    );
 }

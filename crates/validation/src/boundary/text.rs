@@ -6,6 +6,7 @@ use super::engines::EnginePoint;
 use super::search::{BoundaryPoint, Direction, Limit, Stops, Transition};
 use super::settings::Settings;
 use std::fmt::Write;
+use touchdown_core::Outcome;
 use touchdown_scenario::schema::Engine;
 use touchdown_scenario::units::Short;
 
@@ -57,7 +58,61 @@ fn transition_line(t: &Transition) -> String {
     if !t.undecided_at.is_empty() {
         let _ = write!(bracket, "; undecided at {}", list(&t.undecided_at));
     }
+    if let Some(r) = t.refined {
+        let end = |o: Outcome| format!("{o:?}").to_lowercase();
+        let _ = match r.holds {
+            true => write!(bracket, "; steps ÷ {}: both ends hold", Short(r.refinement)),
+            false => write!(
+                bracket,
+                "; steps ÷ {}: MOVES, {} at {:.3} and {} at {:.3}",
+                Short(r.refinement),
+                end(r.stable_end),
+                t.stable_at,
+                end(r.unstable_end),
+                t.unstable_at
+            ),
+        };
+    }
     format!("           transition   {arrow}   {at:<16} ({bracket})")
+}
+
+/// The accuracy the search's steps give: how many transitions keep both bracket ends' outcomes
+/// with every step limit refined, and which do not; empty when none was refined.
+fn accuracy_text(points: &[EnginePoint]) -> String {
+    let refined: Vec<(f64, &Transition)> = (points.iter())
+        .flat_map(|p| p.point.transitions.iter().map(|t| (p.point.vv, t)))
+        .filter(|(_, t)| t.refined.is_some())
+        .collect();
+    let Some(r) = refined.first().and_then(|(_, t)| t.refined) else {
+        return String::new();
+    };
+    let moved: Vec<String> = (refined.iter())
+        .filter(|(_, t)| t.refined.is_some_and(|r| !r.holds))
+        .map(|(vv, t)| {
+            format!(
+                "Vv {:.3} between {:.3} and {:.3}",
+                -vv,
+                t.lower(),
+                t.upper()
+            )
+        })
+        .collect();
+    let mut o = format!(
+        "accuracy (core): each transition's bracket ends landed again with every step limit ÷ {}: \
+         {} of {} hold (the finer steps change outcome within the same bracket)",
+        Short(r.refinement),
+        refined.len() - moved.len(),
+        refined.len()
+    );
+    if !moved.is_empty() {
+        let _ = write!(
+            o,
+            "; moved by the step, by at least the bracket: {}",
+            moved.join("; ")
+        );
+    }
+    o.push('\n');
+    o
 }
 
 fn restitution(e: Option<f64>) -> String {
@@ -150,6 +205,7 @@ pub(super) fn table(points: &[EnginePoint], unit: &str, s: Settings) -> String {
          whose law is an estimate; safe to: the largest Vh below the first landing that is not \
          stable and within capacity, and what ends it)"
     );
+    o.push_str(&accuracy_text(points));
     o.push_str(&spread_text(points));
     o
 }
