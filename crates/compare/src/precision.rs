@@ -3,11 +3,11 @@
 //! evaluations, wall time). `touchdown precision` prints it; docs/performance.md records it.
 //!
 //! The reference is the core with the report's scheme at steps far below any rung's, refined
-//! ([`reference_level`]) until two successive refinements agree within [`REFERENCE_AGREEMENT`]:
-//! the scheme that lands every footpad on its plane within a step (eq. 25 and its contact limit),
-//! so that it converges where footpads rattle in their free play on spikes, which the
-//! Dormand–Prince pair's error control rejects step after step. The multibody engines are measured against the same reference, so
-//! their error holds the model's difference (a gear with masses and a contact solver against the
+//! ([`reference_level`]) until two successive refinements agree on the strokes within
+//! [`REFERENCE_STROKE_AGREEMENT`]: the scheme that lands every footpad on its plane within a
+//! step (eq. 25 and its contact limit), so that it converges where footpads rattle in their free
+//! play on spikes, which the Dormand–Prince pair's error control rejects step after step. The
+//! multibody engines are measured against the same reference, so their error holds the model's difference (a gear with masses and a contact solver against the
 //! report's massless gear) besides the numerical one; [`Errors::self_max_stroke`] separates the
 //! two by measuring each rung against the finest rung of its own ladder.
 
@@ -261,7 +261,7 @@ pub struct Reference {
     /// Refinements run.
     pub levels: usize,
     /// How far the finest refinement lands from the one before it: on the strokes within
-    /// [`Reference::asked_max_stroke_fraction`]; on the pitch-rate history and the final
+    /// [`Reference::asked_max_stroke`]; on the pitch-rate history and the final
     /// attitude, the reference's resolution of those columns.
     pub agreement: Errors,
     /// The agreement asked on the strokes ([`REFERENCE_STROKE_AGREEMENT`]).

@@ -1,7 +1,7 @@
 //! The search on a scenario, landed by each engine asked for: the landing of one point, and
 //! the points of every engine and end-stop law.
 
-use super::search::{search_streaming, BoundaryPoint, Landed, RefinedLanding};
+use super::search::{search_streaming, BoundaryPoint, Landed, RefinedLand, RefinedLanding};
 use super::settings::Settings;
 use super::speed::SiSpeed;
 use crate::ValidationError;
@@ -124,16 +124,19 @@ pub(super) fn search_engines(
             })?;
             // The core's transitions are landed again with every step limit refined
             // (`Integrator::refine`); a multibody engine's step is its own, not refined here.
-            let refined = scenario_landing(base, &values, move |sc: &Scenario| {
-                let sc = (sc.clone())
-                    .with_integrator(|it| it.refine(ACCURACY_REFINEMENT))
-                    .map_err(RunError::Refused)?;
-                touchdown_registry::land(engine, path, &sc, &mut (), None)
-                    .map(|s| s.outcome)
-                    .map_err(|f| f.error)
-            })?;
+            let refined_core = match engine {
+                Engine::Core => Some(scenario_landing(base, &values, |sc: &Scenario| {
+                    let sc = (sc.clone())
+                        .with_integrator(|it| it.refine(ACCURACY_REFINEMENT))
+                        .map_err(RunError::Refused)?;
+                    touchdown_registry::land(Engine::Core, path, &sc, &mut (), None)
+                        .map(|s| s.outcome)
+                        .map_err(|f| f.error)
+                })?),
+                _ => None,
+            };
             let refined: Option<RefinedLanding> =
-                (engine == Engine::Core).then_some((ACCURACY_REFINEMENT, &refined));
+                (refined_core.as_ref()).map(|land| (ACCURACY_REFINEMENT, land as RefinedLand));
             let point = |p: &BoundaryPoint| {
                 found(&EnginePoint {
                     engine,

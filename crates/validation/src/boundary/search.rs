@@ -110,11 +110,11 @@ impl Refined {
 }
 
 /// One landing's outcome with every step limit refined, at a descent and a horizontal speed
-/// (scenario velocity unit), and the divisor of the step limits.
-pub(super) type RefinedLanding<'a> = (
-    f64,
-    &'a (dyn Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync),
-);
+/// (scenario velocity unit).
+pub(super) type RefinedLand<'a> = &'a (dyn Fn(f64, f64) -> Result<Outcome, ValidationError> + Sync);
+
+/// A [`RefinedLand`] and the divisor of the step limits it lands with.
+pub(super) type RefinedLanding<'a> = (f64, RefinedLand<'a>);
 
 /// One change of outcome between two neighbouring decided landings at one Vv, its speeds `V`
 /// in the scenario's velocity unit as the search finds them (written in SI by
