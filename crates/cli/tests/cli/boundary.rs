@@ -38,7 +38,7 @@ fn boundary_prints_csv_and_json() {
     assert_eq!(
         lines.next(),
         Some(
-            "engine,stop_restitution,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided,past_capacity_vh_m_s,safe_to_vh_m_s,safe_until"
+            "engine,stop_restitution,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided,past_capacity_vh_m_s,safe_to_vh_m_s,safe_until,refined_holds"
         )
     );
     // One row per transition; the first is the boundary (the lowest stable -> unstable), in SI.

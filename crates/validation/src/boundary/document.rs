@@ -123,10 +123,11 @@ fn direction(d: Direction) -> &'static str {
 /// One row per transition (engine, stop_restitution, vv_m_s, direction, stable_at_vh_m_s,
 /// unstable_at_vh_m_s, vh_m_s, resolved, undecided: the landings undecided at that descent
 /// speed, past_capacity_vh_m_s: the first Vh past a capacity, safe_to_vh_m_s and safe_until:
-/// the safe envelope and what ends it), SI, the vertical velocity negative down; a descent
-/// speed without a transition has one row with direction `none`, its `stable_at_vh_m_s` /
-/// `unstable_at_vh_m_s` and empty `vh_m_s` and `resolved`. `velocity` is the scenario's
-/// velocity unit in m/s.
+/// the safe envelope and what ends it, refined_holds: whether the bracket's ends keep their
+/// outcomes with every step limit refined, empty where they were not landed again), SI, the
+/// vertical velocity negative down; a descent speed without a transition has one row with
+/// direction `none`, its `stable_at_vh_m_s` / `unstable_at_vh_m_s` and empty `vh_m_s`,
+/// `resolved` and `refined_holds`. `velocity` is the scenario's velocity unit in m/s.
 pub(super) fn csv(points: &[EnginePoint], velocity: f64) -> Result<String, ValidationError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
@@ -142,13 +143,14 @@ pub(super) fn csv(points: &[EnginePoint], velocity: f64) -> Result<String, Valid
         "past_capacity_vh_m_s",
         "safe_to_vh_m_s",
         "safe_until",
+        "refined_holds",
     ])?;
     let f = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
     let m = |x: Option<MetresPerSecond>| f(x.map(|v| v.0));
     for point in points {
         let p = point.in_si(velocity).point;
         let past = p.capacity.map(|c| c.vh.unwrap_or(c.past_at));
-        let row = |direction: &str, stable_at, unstable_at, vh, resolved: String| {
+        let row = |direction: &str, stable_at, unstable_at, vh, resolved: String, holds: String| {
             [
                 point.engine.name().to_string(),
                 f(point.stop_restitution),
@@ -162,10 +164,19 @@ pub(super) fn csv(points: &[EnginePoint], velocity: f64) -> Result<String, Valid
                 m(past),
                 m(p.safe.safe_to),
                 p.safe.limit.map_or("", Limit::name).to_string(),
+                holds,
             ]
         };
         if p.transitions.is_empty() {
-            w.write_record(row("none", p.stable_at, p.unstable_at, None, String::new()))?;
+            let none = (String::new(), String::new());
+            w.write_record(row(
+                "none",
+                p.stable_at,
+                p.unstable_at,
+                None,
+                none.0,
+                none.1,
+            ))?;
         }
         for t in &p.transitions {
             w.write_record(row(
@@ -174,6 +185,7 @@ pub(super) fn csv(points: &[EnginePoint], velocity: f64) -> Result<String, Valid
                 Some(t.unstable_at),
                 t.vh,
                 t.resolved.to_string(),
+                t.refined.map_or(String::new(), |r| r.holds.to_string()),
             ))?;
         }
     }

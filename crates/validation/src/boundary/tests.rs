@@ -515,7 +515,10 @@ fn points() -> Vec<EnginePoint> {
         unstable_at: Some(10.01),
         transitions: vec![
             transition(Direction::StableToUnstable, 9.99, 10.01, Some(10.0)),
-            transition(Direction::UnstableToStable, 14.01, 13.99, Some(14.0)),
+            Transition {
+                refined: Some(Refined::new(8.0, Outcome::Stable, Outcome::Stable)),
+                ..transition(Direction::UnstableToStable, 14.01, 13.99, Some(14.0))
+            },
             transition(Direction::StableToUnstable, 18.0, 22.0, None),
         ],
         band: Some(Band {
@@ -576,11 +579,11 @@ fn boundary_csv_has_one_row_per_transition() {
     assert_eq!(
         lines,
         [
-            "engine,stop_restitution,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided,past_capacity_vh_m_s,safe_to_vh_m_s,safe_until",
-            "core,,-4,stable_to_unstable,4.995,5.005,5,true,2,4.5125,4.5,capacity",
-            "core,,-4,unstable_to_stable,7.005,6.995,7,true,2,4.5125,4.5,capacity",
-            "core,,-4,stable_to_unstable,9,11,,false,2,4.5125,4.5,capacity",
-            "core,,-5,none,15,,,,0,,15,",
+            "engine,stop_restitution,vv_m_s,direction,stable_at_vh_m_s,unstable_at_vh_m_s,vh_m_s,resolved,undecided,past_capacity_vh_m_s,safe_to_vh_m_s,safe_until,refined_holds",
+            "core,,-4,stable_to_unstable,4.995,5.005,5,true,2,4.5125,4.5,capacity,",
+            "core,,-4,unstable_to_stable,7.005,6.995,7,true,2,4.5125,4.5,capacity,false",
+            "core,,-4,stable_to_unstable,9,11,,false,2,4.5125,4.5,capacity,",
+            "core,,-5,none,15,,,,0,,15,,",
         ]
     );
 }
