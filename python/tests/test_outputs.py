@@ -176,6 +176,20 @@ def test_precision_and_robustness(tmp_path):
     assert {r["verdict"] for r in robustness["runs"]} == {"completed", "stopped"}
 
 
+def test_precision_on_a_campaign_mix(tmp_path):
+    campaign = tmp_path / "drops.toml"
+    campaign.write_text(
+        'schema_version = 1\nname = "flat drops"\ndescription = "two descent speeds"\n'
+        f'scenario = "{ROOT / "scenarios" / "flat-drop.toml"}"\nengine = "core"\nlandings = 2\nseed = 1\n'
+        'confidence = 0.9\n\n[[dispersion]]\nfield = "touchdown.vertical_velocity"\nunit = "ft/s"\n'
+        'distribution = "uniform"\nmin = -9.0\nmax = -7.0\n')
+    mix = parse(cli("precision", str(campaign), "--landings", "2", "--engines", "core", "--rungs", "1",
+                    "--repeats", "1", "--format", "json", "--out", str(tmp_path)))
+    check(mix, "precision-mix")
+    assert parse((tmp_path / "precision-drops.json").read_text()) == mix, "the file is the document printed"
+    assert [r["landing"] for r in mix["references"]] == ["landing 0", "landing 1"]
+
+
 def embedded_trajectory(page: Path) -> dict:
     """The trajectory document a view page plays (its `<script id="trajectory">`)."""
     html = page.read_text(encoding="utf-8")

@@ -50,8 +50,9 @@ pub(crate) enum Command {
     View(ViewArgs),
     /// Work-precision: each engine and integration scheme over a ladder of step sizes or
     /// tolerances, its error against a converged reference (maximum strokes, pitch-rate history,
-    /// final attitude) against its cost (steps, force evaluations, wall time). Build with
-    /// --release: wall times of a debug build say nothing.
+    /// final attitude) against its cost (steps, force evaluations, wall time); with
+    /// --landings N, the same over a campaign's first N landings (median and worst error).
+    /// Build with --release: wall times of a debug build say nothing.
     Precision(PrecisionArgs),
     /// The stiff and extreme catalogue (docs/robustness.md): every case on every engine that
     /// applies, classified as completed (bounded energy, strokes within the struts), stopped or
@@ -221,12 +222,23 @@ pub(crate) struct ViewArgs {
 /// The arguments of `touchdown precision` (the command's documentation is on [`Command::Precision`]).
 #[derive(clap::Args)]
 pub(crate) struct PrecisionArgs {
-    /// Scenario file (TOML).
+    /// Scenario file (TOML); with --landings, a campaign file.
     pub(crate) scenario: PathBuf,
     #[command(flatten)]
     pub(crate) set: Overrides,
-    /// Engines to measure, comma-separated (the core with each of its three schemes);
-    /// those the scenario's engines.applicable lists.
+    /// The file is a campaign (docs/campaigns.md): study its first N landings together, the
+    /// campaign mix (docs/performance.md, "Work-precision on the campaign mix"): each
+    /// landing's reference (the report's scheme refined, with its resolution), then each
+    /// rung's median and worst error over them, for the campaign's engines among --engines.
+    #[arg(long, value_name = "N", conflicts_with = "plot")]
+    pub(crate) landings: Option<u64>,
+    /// With --landings: end a method's ladder at the first rung whose landings take longer
+    /// than this on average, s (its finer rungs cost more; the Dormand–Prince pair at tight
+    /// tolerances takes minutes a landing) [default: 5].
+    #[arg(long, value_name = "S", requires = "landings")]
+    pub(crate) max_landing_time: Option<f64>,
+    /// Engines to measure, comma-separated (the core with each of its schemes); those the
+    /// scenario's engines.applicable lists.
     #[arg(
         long,
         value_delimiter = ',',

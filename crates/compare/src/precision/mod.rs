@@ -9,7 +9,8 @@
 //! play on spikes, which the Dormand–Prince pair's error control rejects step after step. The
 //! multibody engines are measured against the same reference, so their error holds the model's difference (a gear with masses and a contact solver against the
 //! report's massless gear) besides the numerical one; [`Errors::self_max_stroke`] separates the
-//! two by measuring each rung against the finest rung of its own ladder.
+//! two by measuring each rung against the finest rung of its own ladder. [`mix`] gathers the
+//! study over the landings of a campaign.
 
 use crate::metrics::pitch_rate_differences;
 use crate::{run, CompareError, Engine, EngineRun, Trace};
@@ -22,6 +23,8 @@ use touchdown_record::{Outcome, Summary};
 use touchdown_registry::land;
 use touchdown_scenario::schema::Scheme;
 use touchdown_scenario::Scenario;
+
+pub mod mix;
 
 /// An integration method whose accuracy one number sets: a core scheme or a multibody engine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
@@ -278,13 +281,57 @@ pub struct Reference {
     pub run: EngineRun,
 }
 
-/// Computes the converged reference of `sc` (read from `path`): refinements until two
-/// successive ones agree within [`REFERENCE_STROKE_AGREEMENT`]; an error if none do within
-/// [`REFERENCE_LEVELS`].
-pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> {
-    let mut previous: Option<EngineRun> = None;
-    let mut worst = String::new();
-    for level in 0..REFERENCE_LEVELS {
+/// How far the refinements of a reference went ([`refine`]): the finest run and how it lands
+/// from the one before it.
+#[derive(Debug, Clone)]
+pub struct Refinements {
+    /// The finest refinement's level (from 0; its divisor is [`reference_divisor`] of it).
+    pub level: usize,
+    /// Its scenario.
+    pub scenario: Scenario,
+    /// Its run.
+    pub run: EngineRun,
+    /// The refinement before it, and how far the finest lands from it; `None` after one
+    /// refinement.
+    pub previous: Option<(EngineRun, Errors)>,
+}
+
+impl Refinements {
+    /// Whether the last two refinements agree within [`REFERENCE_STROKE_AGREEMENT`] on every
+    /// maximum stroke.
+    pub fn converged(&self) -> bool {
+        (self.previous.as_ref()).is_some_and(|(_, e)| e.max_stroke <= REFERENCE_STROKE_AGREEMENT)
+    }
+
+    /// The reference the finest refinement is, with how far it lands from the one before it;
+    /// `None` after one refinement.
+    fn reference(self) -> Option<Reference> {
+        let scl = &self.scenario;
+        let (_, agreement) = self.previous?;
+        let current = self.run;
+        Some(Reference {
+            divisor: reference_divisor(self.level),
+            dist_m: scl.integrator.dist,
+            dt_max_s: scl.integrator.dt_max,
+            levels: self.level + 1,
+            agreement,
+            asked_max_stroke: REFERENCE_STROKE_AGREEMENT,
+            steps: current.summary.steps,
+            force_evaluations: current.summary.force_evaluations,
+            outcome: current.summary.outcome,
+            run: current,
+        })
+    }
+}
+
+/// Refines `sc` (read from `path`) through at most `levels` refinements ([`reference_level`]),
+/// until two successive ones agree within [`REFERENCE_STROKE_AGREEMENT`] on every maximum
+/// stroke ([`Refinements::converged`]) or the levels run out; an error if a refinement fails,
+/// or runs out of the scenario's budget (said as such, with what the refinements before it
+/// showed).
+pub fn refine(path: &Path, sc: &Scenario, levels: usize) -> Result<Refinements, CompareError> {
+    let mut done: Option<Refinements> = None;
+    for level in 0..levels {
         let scl = reference_level(sc, level)?;
         let current = match run(Engine::Core, path, &scl) {
             // A refinement past the scenario's budget: the ladder ends there, said as such.
@@ -292,11 +339,10 @@ pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> 
                 error: touchdown_record::RunError::Stopped(d),
                 ..
             })) if d.law == touchdown_record::Law::RunBudget => {
-                let compared = if worst.is_empty() {
-                    "no two refinements compared yet".to_string()
-                } else {
-                    worst
-                };
+                let compared = done.as_ref().map_or_else(
+                    || "no two refinements compared yet".to_string(),
+                    disagreement,
+                );
                 return Err(CompareError::Unconverged {
                     scenario: path.display().to_string(),
                     message: format!(
@@ -310,38 +356,58 @@ pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> 
             }
             other => other?,
         };
-        if let Some(prev) = previous {
-            let e = errors(&current, &prev);
-            if e.max_stroke <= REFERENCE_STROKE_AGREEMENT {
-                return Ok(Reference {
-                    divisor: reference_divisor(level),
-                    dist_m: scl.integrator.dist,
-                    dt_max_s: scl.integrator.dt_max,
-                    levels: level + 1,
-                    agreement: e,
-                    asked_max_stroke: REFERENCE_STROKE_AGREEMENT,
-                    steps: current.summary.steps,
-                    force_evaluations: current.summary.force_evaluations,
-                    outcome: current.summary.outcome,
-                    run: current,
-                });
-            }
-            worst = format!(
-                "refinements {} and {level} (÷{} and ÷{}) differ by {:.2e} on the strokes",
-                level - 1,
-                reference_divisor(level - 1),
-                reference_divisor(level),
-                e.max_stroke,
-            );
+        let previous = done.map(|d| {
+            let e = errors(&current, &d.run);
+            (d.run, e)
+        });
+        let r = Refinements {
+            level,
+            scenario: scl,
+            run: current,
+            previous,
+        };
+        if r.converged() {
+            return Ok(r);
         }
-        previous = Some(current);
+        done = Some(r);
+    }
+    done.ok_or_else(|| CompareError::Unconverged {
+        scenario: path.display().to_string(),
+        message: "no refinement asked for".into(),
+    })
+}
+
+/// How far the last two of `r` part on the strokes, as the messages say it.
+fn disagreement(r: &Refinements) -> String {
+    match &r.previous {
+        Some((_, e)) => format!(
+            "refinements {} and {} (÷{} and ÷{}) differ by {:.2e} on the strokes",
+            r.level - 1,
+            r.level,
+            reference_divisor(r.level - 1),
+            reference_divisor(r.level),
+            e.max_stroke,
+        ),
+        None => "no two refinements compared yet".to_string(),
+    }
+}
+
+/// Computes the converged reference of `sc` (read from `path`): refinements until two
+/// successive ones agree within [`REFERENCE_STROKE_AGREEMENT`]; an error if none do within
+/// [`REFERENCE_LEVELS`].
+pub fn reference(path: &Path, sc: &Scenario) -> Result<Reference, CompareError> {
+    let r = refine(path, sc, REFERENCE_LEVELS)?;
+    let message = disagreement(&r);
+    if let Some(reference) = r.converged().then(|| r.reference()).flatten() {
+        return Ok(reference);
     }
     Err(CompareError::Unconverged {
         scenario: path.display().to_string(),
         message: format!(
-            "no converged reference within {REFERENCE_LEVELS} refinements of the report's scheme (DIST and dt_max ÷{} to ÷{}): {worst} (asked: {:.0e})",
+            "no converged reference within {REFERENCE_LEVELS} refinements of the report's scheme (DIST and dt_max ÷{} to ÷{}): {} (asked: {:.0e})",
             reference_divisor(0),
             reference_divisor(REFERENCE_LEVELS - 1),
+            message,
             REFERENCE_STROKE_AGREEMENT,
         ),
     })
@@ -439,7 +505,7 @@ pub struct WorkPrecision {
 pub const FIXED_ERROR: f64 = 0.01;
 
 /// Median of `values` (sorted in place).
-fn median(values: &mut [f64]) -> f64 {
+pub(crate) fn median(values: &mut [f64]) -> f64 {
     values.sort_by(f64::total_cmp);
     let n = values.len();
     if n % 2 == 1 {
@@ -451,7 +517,7 @@ fn median(values: &mut [f64]) -> f64 {
 
 /// Runs one rung: once with the trace for the errors, then `repeats` times untraced for the wall
 /// time.
-fn measure(
+pub(crate) fn measure(
     path: &Path,
     sc: &Scenario,
     reference: &EngineRun,
@@ -626,7 +692,7 @@ pub fn setting_label(method: Method, value: f64) -> String {
 }
 
 /// A duration, s, in a readable unit.
-fn duration(t: f64) -> String {
+pub(crate) fn duration(t: f64) -> String {
     if t < 1.0e-3 {
         format!("{:.1} µs", t * 1e6)
     } else if t < 1.0 {
@@ -636,7 +702,7 @@ fn duration(t: f64) -> String {
     }
 }
 
-fn percent(x: f64) -> String {
+pub(crate) fn percent(x: f64) -> String {
     format!("{:.3} %", 100.0 * x)
 }
 
