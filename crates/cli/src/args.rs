@@ -234,9 +234,9 @@ pub(crate) struct PrecisionArgs {
     pub(crate) landings: Option<u64>,
     /// With --landings: end a method's ladder at the first rung whose landings take longer
     /// than this on average, s (its finer rungs cost more; the Dormand–Prince pair at tight
-    /// tolerances takes minutes a landing) [default: 5].
-    #[arg(long, value_name = "S", requires = "landings")]
-    pub(crate) max_landing_time: Option<f64>,
+    /// tolerances takes minutes a landing).
+    #[arg(long, value_name = "S", requires = "landings", default_value_t = 5.0)]
+    pub(crate) max_landing_time: f64,
     /// Engines to measure, comma-separated (the core with each of its schemes); those the
     /// scenario's engines.applicable lists.
     #[arg(

@@ -37,7 +37,6 @@ pub fn precision(args: PrecisionArgs) -> Result<()> {
         if !set.is_empty() {
             anyhow::bail!("--set: a campaign's landings are its file's; set the fields in its base scenario or its dispersions, not with --landings");
         }
-        let max_landing_time = max_landing_time.unwrap_or(DEFAULT_MAX_LANDING_TIME);
         if !(max_landing_time > 0.0 && max_landing_time.is_finite()) {
             anyhow::bail!(
                 "--max-landing-time: expected a positive number of seconds, got {max_landing_time}"
@@ -113,11 +112,6 @@ pub fn precision(args: PrecisionArgs) -> Result<()> {
     Ok(())
 }
 
-/// `--max-landing-time` unless given, s: on `lm-1-6-d3117` the report's scheme ÷ 32 takes
-/// about 0.5 s a landing, the Dormand–Prince pair at rtol 1e-5 31 s (docs/performance.md,
-/// "Work-precision on the campaign mix").
-const DEFAULT_MAX_LANDING_TIME: f64 = 5.0;
-
 /// The options of a study the campaign mix shares with a scenario's.
 struct Study<'a> {
     max_landing_time: f64,
@@ -160,7 +154,7 @@ fn campaign_mix(file: &Path, n: u64, study: &Study) -> Result<()> {
             .map(|m| m.rungs(study.rungs).len())
             .sum::<usize>();
     eprintln!(
-        "computing the converged references of {} landings, then {} rungs over them ...",
+        "computing the references of {} landings, then {} rungs over them ...",
         landings.len(),
         planned - landings.len()
     );
@@ -175,13 +169,17 @@ fn campaign_mix(file: &Path, n: u64, study: &Study) -> Result<()> {
         study.max_landing_time,
         |p| {
             bar.suspend(|| match p {
-                Progress::Reference(r) => match (&r.failure, r.resolution_max_stroke) {
-                    (Some(f), _) => eprintln!("  {}: no reference ({f})", r.landing),
-                    (None, resolution) => eprintln!(
-                        "  {}: reference at ÷{}, resolving the strokes to {}",
+                Progress::Reference(r) => match (&r.found, &r.failure) {
+                    (Some(f), _) => eprintln!(
+                        "  {}: reference at ÷{}, resolving the strokes to {:.3} %",
                         r.landing,
-                        r.divisor.map_or("-".into(), |d| d.to_string()),
-                        resolution.map_or("-".into(), |e| format!("{:.3} %", 100.0 * e))
+                        f.divisor,
+                        100.0 * f.resolution_max_stroke
+                    ),
+                    (None, failure) => eprintln!(
+                        "  {}: no reference ({})",
+                        r.landing,
+                        failure.as_deref().unwrap_or("?")
                     ),
                 },
                 Progress::Rung(r) => eprintln!(

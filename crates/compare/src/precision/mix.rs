@@ -33,48 +33,47 @@ pub struct MixLanding {
 /// [`REFERENCE_STROKE_AGREEMENT`] on every maximum stroke.
 pub const MIX_REFERENCE_LEVELS: usize = 4;
 
-/// A landing's reference: its finest refinement, and how far that lands from the one before it
-/// (the reference's resolution: where a landing's maxima are decided by the step's path, as a
-/// rocking stance decides the secondaries', the refinements do not converge and the errors
-/// below this are not resolved); or why it has none (left out of the errors, counted).
+/// A landing's reference, or why it has none (left out of the errors, counted).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MixReference {
     /// The landing's label.
     pub landing: String,
-    /// The finest refinement's step divisor; `None` without a reference.
+    /// Its reference, if it has one.
+    #[serde(flatten)]
+    pub found: Option<LandingReference>,
+    /// Why it has none (a refinement failed or ran out of the scenario's budget).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub divisor: Option<f64>,
+    pub failure: Option<String>,
+}
+
+/// A landing's reference: its finest refinement, and how far that lands from the one before it
+/// (the reference's resolution: where a landing's maxima are decided by the step's path, as a
+/// rocking stance decides the secondaries', the refinements do not converge and the errors
+/// below this are not resolved).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LandingReference {
+    /// The finest refinement's step divisor.
+    pub divisor: f64,
     /// Whether its last two refinements agree within [`REFERENCE_STROKE_AGREEMENT`] on every
     /// maximum stroke.
     pub converged: bool,
     /// How far the finest refinement lands from the one before it on every maximum stroke, a
     /// fraction of its largest primary stroke.
-    #[serde(
-        rename = "resolution_max_stroke_fraction",
-        skip_serializing_if = "Option::is_none"
-    )]
-    pub resolution_max_stroke: Option<f64>,
+    #[serde(rename = "resolution_max_stroke_fraction")]
+    pub resolution_max_stroke: f64,
     /// The same on the largest primary stroke, a fraction of it.
-    #[serde(
-        rename = "resolution_largest_primary_fraction",
-        skip_serializing_if = "Option::is_none"
-    )]
-    pub resolution_largest_primary: Option<f64>,
+    #[serde(rename = "resolution_largest_primary_fraction")]
+    pub resolution_largest_primary: f64,
     /// The finest refinement's outcome.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub outcome: Option<Outcome>,
+    pub outcome: Outcome,
     /// Whether the last two refinements have the same outcome: if not, the step decides it
     /// even there, and the landing is left out of the outcome counts.
     pub outcome_determined: bool,
     /// Accepted steps of the finest refinement.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub steps: Option<u64>,
-    /// Why it has none (a refinement failed or ran out of the scenario's budget).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub failure: Option<String>,
+    pub steps: u64,
     /// The finest refinement's run.
     #[serde(skip)]
-    pub run: Option<EngineRun>,
+    pub run: EngineRun,
 }
 
 /// The largest of a summary's maximum primary strokes, m.
@@ -90,37 +89,30 @@ fn largest_primary_error(reference: &Summary, run: &Summary) -> f64 {
 
 /// The reference of `landing` (its runs' diagnostics naming `path`).
 fn mix_reference(path: &Path, landing: &MixLanding) -> MixReference {
-    let none = |failure: String| MixReference {
-        landing: landing.label.clone(),
-        divisor: None,
-        converged: false,
-        resolution_max_stroke: None,
-        resolution_largest_primary: None,
-        outcome: None,
-        outcome_determined: false,
-        steps: None,
-        failure: Some(failure),
-        run: None,
-    };
-    let r = match refine(path, &landing.scenario, MIX_REFERENCE_LEVELS) {
-        Ok(r) => r,
-        Err(e) => return none(e.to_string()),
-    };
-    let Some((previous, agreement)) = &r.previous else {
-        return none("a single refinement: nothing to measure its resolution against".into());
-    };
-    let s = &r.run.summary;
+    let found = refine(path, &landing.scenario, MIX_REFERENCE_LEVELS)
+        .map_err(|e| e.to_string())
+        .and_then(|r| {
+            let Some((previous, agreement)) = &r.previous else {
+                return Err(
+                    "a single refinement: nothing to measure its resolution against".into(),
+                );
+            };
+            let s = &r.run.summary;
+            Ok(LandingReference {
+                divisor: reference_divisor(r.level),
+                converged: r.converged(),
+                resolution_max_stroke: agreement.max_stroke,
+                resolution_largest_primary: largest_primary_error(s, &previous.summary),
+                outcome: s.outcome,
+                outcome_determined: s.outcome == previous.summary.outcome,
+                steps: s.steps,
+                run: r.run,
+            })
+        });
     MixReference {
         landing: landing.label.clone(),
-        divisor: Some(reference_divisor(r.level)),
-        converged: r.converged(),
-        resolution_max_stroke: Some(agreement.max_stroke),
-        resolution_largest_primary: Some(largest_primary_error(s, &previous.summary)),
-        outcome: Some(s.outcome),
-        outcome_determined: s.outcome == previous.summary.outcome,
-        steps: Some(s.steps),
-        failure: None,
-        run: Some(r.run),
+        failure: found.as_ref().err().cloned(),
+        found: found.ok(),
     }
 }
 
@@ -139,7 +131,7 @@ pub struct MixRung {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub first_failure: Option<String>,
     /// Landings whose outcome differs from their reference's, among those whose reference's
-    /// outcome the step does not decide ([`MixReference::outcome_determined`]).
+    /// outcome the step does not decide ([`LandingReference::outcome_determined`]).
     pub outcomes_differing: usize,
     /// Every maximum stroke's error ([`super::Errors::max_stroke`], a fraction of each
     /// reference's largest primary stroke) over the landings; `None` with none measured.
@@ -241,7 +233,7 @@ pub struct WorkPrecisionMix {
     /// Every landing's reference.
     pub references: Vec<MixReference>,
     /// The references' resolution of every maximum stroke over the landings
-    /// ([`MixReference::resolution_max_stroke`]); `None` without a reference.
+    /// ([`LandingReference::resolution_max_stroke`]); `None` without a reference.
     #[serde(
         rename = "resolution_max_stroke_fraction",
         skip_serializing_if = "Option::is_none"
@@ -298,10 +290,10 @@ pub fn work_precision_mix(
             r
         })
         .collect();
-    let referenced: Vec<(&MixLanding, &MixReference, &EngineRun)> = landings
+    let referenced: Vec<(&MixLanding, &LandingReference)> = landings
         .iter()
         .zip(&references)
-        .filter_map(|(l, r)| r.run.as_ref().map(|run| (l, r, run)))
+        .filter_map(|(l, r)| r.found.as_ref().map(|f| (l, f)))
         .collect();
     let mut all = Vec::new();
     for &method in methods {
@@ -315,9 +307,9 @@ pub fn work_precision_mix(
             }
         }
     }
-    let resolution = |pick: &dyn Fn(&MixReference) -> Option<f64>| {
+    let resolution = |pick: &dyn Fn(&LandingReference) -> f64| {
         let errors: Vec<(f64, &str)> = (references.iter())
-            .filter_map(|r| pick(r).map(|e| (e, r.landing.as_str())))
+            .filter_map(|r| r.found.as_ref().map(|f| (pick(f), r.landing.as_str())))
             .collect();
         Spread::of(&errors)
     };
@@ -328,8 +320,8 @@ pub fn work_precision_mix(
         repeats,
         max_landing_time,
         optimised_build: !cfg!(debug_assertions),
-        resolution_max_stroke: resolution(&|r| r.resolution_max_stroke),
-        resolution_largest_primary: resolution(&|r| r.resolution_largest_primary),
+        resolution_max_stroke: resolution(&|f| f.resolution_max_stroke),
+        resolution_largest_primary: resolution(&|f| f.resolution_largest_primary),
         references,
         at_error: methods.iter().map(|&m| at_error(&all, m)).collect(),
         rungs: all,
@@ -341,7 +333,7 @@ pub fn work_precision_mix(
 /// landing that takes the mean wall time past `max_landing_time` (s).
 fn mix_rung(
     path: &Path,
-    referenced: &[(&MixLanding, &MixReference, &EngineRun)],
+    referenced: &[(&MixLanding, &LandingReference)],
     method: Method,
     value: f64,
     repeats: usize,
@@ -351,7 +343,8 @@ fn mix_rung(
     let (mut steps, mut wall) = (0.0, 0.0);
     let (mut failed, mut first_failure, mut differing) = (0, None, 0);
     let mut stopped = None;
-    for (k, &(landing, reference, reference_run)) in referenced.iter().enumerate() {
+    for (k, &(landing, reference)) in referenced.iter().enumerate() {
+        let reference_run = &reference.run;
         let sc = &landing.scenario;
         if !sc.applicable_engines.contains(&method.engine()) {
             continue;
@@ -365,9 +358,8 @@ fn mix_rung(
                 primaries.push((primary, label));
                 steps += m.steps as f64;
                 wall += m.wall_time_s;
-                differing += usize::from(
-                    reference.outcome_determined && reference.outcome != Some(m.outcome),
-                );
+                differing +=
+                    usize::from(reference.outcome_determined && reference.outcome != m.outcome);
                 let mean = wall / strokes.len() as f64;
                 if mean > max_landing_time && k + 1 < referenced.len() {
                     stopped = Some(format!(
@@ -451,10 +443,9 @@ pub fn text(w: &WorkPrecisionMix) -> String {
         "work-precision on a mix: {} ({} landings)",
         w.name, w.landings
     );
-    let converged = w.references.iter().filter(|r| r.converged).count();
-    let undetermined = (w.references.iter())
-        .filter(|r| r.run.is_some() && !r.outcome_determined)
-        .count();
+    let found = || w.references.iter().filter_map(|r| r.found.as_ref());
+    let converged = found().filter(|f| f.converged).count();
+    let undetermined = found().filter(|f| !f.outcome_determined).count();
     let _ = writeln!(
         s,
         "references: {} of {} landings (core report, DIST and dt_max ÷{} to ÷{}; {converged} converged within {:.0e} on every maximum stroke; {undetermined} whose outcome the last two refinements decide otherwise, left out of the outcome counts)",
@@ -470,24 +461,17 @@ pub fn text(w: &WorkPrecisionMix) -> String {
         s,
         "their resolution (the finest refinement against the one before it): every maximum stroke median {m}, worst {x}; the largest primary stroke median {pm}, worst {px}"
     );
-    for r in w.references.iter().filter(|r| r.run.is_none()) {
-        let _ = writeln!(
-            s,
-            "  {}: no reference ({})",
-            r.landing,
-            r.failure.as_deref().unwrap_or("?")
-        );
+    for r in &w.references {
+        if let Some(failure) = &r.failure {
+            let _ = writeln!(s, "  {}: no reference ({failure})", r.landing);
+        }
     }
     let _ = writeln!(
         s,
         "errors: every maximum stroke as a fraction of each reference's largest primary stroke, and the largest primary stroke, median and worst over the landings; outcomes that differ from the references'; wall time: mean of a landing, each the median of {} runs; a ladder ends at the first rung past {} a landing{}",
         w.repeats,
         duration(w.max_landing_time),
-        if w.optimised_build {
-            ""
-        } else {
-            " (DEBUG BUILD: not representative; run with `cargo run --release`)"
-        }
+        super::build_note(w.optimised_build)
     );
     let rows = w.rungs.iter().map(|r| {
         let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or(String::new(), f);

@@ -706,6 +706,16 @@ pub(crate) fn percent(x: f64) -> String {
     format!("{:.3} %", 100.0 * x)
 }
 
+/// What the text says of a study's wall times after their description: nothing from an
+/// optimised build, that they are not representative from a debug build.
+pub(crate) fn build_note(optimised: bool) -> &'static str {
+    if optimised {
+        ""
+    } else {
+        " (DEBUG BUILD: not representative; run with `cargo run --release`)"
+    }
+}
+
 /// The study as a text table.
 pub fn text(w: &WorkPrecision) -> String {
     use std::fmt::Write;
@@ -736,11 +746,7 @@ pub fn text(w: &WorkPrecision) -> String {
         s,
         "wall time: one whole landing, median of {} runs{}",
         w.repeats,
-        if w.optimised_build {
-            ""
-        } else {
-            " (DEBUG BUILD: not representative; run with `cargo run --release`)"
-        }
+        build_note(w.optimised_build)
     );
     let rows = w.rungs.iter().map(|rung| {
         let mut row = vec![

@@ -168,14 +168,14 @@ pub(super) fn csv(points: &[EnginePoint], velocity: f64) -> Result<String, Valid
             ]
         };
         if p.transitions.is_empty() {
-            let none = (String::new(), String::new());
+            let (resolved, holds) = (String::new(), String::new());
             w.write_record(row(
                 "none",
                 p.stable_at,
                 p.unstable_at,
                 None,
-                none.0,
-                none.1,
+                resolved,
+                holds,
             ))?;
         }
         for t in &p.transitions {
