@@ -52,6 +52,22 @@ def test_the_summary_is_the_command_lines():
     assert touchdown.run(SCENARIO, history=False)["summary"] == json.loads(cli.stdout)
 
 
+def test_a_settled_landing_ends_early_with_the_full_runs_maxima():
+    vv10 = ROOT / "scenarios" / "table-i-2-2-vv10.toml"
+    full = touchdown.run(vv10, history=False)["summary"]
+    early = touchdown.run(vv10, overrides={"stability.settled_tolerance": 0.001}, history=False)["summary"]
+    assert "settled_time_s" not in full
+    assert early["t_end_s"] == early["settled_time_s"] < full["t_end_s"]
+    assert early["outcome"] == full["outcome"]
+    eps = 0.001 * 0.3048  # the vehicle file's length unit is the foot
+    assert np.allclose(early["max_primary_stroke_m"], full["max_primary_stroke_m"], rtol=0, atol=eps)
+    assert early["peak_primary_force_n"] == full["peak_primary_force_n"]
+    assert early["peak_pitch_rate_rad_s"] == full["peak_pitch_rate_rad_s"]
+    with pytest.raises(touchdown.ScenarioInvalid) as e:
+        touchdown.run(ROOT / "scenarios" / "soil-drop.toml", overrides={"stability.settled_tolerance": 0.001})
+    assert "stability.settled_tolerance" in str(e.value) and "soil" in str(e.value)
+
+
 def test_overrides_and_text_change_the_landing():
     base = touchdown.run(SCENARIO, history=False)["summary"]
     faster = touchdown.run(SCENARIO, overrides={"touchdown.vertical_velocity": -10.0}, history=False)["summary"]

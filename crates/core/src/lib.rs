@@ -40,6 +40,7 @@ mod mechanisms;
 mod model;
 mod release;
 mod rigid_body;
+mod settling;
 mod simulation;
 mod state;
 mod stepper;

@@ -6,6 +6,7 @@
 
 use crate::mechanisms::Mechanisms;
 use crate::rigid_body::MassProperties;
+use crate::settling::Settling;
 use crate::summation::SumOrder;
 use nalgebra::Vector3;
 use touchdown_laws::GearLaws;
@@ -55,6 +56,8 @@ pub(crate) struct Model {
     /// g·M⁻¹·g over the struts and their states, g a stroke's gradient in the vehicle's
     /// displacement and M its mass and inertia ([`crate::stepper::stroke_mobility`]).
     pub(crate) stroke_mobility: f64,
+    /// The settled end the scenario asks for ([`crate::settling`]).
+    pub(crate) settling: Option<Settling>,
     /// The scene's optional mechanisms' laws.
     pub(crate) mechanisms: Mechanisms,
     /// The order in which the legs' loads are summed ([`crate::summation`]).

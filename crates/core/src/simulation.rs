@@ -11,6 +11,7 @@ use crate::gear::GearState;
 use crate::mechanisms::{MechanismState, Mechanisms, Power};
 use crate::model::Model;
 use crate::rigid_body::MassProperties;
+use crate::settling::{LegTerms, Settling};
 use crate::state::{Relaxation, State};
 use crate::stepper::Schemes;
 use crate::summation::SumOrder;
@@ -113,6 +114,7 @@ impl Simulation {
             stroke_mobility,
             sum_order: SumOrder::new(&scenario.legs),
             mechanisms,
+            settling: Settling::new(scenario)?,
             potential0: 0.0,
             footpad0: 0.0,
         };
@@ -136,6 +138,9 @@ impl Simulation {
             pad_start: vec![(Vector3::zeros(), Vector3::zeros()); n],
             held: Vec::with_capacity(n),
             leg_loads: (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]),
+            settled: None,
+            next_settling_check: 0.0,
+            settling_terms: vec![LegTerms::default(); n],
         };
         // The energies are measured from the start.
         model.potential0 = state.potential_energy(&model);
@@ -267,13 +272,19 @@ impl Landing for Simulation {
 
     /// One integration step (see the module documentation).
     fn step(&mut self) -> Result<(), RunError> {
-        self.stepper.get().step(&self.model, &mut self.state)
+        self.stepper.get().step(&self.model, &mut self.state)?;
+        if let Some(settling) = &self.model.settling {
+            self.state.check_settled(&self.model, settling);
+        }
+        Ok(())
     }
 
-    /// Whether the run has ended (end time, or an unstable decision with termination on).
+    /// Whether the run has ended (end time, an unstable decision with termination on, or the
+    /// landing proved settled).
     fn finished(&self) -> bool {
         self.state.t >= self.model.integrator.t_end * (1.0 - 1e-12)
             || self.state.stability.terminates()
+            || self.state.settled.is_some()
     }
 
     /// Writes the current state into `out` (a sample made for as many legs), allocating
@@ -326,6 +337,7 @@ impl Landing for Simulation {
             &p.extremes,
             p.energy(m),
         );
+        summary.settled_time_s = p.settled;
         summary.mechanisms = self
             .mechanism_evaluations()
             .into_iter()

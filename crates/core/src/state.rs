@@ -5,6 +5,7 @@
 
 use crate::gear::GearState;
 use crate::mechanisms::{MechanismState, Power};
+use crate::settling::LegTerms;
 use crate::stiction::Held;
 use crate::surface::Footpad;
 use crate::vehicle::VehicleState;
@@ -63,6 +64,12 @@ pub(crate) struct State {
     /// Each leg's force on the vehicle (inertial axes, N) and torque about its centre of mass
     /// (body axes, N·m) at the last evaluation (reused).
     pub(crate) leg_loads: (Vec<Vector3<f64>>, Vec<Vector3<f64>>),
+    /// When the landing was proved settled ([`crate::settling`]), s.
+    pub(crate) settled: Option<f64>,
+    /// When the settled end's certificate is next checked, s.
+    pub(crate) next_settling_check: f64,
+    /// What the certificate needs of each leg (reused).
+    pub(crate) settling_terms: Vec<LegTerms>,
 }
 
 /// How far a gear went back in a step as its rigid footpad left and it relaxed

@@ -376,6 +376,7 @@ mod tests {
             min_separation_velocity: 0.0,
             walls: WallRule::All,
             terminate_on_decision: true,
+            settled_tolerance: None,
         };
         StabilityTracker::new(&criteria, Vector3::new(0.0, 0.0, -9.81), 4, 100.0)
     }

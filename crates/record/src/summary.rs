@@ -161,6 +161,27 @@ impl Extremes {
         }
     }
 
+    /// Leg `i`'s largest strut forces so far, N: the primary's axial force F2P (compression
+    /// positive), and each secondary's in tension and in compression (positive).
+    pub fn peak_forces(&self, i: usize) -> (f64, [f64; 2], [f64; 2]) {
+        let l = &self.legs[i];
+        (
+            l.primary_force,
+            l.sec_tension_force,
+            l.sec_compression_force,
+        )
+    }
+
+    /// The largest specific force on the vehicle so far, m/s².
+    pub fn specific_force(&self) -> f64 {
+        self.specific_force
+    }
+
+    /// The pitch rate of largest magnitude so far, rad/s (signed).
+    pub fn pitch_rate(&self) -> f64 {
+        self.pitch_rate
+    }
+
     /// One value per leg.
     fn per_leg<T>(&self, f: impl Fn(&LegExtremes) -> T) -> Vec<T> {
         self.legs.iter().map(f).collect()
@@ -190,6 +211,12 @@ pub struct Summary {
     /// held).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stable_conditions_time_s: Option<f64>,
+    /// When the core proved the landing settled and ended it, s: no maximum stroke could grow
+    /// by more than the scenario's `stability.settled_tolerance` and no overturn was
+    /// reachable (docs/errata.md, "Settled landings: an early end with a proof"); left out of
+    /// the JSON where the run went to its end time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settled_time_s: Option<f64>,
     /// Time the run ended, s.
     pub t_end_s: f64,
     /// Accepted integration steps.
@@ -346,6 +373,7 @@ impl Summary {
             outcome,
             decision_time_s: decision,
             stable_conditions_time_s: stability.stable_conditions_time(),
+            settled_time_s: None,
             t_end_s: progress.t,
             steps: progress.steps,
             force_evaluations: progress.force_evaluations,

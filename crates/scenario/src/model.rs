@@ -549,6 +549,9 @@ pub struct Stability {
     pub walls: WallRule,
     /// End the run at an unstable decision (a stable landing runs to its end time).
     pub terminate_on_decision: bool,
+    /// The core ends a stable landing once no maximum stroke can grow by more than this, m,
+    /// and no overturn is reachable; `None`: every landing runs to its end time.
+    pub settled_tolerance: Option<f64>,
 }
 
 /// Settings of the rapier multibody rebuild, SI.

@@ -195,6 +195,7 @@ pub const RANGES: &[Range] = &[
     row("similarity.time", "", C(1e-3), C(1e3), "a similar vehicle's time ratio, the square root of length over gravity ratios"),
     row("stability.kinetic_energy_fraction", "", C(1e-6), C(1.0), "a fraction of the touchdown kinetic energy; below 1e-6 no landing would ever end stable"),
     row("stability.min_separation_velocity", "m/s", C(0.0), C(1e3), "a speed up to 1 km/s"),
+    row("stability.settled_tolerance", "m", O(0.0), C(1.0), "a stroke tolerance up to 1 m"),
     // The comparison's tolerances.
     row("comparison.primary_stroke", "", O(0.0), C(10.0), "a fraction of the larger maximum stroke: above ten times, no difference fails"),
     row("comparison.secondary_stroke", "", O(0.0), C(10.0), "a fraction of the larger maximum stroke: above ten times, no difference fails"),

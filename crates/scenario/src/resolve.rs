@@ -734,6 +734,10 @@ pub(crate) fn resolve(
         )?,
         walls: st.walls,
         terminate_on_decision: st.terminate_on_decision,
+        settled_tolerance: st
+            .settled_tolerance
+            .map(|e| c.positive_si("stability.settled_tolerance", e, u.length()))
+            .transpose()?,
     };
     let comparison = file.comparison.unwrap_or_default();
     for (name, limit) in comparison.set() {

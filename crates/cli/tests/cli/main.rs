@@ -16,6 +16,7 @@ mod help;
 mod new_check;
 mod run;
 mod set;
+mod settled;
 mod studies;
 mod view;
 

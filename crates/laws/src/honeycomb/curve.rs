@@ -126,6 +126,27 @@ impl LoadStroke {
         }
     }
 
+    /// The least slope of the virgin curve over the strokes `from` to `to` (m, 0 ≤ from ≤ to),
+    /// N/m: the least of the segments' slopes that span part of it, the stroke-out rate past
+    /// the capacity.
+    pub fn least_slope(&self, from: f64, to: f64) -> f64 {
+        let mut least = if to > self.capacity() {
+            self.stroke_out_rate
+        } else {
+            f64::INFINITY
+        };
+        for i in 1..self.n {
+            if self.x[i] > from && self.x[i - 1] < to {
+                least = least.min((self.f[i] - self.f[i - 1]) / (self.x[i] - self.x[i - 1]));
+            }
+        }
+        if least.is_finite() {
+            least
+        } else {
+            self.slope(from)
+        }
+    }
+
     /// Stroke at which the last stage is exhausted (bottoming begins), m.
     pub fn capacity(&self) -> f64 {
         self.x[self.n - 1]

@@ -25,11 +25,13 @@
 mod crush;
 mod curve;
 mod double_acting;
+pub mod reach;
 mod stop;
 
 pub use crush::{Branch, CrushMemory, Honeycomb};
 pub use curve::{LoadStroke, Stage, MAX_STAGES};
 pub use double_acting::{DoubleActingHoneycomb, DoubleActingMemory};
+pub use reach::{leg_reach, StrutReach};
 pub use stop::Stop;
 
 #[cfg(test)]

@@ -58,6 +58,12 @@ pub struct Stability {
     /// landing always runs to its end time, so that no maximum is cut short.
     #[serde(default = "yes")]
     pub terminate_on_decision: bool,
+    /// End a stable landing early once no maximum stroke can grow by more than this length
+    /// and no overturn is reachable (the core's settled end: docs/errata.md, "Settled
+    /// landings: an early end with a proof"); length. Absent: every landing runs to its end
+    /// time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settled_tolerance: Option<f64>,
 }
 
 impl Default for Stability {
@@ -68,6 +74,7 @@ impl Default for Stability {
             min_separation_velocity: 0.0,
             walls: default_walls(),
             terminate_on_decision: true,
+            settled_tolerance: None,
         }
     }
 }
