@@ -46,7 +46,11 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     };
     let outcome = match (s.outcome, s.decision_time_s) {
         (Outcome::Stable, Some(t)) => format!(
-            "STABLE{bottomed} (the stable conditions held at t = {t:.4} s; maxima over the whole run)"
+            "STABLE{bottomed} (the stable conditions held at t = {t:.4} s; {})",
+            match s.settled_time_s {
+                Some(e) => format!("proved settled at t = {e:.4} s, where the run ended: no maximum stroke could grow, nor the least stability distance fall, by more than stability.settled_tolerance, and no peak or outcome could change (docs/errata.md, \"Settled landings: an early end with a proof\")"),
+                None => "maxima over the whole run".to_string(),
+            }
         ),
         (Outcome::Unstable, Some(t)) => format!(
             "UNSTABLE{bottomed} (centre of mass crossed a stability wall at t = {t:.4} s, overturning velocity {:.3} m/s{}; maxima up to the crossing)",

@@ -336,6 +336,9 @@ fn decision_marks(s: &Summary) -> Vec<(f64, &'static str)> {
     if let Some(t) = s.stable_conditions_time_s {
         marks.push((t, "stable conditions"));
     }
+    if let Some(t) = s.settled_time_s {
+        marks.push((t, "proved settled"));
+    }
     if s.outcome == Outcome::Unstable {
         if let Some(t) = s.decision_time_s {
             marks.push((t, "wall crossed"));

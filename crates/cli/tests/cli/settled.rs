@@ -82,6 +82,22 @@ fn settled_landings_keep_every_outcome_and_maximum() {
 }
 
 #[test]
+fn the_summary_says_where_a_landing_was_proved_settled() {
+    let o = touchdown(&[
+        "run",
+        "scenarios/table-i-2-2-vv10.toml",
+        "--set",
+        "stability.settled_tolerance=0.001",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("proved settled at t = 0.70") && out.contains("run:      0.70"),
+        "{out}"
+    );
+}
+
+#[test]
 fn a_settled_end_outside_its_derivation_is_refused() {
     let o = touchdown(&[
         "run",
