@@ -30,6 +30,7 @@
 //! Departures from the printed equations are listed with their derivations and tests in
 //! `docs/errata.md`.
 
+mod certificate;
 mod contact;
 mod diagnostics;
 mod gear;

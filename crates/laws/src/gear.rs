@@ -3,7 +3,7 @@
 
 use crate::{
     Bearing, Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LawError,
-    LoadStroke, Stage, Viscous,
+    LoadStroke, Stage, StrutReach, Viscous,
 };
 use nalgebra::Vector3;
 use touchdown_scenario::{model, Scenario, ScenarioError};
@@ -81,6 +81,18 @@ impl PrimaryStrutLaw {
         } else {
             self.honeycomb.stop.returned_energy(-c, -f)
         }
+    }
+
+    /// The minorant of the energy it takes to reach a stroke from the committed `memory`
+    /// (its compression honeycomb above, its extension stop below; docs/errata.md, "Settled
+    /// landings: an early end with a proof"), `None` while its bottoming stop is engaged.
+    pub fn reach(&self, memory: PrimaryMemory, tolerance: f64) -> Option<StrutReach> {
+        StrutReach::crushing_with_extension_stop(
+            &self.honeycomb,
+            memory.compression,
+            memory.extension_depth,
+            tolerance,
+        )
     }
 
     /// Commits an accepted compression stroke `c` (m): the honeycomb's memory (its x_max only
@@ -265,6 +277,18 @@ impl GearLaws {
             &self.secondary.honeycomb.tension,
         ]
         .map(|h| (h.curve.capacity(), h.stop.rate))
+    }
+
+    /// The minorants of a leg's three struts (primary, secondaries 3-1 and 4-1) at the
+    /// committed `memory`, the maxima's tolerance `tolerance` (m); `None` while a stop is
+    /// engaged ([`StrutReach`]).
+    pub fn reach(&self, memory: &GearMemory, tolerance: f64) -> Option<[StrutReach; 3]> {
+        let h = &self.secondary.honeycomb;
+        Some([
+            self.primary.reach(memory.primary, tolerance)?,
+            StrutReach::secondary(h, memory.secondary[0], tolerance)?,
+            StrutReach::secondary(h, memory.secondary[1], tolerance)?,
+        ])
     }
 
     /// Commits an accepted state into the memory (honeycomb x_max per side): primary

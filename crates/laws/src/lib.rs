@@ -39,8 +39,8 @@ pub use gear::{
     StrutLoad,
 };
 pub use honeycomb::{
-    leg_reach, Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb,
-    LoadStroke, Stage, Stop, StrutReach,
+    Branch, CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, LoadStroke, Stage,
+    Stop, StrutReach,
 };
 pub use rcs::{DownwardTranslation, Rcs, RcsLoads, RcsMode, RcsParams};
 pub use sliding::sliding_friction;

@@ -31,7 +31,7 @@ mod stop;
 pub use crush::{Branch, CrushMemory, Honeycomb};
 pub use curve::{LoadStroke, Stage, MAX_STAGES};
 pub use double_acting::{DoubleActingHoneycomb, DoubleActingMemory};
-pub use reach::{leg_reach, StrutReach};
+pub use reach::StrutReach;
 pub use stop::Stop;
 
 #[cfg(test)]

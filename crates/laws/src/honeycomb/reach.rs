@@ -18,7 +18,6 @@
 //! strut carries nothing.
 
 use super::{CrushMemory, DoubleActingHoneycomb, DoubleActingMemory, Honeycomb, Stop};
-use crate::gear::{PrimaryMemory, PrimaryStrutLaw};
 
 /// One side of a strut's minorant, in that side's own stroke (m, positive into the side).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -143,12 +142,19 @@ pub struct StrutReach {
 }
 
 impl StrutReach {
-    /// The primary strut `law` with the committed `memory`: its compression honeycomb above,
-    /// its extension stop below; `None` while its bottoming stop is engaged.
-    pub fn primary(law: &PrimaryStrutLaw, memory: PrimaryMemory, tolerance: f64) -> Option<Self> {
+    /// A primary strut's compression honeycomb `h` with its committed `memory` above, and
+    /// below it the honeycomb's own stop as the strut's extension stop at the depth
+    /// `extension_depth` (m) of its current engagement; `None` while its bottoming stop is
+    /// engaged.
+    pub fn crushing_with_extension_stop(
+        h: &Honeycomb,
+        memory: CrushMemory,
+        extension_depth: f64,
+        tolerance: f64,
+    ) -> Option<Self> {
         Some(StrutReach {
-            upper: Side::honeycomb(&law.honeycomb, memory.compression, tolerance)?,
-            lower: Side::extension_stop(&law.honeycomb.stop, memory.extension_depth),
+            upper: Side::honeycomb(h, memory, tolerance)?,
+            lower: Side::extension_stop(&h.stop, extension_depth),
         })
     }
 
@@ -230,23 +236,10 @@ impl StrutReach {
     }
 }
 
-/// The minorants of a leg's three struts: primary, secondaries 3-1 and 4-1.
-pub fn leg_reach(
-    laws: &crate::GearLaws,
-    memory: &crate::GearMemory,
-    tolerance: f64,
-) -> Option<[StrutReach; 3]> {
-    let h = &laws.secondary.honeycomb;
-    Some([
-        StrutReach::primary(&laws.primary, memory.primary, tolerance)?,
-        StrutReach::secondary(h, memory.secondary[0], tolerance)?,
-        StrutReach::secondary(h, memory.secondary[1], tolerance)?,
-    ])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gear::{PrimaryMemory, PrimaryStrutLaw};
     use crate::honeycomb::{LoadStroke, Stage};
 
     fn honeycomb() -> Honeycomb {
@@ -315,7 +308,7 @@ mod tests {
     fn the_reach_is_where_the_gap_fits_the_budget() {
         let h = honeycomb();
         let mut memory = PrimaryMemory::default();
-        let law = crate::gear::PrimaryStrutLaw {
+        let law = PrimaryStrutLaw {
             honeycomb: h,
             viscous: crate::Viscous::NONE,
             bearing: crate::Bearing {
@@ -325,7 +318,7 @@ mod tests {
             },
         };
         law.commit(0.05, &mut memory);
-        let reach = StrutReach::primary(&law, memory, 1e-3).unwrap();
+        let reach = law.reach(memory, 1e-3).unwrap();
         let f = 400.0;
         let s = 0.05 - (1000.0 - f) / 1e6;
         let (lo, hi) = reach.reach(s, f, 0.02, (-1.0, 0.051));
@@ -340,7 +333,7 @@ mod tests {
         law.commit(0.05, &mut hanging);
         law.commit(-0.002, &mut hanging);
         law.commit(-0.001, &mut hanging);
-        let reach = StrutReach::primary(&law, hanging, 1e-3).unwrap();
+        let reach = law.reach(hanging, 1e-3).unwrap();
         let f = law.stroke_force(-0.001, hanging);
         assert!(f < 0.0);
         assert!(reach.gap(-0.001, f).unwrap() < 1e-9 * f.abs() * 1e-3);
@@ -355,6 +348,6 @@ mod tests {
         assert_eq!(reach.limits(1e-3).0, f64::NEG_INFINITY);
         // On its bottoming stop there is no certificate.
         law.commit(0.101, &mut memory);
-        assert!(StrutReach::primary(&law, memory, 1e-3).is_none());
+        assert!(law.reach(memory, 1e-3).is_none());
     }
 }
