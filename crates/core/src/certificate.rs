@@ -25,7 +25,7 @@ use touchdown_scenario::model::Leg;
 /// least energy that tips the vehicle over a wall: the bound is exact to first order in the
 /// displacements it allows, and κ bounds the neglected second-order terms (the rotation's
 /// change of the lever arms) relative to it; the bound is raised by the same fraction.
-pub(crate) const LINEAR_MARGIN: f64 = 0.1;
+const LINEAR_MARGIN: f64 = 0.1;
 
 /// Directions of the motion whose weight in AᵀWA is below this fraction of the largest are
 /// free: the rows do not bound them (rounding is 1e-16 of it).
@@ -46,7 +46,7 @@ pub(crate) enum Unsettled {
     Undecided,
     /// A footpad in contact is not held laterally.
     Sliding,
-    /// A strut is on an end stop, or within ε of its capacity.
+    /// A strut is on its bottoming stop.
     Stop,
     /// The footpads in contact cannot hold the vehicle at rest.
     Unbalanced,
@@ -136,6 +136,7 @@ impl State {
                 g.secondary_stroke[1],
             );
             term.bearing = contact;
+            (term.forces, term.rates, term.stored) = self.strut_state(model, i);
             term.reach = Some(
                 model
                     .laws
@@ -267,10 +268,11 @@ impl State {
         g_b: &Vector3<f64>,
         up_b: &Vector3<f64>,
     ) -> Result<f64, Unsettled> {
-        for (i, term) in terms.iter_mut().enumerate() {
-            let (forces, rates) = self.strut_forces(model, i);
-            term.slack = forces.map(|f| f == 0.0).into();
-            term.compliance = rates.zip_map(&forces, |k, f| if f == 0.0 { k * SLACK } else { k });
+        for term in terms.iter_mut() {
+            term.slack = term.forces.map(|f| f == 0.0).into();
+            term.compliance =
+                term.rates
+                    .zip_map(&term.forces, |k, f| if f == 0.0 { k * SLACK } else { k });
         }
         let mut best: Option<f64> = None;
         let mut contact = [false; MAX_LEGS];
@@ -283,13 +285,12 @@ impl State {
             }
             self.balance(model, terms, g_b, up_b)?;
             let mut available = kinetic;
-            for (i, term) in terms.iter().enumerate() {
+            for term in terms.iter() {
                 let r = term.reach.ok_or(Unsettled::Stop)?;
-                let stored = self.strut_energies(model, i);
-                for j in 0..3 {
+                for (j, strut) in r.iter().enumerate() {
                     let (s, f) = (term.strokes[j], term.loads[j]);
                     available +=
-                        stored[j] - f * s + r[j].conjugate(f).ok_or(Unsettled::Crushing)?;
+                        term.stored[j] - f * s + strut.conjugate(f).ok_or(Unsettled::Crushing)?;
                 }
             }
             if best.is_none_or(|b| available < b) {
@@ -298,16 +299,15 @@ impl State {
                     term.kept = (term.loads, term.bearing, term.pressing);
                 }
             }
-            for (i, term) in terms.iter_mut().enumerate() {
+            for term in terms.iter_mut() {
                 let r = term.reach.ok_or(Unsettled::Stop)?;
-                let (forces, rates) = self.strut_forces(model, i);
-                for j in 0..3 {
+                for (j, strut) in r.iter().enumerate() {
                     let (s, f) = (term.strokes[j], term.loads[j]);
-                    term.compliance[j] = if f * forces[j] > 0.0 {
-                        rates[j]
+                    term.compliance[j] = if f * term.forces[j] > 0.0 {
+                        term.rates[j]
                     } else {
                         // Loading the other side (or a slack strut) strokes across the band.
-                        let (a, b) = r[j].band();
+                        let (a, b) = strut.band();
                         let distance = if f >= 0.0 { b - s } else { s - a };
                         f.abs().max(f64::MIN_POSITIVE) / distance.max(f64::MIN_POSITIVE)
                     };
@@ -343,23 +343,18 @@ impl State {
             residual
                 .fixed_rows_mut::<3>(0)
                 .copy_from(&(-g_b * model.mass.mass));
-            for (i, term) in terms.iter_mut().enumerate() {
+            for term in terms.iter_mut() {
                 let jt = term.jacobian.transpose();
-                if !term.bearing {
+                let c = coupling(&term.bp, &jt);
+                if term.bearing {
+                    let k = Matrix3::from_diagonal(&term.compliance);
+                    stiffness += c * k * c.transpose();
+                    term.loads = term.forces;
+                } else {
                     // B = Jᵀ·f carries the hanging footpad's weight.
                     term.loads = jt.try_inverse().ok_or(Unsettled::Unbalanced)? * hanging;
-                    let moment = term.bp.cross(&hanging);
-                    residual -= Vector6::new(
-                        hanging.x, hanging.y, hanging.z, moment.x, moment.y, moment.z,
-                    );
-                    continue;
                 }
-                let c = coupling(&term.bp, &jt);
-                let (forces, _) = self.strut_forces(model, i);
-                let k = Matrix3::from_diagonal(&term.compliance);
-                stiffness += c * k * c.transpose();
-                residual -= c * forces;
-                term.loads = forces;
+                residual -= c * term.loads;
             }
             let multipliers = stiffness
                 .cholesky()
@@ -387,35 +382,27 @@ impl State {
         }
     }
 
-    /// Leg `i`'s honeycomb forces (c, S31, S41 senses, N) at the accepted state and the rebound
-    /// rates K_B of the sides they are on (N/m), the compliances the balance weighs them by.
-    fn strut_forces(&self, model: &Model, i: usize) -> (Vector3<f64>, Vector3<f64>) {
-        let g = &self.gear[i];
-        let h = &model.laws.secondary.honeycomb;
-        let s = g.secondary_stroke;
-        let forces = Vector3::new(g.fcp, g.fc_secondary[0], g.fc_secondary[1]);
-        let rates = Vector3::new(
-            model.laws.primary.honeycomb.backoff_rate,
-            h.side(s[0]).backoff_rate,
-            h.side(s[1]).backoff_rate,
-        );
-        (forces, rates)
-    }
-
-    /// Leg `i`'s stored energies per strut at the accepted state, J.
-    fn strut_energies(&self, model: &Model, i: usize) -> [f64; 3] {
+    /// Leg `i`'s honeycomb forces (c, S31, S41 senses, N) at the accepted state, the rebound
+    /// rates K_B of the sides they are on (N/m; the compliances the balance weighs them by)
+    /// and the stored energies (J).
+    fn strut_state(&self, model: &Model, i: usize) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
         let g = &self.gear[i];
         let memory = &self.memory[i];
-        let h = &model.laws.secondary.honeycomb;
+        let (p, h) = (&model.laws.primary, &model.laws.secondary.honeycomb);
         let s = g.secondary_stroke;
-        [
-            model
-                .laws
-                .primary
-                .stored_energy(g.primary_stroke, memory.primary),
-            h.stored_energy(s[0], memory.secondary[0]),
-            h.stored_energy(s[1], memory.secondary[1]),
-        ]
+        (
+            Vector3::new(g.fcp, g.fc_secondary[0], g.fc_secondary[1]),
+            Vector3::new(
+                p.honeycomb.backoff_rate,
+                h.side(s[0]).backoff_rate,
+                h.side(s[1]).backoff_rate,
+            ),
+            Vector3::new(
+                p.stored_energy(g.primary_stroke, memory.primary),
+                h.stored_energy(s[0], memory.secondary[0]),
+                h.stored_energy(s[1], memory.secondary[1]),
+            ),
+        )
     }
 
     /// Bounds (least, largest) of leg `i`'s axial strut forces, N (F2P compression positive,

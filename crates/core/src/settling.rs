@@ -86,6 +86,12 @@ pub(crate) struct LegTerms {
     pub(crate) jacobian: Matrix3<f64>,
     /// Strokes c, S31, S41, m.
     pub(crate) strokes: Vector3<f64>,
+    /// Honeycomb forces at the accepted state, N (the strokes' senses).
+    pub(crate) forces: Vector3<f64>,
+    /// The rebound rates K_B of the sides the strokes are on, N/m.
+    pub(crate) rates: Vector3<f64>,
+    /// Stored energies at the accepted state, J.
+    pub(crate) stored: Vector3<f64>,
     /// The loads f holding the vehicle at rest, N (the strokes' senses).
     pub(crate) loads: Vector3<f64>,
     /// Whether its footpad is in contact and bears.

@@ -81,16 +81,15 @@ impl Side {
         }
     }
 
-    /// The load at stroke `x` in [x₀, x_max], N, and the energy under it from x₀, J.
-    fn below_top(&self, x: f64) -> (f64, f64) {
+    /// The energy under the load from x₀ to stroke `x` in [x₀, x_max], J.
+    fn below_top(&self, x: f64) -> f64 {
         let span = self.top - self.start;
         let u = x - self.start;
         if self.exponent == 1.0 || !span.is_finite() {
-            return (self.rate * u, 0.5 * self.rate * u * u);
+            return 0.5 * self.rate * u * u;
         }
-        let ratio = u / span;
-        let load = self.rate * span * ratio.powf(self.exponent);
-        (load, load * u / (self.exponent + 1.0))
+        let load = self.rate * span * (u / span).powf(self.exponent);
+        load * u / (self.exponent + 1.0)
     }
 
     /// The slope of the rebound line at x_max, S = K_B·(x_max − x₀), N.
@@ -103,7 +102,7 @@ impl Side {
         if x <= self.start {
             0.0
         } else if x <= self.top {
-            self.below_top(x).1
+            self.below_top(x)
         } else {
             let d = x - self.top;
             self.energy(self.top) + self.top_slope() * d + 0.5 * self.beyond * d * d
@@ -123,7 +122,8 @@ impl Side {
             } else {
                 (self.top - self.start) * (f / slope).powf(1.0 / n)
             };
-            return Some(f * self.start + f * u * n / (n + 1.0));
+            // n/(n + 1) as 1/(1 + 1/n): 1 for a plastic stop (n infinite).
+            return Some(f * self.start + f * u / (1.0 + 1.0 / n));
         }
         if self.beyond <= 0.0 {
             return None;
@@ -346,6 +346,19 @@ mod tests {
             }
         }
         assert_eq!(reach.limits(1e-3).0, f64::NEG_INFINITY);
+        // A plastic extension stop (e = 0) carries nothing below its deepest depth: the
+        // conjugate is the load times that depth, finite.
+        let plastic = PrimaryStrutLaw {
+            honeycomb: Honeycomb {
+                stop: Stop::new(law.honeycomb.stop.rate, 0.0).unwrap(),
+                ..law.honeycomb
+            },
+            ..law
+        };
+        let reach = plastic.reach(hanging, 1e-3).unwrap();
+        assert_eq!(reach.energy(-0.001), 0.0);
+        let conj = reach.conjugate(-10.0).unwrap();
+        assert!((conj - 10.0 * 0.002).abs() < 1e-12, "{conj}");
         // On its bottoming stop there is no certificate.
         law.commit(0.101, &mut memory);
         assert!(law.reach(memory, 1e-3).is_none());
