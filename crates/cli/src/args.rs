@@ -657,7 +657,7 @@ impl std::fmt::Display for Set {
     }
 }
 
-/// The overrides of `--set`, as [`ScenarioBase::with`] takes them.
+/// The overrides of `--set`, as [`touchdown_scenario::ScenarioBase::with`] takes them.
 pub fn overrides(set: &[Set]) -> Vec<(&str, toml::Value)> {
     set.iter()
         .map(|s| (s.field.as_str(), s.value.clone()))

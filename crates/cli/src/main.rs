@@ -1,4 +1,8 @@
 //! `touchdown`: runs landing scenarios and reports them.
+//!
+//! The argument structs' doc comments are the command line's help text, where `<scenario>` is
+//! the usage's placeholder for an argument, not an HTML tag.
+#![allow(rustdoc::invalid_html_tags)]
 
 mod args;
 mod boundary;

@@ -37,8 +37,9 @@ pub(crate) struct Power {
     pub(crate) driving: f64,
 }
 
-/// The scene's optional mechanisms: their laws, which the scenario fixes (part of the
-/// landing's [`crate::model::Model`]); what they commit is in [`MechanismState`].
+/// The scene's optional mechanisms: their laws, which the scenario fixes (part of what a
+/// [`crate::Simulation`] keeps fixed for its landing); what they commit is in
+/// [`MechanismState`].
 #[derive(Debug, Clone)]
 pub struct Mechanisms {
     /// Descent engine (thrust, amplification, nozzle crushing) and RCS.
@@ -54,8 +55,8 @@ pub struct Mechanisms {
     declared: Vec<Mechanism>,
 }
 
-/// What the mechanisms of a landing commit and count as it goes (part of the landing's
-/// [`crate::state::State`]).
+/// What the mechanisms of a landing commit and count as it goes (part of the state a
+/// [`crate::Simulation`] advances).
 #[derive(Debug, Clone)]
 pub struct MechanismState {
     /// Committed nozzle crush (shortening along Z_B), m.

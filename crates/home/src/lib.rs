@@ -82,7 +82,7 @@ pub fn home_shown() -> PathBuf {
 }
 
 /// What to do about a missing Python environment, to end a message with: run
-/// [`SETUP_COMMAND`] in the project's folder.
+/// `scripts/setup-python` in the project's folder.
 pub fn setup_hint() -> String {
     format!(
         "run `{SETUP_COMMAND}` in {} (it creates .venv with the pinned mujoco and matplotlib)",

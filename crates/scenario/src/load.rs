@@ -119,7 +119,7 @@ impl Scenario {
         toml::to_string(&self.file).expect("a scenario always serialises")
     }
 
-    /// The units the file's numbers were read in ([`ScenarioFile::read_units`]).
+    /// The units the file's numbers were read in ([`schema::ScenarioFile::read_units`]).
     pub fn units(&self) -> Units {
         self.file.read_units()
     }

@@ -572,11 +572,11 @@ pub struct Mujoco {
     /// Fixed time step, s; `None`: derived from the scenario's scale
     /// (`touchdown_multibody::MujocoSettings`).
     pub timestep: Option<f64>,
-    /// Contact time constant (solref[0]), s; `None`: derived.
+    /// Contact time constant (`solref[0]`), s; `None`: derived.
     pub contact_timeconst: Option<f64>,
-    /// Contact damping ratio (solref[1]).
+    /// Contact damping ratio (`solref[1]`).
     pub contact_damping_ratio: f64,
-    /// Width of the contact impedance ramp (solimp[2]), m; `None`: derived.
+    /// Width of the contact impedance ramp (`solimp[2]`), m; `None`: derived.
     pub contact_width: Option<f64>,
 }
 

@@ -47,7 +47,9 @@ pub(crate) fn special_kind(t: &std::fs::FileType) -> Option<&'static str> {
     Some("neither a file nor a directory")
 }
 
-/// Reads a TOML file of the project (a scenario, a campaign) as [`read_table`] does.
+/// Reads a TOML file of the project (a scenario, a campaign): refused unless it is a regular
+/// file (checked with `stat` before it is opened, so a FIFO cannot block, and again on the open
+/// handle), at most 16 MiB, valid UTF-8 TOML, and not empty.
 pub fn read_toml(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError> {
     read_table(path.as_ref())
 }

@@ -159,7 +159,7 @@ impl StrutReach {
     }
 
     /// A secondary strut's double-acting honeycomb `h` with the committed `memory`: tension
-    /// above, compression below; `None` as for [`StrutReach::primary`].
+    /// above, compression below; `None` as for [`StrutReach::crushing_with_extension_stop`].
     pub fn secondary(
         h: &DoubleActingHoneycomb,
         memory: DoubleActingMemory,
