@@ -44,12 +44,12 @@ fn stroke_difference(a: &Summary, b: &Summary) -> f64 {
 ///
 /// The landing is run with its footpads held by a wall (`surface.obstacle = 1` ft), as the
 /// Table I files stood before they stood on spikes. On spikes (the file as bundled) the
-/// footpads of legs 3 and 4 lift out of their spikes and hang on their crushed gear, rattling in
-/// the free play of its honeycomb from 0.16 to 0.32 s; the fixed-step schemes converge there
-/// (the report's scheme at 2 and 1 µs 0.007 % apart, RK4 at 5 µs 0.012 % from them) and the
-/// adaptive pair does not: 0.37 % at 1e-6, 0.44-0.50 % at tighter tolerances, with steps forced
-/// at its least step by the million, an open defect (docs/errata.md, "Numerics") this test
-/// keeps in view: it fails once the pair converges there, to be tightened then.
+/// fixed-step schemes converge (the report's scheme at 2 and 1 µs 0.007 % apart, RK4 at 5 µs
+/// 0.012 % from them) and the adaptive pair, at 1e-6, does not: 0.37 %, with more steps
+/// rejected than taken where the vehicle rocks slowly on its four footpads, each primary's
+/// kinetic bearing friction jumping as its stroking rate crosses zero. An open defect
+/// (docs/errata.md, "Numerics", "the adaptive pair and the bearing friction in contact") this
+/// test keeps in view: it fails once the pair converges there, to be tightened then.
 #[test]
 fn runge_kutta_schemes_converge_to_the_reports_fine_step_answer() {
     let base = "table-i-2-2-vv8.toml";
