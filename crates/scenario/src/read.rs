@@ -49,14 +49,12 @@ pub(crate) fn special_kind(t: &std::fs::FileType) -> Option<&'static str> {
 
 /// Reads a TOML file of the project (a scenario, a campaign): refused unless it is a regular
 /// file (checked with `stat` before it is opened, so a FIFO cannot block, and again on the open
-/// handle), at most 16 MiB, valid UTF-8 TOML, and not empty.
+/// handle), at most `MAX_FILE_BYTES` (16 MiB), valid UTF-8 TOML, and not empty.
 pub fn read_toml(path: impl AsRef<Path>) -> Result<toml::Table, ScenarioError> {
     read_table(path.as_ref())
 }
 
-/// Reads a scenario file: refused unless it is a regular file (checked with `stat` before it is
-/// opened, so a FIFO cannot block, and again on the open handle), at most [`MAX_FILE_BYTES`],
-/// valid UTF-8 TOML, and not empty.
+/// [`read_toml`] on a path: the one reader of every scenario and campaign file.
 pub(crate) fn read_table(path: &Path) -> Result<toml::Table, ScenarioError> {
     use std::io::Read;
     let file = path.display().to_string();
