@@ -216,7 +216,8 @@ pub struct Measured {
     /// Pitch rate at maximum stroking, rad/s.
     pub pitch_rate_after_rad_s: f64,
     /// When every strut with a significant stroke has come within 1 % of its largest over the
-    /// impact phase (up to the first return of a footpad that was down at touchdown), s.
+    /// impact phase (up to the first return, after the downhill strike, of a footpad that was
+    /// down at touchdown), s.
     pub maximum_stroking_s: f64,
     /// Largest primary stroke beyond the first stage's end over the impact phase, ft (negative:
     /// short of it).
@@ -255,10 +256,11 @@ pub fn measure(sc: &Scenario, series: &Series, summary: &touchdown_core::Summary
     let strike = s.t.iter().position(|t| *t >= strike_t);
     // The stroking facts describe the report's analytical curve, which after the downhill
     // impact turns about the forward footpads and overturns: they are measured over the same
-    // phase of ours, up to the first return to the surface of a footpad that was down at
-    // touchdown and left it (the rocking back onto the uphill legs the report's curve never
-    // has; the whole run if there is none).
-    let phase = impact_phase(s);
+    // phase of ours, up to the first return to the surface, after the downhill strike, of a
+    // footpad that was down at touchdown and left it (the rocking back onto the uphill legs the
+    // report's curve never has; the whole run if there is none). An uphill footpad that hops
+    // and lands again before the strike does not end it: the facts are of the downhill impact.
+    let phase = impact_phase(s, strike.unwrap_or(0));
     // Maximum stroking: the time every strut with significant stroke (over a tenth of the
     // largest) has come within 1 % of its largest stroke (ignoring slow creep afterwards).
     let largest = s
@@ -311,15 +313,15 @@ pub fn measure(sc: &Scenario, series: &Series, summary: &touchdown_core::Summary
 }
 
 /// The number of recorded states of the landing's impact phase: up to (not including) the
-/// first state at which a footpad that was on the surface at touchdown and left it is on it
-/// again; all of them if none returns.
-fn impact_phase(s: &Series) -> usize {
+/// first state from `from` on (the downhill strike's) at which a footpad that was on the
+/// surface at touchdown and left it is on it again; all of them if none returns.
+fn impact_phase(s: &Series, from: usize) -> usize {
     let Some(&first) = s.contacts.first() else {
         return 0;
     };
     let mut left = 0u32;
     for (k, &mask) in s.contacts.iter().enumerate() {
-        if mask & left != 0 {
+        if k >= from && mask & left != 0 {
             return k;
         }
         left |= first & !mask;
@@ -411,4 +413,43 @@ pub fn check(paths: &Paths, overrides: &[(&str, f64)]) -> Result<FactsRun, Valid
         summary,
         scenario: touchdown_record::ScenarioId::new(format!("scenarios/{}", facts.scenario), &sc),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Footpads 3 and 4 (bits 2 and 3) down at touchdown; they leave, hop back once before the
+    /// downhill strike (footpads 1 and 2 at sample 5), and return after it at sample 7.
+    fn hopping_uphill_pads() -> Series {
+        let contacts = vec![0b1100, 0, 0b1100, 0, 0, 0b0011, 0b0011, 0b1111, 0b1111];
+        Series {
+            t: (0..contacts.len()).map(|k| 0.01 * k as f64).collect(),
+            contacts,
+            ..Series::default()
+        }
+    }
+
+    #[test]
+    fn the_impact_phase_ends_at_a_return_after_the_downhill_strike_not_a_hop_before_it() {
+        let s = hopping_uphill_pads();
+        assert_eq!(
+            impact_phase(&s, 5),
+            7,
+            "the hop at sample 2 precedes the strike"
+        );
+        assert_eq!(
+            impact_phase(&s, 0),
+            2,
+            "without a strike, the first return ends it"
+        );
+        let mut stays = s.clone();
+        stays.contacts[7] = 0b0011;
+        stays.contacts[8] = 0b0011;
+        assert_eq!(
+            impact_phase(&stays, 5),
+            stays.contacts.len(),
+            "no return after it"
+        );
+    }
 }
