@@ -159,7 +159,7 @@ fn facts_text(o: &mut String, facts: &[facts::FactCheck]) {
 /// `touchdown validate --protocol cv`: whether the target is met.
 pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
     let paths = Paths::new(root);
-    eprintln!("cross-validating: 8 folds, the fit to every row and its profiles (about {} landings: about 5 hours on 2 cores in a release build) ...", indicatif::HumanCount(cross_validation::LANDINGS_ABOUT));
+    eprintln!("cross-validating: 8 folds, the fit to every row and its profiles (about {} landings: about 3.5 hours on 2 cores in a release build) ...", indicatif::HumanCount(cross_validation::LANDINGS_ABOUT));
     let bar = crate::progress_bar(cross_validation::LANDINGS_ABOUT, "landings");
     // With --out, finished work is kept under it, so that a stopped run resumes: the key names
     // this program and every file it reads, so work of another build or other data is redone.
