@@ -4,7 +4,8 @@
 //! It is read again whenever HEAD moves: cargo is told to watch `.git/HEAD` and the file of the
 //! branch HEAD names (`.git/refs/heads/<branch>`, which a commit rewrites; watching the folder
 //! `refs/heads` would not see it, a folder's time changing only when a branch is added or
-//! removed), and `packed-refs`. In a linked worktree `.git` is a file naming the git folder.
+//! removed), or that folder while the branch's ref is packed and has no file, and
+//! `packed-refs`. In a linked worktree `.git` is a file naming the git folder.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -22,7 +23,11 @@ fn git_dir(root: &Path) -> Option<PathBuf> {
 }
 
 fn main() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    // The manifest folder as cargo gives it to this run, not as it was when this script was
+    // compiled: a build script's binary is reused by a checkout that shares its target folder
+    // (a worktree of the same sources), and would name the other checkout's revision.
+    let manifest = std::env::var_os("CARGO_MANIFEST_DIR").unwrap_or_default();
+    let root = Path::new(&manifest).join("../..");
     if let Some(git) = git_dir(&root) {
         let head = git.join("HEAD");
         let mut watched = vec![head.clone(), git.join("packed-refs")];
@@ -32,9 +37,17 @@ fn main() {
             .ok()
             .and_then(|h| h.strip_prefix("ref:").map(|r| r.trim().to_string()))
         {
-            watched.push(git.join(&branch));
+            let mut branches = vec![git.join(&branch)];
             if let Ok(common) = std::fs::read_to_string(git.join("commondir")) {
-                watched.push(git.join(common.trim()).join(&branch));
+                branches.push(git.join(common.trim()).join(&branch));
+            }
+            // A branch whose ref is packed has no file until its next commit writes one: then
+            // the folder that file will appear in is watched instead.
+            for file in branches {
+                match file.parent().filter(|_| !file.exists()) {
+                    Some(folder) => watched.push(folder.to_path_buf()),
+                    None => watched.push(file),
+                }
             }
         }
         for path in watched.iter().filter(|p| p.exists()) {
