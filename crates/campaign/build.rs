@@ -44,10 +44,11 @@ fn main() {
             // A branch whose ref is packed has no file until its next commit writes one: then
             // the folder that file will appear in is watched instead.
             for file in branches {
-                match file.parent().filter(|_| !file.exists()) {
-                    Some(folder) => watched.push(folder.to_path_buf()),
-                    None => watched.push(file),
-                }
+                let watch = match file.parent() {
+                    Some(folder) if !file.exists() => folder.to_path_buf(),
+                    _ => file,
+                };
+                watched.push(watch);
             }
         }
         for path in watched.iter().filter(|p| p.exists()) {
