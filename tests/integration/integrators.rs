@@ -179,7 +179,7 @@ fn the_reports_scheme_refuses_the_quaternion_attitude() {
 /// 1 % of the stroke, or twice the report's own error at its settings where that is larger; the
 /// energy balance within 0.5 % of its scale, or 1.5 times the report's residual where that is
 /// larger; and never more steps than the report's scheme. The strides are not more accurate
-/// than the report's steps: the widest when written, `fig-25-26` at 3.7 % against the report's
+/// than the report's steps: the widest when written, `fig-25-26` at 3.8 % against the report's
 /// 2.2 % (neither converged by ÷ 8 on its late rocking onto its uphill legs) and
 /// `table-i-1-2-1-vv5` at 0.65 % against 0.30 % (`cargo test --test integration strides_scheme
 /// -- --nocapture` prints every landing's).

@@ -88,9 +88,28 @@ impl SumOrder {
         zero: T,
         term: impl Fn(usize) -> T,
     ) -> T {
+        self.fold_by(zero, term, |a, b| a + b)
+    }
+
+    /// [`SumOrder::sum_by`] with the addition `add` (for terms that are not one number or
+    /// vector: pairs of sums added in one pass).
+    #[inline]
+    pub(crate) fn fold_by<T: Copy>(
+        &self,
+        zero: T,
+        term: impl Fn(usize) -> T,
+        add: impl Fn(T, T) -> T,
+    ) -> T {
         let mut total = zero;
         for &[i, j] in &self.groups {
-            total = total + if i == j { term(i) } else { term(i) + term(j) };
+            total = add(
+                total,
+                if i == j {
+                    term(i)
+                } else {
+                    add(term(i), term(j))
+                },
+            );
         }
         total
     }

@@ -55,6 +55,7 @@ impl State {
             previous,
             trial,
             spare,
+            ..
         } = scratch;
         // The curbs' work on the footpads with inertia off the surface, their force frozen over
         // the step (the footpads' energy change is in the footpad energy).

@@ -29,6 +29,7 @@
 mod accept;
 pub mod report;
 pub mod runge_kutta;
+mod strides;
 
 use crate::gear::GearState;
 use crate::ledger::{PadWork, Quadrature};
@@ -37,7 +38,7 @@ use crate::rigid_body::MassProperties;
 use crate::state::State;
 use crate::surface::{ContactState, Footpad};
 use crate::vehicle::VehicleState;
-use touchdown_laws::{GearLaws, Stop};
+use touchdown_laws::{Branch, GearLaws, Stop};
 use touchdown_record::RunError;
 use touchdown_scenario::model::{Leg, PadSurface};
 use touchdown_scenario::schema::Scheme;
@@ -53,6 +54,8 @@ pub(crate) struct Scratch {
     pub(crate) previous: Vec<GearState>,
     pub(crate) trial: Vec<GearState>,
     pub(crate) spare: Vec<GearState>,
+    /// The footpads on their surface linearised about the prediction (`strides`), one per leg.
+    engaged: Vec<Option<strides::Engaged>>,
 }
 
 impl Scratch {
@@ -63,6 +66,7 @@ impl Scratch {
             previous: vec![GearState::default(); legs],
             trial: vec![GearState::default(); legs],
             spare: vec![GearState::default(); legs],
+            engaged: vec![None; legs],
         }
     }
 }
@@ -76,6 +80,15 @@ pub(crate) struct Advance {
     pub(crate) quadrature: Quadrature,
     /// Work of the sliding footpads over the step, J.
     pub(crate) pads: PadWork,
+}
+
+/// The longest step the report's scheme may take from an accepted state, and the longest it
+/// takes with its own explicit corrector, s ([`State::stride_step`]): a longer step is
+/// corrected implicitly (the `strides` scheme).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stride {
+    pub(crate) longest: f64,
+    pub(crate) explicit: f64,
 }
 
 /// An integration scheme.
@@ -192,6 +205,12 @@ pub(crate) fn limit_step(model: &Model, state: &State, mut dt: f64) -> f64 {
     dt.min(it.t_end - state.t).max(f64::MIN_POSITIVE)
 }
 
+/// ω·Δt up to which the `strides` scheme takes a mode of the vehicle on its gear implicitly
+/// (times `integrator.mode_step` where that is below 1): its corrector, the report's with the
+/// struts' forces linearised about the prediction ([`strides`]), is Newmark's rule β = 1/6,
+/// γ = 1/2, stable on an undamped mode for ω·Δt ≤ √12 ≈ 3.46.
+pub(crate) const IMPLICIT_MODE_STEP: f64 = 3.0;
+
 /// ω·Δt of an engaged plastic stop's loading mode on the footpad mass: a plastic stop (e = 0)
 /// releases its load at once at its deepest point, and the step that straddles that point
 /// gives back about ½·(ω·Δt)² of the energy E the stop holds (the trapezoid over a force that
@@ -290,53 +309,129 @@ impl State {
         ]
     }
 
-    /// The report scheme's longest step, s: `integrator.dt_max`, or with the `strides` scheme
-    /// the step that resolves the stiffest mode of the vehicle on its gear to
-    /// ω·Δt ≤ `integrator.mode_step` (default 1: the report's scheme is stable to ω·Δt = 2, its
-    /// amplification on an undamped mode having determinant 1 − (ω·Δt)⁴/12), within
-    /// [Δt_max, `stride`·Δt_max]. Every such mode has ω² ≤ Σ_j k_j·g_jᵀM⁻¹g_j ≤ μ·K (the trace
-    /// bound), k_j each strut's engaged rate, K their sum ([`State::engaged_stiffness`]) and μ
-    /// the struts' largest mobility ([`stroke_mobility`]). While a footpad slides, Δt_max: its
-    /// forces, frozen over the step (eq. 97), book its friction work to first order in the step
-    /// (docs/errata.md, "Long strides where the gear is soft").
-    pub(crate) fn stride_step(&self, model: &Model) -> f64 {
+    /// The report scheme's longest step: `integrator.dt_max`, or with the `strides` scheme the
+    /// step its engaged gear allows (docs/errata.md, "Long strides where the gear is soft").
+    /// Every mode of the vehicle on its gear has ω² ≤ Σ_j k_j·g_jᵀM⁻¹g_j ≤ μ·K (the trace
+    /// bound), k_j each strut's rate, K their sum ([`State::engaged_stiffness`]) and μ the
+    /// struts' largest mobility ([`stroke_mobility`]). The report's corrector resolves every
+    /// mode to ω·Δt ≤ `integrator.mode_step` (default 1; it is stable to ω·Δt = 2, its
+    /// amplification on an undamped mode having determinant 1 − (ω·Δt)⁴/12): that step is the
+    /// explicit bound. Past it the vehicle is corrected implicitly ([`strides`]), the step
+    /// resolving only the modes in which a maximum can be made to ω·Δt ≤ `mode_step` and every
+    /// mode to [`IMPLICIT_MODE_STEP`]·min(`mode_step`, 1). Both within [Δt_max,
+    /// `stride`·Δt_max]. While
+    /// a footpad slides, Δt_max: its forces, frozen over the step (eq. 97), book its friction
+    /// work to first order in the step.
+    pub(crate) fn stride_step(&self, model: &Model) -> Stride {
         let it = &model.integrator;
         let sliding = |(p, s): (&Footpad, &PadSurface)| {
             p.state == ContactState::Contact && !p.walled && !p.stuck && s.friction > 0.0
         };
         if it.scheme != Scheme::Strides || self.pads.iter().zip(&model.surfaces).any(sliding) {
-            return it.dt_max;
+            return Stride {
+                longest: it.dt_max,
+                explicit: it.dt_max,
+            };
         }
         let longest = it.dt_max * it.stride;
-        let omega_squared = model.stroke_mobility * self.engaged_stiffness(model, longest);
-        if omega_squared > 0.0 {
-            (it.mode_step / omega_squared.sqrt()).clamp(it.dt_max, longest)
-        } else {
-            longest
+        let (resolved, all) = self.engaged_stiffness(model, longest);
+        let step = |omega_dt: f64, k: f64| {
+            let omega_squared = model.stroke_mobility * k;
+            if omega_squared > 0.0 {
+                omega_dt / omega_squared.sqrt()
+            } else {
+                f64::INFINITY
+            }
+        };
+        let explicit = step(it.mode_step, all).clamp(it.dt_max, longest);
+        // every mode within the implicit corrector's stability, whatever `mode_step` above 1
+        let stable = IMPLICIT_MODE_STEP * it.mode_step.min(1.0);
+        Stride {
+            longest: step(it.mode_step, resolved)
+                .min(step(stable, all))
+                .clamp(explicit, longest),
+            explicit,
         }
     }
 
-    /// The gear's stiffness a step of `dt` (s) from the accepted state can meet, N/m: every
-    /// strut's rate on the branch of its law it is on (`branch`), and the stiffest rate of
-    /// every end stop its stroke reaches within `dt` at its current rate; summed over the legs
-    /// in their geometric order (crate::summation), so that a landing with its legs renumbered
-    /// or mirrored takes the same steps bit for bit.
-    fn engaged_stiffness(&self, model: &Model, dt: f64) -> f64 {
-        model
-            .sum_order
-            .sum_by(0.0, |i| self.leg_stiffness(model, i, dt))
+    /// The gear's stiffness a step of `dt` (s) from the accepted state can meet, N/m, as the
+    /// step must resolve it and in all: the first the rates of the struts that can make a
+    /// maximum within `dt` while every footpad is on its surface ([`State::loading_rate`]),
+    /// otherwise every strut's rate on the branch of its law it is on (`branch`); the second
+    /// every strut's; both with the stiffest rate of every end stop its stroke reaches within
+    /// `dt` at its current rate. Summed over the legs in their geometric order
+    /// (crate::summation), so that a landing with its legs renumbered or mirrored takes the
+    /// same steps bit for bit.
+    fn engaged_stiffness(&self, model: &Model, dt: f64) -> (f64, f64) {
+        let grounded = self.pads.iter().all(|p| p.state == ContactState::Contact);
+        model.sum_order.fold_by(
+            (0.0, 0.0),
+            |i| self.leg_stiffness(model, i, dt, grounded),
+            |(a, b), (c, d)| (a + c, b + d),
+        )
     }
 
     /// [`State::engaged_stiffness`] of leg `i`'s three struts, N/m.
-    fn leg_stiffness(&self, model: &Model, i: usize, dt: f64) -> f64 {
+    fn leg_stiffness(&self, model: &Model, i: usize, dt: f64, grounded: bool) -> (f64, f64) {
         let [s31, s41] = self.secondary_rates(model, i);
-        let mut k = self.primary_rate(model, i) + s31 + s41;
+        let mut all = self.primary_rate(model, i) + s31 + s41;
+        let mut resolved = if grounded {
+            self.loading_rate(model, i, dt)
+        } else {
+            all
+        };
         for (stop, gap, rate) in self.stop_approaches(model, i) {
             if gap >= 0.0 && rate > 0.0 && gap < rate * dt {
-                k += stop.stiffest_rate();
+                resolved += stop.stiffest_rate();
+                all += stop.stiffest_rate();
             }
         }
-        k
+        (resolved, all)
+    }
+
+    /// The rates of leg `i`'s struts that a step of `dt` (s) can see make a maximum, summed,
+    /// N/m: each strut on its virgin curve (onset or plateau, with at least its rebound rate
+    /// K_B, onto which its maximum turns) or on an end stop, or rebounding towards its largest
+    /// stroke so fast that it reaches it within `dt`. The `strides` scheme takes
+    /// the struts' laws implicitly ([`strides::correct_vehicle`], [`report`]'s footpad
+    /// corrector), stable at any step; its step resolves the modes in which a maximum is made,
+    /// and crosses a strut's rebound line below its maximum in long strides.
+    fn loading_rate(&self, model: &Model, i: usize, dt: f64) -> f64 {
+        let (g, memory) = (&self.gear[i], &self.memory[i]);
+        let laws = &model.laws;
+        // (branch and rate, the law's rebound rate K_B, the distance to the largest stroke, m,
+        // and the stroke's rate towards it, m/s). On its virgin curve a strut makes its
+        // maximum and turns onto its rebound line: the stiffer of the two.
+        let counted =
+            |(branch, rate): (Branch, f64), backoff: f64, gap: f64, speed: f64| match branch {
+                Branch::Onset | Branch::Plateau => rate.max(backoff),
+                Branch::StrokeOut | Branch::ExtensionStop => rate,
+                Branch::Rebound if speed > 0.0 && gap < speed * dt => rate,
+                Branch::Rebound => 0.0,
+            };
+        let (c, p) = (g.primary_stroke, &laws.primary);
+        let primary = counted(
+            p.branch(c, memory.primary),
+            p.honeycomb.backoff_rate,
+            memory.primary.compression.max_stroke() - c,
+            g.primary_rate,
+        );
+        let secondary = &laws.secondary.honeycomb;
+        let side = |j: usize| {
+            let (s, rate, m) = (
+                g.secondary_stroke[j],
+                g.secondary_rate[j],
+                memory.secondary[j],
+            );
+            let (gap, speed) = if s >= 0.0 {
+                (m.tension.max_stroke() - s, rate)
+            } else {
+                (m.compression.max_stroke() + s, -rate)
+            };
+            let backoff = secondary.side(s).backoff_rate;
+            counted(secondary.branch(s, m), backoff, gap, speed)
+        };
+        primary + side(0) + side(1)
     }
 
     /// The rate of leg `i`'s primary on the branch of its law it is on at the accepted state,

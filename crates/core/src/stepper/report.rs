@@ -2,7 +2,7 @@
 //! eqs. (20)-(24), one update per degree of freedom (position, Euler angles, slosh amplitude),
 //! and its step-size rule, eq. (25).
 
-use super::{limit_step, Advance, Scratch, Stepper};
+use super::{limit_step, strides, Advance, Scratch, Stepper, Stride};
 use crate::gear;
 use crate::gear::GearState;
 use crate::ledger::Quadrature;
@@ -13,7 +13,9 @@ use crate::surface::ContactState;
 use crate::vehicle::VehicleState;
 use nalgebra::{Matrix3, Vector3};
 use std::ops::{Add, Div, Mul};
+use touchdown_laws::GearLaws;
 use touchdown_record::RunError;
+use touchdown_scenario::model::Leg;
 use touchdown_scenario::schema::Scheme;
 
 /// The report's predictor-corrector with its own scratch space.
@@ -36,9 +38,11 @@ impl Stepper for PredictorCorrector {
         state: &mut State,
         old: &VehicleState,
     ) -> Result<Advance, RunError> {
-        let dt = limit_step(model, state, step_size(model, state));
+        let (dt, explicit) = step_size(model, state);
+        let dt = limit_step(model, state, dt);
         let pads = state.advance_pads(model, dt, old);
-        let trial_power = predict_correct(model, state, &mut self.scratch, dt, old)?;
+        let implicit = dt > explicit;
+        let trial_power = predict_correct(model, state, &mut self.scratch, dt, old, implicit)?;
         Ok(Advance {
             dt,
             quadrature: Quadrature::Trapezoid { trial_power },
@@ -52,8 +56,9 @@ impl Stepper for PredictorCorrector {
 }
 
 /// Step size by eq. (25), Δt = DIST/VEL clamped to [Δt_min, Δt_max], s; Δt_max is `dt_max`
-/// or, with a stride, the longest step the engaged gear allows ([`State::stride_step`]).
-fn step_size(model: &Model, state: &State) -> f64 {
+/// or, with a stride, the longest step the engaged gear allows ([`State::stride_step`]); with
+/// the longest step the scheme's explicit corrector takes, s.
+fn step_size(model: &Model, state: &State) -> (f64, f64) {
     let it = &model.integrator;
     let v = &state.vehicle;
     let mut vel: f64 = 0.0;
@@ -71,12 +76,15 @@ fn step_size(model: &Model, state: &State) -> f64 {
     } else {
         f64::INFINITY
     };
-    let dt_max = if dt > it.dt_max {
+    let stride = if dt > it.dt_max {
         state.stride_step(model)
     } else {
-        it.dt_max
+        Stride {
+            longest: it.dt_max,
+            explicit: it.dt_max,
+        }
     };
-    dt.clamp(it.dt_min, dt_max)
+    (dt.clamp(it.dt_min, stride.longest), stride.explicit)
 }
 
 /// A degree of freedom the scheme updates (a vector of positions, angles or amplitudes).
@@ -105,14 +113,16 @@ fn correct<T: Quantity>(x: T, x_dot: T, x_ddot: T, trial: T, dt: f64) -> (T, T) 
 }
 
 /// Steps 3-5 of the report's scheme from the accepted state `old` over `dt` (s), the trial
-/// evaluated into `scratch.trial`, the corrected state written into `scratch.new`: returns the
-/// vehicle-level mechanisms' power at the trial, W.
+/// evaluated into `scratch.trial`, the corrected state written into `scratch.new` (the vehicle
+/// corrected `implicit`ly on its footpads on the surface, [`strides`], on a step past the
+/// explicit corrector's): returns the vehicle-level mechanisms' power at the trial, W.
 fn predict_correct(
     model: &Model,
     state: &mut State,
     scratch: &mut Scratch,
     dt: f64,
     old: &VehicleState,
+    implicit: bool,
 ) -> Result<f64, RunError> {
     let slosh = model.mechanisms.slosh.is_some();
     // 3. predictor, c = 0 (eqs. 22-23); the footpads off the surface too (eqs. 16-18)
@@ -140,24 +150,30 @@ fn predict_correct(
         correct_footpads(model, state, &pred, scratch, &mut loads, dt);
     }
     state.accelerate(model, &mut pred, &loads)?;
-    // the vehicle: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
+    if implicit {
+        // the vehicle on the struts of its footpads on the surface, implicit
+        strides::correct_vehicle(model, state, scratch, &pred, old, dt);
+    } else {
+        // the vehicle: c = (a* − a_k)/Δt (eq. 24) in eqs. (22)-(23)
+        let new = &mut scratch.new;
+        *new = *old;
+        (new.position, new.velocity) = correct(
+            old.position,
+            old.velocity,
+            old.acceleration,
+            pred.acceleration,
+            dt,
+        );
+        let (theta, theta_dot) = correct(
+            old.euler.theta,
+            old.theta_dot,
+            old.theta_ddot,
+            pred.theta_ddot,
+            dt,
+        );
+        new.set_attitude(theta, theta_dot);
+    }
     let new = &mut scratch.new;
-    *new = *old;
-    (new.position, new.velocity) = correct(
-        old.position,
-        old.velocity,
-        old.acceleration,
-        pred.acceleration,
-        dt,
-    );
-    let (theta, theta_dot) = correct(
-        old.euler.theta,
-        old.theta_dot,
-        old.theta_ddot,
-        pred.theta_ddot,
-        dt,
-    );
-    new.set_attitude(theta, theta_dot);
     if slosh {
         (new.slosh_q, new.slosh_q_dot) = correct(
             old.slosh_q,
@@ -352,28 +368,7 @@ impl<'a> FreePad<'a> {
         let (start, trial) = (self.start, self.trial);
         let gradients = gear::stroke_gradients(leg, model.arrangement, &self.bp);
         let w = gradients.each_ref().map(|g| self.movable(g));
-        let eps = 1e-9 * leg.l2p;
-        let sec = &laws.secondary.honeycomb;
-        let sec_stiffest = sec
-            .tension
-            .stop
-            .stiffest_rate()
-            .max(sec.compression.stop.stiffest_rate());
-        let side = |j: usize| {
-            secant(
-                (start.secondary_stroke[j], start.fc_secondary[j]),
-                (trial.secondary_stroke[j], trial.fc_secondary[j]),
-                eps,
-                sec_stiffest,
-            )
-        };
-        let primary = secant(
-            (start.primary_stroke, start.fcp),
-            (trial.primary_stroke, trial.fcp),
-            eps,
-            laws.primary.honeycomb.stop.stiffest_rate(),
-        );
-        let k = [primary, side(0), side(1)];
+        let k = strut_secants(leg, laws, start, trial);
         let alpha = dt * dt / (4.0 * m);
         let mut system = Matrix3::identity();
         for (wj, kj) in w.iter().zip(k) {
@@ -388,6 +383,39 @@ impl<'a> FreePad<'a> {
         let a1 = self.a_star - (w[0] * df[0] + w[1] * df[1] + w[2] * df[2]) / m;
         self.corrected((delta, a1), (df[0], Some([df[1], df[2]]), on_pad))
     }
+}
+
+/// The secants over the step of a gear's three struts (primary, 3-1, 4-1) of `leg` with the
+/// laws `laws`, from their strokes and honeycomb forces at its start `start` to those at the
+/// trial `trial`, N/m ([`secant`], each bounded by its law's stiffest slope).
+pub(super) fn strut_secants(
+    leg: &Leg,
+    laws: &GearLaws,
+    start: &GearState,
+    trial: &GearState,
+) -> [f64; 3] {
+    let eps = 1e-9 * leg.l2p;
+    let sec = &laws.secondary.honeycomb;
+    let sec_stiffest = sec
+        .tension
+        .stop
+        .stiffest_rate()
+        .max(sec.compression.stop.stiffest_rate());
+    let side = |j: usize| {
+        secant(
+            (start.secondary_stroke[j], start.fc_secondary[j]),
+            (trial.secondary_stroke[j], trial.fc_secondary[j]),
+            eps,
+            sec_stiffest,
+        )
+    };
+    let primary = secant(
+        (start.primary_stroke, start.fcp),
+        (trial.primary_stroke, trial.fcp),
+        eps,
+        laws.primary.honeycomb.stop.stiffest_rate(),
+    );
+    [primary, side(0), side(1)]
 }
 
 /// A strut law's secant over the step from (stroke, force) at its start to those at the

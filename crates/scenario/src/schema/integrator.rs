@@ -111,9 +111,11 @@ pub struct Integrator {
     /// stiffness allows it (docs/errata.md, "Long strides where the gear is soft").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stride: Option<f64>,
-    /// `strides`: the largest ω·Δt a step may reach on the gear's stiffest engaged mode, ω
-    /// from the trace bound of the vehicle on its struts (dimensionless, in (0, 2); default
-    /// [`DEFAULT_MODE_STEP`]; docs/errata.md, "Long strides where the gear is soft").
+    /// `strides`: the largest ω·Δt the report's corrector may reach on the gear's stiffest
+    /// engaged mode, ω from the trace bound of the vehicle on its struts, and past it, with
+    /// the vehicle corrected implicitly, on the modes in which a maximum can be made
+    /// (dimensionless, in (0, 2); default [`DEFAULT_MODE_STEP`]; docs/errata.md, "Long strides
+    /// where the gear is soft").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mode_step: Option<f64>,
 }
