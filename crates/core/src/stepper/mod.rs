@@ -29,6 +29,7 @@
 mod accept;
 pub mod report;
 pub mod runge_kutta;
+mod secant;
 mod strides;
 
 use crate::gear::GearState;

@@ -20,7 +20,7 @@
 //! strut's force changes by k_j·g_jᵀ·y in the trial's forces, so that the ledger books what
 //! the vehicle felt.
 
-use super::report::strut_secants;
+use super::secant::strut_secants;
 use super::Scratch;
 use crate::gear::{self, GearState};
 use crate::model::Model;
