@@ -92,6 +92,16 @@ pub(crate) struct Stride {
     pub(crate) explicit: f64,
 }
 
+impl Stride {
+    /// No stride: every step at most `dt_max` (s), corrected explicitly.
+    pub(crate) fn none(dt_max: f64) -> Stride {
+        Stride {
+            longest: dt_max,
+            explicit: dt_max,
+        }
+    }
+}
+
 /// An integration scheme.
 pub(crate) trait Stepper {
     /// Steps 2-5 from the accepted state `old` of `state` (its model `model`): the footpads advanced, the new
@@ -329,10 +339,7 @@ impl State {
             p.state == ContactState::Contact && !p.walled && !p.stuck && s.friction > 0.0
         };
         if it.scheme != Scheme::Strides || self.pads.iter().zip(&model.surfaces).any(sliding) {
-            return Stride {
-                longest: it.dt_max,
-                explicit: it.dt_max,
-            };
+            return Stride::none(it.dt_max);
         }
         let longest = it.dt_max * it.stride;
         let (resolved, all) = self.engaged_stiffness(model, longest);
@@ -374,10 +381,13 @@ impl State {
 
     /// [`State::engaged_stiffness`] of leg `i`'s three struts, N/m.
     fn leg_stiffness(&self, model: &Model, i: usize, dt: f64, grounded: bool) -> (f64, f64) {
-        let [s31, s41] = self.secondary_rates(model, i);
-        let mut all = self.primary_rate(model, i) + s31 + s41;
+        let (primary, secondary) = (
+            self.primary_branch(model, i),
+            self.secondary_branches(model, i),
+        );
+        let mut all = primary.1 + secondary[0].1 + secondary[1].1;
         let mut resolved = if grounded {
-            self.loading_rate(model, i, dt)
+            self.loading_rate(model, i, dt, primary, secondary)
         } else {
             all
         };
@@ -393,11 +403,20 @@ impl State {
     /// The rates of leg `i`'s struts that a step of `dt` (s) can see make a maximum, summed,
     /// N/m: each strut on its virgin curve (onset or plateau, with at least its rebound rate
     /// K_B, onto which its maximum turns) or on an end stop, or rebounding towards its largest
-    /// stroke so fast that it reaches it within `dt`. The `strides` scheme takes
+    /// stroke so fast that it reaches it within `dt`; `primary` and `secondary` are the branches
+    /// its struts are on with their rates ([`State::primary_branch`],
+    /// [`State::secondary_branches`]). The `strides` scheme takes
     /// the struts' laws implicitly ([`strides::correct_vehicle`], [`report`]'s footpad
     /// corrector), stable at any step; its step resolves the modes in which a maximum is made,
     /// and crosses a strut's rebound line below its maximum in long strides.
-    fn loading_rate(&self, model: &Model, i: usize, dt: f64) -> f64 {
+    fn loading_rate(
+        &self,
+        model: &Model,
+        i: usize,
+        dt: f64,
+        primary: (Branch, f64),
+        secondary: [(Branch, f64); 2],
+    ) -> f64 {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
         let laws = &model.laws;
         // (branch and rate, the law's rebound rate K_B, the distance to the largest stroke, m,
@@ -410,14 +429,13 @@ impl State {
                 Branch::Rebound if speed > 0.0 && gap < speed * dt => rate,
                 Branch::Rebound => 0.0,
             };
-        let (c, p) = (g.primary_stroke, &laws.primary);
+        let c = g.primary_stroke;
         let primary = counted(
-            p.branch(c, memory.primary),
-            p.honeycomb.backoff_rate,
+            primary,
+            laws.primary.honeycomb.backoff_rate,
             memory.primary.compression.max_stroke() - c,
             g.primary_rate,
         );
-        let secondary = &laws.secondary.honeycomb;
         let side = |j: usize| {
             let (s, rate, m) = (
                 g.secondary_stroke[j],
@@ -429,33 +447,25 @@ impl State {
             } else {
                 (m.compression.max_stroke() + s, -rate)
             };
-            let backoff = secondary.side(s).backoff_rate;
-            counted(secondary.branch(s, m), backoff, gap, speed)
+            let backoff = laws.secondary.honeycomb.side(s).backoff_rate;
+            counted(secondary[j], backoff, gap, speed)
         };
         primary + side(0) + side(1)
     }
 
-    /// The rate of leg `i`'s primary on the branch of its law it is on at the accepted state,
-    /// N/m (`branch`).
-    fn primary_rate(&self, model: &Model, i: usize) -> f64 {
+    /// The branch of its law leg `i`'s primary is on at the accepted state, with its rate, N/m
+    /// (`branch`).
+    fn primary_branch(&self, model: &Model, i: usize) -> (Branch, f64) {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
-        model
-            .laws
-            .primary
-            .branch(g.primary_stroke, memory.primary)
-            .1
+        model.laws.primary.branch(g.primary_stroke, memory.primary)
     }
 
-    /// The rates of leg `i`'s 3-1 and 4-1 struts on the branches of their laws they are on at
-    /// the accepted state, N/m (`branch`).
-    fn secondary_rates(&self, model: &Model, i: usize) -> [f64; 2] {
+    /// The branches of their laws leg `i`'s 3-1 and 4-1 struts are on at the accepted state,
+    /// with their rates, N/m (`branch`).
+    fn secondary_branches(&self, model: &Model, i: usize) -> [(Branch, f64); 2] {
         let (g, memory) = (&self.gear[i], &self.memory[i]);
         let secondary = &model.laws.secondary.honeycomb;
-        [0, 1].map(|j| {
-            secondary
-                .branch(g.secondary_stroke[j], memory.secondary[j])
-                .1
-        })
+        [0, 1].map(|j| secondary.branch(g.secondary_stroke[j], memory.secondary[j]))
     }
 
     /// The longest step that resolves the modes of footpad `i` on its gear (off the surface):
@@ -471,9 +481,9 @@ impl State {
         }
         let primary = match model.integrator.scheme {
             Scheme::Report => 0.0,
-            _ => self.primary_rate(model, i),
+            _ => self.primary_branch(model, i).1,
         };
-        let [s31, s41] = self.secondary_rates(model, i);
+        let [s31, s41] = self.secondary_branches(model, i).map(|(_, rate)| rate);
         let k = primary + s31 + s41;
         if k > 0.0 {
             PAD_MODE_STEP * (model.footpad_mass / k).sqrt()

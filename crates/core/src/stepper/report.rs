@@ -78,10 +78,7 @@ fn step_size(model: &Model, state: &State) -> (f64, f64) {
     let stride = if dt > it.dt_max {
         state.stride_step(model)
     } else {
-        Stride {
-            longest: it.dt_max,
-            explicit: it.dt_max,
-        }
+        Stride::none(it.dt_max)
     };
     (dt.clamp(it.dt_min, stride.longest), stride.explicit)
 }

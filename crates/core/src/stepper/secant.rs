@@ -10,6 +10,7 @@ use touchdown_scenario::model::Leg;
 /// The secants over the step of a gear's three struts (primary, 3-1, 4-1) of `leg` with the
 /// laws `laws`, from their strokes and honeycomb forces at its start `start` to those at the
 /// trial `trial`, N/m ([`secant`], each bounded by its law's stiffest slope).
+#[inline]
 pub(super) fn strut_secants(
     leg: &Leg,
     laws: &GearLaws,
@@ -44,6 +45,7 @@ pub(super) fn strut_secants(
 /// trial, N/m, regularised within `eps` (m; 1e-9 of the strut's length, where a stroke change
 /// is rounding) and at most `stiffest` (N/m), its stiffest slope: no state decides it at
 /// rounding level, and a strut in its free play or on a plateau is no spring.
+#[inline]
 pub(super) fn secant(start: (f64, f64), trial: (f64, f64), eps: f64, stiffest: f64) -> f64 {
     let dc = trial.0 - start.0;
     ((trial.1 - start.1) * dc / (dc * dc + eps * eps)).clamp(0.0, stiffest)
