@@ -10,11 +10,14 @@ target/<profile>/deps/libtouchdown_mujoco.so) loads the scenario, generates the 
 hysteresis, energy ledger, stability criteria, summary.json and history.csv. This script loads the
 model with the pinned `mujoco` package and steps it:
 
-    mj_step1   positions, velocities, tendons and sensors of the state
+    mj_step1   positions, velocities, tendons and sensors of the state, and the
+               constraint rows
     advance    (Rust) book the last step, commit the honeycombs, evaluate the laws, write
-               ctrl and the stroke joint's dry friction (bearing friction + plateau),
+               ctrl, the stroke joints' dry-friction bounds (bearing friction + plateau),
                and the engine and RCS loads on the vehicle (qfrc_applied),
                the curbs' and obstacle walls' force on the footpads (xfrc_applied)
+    (here)     copy the dry-friction bounds into the stroke joints' friction rows
+               (efc_frictionloss), which mj_step1 built from the model's placeholder
     mj_step2   forces, constraints, integration
 
 Options:
@@ -66,6 +69,7 @@ def fail(message, status=1):
 
 try:
     import mujoco
+    import numpy
 except ImportError as e:
     print(
         f"run.py: the pinned MuJoCo (python/requirements.txt) cannot be imported by {sys.executable}: {e}; "
@@ -105,7 +109,7 @@ class MjPointers(ctypes.Structure):
         ("warning_number", ctypes.c_void_p),
         ("warning_stride", ctypes.c_int32),
         ("ctrl", ctypes.c_void_p),
-        ("dof_frictionloss", ctypes.c_void_p),
+        ("friction_bound", ctypes.c_void_p),
         ("qfrc_applied", ctypes.c_void_p),
         ("xfrc_applied", ctypes.c_void_p),
     ]
@@ -196,6 +200,32 @@ def pointer(array, dtype):
     return array.ctypes.data
 
 
+def friction_rows(model, data, index, legs):
+    """The rows of MuJoCo's constraints that hold the stroke joints' dry friction, in gear order.
+
+    mj_step1 builds a joint's friction row only where the model's dof_frictionloss is not zero
+    (the export gives the stroke joints a placeholder, and no other joint or tendon any), after
+    the equality constraints (the export has none) and before the limits and contacts: the
+    same rows every step. The runner writes each step's bounds into them before mj_step2; the
+    export turns constraint islands off, so that the solver reads these rows and not copies."""
+    mujoco.mj_step1(model, data)
+    dofs = [index[LEG_FIELDS * n + 1] for n in range(legs)]
+    first = int(data.ne)
+    rows = slice(first, first + legs)
+    kind = mujoco.mjtConstraint.mjCNSTR_FRICTION_DOF
+    if (
+        int(data.nf) != legs
+        or list(data.efc_type[rows]) != [kind] * legs
+        or list(data.efc_id[rows]) != dofs
+    ):
+        fail(
+            f"the model's friction rows are not the stroke joints' (nf {int(data.nf)}, "
+            f"ids {list(data.efc_id[rows])}, expected {dofs}): was it exported by this version?",
+            2,
+        )
+    return rows
+
+
 def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
     """Lands `scenario` (an absolute path) and writes summary.json (and with `history`
     history.csv) into `out`; `mode` is plain, profile or viewer. Returns the timing of a
@@ -239,6 +269,8 @@ def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
             model.nq, model.nv, model.nu, model.ntendon, model.nsite, model.nbody, model.nsensordata
         )
         f64 = data.qpos.dtype
+        rows = friction_rows(model, data, index, legs)
+        bounds = numpy.zeros(legs)
         warnings = data.warning.number
         ptrs = MjPointers(
             pointer(data.qpos, f64),
@@ -252,7 +284,7 @@ def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
             warnings.ctypes.data,
             warnings.strides[0] // warnings.itemsize,
             pointer(data.ctrl, f64),
-            pointer(model.dof_frictionloss, f64),
+            pointer(bounds, f64),
             pointer(data.qfrc_applied, f64),
             pointer(data.xfrc_applied, f64),
         )
@@ -264,12 +296,13 @@ def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
             )
         )
         timing = None
+        friction = (rows, bounds)
         if mode == "viewer":
-            status, steps = run_with_viewer(lib, h, model, data)
+            status, steps = run_with_viewer(lib, h, model, data, friction)
         elif mode == "profile":
-            status, steps, timing = run_profiled(lib, h, model, data)
+            status, steps, timing = run_profiled(lib, h, model, data, friction)
         else:
-            status, steps = run(lib, h, model, data)
+            status, steps = run(lib, h, model, data, friction)
         check(status)
         refuse_warnings(log, "running the landing")
         check(lib.touchdown_mujoco_finish(h, os.path.join(out, "summary.json").encode()))
@@ -334,23 +367,27 @@ def main(argv):
 
 
 
-def run(lib, h, model, data):
-    """The plain loop: as little Python per step as the split step allows."""
+def run(lib, h, model, data, friction):
+    """The plain loop: as little Python per step as the split step allows. `friction`: the
+    stroke joints' friction rows and the bounds advance writes for them."""
     step1, step2, advance = mujoco.mj_step1, mujoco.mj_step2, lib.touchdown_mujoco_advance
+    rows, bounds = friction
     steps = 0
     while True:
         step1(model, data)
         status = advance(h)
         if status != 0:
             return status, steps
+        data.efc_frictionloss[rows] = bounds
         step2(model, data)
         steps += 1
 
 
-def run_profiled(lib, h, model, data):
+def run_profiled(lib, h, model, data, friction):
     """The loop with a clock around each call; the clock's own cost is measured and removed."""
     clock = time.perf_counter_ns
     step1, step2, advance = mujoco.mj_step1, mujoco.mj_step2, lib.touchdown_mujoco_advance
+    rows, bounds = friction
     reads = 100000
     t0 = clock()
     for _ in range(reads):
@@ -369,6 +406,7 @@ def run_profiled(lib, h, model, data):
         t_rust += c - b
         if status != 0:
             break
+        data.efc_frictionloss[rows] = bounds
         a = clock()
         step2(model, data)
         t_mujoco += clock() - a
@@ -395,7 +433,7 @@ def run_profiled(lib, h, model, data):
     }
 
 
-def run_with_viewer(lib, h, model, data):
+def run_with_viewer(lib, h, model, data, friction):
     """The loop with MuJoCo's passive viewer, slowed so that 1 s of landing takes 20 s."""
     try:
         import mujoco.viewer
@@ -415,6 +453,7 @@ def run_with_viewer(lib, h, model, data):
             status = lib.touchdown_mujoco_advance(h)
             if status != 0:
                 break
+            data.efc_frictionloss[friction[0]] = friction[1]
             mujoco.mj_step2(model, data)
             steps += 1
             if data.time * slow >= time.perf_counter() - wall + frame:

@@ -703,16 +703,18 @@ fn footpads_crush_against_curbs_as_their_table_says_on_rapier() {
     assert!(e.residual_j.abs() < 2e-3 * e.kinetic_initial_j, "{e:?}");
 }
 
-/// The same on MuJoCo, whose balance is first order in the step: its semi-implicit Euler step
-/// moves the bodies by the velocities after the step while a force held over the step works on
-/// the mean of the velocities before and after, so each law that engages, lets go or is held
-/// by a constraint leaves about ½·Δt·F·v in the balance, which does not accumulate
-/// (docs/engines.md, "Energy ledger"). At a quarter of the file's step (5 µs, the contacts'
-/// time constant kept at 40 µs) the balance closes within 2e-3 of the touchdown kinetic
-/// energy, and at the file's step it is 3 to 5 times as large (0.066 and 0.28 J of 136 J). The
-/// stroke joint's dry friction, which holds the crush plateau, is as stiff as the step allows
-/// (docs/engines.md, "Model" of the MuJoCo engine), so the plateau is held as the law books it
-/// at any step: with the contacts' 40 µs it lagged at the shorter steps.
+/// The same on MuJoCo, whose balance is still first order in the step here: its semi-implicit
+/// Euler step moves the bodies by the velocities after the step while a force held over the
+/// step works on the mean of the velocities before and after, so each law that engages, lets go
+/// or is held by a constraint leaves about ½·Δt·F·v in the balance, which does not accumulate
+/// (docs/engines.md, "Energy ledger"). At the file's step the balance closes within 1e-3 of the
+/// touchdown kinetic energy (0.085 J of 136 J), at a quarter of it (5 µs, the contacts' time
+/// constant kept at 40 µs) within 2e-3 (0.014 J): 6.1 times less, between first and second
+/// order. Before the stroke joints' dry friction (bearing friction and the crush plateau) acted
+/// in its own step, it acted a step late and the balance was 0.28 J and 0.066 J. The dry
+/// friction is as stiff as the step allows (docs/engines.md, "Model" of the MuJoCo engine), so
+/// the plateau is held as the law books it at any step: with the contacts' 40 µs it lagged at
+/// the shorter steps.
 #[test]
 fn footpads_crush_against_curbs_as_their_table_says_on_mujoco_to_first_order() {
     let path = |name: &str, extra: &str| {
@@ -732,11 +734,13 @@ fn footpads_crush_against_curbs_as_their_table_says_on_mujoco_to_first_order() {
     );
     let e = &quarter.energy;
     assert!(e.residual_j.abs() < 2e-3 * e.kinetic_initial_j, "{e:?}");
-    let ratio = file.energy.residual_j / e.residual_j;
+    let f = &file.energy;
+    assert!(f.residual_j.abs() < 1e-3 * f.kinetic_initial_j, "{f:?}");
+    let ratio = f.residual_j / e.residual_j;
     assert!(
-        (3.0..5.0).contains(&ratio),
+        (4.0..16.0).contains(&ratio),
         "residual {} J at 20 µs, {} J at 5 µs",
-        file.energy.residual_j,
+        f.residual_j,
         e.residual_j
     );
 }

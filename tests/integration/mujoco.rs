@@ -126,6 +126,37 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
     }
 }
 
+/// The hard landing of the paired campaign that used to stop on the energy guard (Vh 26.8 ft/s,
+/// Vv 5 ft/s, slope 8°, heading 10°: its trailing legs strike, struts crush on their plateaus and
+/// bottom, stops engage and let go) closes its balance to second order in the step on MuJoCo:
+/// halving the step divides the residual by at least four (0.109 J at 20 µs, −0.005 J at 10 µs,
+/// of 1,008 J). The stroke joints' dry friction, the bearing friction and the crush plateau,
+/// acts in the step the laws computed it for: the runner writes it into the joint's friction
+/// row after `mj_step1` has built the rows (`FRICTION_ROW_PLACEHOLDER`,
+/// crates/mujoco/src/mjcf.rs).
+/// Written into the model's `dof_frictionloss`, as it was, it acted a step late: a strut
+/// leaving its onset ramp for its plateau had neither for one step, and the balance was first
+/// order (0.60 J and 0.30 J; docs/engines.md, "Energy ledger").
+#[test]
+fn the_stroke_joints_dry_friction_acts_in_its_own_step_on_mujoco() {
+    let hard = "[surface]\nslope = 8.0\n[touchdown]\nvertical_velocity = -5.0\n\
+                horizontal_velocity = [0.0, 26.8]\nattitude = [5.0, 0.0, 10.0]\n\
+                [integrator]\nt_end = 0.5\n";
+    let residual = |step: &str| {
+        let name = format!("hard-landing-{step}");
+        let extra = format!("{hard}[engines.mujoco]\ntimestep = {step}\n");
+        let s = mujoco(&variant("table-i-2-2-vv8.toml", &name, &extra), &name);
+        (s.energy.residual_j, s.energy.kinetic_initial_j)
+    };
+    let (coarse, energy) = residual("2.0e-5");
+    let (fine, _) = residual("1.0e-5");
+    assert!(coarse.abs() < 2e-4 * energy, "{coarse} J of {energy} J");
+    assert!(
+        fine.abs() <= 0.25 * coarse.abs(),
+        "residual {coarse} J at 20 µs, {fine} J at 10 µs"
+    );
+}
+
 /// A footpad that starts on its plane bears from the first step, on the model and on its Froude
 /// twin alike: the contacts' margin of a millionth of the contact width (docs/engines.md,
 /// "Froude twins") keeps the last bit of the touchdown pose from deciding it. Without it the
@@ -165,17 +196,22 @@ fn a_plastic_stop_lands_on_mujoco() {
 /// MuJoCo parts from its own mirror image (on `fig-25-26` its mirror footpads' spike forces
 /// differ by 4e-7 of their value after the first step, its near-rigid contacts and the spikes'
 /// friction of 100 amplifying the rounding of its contact solve):
-/// - `fig-25-26` leg 4 (after the uphill footpads left their spikes at 0.01 s and hopped on
-///   their gears, the fall back at 0.66 s): core 16.0 and 16.6 mm on legs 3 and 4, rapier
-///   16.5 and 19.0 mm, MuJoCo 17.7 and 10.0 mm;
-/// - `table-i-2-2-vv6` leg 3: core 8.01 and 7.19 mm (its copies 7.19-8.59 mm), rapier 8.38
-///   and 8.40 mm, MuJoCo 7.15 and 8.16 mm.
+/// - `fig-25-26` legs 3 and 4 (after the uphill footpads left their spikes at 0.01 s and hopped
+///   on their gears, the fall back at 0.66 s): core 16.0 and 16.6 mm, rapier 16.5 and 19.0 mm,
+///   MuJoCo 12.4 and 16.0 mm;
+/// - `table-i-2-2-vv4` leg 4: core 7.38 and 7.31 mm on legs 3 and 4 (its copies 6.7-8.3 mm),
+///   rapier 6.03 and 6.03 mm, MuJoCo 6.17 and 6.85 mm.
 ///
-/// MuJoCo's mirror legs part by 56 % and 13 % (14.9 and 12.7, 7.61 and 8.52 mm before its
-/// contacts got their margin, docs/engines.md "Froude twins"), so it is no reference for rapier
-/// there. An open defect: the test fails once a pair on this list agrees, to take it off.
-const ROCK_BACK_DISAGREEMENTS: &[(&str, usize)] =
-    &[("fig-25-26.toml", 4), ("table-i-2-2-vv6.toml", 3)];
+/// MuJoCo's mirror legs part by 29 % and 11 %, so it is no reference for rapier there. Which
+/// legs part is rounding's: before the stroke joints' dry friction acted in its own step
+/// (docs/engines.md, "Energy ledger") MuJoCo's `fig-25-26` made 17.7 and 10.0 mm, and its
+/// `table-i-2-2-vv6` parted from rapier on leg 3 (7.15 mm against 8.38) where it now agrees
+/// (8.14 mm). An open defect: the test fails once a pair on this list agrees, to take it off.
+const ROCK_BACK_DISAGREEMENTS: &[(&str, usize)] = &[
+    ("fig-25-26.toml", 3),
+    ("fig-25-26.toml", 4),
+    ("table-i-2-2-vv4.toml", 4),
+];
 
 #[test]
 fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier() {
@@ -262,9 +298,9 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
         undetermined.join("\n")
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    // Five today: the uphill primaries of the 2-2 landings at 4 and 6 ft/s and leg 3's on
-    // `fig-25-26`; more is a landing that rounding newly decides, to look at.
-    assert!(undetermined.len() <= 5, "{}", undetermined.join("\n"));
+    // Four today: the uphill primaries of the 2-2 landings at 4 and 6 ft/s; more is a landing
+    // that rounding newly decides, to look at.
+    assert!(undetermined.len() <= 4, "{}", undetermined.join("\n"));
     assert_eq!(known.len(), ROCK_BACK_DISAGREEMENTS.len(), "{known:?}");
     for (name, leg, parted) in known {
         assert!(
@@ -339,7 +375,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
     let mut warnings = [0; 7];
     warnings[5] = 1; // mjWARN_BADQACC
     let mut ctrl = vec![0.0; 3 * n];
-    let mut friction = vec![0.0; sizes.nv as usize];
+    let mut friction = vec![0.0; n];
     let mut applied = vec![0.0; sizes.nv as usize];
     let mut body_applied = vec![0.0; 6 * sizes.nbody as usize];
     let mut arrays = MjArrays {
@@ -353,7 +389,7 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
         energy: &energy,
         warnings: &warnings,
         ctrl: &mut ctrl,
-        dof_frictionloss: &mut friction,
+        friction_bound: &mut friction,
         qfrc_applied: &mut applied,
         xfrc_applied: &mut body_applied,
     };

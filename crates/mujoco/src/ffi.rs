@@ -45,8 +45,9 @@ pub struct MjPointers {
     pub warning_stride: i32,
     /// `data.ctrl`.
     pub ctrl: *mut f64,
-    /// `model.dof_frictionloss`.
-    pub dof_frictionloss: *mut f64,
+    /// The stroke joints' dry-friction bounds, one per gear (an array of the runner's, which it
+    /// copies into MuJoCo's friction rows before `mj_step2`).
+    pub friction_bound: *mut f64,
     /// `data.qfrc_applied`.
     pub qfrc_applied: *mut f64,
     /// `data.xfrc_applied`.
@@ -115,7 +116,7 @@ impl Runner {
                 energy: std::slice::from_raw_parts(p.energy, 2),
                 warnings: &warnings,
                 ctrl: std::slice::from_raw_parts_mut(p.ctrl, n(s.nu)),
-                dof_frictionloss: std::slice::from_raw_parts_mut(p.dof_frictionloss, n(s.nv)),
+                friction_bound: std::slice::from_raw_parts_mut(p.friction_bound, landing.legs()),
                 qfrc_applied: std::slice::from_raw_parts_mut(p.qfrc_applied, n(s.nv)),
                 xfrc_applied: std::slice::from_raw_parts_mut(p.xfrc_applied, 6 * n(s.nbody)),
             }
@@ -254,7 +255,7 @@ pub unsafe extern "C" fn touchdown_mujoco_bind(
             p.sensordata,
             p.energy,
             p.ctrl,
-            p.dof_frictionloss,
+            p.friction_bound,
         ];
         if fields.iter().any(|f| f.is_null()) || p.warning_number.is_null() {
             return Err(MujocoError::Binding(

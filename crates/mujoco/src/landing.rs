@@ -14,9 +14,12 @@
 //!    on the vehicle (`qfrc_applied`, if the scene has them), the curbs' and obstacle walls'
 //!    force on the footpads (`xfrc_applied`, if the scene has either), the explicit primary
 //!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
-//!    joint's dry friction `frictionloss`: the bearing bound plus, while the honeycomb crushes
-//!    on a plateau, the crush load (a bound that stops the stroke but never drives it; it is
-//!    engaged only while the strut compresses, like the rapier rebuild's plateau motor).
+//!    joint's dry-friction bound: the bearing bound plus, while the honeycomb crushes on a
+//!    plateau, the crush load (a bound that stops the stroke but never drives it; it is engaged
+//!    only while the strut compresses, like the rapier rebuild's plateau motor). The runner puts
+//!    that bound into the joint's friction row of this step (`efc_frictionloss`): MuJoCo builds
+//!    its constraint rows in `mj_step1`, from the model's `dof_frictionloss`, so a bound written
+//!    into the model here would act one step late (docs/engines.md, "The MuJoCo engine").
 
 use crate::MujocoError;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
@@ -114,8 +117,9 @@ pub struct MjArrays<'a> {
     pub warnings: &'a [i32],
     /// `ctrl` (nu), written: N.
     pub ctrl: &'a mut [f64],
-    /// `dof_frictionloss` (nv) of the model, written: N.
-    pub dof_frictionloss: &'a mut [f64],
+    /// The stroke joints' dry-friction bounds for the coming step, one per gear in gear order,
+    /// written: N (the runner copies them into the joints' friction rows, `efc_frictionloss`).
+    pub friction_bound: &'a mut [f64],
     /// `qfrc_applied` (nv), written: the engine and RCS loads on the vehicle's free joint
     /// (force N, world axes; torque N·m, body axes); the gear's entries stay 0.
     pub qfrc_applied: &'a mut [f64],
@@ -270,6 +274,11 @@ impl MujocoLanding {
         self.sizes
     }
 
+    /// The number of gears (legs).
+    pub fn legs(&self) -> usize {
+        self.index.len()
+    }
+
     /// Current time, s.
     pub fn time(&self) -> f64 {
         self.t
@@ -421,7 +430,7 @@ impl MujocoLanding {
             for (j, force) in f.secondary().into_iter().enumerate() {
                 mj.ctrl[g.secondary[j] as usize] = -force;
             }
-            mj.dof_frictionloss[g.stroke_dof as usize] = f.bearing_bound + f.crush_load;
+            mj.friction_bound[i] = f.bearing_bound + f.crush_load;
         }
         if !self.gear_state.applied().is_empty() {
             // eqs. (72)-(74), (80)-(82): the free joint's generalized forces are the force in

@@ -14,10 +14,11 @@
 //!   the tripod (two-force members: a tendon carries force along itself only).
 //! - Actuators, all driven by the runner from the shared laws: `legN_primary` (force along the
 //!   stroke joint, N, positive extends), `legN_s31`, `legN_s41` (tendon forces, N, positive
-//!   lengthens). The stroke joint's dry friction (`frictionloss`, set every step) is the bearing
-//!   friction bound plus, while the honeycomb crushes on a plateau, the crush load: a bound that
-//!   can stop the stroke but never drive it, solved by MuJoCo's constraint solver as stiff as
-//!   the step allows (time constant 2Δt, MuJoCo's floor).
+//!   lengthens). The stroke joint's dry friction is the bearing friction bound plus, while the
+//!   honeycomb crushes on a plateau, the crush load: a bound that can stop the stroke but never
+//!   drive it, solved by MuJoCo's constraint solver as stiff as the step allows (time constant
+//!   2Δt, MuJoCo's floor). The runner writes it into the joint's friction row of each step
+//!   ([`FRICTION_ROW_PLACEHOLDER`]), with constraint islands off so that the solver reads it.
 //! - Sensors for the runner, per gear: `legN_contact` (the net force of the plane on the
 //!   footpad, world axes, and the number of contacts), `legN_pad_velocity`, `legN_pad_rate`
 //!   (the footpad's velocity and angular velocity, world axes); MuJoCo's energy computation is
@@ -56,6 +57,18 @@ pub const CONTACT_IMPEDANCE: [f64; 2] = [0.99, 0.999];
 /// vehicle gets the similar margin (docs/engines.md, "Froude twins"; `tests/integration/mujoco.rs`,
 /// `footpads_on_their_planes_at_touchdown_bear_from_the_first_step_on_mujoco`).
 pub const CONTACT_MARGIN_PER_WIDTH: f64 = 1e-6;
+
+/// The stroke joint's `frictionloss` in the model, N: a placeholder, not a force. MuJoCo builds a
+/// joint's dry-friction row in `mj_step1`, only where the model's `dof_frictionloss` is not zero,
+/// and copies that value into it as the row's bound (`efc_frictionloss`). The bound of a step is
+/// known only after `mj_step1` (the laws read the state it computes), and it may be zero; so the
+/// model keeps a non-zero placeholder that makes the row exist every step, and the runner writes
+/// the step's bound into the row before `mj_step2`. Written into the model instead, the bound
+/// would act a step late: the plateau would take the stroke a step after the honeycomb left it,
+/// and the bearing friction would follow its load a step behind (docs/engines.md, "Energy
+/// ledger"). The least positive double, so that the model loaded without the runner (MuJoCo's
+/// viewer) has no friction to speak of, whatever the vehicle's scale.
+pub const FRICTION_ROW_PLACEHOLDER: f64 = f64::MIN_POSITIVE;
 
 /// Version of this generator, written into every exported file.
 pub const GENERATOR: &str = concat!("touchdown-mujoco ", env!("CARGO_PKG_VERSION"));
@@ -101,6 +114,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         mj.contact_damping_ratio,
     ]);
     let margin = nums(&[CONTACT_MARGIN_PER_WIDTH * mj.contact_width]);
+    let friction_placeholder = format!("{FRICTION_ROW_PLACEHOLDER:e}");
     let quat = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(init.t_bi));
     let j: &Matrix3<f64> = &sc.vehicle.inertia;
 
@@ -127,7 +141,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
     );
     let _ = writeln!(
         w,
-        "  <!-- energy: MuJoCo's kinetic and potential energies, for the runner's energy balance -->\n  <option timestep=\"{}\" gravity=\"{}\" integrator=\"implicitfast\" cone=\"elliptic\">\n    <flag energy=\"enable\"/>\n  </option>",
+        "  <!-- energy: MuJoCo's kinetic and potential energies, for the runner's energy balance; island: off, so that the solver reads the stroke joints' friction rows the runner writes after mj_step1 (with islands, mj_step1 copies them into island arrays first) -->\n  <option timestep=\"{}\" gravity=\"{}\" integrator=\"implicitfast\" cone=\"elliptic\">\n    <flag energy=\"enable\" island=\"disable\"/>\n  </option>",
         nums(&[mj.timestep]),
         vec3(&gravity)
     );
@@ -182,7 +196,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         };
         let _ = writeln!(
             w,
-            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction (frictionloss, set by the runner): bearing friction plus the plateau crush load, as stiff as the step allows -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" solreffriction=\"{solref_friction}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction: bearing friction plus the plateau crush load, as stiff as the step allows, written by the runner into this joint's friction row every step; the model's frictionloss is a placeholder that makes MuJoCo build the row -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" frictionloss=\"{friction_placeholder}\" solreffriction=\"{solref_friction}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
             vec3(&leg.b3),
             vec3(&leg.b4),
             vec3(&leg.b2),
