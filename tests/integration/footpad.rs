@@ -118,8 +118,12 @@ fn inertial_footpads_stay_above_their_planes_and_are_only_pushed() {
 /// so does every spell on the surface but one graze a leg at most: a footpad that comes down
 /// while its gear is already turning to lift it stops in a plastic impact and leaves as soon as
 /// the surface would have to pull it. Standing on spikes that let them go, the footpads hop as
-/// the vehicle rocks, so a leg changes contact up to 26 times (leg 4 of the 1-2-1 landing at
-/// 7 ft/s, over a second; its shortest spell 1.6 ms, its shortest flight 16 ms); on
+/// the vehicle rocks, so a leg changes contact as often as the rocking lasts: 26 times, leg 4 of
+/// the 1-2-1 landing at 7 ft/s until 1.10 s (its shortest spell 1.6 ms, its shortest flight
+/// 16 ms). How long the rocking lasts is no law of the footpad: with the core's arithmetic
+/// changed at rounding level (docs/errata.md, "The 2-2 landing, its own mirror image") leg 2
+/// changes 57 times, and with FS1 refitted to that arithmetic 45 times (shortest flights 1.8
+/// and 5.0 ms); so no count is asserted, only the spells. On
 /// `fig-25-26` the uphill footpads are on the surface 1.3, 3.2 and 0.10 ms at 0.067, 0.082 and
 /// 0.095 s (the graze: it comes down at 3.7 m/s), in flight 14.5 and 9.1 ms between. A changes
 /// list starts with a landing (every footpad starts off its surface), so its even spells are
@@ -132,12 +136,6 @@ fn inertial_footpads_land_and_leave_as_bodies() {
         let mut sim = Simulation::new(&sc).unwrap();
         sim.run(&mut watch).unwrap();
         for (leg, times) in watch.changes.iter().enumerate() {
-            assert!(
-                times.len() <= 30,
-                "{name} leg {}: {} contact changes",
-                leg + 1,
-                times.len()
-            );
             let mut grazes = 0;
             for (k, spell) in times.windows(2).enumerate() {
                 let on_surface = k % 2 == 0;

@@ -150,8 +150,9 @@ pub struct Fit {
 /// Fits `parameters` to `rows` (sum of squared relative stroke errors of `predict`) with
 /// argmin's Nelder-Mead from the initial values, an initial simplex of 10 % steps, bounds by
 /// penalty and at most `max_iterations` iterations a run; with `restarts`, run again from the
-/// end point (a collapsed simplex is not a minimum). Every caller (the two-row calibration,
-/// each cross-validation fold) fits with this one function.
+/// end point (a collapsed simplex is not a minimum), and with their `grid`, the same again from
+/// the grid's best point, the better fit kept. Every caller (the two-row calibration, each
+/// cross-validation fold) fits with this one function.
 pub fn fit(
     rows: &[Row],
     parameters: &[FitParameter],
@@ -173,9 +174,72 @@ pub fn fit(
         }
     }
     let x0: Vec<f64> = parameters.iter().map(|p| p.initial).collect();
-    let mut simplex = vec![x0.clone()];
+    let from_initial = descend(rows, parameters, &x0, max_iterations, restarts, predict)?;
+    let Some(start) = restarts.and_then(|r| grid_start(rows, parameters, r.grid, predict)) else {
+        return Ok(from_initial);
+    };
+    let from_grid = descend(rows, parameters, &start?, max_iterations, restarts, predict)?;
+    let iterations = from_initial.iterations + from_grid.iterations;
+    let best = if from_grid.objective < from_initial.objective {
+        from_grid
+    } else {
+        from_initial
+    };
+    Ok(Fit { iterations, ..best })
+}
+
+/// The best point of a grid of `n` points per parameter over its bounds, the cells' centres
+/// (the first in the grid's order on a tie); `None` without a grid.
+fn grid_start(
+    rows: &[Row],
+    parameters: &[FitParameter],
+    n: u32,
+    predict: &Predict,
+) -> Option<Result<Vec<f64>, ValidationError>> {
+    if n == 0 {
+        return None;
+    }
+    let points = (n as usize).checked_pow(parameters.len() as u32)?;
+    let point = |k: usize| -> Vec<f64> {
+        let mut rest = k;
+        parameters
+            .iter()
+            .map(|p| {
+                let i = rest % n as usize;
+                rest /= n as usize;
+                p.lower + (i as f64 + 0.5) / f64::from(n) * (p.upper - p.lower)
+            })
+            .collect()
+    };
+    let objective = Objective {
+        rows,
+        parameters,
+        predict,
+    };
+    let costs: Result<Vec<f64>, ValidationError> = (0..points)
+        .into_par_iter()
+        .map(|k| {
+            (objective.cost(&point(k))).map_err(|e| ValidationError::Calibration(e.to_string()))
+        })
+        .collect();
+    Some(costs.map(|c| {
+        let best = (0..points).fold(0, |b, k| if c[k] < c[b] { k } else { b });
+        point(best)
+    }))
+}
+
+/// Nelder-Mead from `x0` with an initial simplex of 10 % steps, then its `restarts`.
+fn descend(
+    rows: &[Row],
+    parameters: &[FitParameter],
+    x0: &[f64],
+    max_iterations: u64,
+    restarts: Option<Restarts>,
+    predict: &Predict,
+) -> Result<Fit, ValidationError> {
+    let mut simplex = vec![x0.to_vec()];
     for i in 0..x0.len() {
-        let mut v = x0.clone();
+        let mut v = x0.to_vec();
         v[i] *= 1.0 + SIMPLEX;
         simplex.push(v);
     }
@@ -439,5 +503,76 @@ fn copy_field(from: &toml::Table, out: &mut toml::Table, field: &str) {
             .or_insert_with(|| toml::Value::Table(toml::Table::new()))
             .as_table_mut()
             .expect("created as a table");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::Strut;
+
+    fn row(id: u32, strut: Strut) -> Row {
+        Row {
+            id,
+            landing: "1-2-1".into(),
+            vv: -10.0,
+            vh: 4.0,
+            strut,
+            experiment: 4.0,
+            analysis: 4.0,
+            scenario: "none.toml".into(),
+        }
+    }
+
+    /// A fit whose first row's stroke has a side basin near its initial value (a 5 %
+    /// error at 150) and its deep one at 255 (no error) across a flat stretch, as row 3's
+    /// stroke against FP1 has: started from the estimate, Nelder-Mead and its restarts stop in
+    /// the side basin, since no restart's simplex reaches past the flat; started as well from
+    /// the best point of a 5 × 5 grid over the bounds, the fit reaches the deep basin.
+    #[test]
+    fn a_grid_start_reaches_the_basin_a_restart_from_a_side_basin_does_not() {
+        let parameters = [
+            FitParameter {
+                name: "FP1".into(),
+                initial: 130.0,
+                lower: 40.0,
+                upper: 290.0,
+            },
+            FitParameter {
+                name: "FS1".into(),
+                initial: 60.0,
+                lower: 20.0,
+                upper: 140.0,
+            },
+        ];
+        let rows = [row(3, Strut::Primary), row(7, Strut::Secondary)];
+        let bump = |x: f64, at: f64, width: f64| (-((x - at) / width).powi(2)).exp();
+        let predict = |row: &Row, x: &[f64]| -> Result<f64, ValidationError> {
+            let error = match row.strut {
+                Strut::Primary => {
+                    0.1 * (1.0 - bump(x[0], 255.0, 12.0)) - 0.05 * bump(x[0], 150.0, 30.0)
+                }
+                Strut::Secondary => (x[1] - 75.0) / 75.0,
+            };
+            Ok(row.experiment * (1.0 + error))
+        };
+        let restarts = Restarts {
+            simplex: 0.25,
+            most: 6,
+            improvement: 1e-4,
+            grid: 0,
+        };
+        let side = fit(&rows, &parameters, 200, Some(restarts), &predict).unwrap();
+        assert!((side.value[0] - 150.0).abs() < 5.0, "{side:?}");
+        assert!(side.objective > 2e-3, "{side:?}");
+        let grid = Restarts {
+            grid: 5,
+            ..restarts
+        };
+        let deep = fit(&rows, &parameters, 200, Some(grid), &predict).unwrap();
+        assert!((deep.value[0] - 255.0).abs() < 0.5, "{deep:?}");
+        assert!((deep.value[1] - 75.0).abs() < 0.05, "{deep:?}");
+        assert!(deep.objective < 1e-9, "{deep:?}");
+        assert!(deep.iterations > side.iterations);
     }
 }

@@ -210,6 +210,12 @@ pub struct Restarts {
     pub most: u32,
     /// A restart that improves the objective by less than this fraction of it ends the fit.
     pub improvement: f64,
+    /// Also start the fit (with its restarts) from the best of a grid of this many points per
+    /// parameter over its bounds (the cells' centres), and keep the better of the two fits: a
+    /// restart from a side basin's end point does not reach a deeper basin the simplex never
+    /// spans. 0 (the default): no grid.
+    #[serde(default)]
+    pub grid: u32,
 }
 
 impl Restarts {
@@ -225,6 +231,9 @@ impl Restarts {
         }
         if !(self.improvement >= 0.0 && self.improvement < 1.0) {
             return refuse("improvement", "a fraction in [0, 1)");
+        }
+        if self.grid > 20 {
+            return refuse("grid", "at most 20 points per parameter");
         }
         Ok(())
     }

@@ -47,6 +47,7 @@ impl CvProtocol {
             simplex: self.restart_simplex,
             most: self.max_restarts,
             improvement: self.restart_improvement,
+            grid: 0,
         }
     }
 
