@@ -443,6 +443,7 @@ def run_with_viewer(lib, h, model, data, friction):
             "see docs/engines.md, 'Watching the law-driven run'",
             2,
         )
+    rows, bounds = friction
     slow = 20.0
     frame = 1.0 / 60.0
     steps = 0
@@ -453,7 +454,7 @@ def run_with_viewer(lib, h, model, data, friction):
             status = lib.touchdown_mujoco_advance(h)
             if status != 0:
                 break
-            data.efc_frictionloss[friction[0]] = friction[1]
+            data.efc_frictionloss[rows] = bounds
             mujoco.mj_step2(model, data)
             steps += 1
             if data.time * slow >= time.perf_counter() - wall + frame:

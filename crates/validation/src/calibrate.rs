@@ -96,11 +96,9 @@ struct Objective<'a> {
     predict: &'a Predict<'a>,
 }
 
-impl CostFunction for Objective<'_> {
-    type Param = Vec<f64>;
-    type Output = f64;
-
-    fn cost(&self, x: &Self::Param) -> Result<f64, argmin::core::Error> {
+impl Objective<'_> {
+    /// The objective at `x` (file units, in the parameters' order).
+    fn at(&self, x: &[f64]) -> Result<f64, ValidationError> {
         // Outside the bounds: a penalty growing with the distance (Nelder-Mead is unconstrained).
         let outside: f64 = self
             .parameters
@@ -117,8 +115,18 @@ impl CostFunction for Objective<'_> {
             // loads, each long enough for its onset ramp) lies outside the feasible set, as a
             // value outside the bounds does.
             Err(e) if infeasible(&e) => Ok(INFEASIBLE),
-            Err(e) => Err(argmin::core::Error::msg(e.to_string())),
+            Err(e) => Err(e),
         }
+    }
+}
+
+impl CostFunction for Objective<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, x: &Self::Param) -> Result<f64, argmin::core::Error> {
+        self.at(x)
+            .map_err(|e| argmin::core::Error::msg(e.to_string()))
     }
 }
 
@@ -175,10 +183,12 @@ pub fn fit(
     }
     let x0: Vec<f64> = parameters.iter().map(|p| p.initial).collect();
     let from_initial = descend(rows, parameters, &x0, max_iterations, restarts, predict)?;
-    let Some(start) = restarts.and_then(|r| grid_start(rows, parameters, r.grid, predict)) else {
+    let grid = restarts.map_or(0, |r| r.grid);
+    if grid == 0 {
         return Ok(from_initial);
-    };
-    let from_grid = descend(rows, parameters, &start?, max_iterations, restarts, predict)?;
+    }
+    let start = grid_start(rows, parameters, grid, predict)?;
+    let from_grid = descend(rows, parameters, &start, max_iterations, restarts, predict)?;
     let iterations = from_initial.iterations + from_grid.iterations;
     let best = if from_grid.objective < from_initial.objective {
         from_grid
@@ -189,25 +199,31 @@ pub fn fit(
 }
 
 /// The best point of a grid of `n` points per parameter over its bounds, the cells' centres
-/// (the first in the grid's order on a tie); `None` without a grid.
+/// (the first in the grid's order on a tie).
 fn grid_start(
     rows: &[Row],
     parameters: &[FitParameter],
     n: u32,
     predict: &Predict,
-) -> Option<Result<Vec<f64>, ValidationError>> {
-    if n == 0 {
-        return None;
-    }
-    let points = (n as usize).checked_pow(parameters.len() as u32)?;
+) -> Result<Vec<f64>, ValidationError> {
+    let n = n as usize;
+    let points = u32::try_from(parameters.len())
+        .ok()
+        .and_then(|p| n.checked_pow(p))
+        .ok_or_else(|| {
+            ValidationError::Calibration(format!(
+                "a grid of {n} points per parameter over {} parameters is too large",
+                parameters.len()
+            ))
+        })?;
     let point = |k: usize| -> Vec<f64> {
         let mut rest = k;
         parameters
             .iter()
             .map(|p| {
-                let i = rest % n as usize;
-                rest /= n as usize;
-                p.lower + (i as f64 + 0.5) / f64::from(n) * (p.upper - p.lower)
+                let i = rest % n;
+                rest /= n;
+                p.lower + (i as f64 + 0.5) / n as f64 * (p.upper - p.lower)
             })
             .collect()
     };
@@ -216,16 +232,12 @@ fn grid_start(
         parameters,
         predict,
     };
-    let costs: Result<Vec<f64>, ValidationError> = (0..points)
+    let costs = (0..points)
         .into_par_iter()
-        .map(|k| {
-            (objective.cost(&point(k))).map_err(|e| ValidationError::Calibration(e.to_string()))
-        })
-        .collect();
-    Some(costs.map(|c| {
-        let best = (0..points).fold(0, |b, k| if c[k] < c[b] { k } else { b });
-        point(best)
-    }))
+        .map(|k| objective.at(&point(k)))
+        .collect::<Result<Vec<f64>, ValidationError>>()?;
+    let best = (0..points).fold(0, |b, k| if costs[k] < costs[b] { k } else { b });
+    Ok(point(best))
 }
 
 /// Nelder-Mead from `x0` with an initial simplex of 10 % steps, then its `restarts`.
