@@ -4,60 +4,100 @@
 //! image, part at the rounding level, and a footpad with inertia amplifies that
 //! (docs/errata.md, "Decisions at rounding level").
 //!
-//! The legs are ordered by their primary trunnion B2 in body axes, by (y, z, |x|): renumbering
-//! the legs does not change that order, and neither does the mirror x → −x. Mirror-twin legs
-//! (the same y, z and |x|) are added to each other first, which is the same in either order, and
-//! their sum then joins the total. So renumbered and mirrored landings sum their loads in the
-//! same order, bit for bit, at the cost of plain additions.
+//! The legs are ordered by their primary trunnion B2 in body axes: by ring (height z, then
+//! distance from the centre line, as x² + y²), then by (y, |x|). None of these changes when the
+//! legs are renumbered, and the ring does not change under any turn or mirror about the centre
+//! line. A ring of four legs in two diametral pairs (the report's gear) is summed as the sum of
+//! its two pairs' sums, which any turn or mirror that maps the gear onto itself leaves the same
+//! bit for bit: it maps pairs onto pairs, and an addition of two terms is the same in either
+//! order. So the 2-2 landing, whose plane of symmetry is a diagonal of the body axes, sums its
+//! loads as its mirror image does, as the 1-2-1 landing does. Elsewhere mirror-twin legs (the same
+//! y, z and |x|) are added to each other first and their sum then joins the total, which the
+//! mirror x → −x leaves the same. All at the cost of plain additions.
 
 use nalgebra::Vector3;
 use std::cmp::Ordering;
 use std::ops::Add;
 use touchdown_scenario::model::Leg;
 
-/// The legs' summation order: groups of one leg, or of two mirror-twin legs.
+/// One group of legs summed on its own before it joins the total.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Group {
+    /// A leg alone.
+    One(usize),
+    /// Two mirror-twin legs, or a ring of two.
+    Two([usize; 2]),
+    /// A ring of four legs in two diametral pairs, each pair's legs first: (a + c) + (b + d).
+    Four([usize; 4]),
+}
+
+/// The legs' summation order: groups of one leg, of two mirror-twin legs, or of a ring of four.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct SumOrder {
-    /// Each group's legs (the same index twice for a group of one), in summation order.
-    groups: Vec<[usize; 2]>,
+    /// The groups, in summation order.
+    groups: Vec<Group>,
+}
+
+/// Lexicographic order of two keys of floats.
+fn lexicographic(a: &[f64], b: &[f64]) -> Ordering {
+    (a.iter().zip(b))
+        .map(|(x, y)| x.total_cmp(y))
+        .find(|o| *o != Ordering::Equal)
+        .unwrap_or(Ordering::Equal)
 }
 
 impl SumOrder {
     /// The order for `legs`.
     pub(crate) fn new(legs: &[Leg]) -> SumOrder {
-        let key = |i: usize| {
-            let b = &legs[i].b2;
-            [b.y, b.z, b.x.abs()]
+        let b2 = |i: usize| legs[i].b2;
+        let ring = |i: usize| {
+            let b = b2(i);
+            [b.z, b.x * b.x + b.y * b.y]
         };
-        let cmp = |a: usize, b: usize| {
-            let (ka, kb) = (key(a), key(b));
-            (ka.iter().zip(&kb))
-                .map(|(x, y)| x.total_cmp(y))
-                .find(|o| *o != Ordering::Equal)
-                .unwrap_or(Ordering::Equal)
+        let key = |i: usize| {
+            let b = b2(i);
+            let [z, r2] = ring(i);
+            [z, r2, b.y, b.x.abs()]
         };
         let mut order: Vec<usize> = (0..legs.len()).collect();
         // A stable sort: legs with the same key keep their index order, which only legs
         // sharing one trunnion (more than two to a key) can see.
-        order.sort_by(|&a, &b| cmp(a, b));
+        order.sort_by(|&a, &b| lexicographic(&key(a), &key(b)));
+        let diametral = |i: usize, j: usize| b2(i).x == -b2(j).x && b2(i).y == -b2(j).y;
         let mut groups = Vec::with_capacity(order.len());
         let mut k = 0;
         while k < order.len() {
-            let i = order[k];
-            let twin = order.get(k + 1).filter(|&&j| {
-                cmp(i, j) == Ordering::Equal
-                    && order
-                        .get(k + 2)
-                        .is_none_or(|&l| cmp(j, l) != Ordering::Equal)
-            });
-            match twin {
-                Some(&j) => {
-                    groups.push([i, j]);
-                    k += 2;
+            let same_ring = order[k..]
+                .iter()
+                .take_while(|&&j| lexicographic(&ring(order[k]), &ring(j)).is_eq())
+                .count();
+            let r = &order[k..k + same_ring];
+            if let [a, b, c, d] = *r {
+                // the partner of a among the other three, then whether the last two pair up
+                let quad = [[a, b, c, d], [a, c, b, d], [a, d, b, c]]
+                    .into_iter()
+                    .find(|q| diametral(q[0], q[1]) && diametral(q[2], q[3]));
+                if let Some([a, c, b, d]) = quad {
+                    groups.push(Group::Four([a, c, b, d]));
+                    k += 4;
+                    continue;
                 }
-                None => {
-                    groups.push([i, i]);
-                    k += 1;
+            }
+            let end = k + same_ring;
+            while k < end {
+                let i = order[k];
+                let twin = order[..end].get(k + 1).filter(|&&j| {
+                    key(i) == key(j) && order[..end].get(k + 2).is_none_or(|&l| key(j) != key(l))
+                });
+                match twin {
+                    Some(&j) => {
+                        groups.push(Group::Two([i, j]));
+                        k += 2;
+                    }
+                    None => {
+                        groups.push(Group::One(i));
+                        k += 1;
+                    }
                 }
             }
         }
@@ -71,11 +111,11 @@ impl SumOrder {
     #[inline]
     pub(crate) fn sum(&self, terms: &[Vector3<f64>]) -> Vector3<f64> {
         let mut total = Vector3::zeros();
-        for &[i, j] in &self.groups {
-            total += if i == j {
-                terms[i]
-            } else {
-                terms[i] + terms[j]
+        for g in &self.groups {
+            total += match *g {
+                Group::One(i) => terms[i],
+                Group::Two([i, j]) => terms[i] + terms[j],
+                Group::Four([a, c, b, d]) => (terms[a] + terms[c]) + (terms[b] + terms[d]),
             };
         }
         total
@@ -101,15 +141,13 @@ impl SumOrder {
         add: impl Fn(T, T) -> T,
     ) -> T {
         let mut total = zero;
-        for &[i, j] in &self.groups {
-            total = add(
-                total,
-                if i == j {
-                    term(i)
-                } else {
-                    add(term(i), term(j))
-                },
-            );
+        for g in &self.groups {
+            let group = match *g {
+                Group::One(i) => term(i),
+                Group::Two([i, j]) => add(term(i), term(j)),
+                Group::Four([a, c, b, d]) => add(add(term(a), term(c)), add(term(b), term(d))),
+            };
+            total = add(total, group);
         }
         total
     }
@@ -174,6 +212,33 @@ mod tests {
         );
         // Twins (±x) are summed as a pair, singles alone.
         assert_eq!(SumOrder::new(&legs).groups.len(), 3);
+    }
+
+    #[test]
+    fn a_ring_of_four_sums_alike_under_every_turn_and_mirror_of_its_square() {
+        // The report's gear: legs at quarter turns; the eight maps of the square onto itself
+        // (turns by quarters, mirrors in the axes and the diagonals), each exact on x and y.
+        let square = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+        let legs: Vec<Leg> = square.iter().map(|&(x, y)| leg(x, y)).collect();
+        let t = terms();
+        type Map = fn(&Vector3<f64>) -> Vector3<f64>;
+        let maps: [Map; 8] = [
+            |v| *v,
+            |v| Vector3::new(-v.y, v.x, v.z),
+            |v| Vector3::new(-v.x, -v.y, v.z),
+            |v| Vector3::new(v.y, -v.x, v.z),
+            |v| Vector3::new(-v.x, v.y, v.z),
+            |v| Vector3::new(v.x, -v.y, v.z),
+            |v| Vector3::new(v.y, v.x, v.z),
+            |v| Vector3::new(-v.y, -v.x, v.z),
+        ];
+        let reference = SumOrder::new(&legs).sum(&t);
+        for g in maps {
+            let image: Vec<Leg> = legs.iter().map(|l| leg(g(&l.b2).x, g(&l.b2).y)).collect();
+            let moved: Vec<_> = t.iter().map(g).collect();
+            assert_eq!(SumOrder::new(&image).sum(&moved), g(&reference));
+        }
+        assert_eq!(SumOrder::new(&legs).groups.len(), 1);
     }
 
     #[test]

@@ -11,7 +11,7 @@ pub const GIMBAL_LOCK_COS: f64 = 1e-6;
 
 /// T_BE, body rates → Euler rates, eq. (5). Angles in rad.
 pub fn t_be(theta: &Vector3<f64>) -> Matrix3<f64> {
-    t_be_of(theta.y.sin_cos(), theta.z.sin_cos())
+    EulerTrig::new(theta).t_be()
 }
 
 /// T_BE (eq. 5) from the sine and cosine of θy and of θz.
@@ -32,7 +32,7 @@ fn t_be_of((sy, cy): (f64, f64), (sz, cz): (f64, f64)) -> Matrix3<f64> {
 /// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6); also maps the Euler-angle deviations
 /// to body attitude errors in eq. (77). Angles in rad.
 pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
-    t_eb_of(theta.y.sin_cos(), theta.z.sin_cos())
+    EulerTrig::new(theta).t_eb()
 }
 
 /// T_EB (eq. 6) from the sine and cosine of θy and of θz.

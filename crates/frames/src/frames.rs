@@ -27,34 +27,45 @@ fn rot_y_of((s, c): (f64, f64)) -> Matrix3<f64> {
     Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
 }
 
-/// Rotation about Z by `a` rad (active), whole quarter turns taken exactly: `a` is reduced by
-/// its nearest multiple k·π/2 and the rest turned by k quarters with exact sign changes, and a
-/// rest within rounding of zero (4 ulp of `a`) counts as zero. So a leg at 180° lies on the
+/// Rotation about Z by `a` rad (active), by the sine and cosine of `turn_sin_cos`: whole
+/// quarter turns exact, eighth turns with equal sine and cosine. So a leg at 180° lies on the
 /// mirror plane of the leg at 0° bit for bit (sin π is 1.2e-16 in floating point), and the
 /// report's 1-2-1 and 2-2 gears are their own mirror images exactly (docs/errata.md,
 /// "Decisions at rounding level").
 pub fn rot_z(a: f64) -> Matrix3<f64> {
-    rot_z_with(a, None)
-}
-
-/// [`rot_z`], with the sine and cosine of `a` itself given if they are known: they are those of
-/// the rest when `a` is less than half a quarter turn (the rest is `a`, bit for bit).
-fn rot_z_with(a: f64, sin_cos: Option<(f64, f64)>) -> Matrix3<f64> {
-    let (s, c) = quarter_turns(a, sin_cos);
+    let (s, c) = turn_sin_cos(a);
     Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
 }
 
-/// The sine and cosine [`rot_z`] turns by for `a` rad (whole quarter turns exact), with those
-/// of `a` itself given if they are known.
-fn quarter_turns(a: f64, sin_cos: Option<(f64, f64)>) -> (f64, f64) {
-    let quarters = (a / std::f64::consts::FRAC_PI_2).round();
-    let mut rest = a - quarters * std::f64::consts::FRAC_PI_2;
-    if rest.abs() <= 4.0 * f64::EPSILON * a.abs() {
+/// The sine and cosine of `a` rad, computed so that the mirror images of an angle about the
+/// axes and the diagonals of a quarter turn get the mirror images of its sine and cosine, bit
+/// for bit: `a` is reduced by its nearest multiple k·π/2, the rest turned by k quarters with
+/// exact sign changes; a rest nearer an eighth turn than zero, ±(π/4 + d), is turned from the
+/// eighth, sin = (cos d + sin d)/√2 and cos = (cos d − sin d)/√2, so that at 45° (d = 0)
+/// sine and cosine are one number (the library's sin 45° and cos 45° differ by one unit in the
+/// last place) and 45° ± d have each other's sine and cosine. A rest, or a d, within rounding
+/// of zero (4 ulp of `a`) counts as zero. Within an ulp or two of the library's sin and cos;
+/// docs/errata.md, "Decisions at rounding level".
+fn turn_sin_cos(a: f64) -> (f64, f64) {
+    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4, FRAC_PI_8};
+    let quarters = (a / FRAC_PI_2).round();
+    let mut rest = a - quarters * FRAC_PI_2;
+    let rounding = 4.0 * f64::EPSILON * a.abs();
+    if rest.abs() <= rounding {
         rest = 0.0;
     }
-    let (s0, c0) = match sin_cos {
-        Some(sc) if rest.to_bits() == a.to_bits() => sc,
-        _ => rest.sin_cos(),
+    let (s0, c0) = if rest.abs() > FRAC_PI_8 {
+        let mut d = rest.abs() - FRAC_PI_4;
+        if d.abs() <= rounding {
+            d = 0.0;
+        }
+        let (sd, cd) = d.sin_cos();
+        (
+            ((cd + sd) * FRAC_1_SQRT_2).copysign(rest),
+            (cd - sd) * FRAC_1_SQRT_2,
+        )
+    } else {
+        rest.sin_cos()
     };
     match quarters.rem_euclid(4.0) as u8 {
         0 => (s0, c0),
@@ -96,9 +107,11 @@ pub struct EulerTrig {
 }
 
 impl EulerTrig {
-    /// The sines and cosines of `theta` (rad).
+    /// The sines and cosines of `theta` (rad); θz's by `turn_sin_cos`, so that a gear turned
+    /// by whole quarter or eighth turns is its own mirror image in eq. (3) bit for bit.
     pub fn new(theta: &Vector3<f64>) -> EulerTrig {
-        let [x, y, z] = [theta.x, theta.y, theta.z].map(f64::sin_cos);
+        let [x, y] = [theta.x, theta.y].map(f64::sin_cos);
+        let z = turn_sin_cos(theta.z);
         EulerTrig {
             theta: *theta,
             sin: Vector3::new(x.0, y.0, z.0),
@@ -109,7 +122,7 @@ impl EulerTrig {
     /// T_BI, eq. (3): [`t_bi`] at θ.
     pub fn t_bi(&self) -> Matrix3<f64> {
         let (s, c) = (&self.sin, &self.cos);
-        let (sz, cz) = quarter_turns(self.theta.z, Some((s.z, c.z)));
+        let (sz, cz) = (s.z, c.z);
         // eq. (3): Rx·Ry written out, then times Rz, each entry the product's without its
         // terms in the rotations' zeros (`rot_x`·`rot_y`·`rot_z`, the test below, bit for bit)
         let p = Matrix3::new(
@@ -208,6 +221,36 @@ mod tests {
                 (r[(0, 0)] - c).abs() < 1e-14 && (r[(1, 0)] - s).abs() < 1e-14,
                 "{a}"
             );
+        }
+    }
+
+    #[test]
+    fn eighth_turns_have_one_sine_and_cosine_and_mirror_bit_for_bit() {
+        // 45°, 135°, −45°, 225° as the scenario's degrees give them: |sin| and |cos| one number.
+        for deg in [45.0_f64, 135.0, -45.0, 225.0, 315.0] {
+            let (s, c) = turn_sin_cos(deg.to_radians());
+            assert_eq!(s.abs(), c.abs(), "{deg}°");
+            assert_eq!(s.abs(), std::f64::consts::FRAC_1_SQRT_2, "{deg}°");
+        }
+        // 45° + d and 45° − d, which the diagonal mirror maps into each other, have each
+        // other's sine and cosine.
+        let eighth = std::f64::consts::FRAC_PI_4;
+        for d in [1e-12, 1e-6, 0.01, 0.3] {
+            let (s1, c1) = turn_sin_cos(eighth + d);
+            let (s2, c2) = turn_sin_cos(eighth - d);
+            assert_eq!((s1, c1), (c2, s2), "d = {d}");
+        }
+        // Within two units in the last place of the library's sine and cosine.
+        let mut a = -7.0;
+        while a < 7.0 {
+            let (s, c) = turn_sin_cos(a);
+            let (s0, c0) = a.sin_cos();
+            let ulps = |x: f64, y: f64| (x - y).abs() / f64::EPSILON;
+            assert!(
+                ulps(s, s0) <= 2.0 && ulps(c, c0) <= 2.0,
+                "{a}: {s} {s0} {c} {c0}"
+            );
+            a += 0.001;
         }
     }
 

@@ -2,12 +2,16 @@
 //! taken implicitly, so that the vehicle's modes on its gear bound no step (docs/errata.md,
 //! "Long strides where the gear is soft", item 2).
 //!
-//! The vehicle's displacement from its prediction, y = (δR, δφ) (inertial metres, body
-//! radians, δφ = T_EB·δθ), moves a footpad fixed on its surface by δBP = −T_IB·δR + BP×δφ in
-//! body axes, and strut j's stroke by g_jᵀ·y with g_j = (−T_BI·ŵ_j, ŵ_j×BP), ŵ_j the stroke's
-//! gradient in BP ([`gear::stroke_gradients`]). Linearised about the prediction, each strut's
-//! force changes by k_j·g_jᵀ·y (k_j its law's secant over the step), and the vehicle's
-//! accelerations by −M_y⁻¹·K·y with K = Σ_j k_j·g_jg_jᵀ, M_y = diag(M·I, J). The report's
+//! The vehicle's displacement from its prediction, y = (δR, δφ) (inertial metres, inertial
+//! radians, δφ = T_BI·T_EB·δθ), moves a footpad fixed on its surface by
+//! δBP = −T_IB·δR + BP×(T_IB·δφ) in body axes, and strut j's stroke by g_jᵀ·y with
+//! g_j = (−T_BI·ŵ_j, T_BI·(ŵ_j×BP)), ŵ_j the stroke's gradient in BP
+//! ([`gear::stroke_gradients`]). Linearised about the prediction, each strut's force changes
+//! by k_j·g_jᵀ·y (k_j its law's secant over the step), and the vehicle's accelerations by
+//! −M_y⁻¹·K·y with K = Σ_j k_j·g_jg_jᵀ, M_y = diag(M·I, T_BI·J·T_IB). Both halves of y are in
+//! inertial axes so that a landing's mirror image, which may swap body axes (the 2-2 landing's
+//! plane of symmetry is a diagonal of them), only changes signs of y: the factorisation below
+//! then mirrors bit for bit (docs/errata.md, "Decisions at rounding level"). The report's
 //! corrector (eqs. 22-24) q₁ = q_k + q̇_k·Δt + (q̈_k/3 + q̈₁/6)·Δt², q̇₁ = q̇_k + (q̈_k + q̈₁)·Δt/2
 //! with q̈₁ the acceleration at the corrected state, so linearised, gives for δq = q₁ − q*
 //!
@@ -69,21 +73,24 @@ impl Engaged {
         generalised(t_bi, &self.bp, &self.gradients[j])
     }
 
-    /// K's share of this footpad, Σ_j k_j·g_jg_jᵀ, its lower triangle (the upper is zero).
+    /// K's share of this footpad, Σ_j k_j·g_jg_jᵀ, its lower triangle (the upper is zero): the
+    /// primary's term and the two secondaries' sum, which a mirror that swaps them leaves the
+    /// same.
     fn stiffness(&self, t_bi: &Matrix3<f64>) -> Matrix6<f64> {
-        let mut k = Matrix6::zeros();
-        for j in 0..3 {
+        let term = |j: usize| {
+            let mut k = Matrix6::zeros();
             if self.rates[j] > 0.0 {
                 let g = self.generalised(t_bi, j);
                 let kg = g * self.rates[j];
                 for c in 0..6 {
                     for r in c..6 {
-                        k[(r, c)] += kg[r] * g[c];
+                        k[(r, c)] = kg[r] * g[c];
                     }
                 }
             }
-        }
-        k
+            k
+        };
+        term(0) + (term(1) + term(2))
     }
 }
 
@@ -115,9 +122,9 @@ pub(super) fn correct_vehicle(
         .fill_diagonal(mass.mass);
     inertia
         .fixed_view_mut::<3, 3>(3, 3)
-        .copy_from(&mass.inertia);
+        .copy_from(&(t_bi * mass.inertia * t_bi.transpose()));
     let translation = pred.acceleration - old.acceleration;
-    let rotation = pred.euler.t_eb() * (pred.theta_ddot - old.theta_ddot);
+    let rotation = t_bi * (pred.euler.t_eb() * (pred.theta_ddot - old.theta_ddot));
     let change = Vector6::new(
         translation.x,
         translation.y,
@@ -128,7 +135,7 @@ pub(super) fn correct_vehicle(
     );
     let y = correction(&inertia, &stiffness, &change, dt);
     let d_r = Vector3::new(y[0], y[1], y[2]);
-    let d_phi = Vector3::new(y[3], y[4], y[5]);
+    let d_phi = t_bi.transpose() * Vector3::new(y[3], y[4], y[5]);
     let d_theta = pred.euler.t_be() * d_phi;
     let new = &mut scratch.new;
     *new = *old;
@@ -153,13 +160,13 @@ pub(super) fn correct_vehicle(
     }
 }
 
-/// The gradient g = (−T_BI·ŵ, ŵ×BP) in y = (δR, δφ) of a stroke whose gradient in the
+/// The gradient g = (−T_BI·ŵ, T_BI·(ŵ×BP)) in y = (δR, δφ) of a stroke whose gradient in the
 /// footpad's body-frame position `bp` (m) is `w`, the footpad fixed on its surface and the
 /// vehicle's attitude `t_bi` (T_BI): a displacement y moves the footpad by
-/// δBP = −T_IB·δR + BP×δφ relative to the body.
+/// δBP = −T_IB·δR + BP×(T_IB·δφ) relative to the body.
 fn generalised(t_bi: &Matrix3<f64>, bp: &Vector3<f64>, w: &Vector3<f64>) -> Vector6<f64> {
     let r = -(t_bi * w);
-    let phi = w.cross(bp);
+    let phi = t_bi * w.cross(bp);
     Vector6::new(r.x, r.y, r.z, phi.x, phi.y, phi.z)
 }
 
@@ -230,7 +237,7 @@ mod tests {
 
     /// The gradient in y of a primary's compression stroke c = L2P − |BP − B2| against
     /// central differences of the stroke with the vehicle moved by δR (inertial) and turned
-    /// by δφ (body axes) and the footpad held where it is.
+    /// by δφ (inertial axes) and the footpad held where it is.
     #[test]
     fn a_strokes_gradient_in_the_vehicles_displacement_is_its_central_difference() {
         use nalgebra::Rotation3;
@@ -240,7 +247,7 @@ mod tests {
         let (b2, l2p) = (Vector3::new(0.8, 0.2, 0.5), 1.6);
         let stroke = |y: &Vector6<f64>| {
             let turn = Rotation3::from_scaled_axis(Vector3::new(y[3], y[4], y[5]));
-            let t = t_bi * turn.matrix();
+            let t = turn.matrix() * t_bi;
             let bp = t.transpose() * (pad - position - Vector3::new(y[0], y[1], y[2]));
             l2p - (bp - b2).norm()
         };
