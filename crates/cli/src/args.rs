@@ -133,7 +133,8 @@ pub(crate) struct RunArgs {
     pub(crate) timestep: Option<f64>,
     /// Also land two copies with the touchdown velocity moved by one unit in the last place
     /// across, each way, and name the maxima (and the outcome) they move by more than the
-    /// tolerance `touchdown compare` judges them by: not determined at this precision
+    /// tolerance `touchdown compare` judges them by, or that a landing which is its own mirror
+    /// image lands apart on a leg and its image: not determined at this precision
     /// (docs/engines.md, "Rounding-decided channels"). Three more landings.
     #[arg(long)]
     pub(crate) rounding: bool,

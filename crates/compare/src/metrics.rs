@@ -380,6 +380,10 @@ pub struct Basis {
     pub scales: Scales,
     /// Every channel family's tolerance, in the order of [`TOLERANCES`].
     pub tolerances: [Tolerance; 11],
+    /// Leg i's mirror image is leg `mirror[i]` (numbered from 0), its secondaries exchanged,
+    /// when the landing is its own mirror image (`touchdown_scenario::mirror::self_mirror`):
+    /// each leg's strokes are then landed twice ([`crate::rounding`]).
+    pub mirror: Option<Vec<usize>>,
 }
 
 impl Basis {
@@ -394,6 +398,7 @@ impl Basis {
         Ok(Basis {
             scales: Scales::of(sc)?,
             tolerances,
+            mirror: touchdown_scenario::mirror::self_mirror(sc),
         })
     }
 

@@ -137,7 +137,7 @@ fn undetermined(o: &mut String, p: &crate::metrics::PairComparison) {
     }
     let _ = writeln!(
         o,
-        "not determined at this precision (the touchdown velocity moved by {} unit in the last place across, each way):",
+        "not determined at this precision (the touchdown velocity moved by {} unit in the last place across, each way; on a landing that is its own mirror image, each leg against its image):",
         crate::rounding::CROSSWISE_ULPS[0]
     );
     let range = |engine: Engine, r: Option<[f64; 2]>, unit: &str| {
@@ -170,7 +170,7 @@ pub fn determinacy_text(d: &crate::rounding::Determinacy) -> String {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "rounding: the landing again with its touchdown velocity moved by {} unit in the last place across, each way",
+        "rounding: the landing again with its touchdown velocity moved by {} unit in the last place across, each way (on a landing that is its own mirror image, each leg against its image too)",
         d.crosswise_ulps[0]
     );
     let _ = writeln!(
@@ -191,7 +191,7 @@ pub fn determinacy_text(d: &crate::rounding::Determinacy) -> String {
     }
     let _ = writeln!(
         o,
-        "  not determined at this precision (the copies move them by more than the tolerance `touchdown compare` judges them by):"
+        "  not determined at this precision (the copies, or a leg's mirror image, move them by more than the tolerance `touchdown compare` judges them by):"
     );
     // every maximum listed has a range (`rounding::undetermined`)
     for (u, [lo, hi]) in d.undetermined.iter().filter_map(|u| Some((u, u.range?))) {

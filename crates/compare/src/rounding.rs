@@ -114,7 +114,13 @@ impl OwnSpread {
 }
 
 /// Every channel's rounding spread over the members of `run` ([`crate::run_ensemble`]), in
-/// channel order.
+/// channel order. On a landing that is its own mirror image ([`crate::metrics::Basis::mirror`]) each
+/// member also lands every leg's strokes a second time, on the leg's image: a stroke channel's
+/// spread counts each member's leg against its image too. That probes what the copies do not
+/// on an engine whose arithmetic is not mirror-symmetric (rapier's and MuJoCo's solvers: they
+/// put an asymmetry of the order of rounding into every step, which outweighs the copies' one
+/// unit in the last place; docs/engines.md, "Rounding-decided channels"); on the core, whose
+/// mirror legs are equal bit for bit, it adds nothing.
 pub(crate) fn own_spreads(run: &EngineRun) -> Vec<OwnSpread> {
     let members = run.members();
     let mut own: Vec<OwnSpread> = channels(run, run).iter().map(OwnSpread::of).collect();
@@ -126,7 +132,39 @@ pub(crate) fn own_spreads(run: &EngineRun) -> Vec<OwnSpread> {
             }
         }
     }
+    if let Some(legs) = &run.basis.mirror {
+        for x in &members {
+            let set = channels(x, &mirrored(x, legs));
+            for o in own.iter_mut().filter(|o| o.leg.is_some()) {
+                o.widen(set.iter().find(|c| o.is_of(c)));
+            }
+        }
+    }
     own
+}
+
+/// The run `x` seen in the mirror that maps its landing onto itself: leg i's maximum strokes
+/// are those of its image `legs[i]`, with the image's secondaries 3-1 and 4-1 exchanged (the
+/// stroke channels are all [`own_spreads`] reads of it).
+fn mirrored(x: &EngineRun, legs: &[usize]) -> EngineRun {
+    let mut summary = x.summary.clone();
+    let s = &x.summary;
+    let swap = |[a, b]: [f64; 2]| [b, a];
+    summary.max_primary_stroke_m = legs.iter().map(|&j| s.max_primary_stroke_m[j]).collect();
+    summary.max_secondary_compression_m = (legs.iter())
+        .map(|&j| swap(s.max_secondary_compression_m[j]))
+        .collect();
+    summary.max_secondary_tension_m = (legs.iter())
+        .map(|&j| swap(s.max_secondary_tension_m[j]))
+        .collect();
+    EngineRun {
+        engine: x.engine,
+        summary,
+        trace: x.trace.clone(),
+        basis: x.basis.clone(),
+        recording: None,
+        perturbed: Vec::new(),
+    }
 }
 
 /// The maxima of `run` ([`crate::run_ensemble`]: the landing and its perturbed copies on one
@@ -296,6 +334,42 @@ mod tests {
             assert_eq!(back.file.touchdown.horizontal_velocity[0], vx);
             assert_ne!(copy.sha256(), sc.sha256());
         }
+    }
+
+    #[test]
+    fn an_engine_that_lands_a_leg_and_its_mirror_image_apart_has_them_undetermined() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios/table-i-1-2-1-vv5.toml");
+        let sc = Scenario::load(&path).unwrap();
+        let run = crate::run_recorded(crate::Engine::Core, &path, &sc, None).unwrap();
+        // The 1-2-1 landing is its own mirror image in the plane through legs 2 and 4.
+        assert_eq!(run.basis.mirror, Some(vec![2, 1, 0, 3]));
+        // The core lands each leg and its image bit for bit alike: the probe adds nothing.
+        assert!(own_spreads(&run).iter().all(|o| o.spread == 0.0));
+        // An engine that lands leg 1's primary a fifth beyond its image's (leg 3's), and leg
+        // 2's 3-1 secondary (its own image's 4-1) a fifth short of its 4-1.
+        let mut lopsided = run.clone();
+        lopsided.summary.max_primary_stroke_m[0] *= 1.2;
+        lopsided.summary.max_secondary_compression_m[1][0] *= 0.8;
+        lopsided.summary.max_secondary_tension_m[1][0] *= 0.8;
+        let named: Vec<_> = (undetermined(&lopsided).iter())
+            .map(|o| (o.leg.unwrap(), o.strut.unwrap()))
+            .collect();
+        assert_eq!(
+            named,
+            [
+                (1, Strut::Primary),
+                (3, Strut::Primary),
+                (2, Strut::Secondary31),
+                (2, Strut::Secondary41)
+            ]
+        );
+        // A landing that is not its own mirror image has no such probe.
+        let sloped = sc
+            .clone()
+            .with_touchdown(|t| t.horizontal_velocity[0] = 1.0)
+            .unwrap();
+        assert_eq!(crate::metrics::Basis::of(&sloped).unwrap().mirror, None);
     }
 
     fn spread(between: [f64; 2], within: [f64; 2]) -> Spread {

@@ -12,7 +12,8 @@
 //! * [`draft`]: a first vehicle and landing drafted from a handful of numbers (`touchdown new`);
 //! * [`initial`]: the state a landing starts from (eq. 19), shared by every engine;
 //! * [`scales`]: the vehicle's own length, velocity, time and acceleration scales, which
-//!   judgements that must not depend on its size or units are ratios of.
+//!   judgements that must not depend on its size or units are ratios of;
+//! * [`mirror`]: the mirror image, and the legs' images under which a landing is its own.
 //!
 //! A file may `extends = "other.toml"`: tables are merged key by key, the extending file
 //! winning; it may not change the `[units]` of the file it extends. Errors name the file that
@@ -27,6 +28,7 @@ pub mod error;
 pub mod initial;
 mod load;
 mod mechanisms;
+pub mod mirror;
 pub mod model;
 mod overrides;
 pub mod ranges;
