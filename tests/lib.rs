@@ -1,7 +1,5 @@
 //! Shared helpers for the workspace-level tests.
 
-pub mod mirror;
-
 use nalgebra::Vector3;
 use std::path::PathBuf;
 use touchdown_laws::{GearLaws, LoadStroke};

@@ -224,7 +224,7 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
         // an engine's two mirror legs are one stroke landed twice: how far apart it lands them
         // is its own arithmetic's, a spread its copies do not probe on rapier and MuJoCo, whose
         // solvers are not mirror-symmetric (docs/engines.md, "Rounding-decided channels").
-        let mirror = touchdown_tests::mirror::self_mirror(&sc);
+        let mirror = touchdown_scenario::mirror::self_mirror(&sc);
         let e = &mj.energy;
         assert!(
             e.residual_j.abs() < 0.01 * e.kinetic_initial_j,
@@ -249,7 +249,7 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
             // mirror-twin legs on the slow 2-2 landing parted by 2 mm while its detached
             // trailing gears swung free; the restraint now holds them,
             // touchdown_multibody::wall.)
-            let partner = mirror.as_ref().map(|map| map.legs[i]).filter(|&p| p != i);
+            let partner = mirror.as_ref().map(|legs| legs[i]).filter(|&p| p != i);
             let own_gap = |s: &[f64]| partner.map_or(0.0, |p| (s[i] - s[p]).abs());
             let mj_gap = own_gap(&mj.max_primary_stroke_m);
             let gaps = [mj_gap, own_gap(&rapier.max_primary_stroke_m)];

@@ -5,10 +5,10 @@
 
 use nalgebra::Vector3;
 use touchdown_record::Summary;
+use touchdown_scenario::mirror::{matrix, pseudovector};
 use touchdown_scenario::model::Leg;
 use touchdown_scenario::schema::Scheme;
 use touchdown_scenario::Scenario;
-use touchdown_tests::mirror::{m, mirror_pseudo, self_mirror, Map};
 use touchdown_tests::{bundled_landings, scenario};
 
 /// Relative agreement required between a landing and its mirror image.
@@ -32,6 +32,20 @@ const TOLERANCE: f64 = 1e-9;
 ///   their curbs again and again as the vehicle rocks.
 const UNSTABLE_TO_ASYMMETRY: &[&str] = &["curb-slide.toml"];
 
+/// What a renumbering or mirroring does to the legs: new leg k is old leg `legs[k]`, with its
+/// secondaries swapped (3-1 ↔ 4-1) when `swap`.
+#[derive(Debug, Clone)]
+struct Map {
+    legs: Vec<usize>,
+    swap: bool,
+}
+
+/// The leg map under which a scenario is its own mirror image
+/// (`touchdown_scenario::mirror::self_mirror`), secondaries swapped.
+fn self_mirror(sc: &Scenario) -> Option<Map> {
+    touchdown_scenario::mirror::self_mirror(sc).map(|legs| Map { legs, swap: true })
+}
+
 /// The scenario seen in a mirror (x → −x), its legs renumbered counter-clockwise: new leg k is
 /// the mirror image of old leg (n − k) mod n, with its secondary trunnions B3 and B4 exchanged
 /// (a mirror reverses the sense of rotation). Per-footpad surface values follow their legs; the
@@ -45,7 +59,7 @@ fn mirrored(sc: &Scenario) -> (Scenario, Map) {
         legs: (0..n).map(|k| (n - k) % n).collect(),
         swap: true,
     };
-    let m = m();
+    let m = matrix();
     let mut out = sc.clone();
     out.legs = map
         .legs
@@ -68,7 +82,7 @@ fn mirrored(sc: &Scenario) -> (Scenario, Map) {
     let td = &mut out.touchdown;
     td.attitude = Vector3::new(td.attitude.x, -td.attitude.y, -td.attitude.z);
     td.velocity_g = m * td.velocity_g;
-    td.body_rates = mirror_pseudo(&td.body_rates);
+    td.body_rates = pseudovector(&td.body_rates);
     if let Some(t) = &mut out.thrust {
         t.nozzle_exit = m * t.nozzle_exit;
     }
@@ -83,7 +97,7 @@ fn mirrored(sc: &Scenario) -> (Scenario, Map) {
     if let Some(r) = &mut out.rcs {
         let a = r.commanded_attitude;
         r.commanded_attitude = Vector3::new(a.x, -a.y, -a.z);
-        r.commanded_rates = mirror_pseudo(&r.commanded_rates);
+        r.commanded_rates = pseudovector(&r.commanded_rates);
     }
     (out, map)
 }

@@ -512,17 +512,18 @@ fn past_capacity_difference(a: &touchdown_record::Summary, b: &touchdown_record:
         .fold(0.0, f64::max)
 }
 
-/// Every channel of two engines' runs of the same landing, judged on these two runs alone
-/// against the first run's [`Basis`] (both are of one scenario).
-pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
-    let (sa, sb) = (&a.summary, &b.summary);
-    let basis = &a.basis;
+/// The stroke channels (each leg's primary, then each leg's secondaries) of two summaries of
+/// the same landing, judged against `basis`: the first of [`channels`].
+pub(crate) fn stroke_channels(
+    sa: &touchdown_record::Summary,
+    sb: &touchdown_record::Summary,
+    basis: &Basis,
+) -> Vec<Channel> {
     let tolerance = |family: &Tolerance| basis.tolerance(family);
     let caps = &sa.strut_capacity;
     let primary_floor = PRIMARY_STROKE_FLOOR * caps.primary.stroke_m;
     let secondary_floor = SECONDARY_STROKE_FLOOR
         * (caps.secondary_compression.stroke_m).min(caps.secondary_tension.stroke_m);
-    let rate_floor = PITCH_RATE_FLOOR * basis.rate();
     let mut channels = Vec::new();
     for (i, (x, y)) in sa
         .max_primary_stroke_m
@@ -556,6 +557,17 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
             channels.push(values(about, "m", (x, y), d, &tolerance(&SECONDARY_STROKE)));
         }
     }
+    channels
+}
+
+/// Every channel of two engines' runs of the same landing, judged on these two runs alone
+/// against the first run's [`Basis`] (both are of one scenario).
+pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
+    let (sa, sb) = (&a.summary, &b.summary);
+    let basis = &a.basis;
+    let tolerance = |family: &Tolerance| basis.tolerance(family);
+    let rate_floor = PITCH_RATE_FLOOR * basis.rate();
+    let mut channels = stroke_channels(sa, sb, basis);
     let (qa, qb) = (sa.peak_pitch_rate_rad_s, sb.peak_pitch_rate_rad_s);
     let d = relative(qa, qb, rate_floor);
     channels.push(values(

@@ -7,10 +7,11 @@
 //! not determined at this precision ([`Verdict::NotDetermined`]) with that spread, not as a
 //! pass or a fail.
 
-use crate::metrics::{channels, Channel, Strut, Verdict, ENERGY};
+use crate::metrics::{channels, stroke_channels, Channel, Strut, Verdict, ENERGY};
 use crate::{CompareError, Engine, EngineRun};
 use serde::Serialize;
 use std::path::Path;
+use touchdown_record::Summary;
 use touchdown_scenario::{Scenario, ScenarioError};
 
 /// The perturbed members of a landing's ensemble, in units in the last place of the touchdown
@@ -134,7 +135,7 @@ pub(crate) fn own_spreads(run: &EngineRun) -> Vec<OwnSpread> {
     }
     if let Some(legs) = &run.basis.mirror {
         for x in &members {
-            let set = channels(x, &mirrored(x, legs));
+            let set = stroke_channels(&x.summary, &mirrored(&x.summary, legs), &run.basis);
             for o in own.iter_mut().filter(|o| o.leg.is_some()) {
                 o.widen(set.iter().find(|c| o.is_of(c)));
             }
@@ -143,27 +144,20 @@ pub(crate) fn own_spreads(run: &EngineRun) -> Vec<OwnSpread> {
     own
 }
 
-/// The run `x` seen in the mirror that maps its landing onto itself: leg i's maximum strokes
-/// are those of its image `legs[i]`, with the image's secondaries 3-1 and 4-1 exchanged (the
-/// stroke channels are all [`own_spreads`] reads of it).
-fn mirrored(x: &EngineRun, legs: &[usize]) -> EngineRun {
-    let mut summary = x.summary.clone();
-    let s = &x.summary;
+/// The summary `s` seen in the mirror that maps its landing onto itself: leg i's maximum
+/// strokes are those of its image `legs[i]`, with the image's secondaries 3-1 and 4-1
+/// exchanged (the stroke channels are all [`own_spreads`] reads of it).
+fn mirrored(s: &Summary, legs: &[usize]) -> Summary {
     let swap = |[a, b]: [f64; 2]| [b, a];
-    summary.max_primary_stroke_m = legs.iter().map(|&j| s.max_primary_stroke_m[j]).collect();
-    summary.max_secondary_compression_m = (legs.iter())
-        .map(|&j| swap(s.max_secondary_compression_m[j]))
-        .collect();
-    summary.max_secondary_tension_m = (legs.iter())
-        .map(|&j| swap(s.max_secondary_tension_m[j]))
-        .collect();
-    EngineRun {
-        engine: x.engine,
-        summary,
-        trace: x.trace.clone(),
-        basis: x.basis.clone(),
-        recording: None,
-        perturbed: Vec::new(),
+    Summary {
+        max_primary_stroke_m: legs.iter().map(|&j| s.max_primary_stroke_m[j]).collect(),
+        max_secondary_compression_m: (legs.iter())
+            .map(|&j| swap(s.max_secondary_compression_m[j]))
+            .collect(),
+        max_secondary_tension_m: (legs.iter())
+            .map(|&j| swap(s.max_secondary_tension_m[j]))
+            .collect(),
+        ..s.clone()
     }
 }
 

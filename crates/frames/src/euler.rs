@@ -1,7 +1,7 @@
 //! Euler-angle kinematics, eqs. (5)-(9): body rates and Euler-angle rates, and the Euler-angle
 //! accelerations from the body angular acceleration.
 
-use crate::frames::EulerTrig;
+use crate::frames::{turn_sin_cos, EulerTrig};
 use nalgebra::{Matrix3, Vector3};
 
 /// |cos θy| below which the Euler-angle kinematics are declared singular (θy → ±90°, eqs. 5
@@ -11,7 +11,7 @@ pub const GIMBAL_LOCK_COS: f64 = 1e-6;
 
 /// T_BE, body rates → Euler rates, eq. (5). Angles in rad.
 pub fn t_be(theta: &Vector3<f64>) -> Matrix3<f64> {
-    EulerTrig::new(theta).t_be()
+    t_be_of(theta.y.sin_cos(), turn_sin_cos(theta.z))
 }
 
 /// T_BE (eq. 5) from the sine and cosine of θy and of θz.
@@ -32,7 +32,7 @@ fn t_be_of((sy, cy): (f64, f64), (sz, cz): (f64, f64)) -> Matrix3<f64> {
 /// T_EB = T_BE⁻¹, Euler rates → body rates, eq. (6); also maps the Euler-angle deviations
 /// to body attitude errors in eq. (77). Angles in rad.
 pub fn t_eb(theta: &Vector3<f64>) -> Matrix3<f64> {
-    EulerTrig::new(theta).t_eb()
+    t_eb_of(theta.y.sin_cos(), turn_sin_cos(theta.z))
 }
 
 /// T_EB (eq. 6) from the sine and cosine of θy and of θz.

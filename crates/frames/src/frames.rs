@@ -46,7 +46,7 @@ pub fn rot_z(a: f64) -> Matrix3<f64> {
 /// last place) and 45° ± d have each other's sine and cosine. A rest, or a d, within rounding
 /// of zero (4 ulp of `a`) counts as zero. Within an ulp or two of the library's sin and cos;
 /// docs/errata.md, "Decisions at rounding level".
-fn turn_sin_cos(a: f64) -> (f64, f64) {
+pub(crate) fn turn_sin_cos(a: f64) -> (f64, f64) {
     use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4, FRAC_PI_8};
     let quarters = (a / FRAC_PI_2).round();
     let mut rest = a - quarters * FRAC_PI_2;
