@@ -86,11 +86,10 @@ impl State {
                 let (p0, v0) = self.pad_start[i];
                 (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
             };
-            let bp = self.evaluate_leg(model, i, v, &position, &velocity, slot)?;
+            let (bp, bp_dot) = self.evaluate_leg(model, i, v, &position, &velocity, slot)?;
             if free && friction {
                 // Off the surface the bearing friction is set below, once the vehicle's
                 // acceleration without it is known (crate::stiction).
-                let bp_dot = v.t_bi.transpose() * (velocity - v.velocity) - v.omega.cross(&bp);
                 let h = Held::new(i, bp, bp_dot, &model.legs[i].b2);
                 slot.f2p -= slot.fbr;
                 slot.fp -= h.axis * slot.fbr;
@@ -149,7 +148,7 @@ impl State {
 
     /// Evaluates gear `i` (eqs. 26-65) into `slot` with the vehicle at `v` and its footpad at
     /// `position` moving at `velocity` (inertial, m and m/s); returns the footpad's body-frame
-    /// position BP, m.
+    /// position BP and its velocity relative to the body ḂP in body axes, m and m/s.
     pub(crate) fn evaluate_leg(
         &mut self,
         model: &Model,
@@ -158,7 +157,7 @@ impl State {
         position: &Vector3<f64>,
         velocity: &Vector3<f64>,
         slot: &mut GearState,
-    ) -> Result<Vector3<f64>, RunError> {
+    ) -> Result<(Vector3<f64>, Vector3<f64>), RunError> {
         let t_ib = v.t_bi.transpose();
         let bp = t_ib * (position - v.position);
         let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
@@ -182,7 +181,7 @@ impl State {
             slot,
         )
         .map_err(|f| self.diverged(v, f.error.to_string(), f.law, Some(i)))?;
-        Ok(bp)
+        Ok((bp, bp_dot))
     }
 
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c); the slosh

@@ -67,7 +67,9 @@ pub(crate) fn turn_sin_cos(a: f64) -> (f64, f64) {
     } else {
         rest.sin_cos()
     };
-    match quarters.rem_euclid(4.0) as u8 {
+    // (the quarter turns as an integer: a float's remainder is a library call; an angle past
+    // 2⁶³ quarter turns has no meaningful sine anyway)
+    match (quarters as i64).rem_euclid(4) {
         0 => (s0, c0),
         1 => (c0, -s0),
         2 => (-s0, -c0),
