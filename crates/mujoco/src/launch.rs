@@ -327,7 +327,7 @@ fn find_library() -> Result<PathBuf, MujocoError> {
         .map(|(_, p)| p.clone())
         .ok_or_else(|| {
             MujocoError::Setup(format!(
-                "the touchdown MuJoCo library {name} was not found (looked in {}); build it with `cargo build --release -p touchdown-mujoco` in {} (scripts/setup-python does), or set TOUCHDOWN_MUJOCO_LIBRARY to it",
+                "the touchdown MuJoCo library {name} was not found (looked in {}); build it with `cargo build --release -p touchdown-mujoco` in {} (scripts/setup-python puts it there), or set TOUCHDOWN_MUJOCO_LIBRARY to it",
                 candidates
                     .iter()
                     .map(|p| p.display().to_string())
