@@ -58,19 +58,18 @@ pub fn self_mirror(sc: &Scenario) -> Option<Vec<usize>> {
     {
         return None;
     }
-    let image = |l: &Leg| [m * t * l.b2, m * t * l.b4, m * t * l.b3, m * t * l.bp];
-    let legs = sc
-        .legs
-        .iter()
-        .enumerate()
-        .map(|(i, l)| {
-            let mirrored = image(l);
-            sc.legs.iter().enumerate().position(|(j, k)| {
-                let own = [t * k.b2, t * k.b3, t * k.b4, t * k.bp];
-                mirrored.iter().zip(&own).all(|(a, b)| close(a, b))
+    // Each leg's trunnions B2, B3, B4 and footpad BP in inertial axes; its image is the mirror
+    // of each, B3 and B4 exchanged (a mirror reverses the sense of rotation).
+    let points: Vec<[Vector3<f64>; 4]> = (sc.legs.iter())
+        .map(|l: &Leg| [l.b2, l.b3, l.b4, l.bp].map(|p| t * p))
+        .collect();
+    (points.iter().enumerate())
+        .map(|(i, [b2, b3, b4, bp])| {
+            let image = [b2, b4, b3, bp].map(|p| m * p);
+            (points.iter().enumerate()).position(|(j, own)| {
+                image.iter().zip(own).all(|(a, b)| close(a, b))
                     && sc.surface.pads[i] == sc.surface.pads[j]
             })
         })
-        .collect::<Option<Vec<usize>>>()?;
-    Some(legs)
+        .collect()
 }
