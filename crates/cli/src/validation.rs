@@ -9,7 +9,7 @@ use touchdown_record::Document;
 use touchdown_scenario::units::Short;
 use touchdown_validation::checkpoint::{self, Checkpoint};
 use touchdown_validation::cross_validation::{self, CrossValidation};
-use touchdown_validation::reference::{self, Paths, Protocol};
+use touchdown_validation::reference::{self, FitAccuracy, Paths, Protocol};
 use touchdown_validation::sensitivity::ParameterSensitivity;
 use touchdown_validation::table::{Role, Validation};
 use touchdown_validation::{calibrate, estimate, facts, sensitivity, table};
@@ -272,6 +272,13 @@ pub fn cross_validation_text(cv: &CrossValidation) -> String {
         cv.rows_within_interval,
         cv.folds.len()
     );
+    let _ = writeln!(
+        o,
+        "accuracy of the step settings, each fold's prediction at its fit against a run with \
+         every step limit {}x finer: {}",
+        cv.accuracy.refinement,
+        refined_rows(&cv.accuracy)
+    );
     let id = &cv.identifiability;
     let _ = writeln!(
         o,
@@ -363,6 +370,23 @@ pub fn cross_validation_text(cv: &CrossValidation) -> String {
     o
 }
 
+/// Each row of a fit's accuracy `a`: its stroke at the step settings and refined, mm, and the
+/// settings' difference from the refined run, %.
+fn refined_rows(a: &FitAccuracy) -> String {
+    let rows: Vec<String> = (a.row.iter())
+        .map(|r| {
+            format!(
+                "row {} {:.2} mm, {:.2} mm refined ({:+.2} %)",
+                r.id,
+                1e3 * r.stroke_m,
+                1e3 * r.refined_stroke_m,
+                100.0 * (r.stroke_m - r.refined_stroke_m) / r.refined_stroke_m
+            )
+        })
+        .collect();
+    rows.join("; ")
+}
+
 /// `touchdown calibrate`: into `out`, or over the tracked files when `out` is `None`.
 pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Result<()> {
     let paths = Paths::new(root);
@@ -377,21 +401,10 @@ pub fn calibrate(root: &Path, rows: Option<Vec<u32>>, out: Option<&Path>) -> Res
         record.objective
     )?;
     if let Some(a) = &record.accuracy {
-        let rows: Vec<String> = (a.row.iter())
-            .map(|r| {
-                format!(
-                    "row {} {:.2} mm, {:.2} mm refined ({:+.2} %)",
-                    r.id,
-                    1e3 * r.stroke_m,
-                    1e3 * r.refined_stroke_m,
-                    100.0 * (r.stroke_m - r.refined_stroke_m) / r.refined_stroke_m
-                )
-            })
-            .collect();
         outln!(
             "  the rows at the fit against runs with every step limit {}x finer: {}",
             a.refinement,
-            rows.join("; ")
+            refined_rows(a)
         )?;
     }
     let determined = cross_validation::determination(&paths, &record, &protocol.parameter)?;

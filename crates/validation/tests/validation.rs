@@ -318,7 +318,8 @@ fn the_figure_25_26_landing_uses_the_estimated_velocities() {
 
 /// The cross-validation on the real model, end to end, with a protocol cut down to stay quick
 /// in a test build (two parameters, four iterations a run and one restart, two draws): eight
-/// folds in row order, each prediction the core's landing of its row with that fold's own fit, the figure
+/// folds in row order, each prediction the core's landing of its row with that fold's own fit,
+/// each stated against the same landing with every step limit eight times finer, the figure
 /// 25-26 facts measured at the fit to every row, and no NaN anywhere in the JSON.
 #[test]
 fn cross_validation_of_the_core_end_to_end() {
@@ -353,6 +354,35 @@ fn cross_validation_of_the_core_end_to_end() {
         );
         assert!(f.interval_in[0] <= f.interval_in[1]);
         assert_eq!(f.identifiability.jacobian.len(), 7);
+    }
+    // Its accuracy: each fold's prediction, and its row landed at that fold's fit with every
+    // step limit eight times finer, by hand.
+    let a = &cv.accuracy;
+    assert_eq!(a.refinement, 8.0);
+    assert_eq!(a.row.len(), 8);
+    for ((r, f), row) in a.row.iter().zip(&cv.folds).zip(&table.row) {
+        assert_eq!(r.id, row.id);
+        assert_eq!(r.stroke_m, f.predicted_in * reference::INCH, "row {}", r.id);
+        let own = calibrate::overrides(&fields, &f.fit.value);
+        let path = paths.scenario(&row.scenario);
+        let refined = touchdown_scenario::Scenario::load_with(&path, &own)
+            .unwrap()
+            .with_integrator(|it| {
+                it.dist /= 8.0;
+                it.dt_max /= 8.0;
+                it.max_steps *= 8.0;
+            })
+            .unwrap();
+        let s = table::land(&path, &refined).unwrap();
+        assert_eq!(
+            r.refined_stroke_m,
+            table::stroke_in(&s, row.strut) * reference::INCH,
+            "row {}",
+            r.id
+        );
+        // The settings' error is the step's, and small: under 2 % of the stroke.
+        let error = (r.stroke_m - r.refined_stroke_m).abs() / r.refined_stroke_m;
+        assert!(error > 0.0 && error < 0.02, "row {}: {error}", r.id);
     }
     assert_eq!(cv.two_row_held_out.rows, vec![1, 2, 4, 5, 6, 8]);
     assert_eq!(cv.facts.len(), 7);

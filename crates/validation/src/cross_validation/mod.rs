@@ -37,9 +37,12 @@ use identifiability::identifiability;
 use profile::profile;
 use rayon::prelude::*;
 use report::errors;
+use touchdown_scenario::schema::ACCURACY_REFINEMENT;
 
 /// Cross-validates `protocol` over the rows of `table` with the model `predict`;
-/// `two_row_held_out` are the rows the two-row protocol holds out (its target's rows). With a
+/// `two_row_held_out` are the rows the two-row protocol holds out (its target's rows);
+/// `refined` is the same model with every step limit `refinement` times finer, which states
+/// the accuracy of the folds' predictions ([`CrossValidation::accuracy`]). With a
 /// `checkpoint`, every fold, the fit to every row and every profile point is kept there as it
 /// ends, and what it already holds is not computed again (the result is the same).
 pub fn cross_validate_with(
@@ -47,6 +50,7 @@ pub fn cross_validate_with(
     protocol: &CvProtocol,
     two_row_held_out: &[u32],
     predict: &Predict,
+    (refined, refinement): (&Predict, f64),
     checkpoint: Option<&Checkpoint>,
 ) -> Result<CrossValidation, ValidationError> {
     protocol.check()?;
@@ -70,6 +74,8 @@ pub fn cross_validate_with(
     let folds: Vec<Fold> = (table.iter().zip(folds))
         .map(|(row, (parts, _))| fold_of(row, parts))
         .collect();
+    let accuracy = folds::accuracy(table, &folds, refined, refinement)?;
+    landings += folds.len();
     let ((full_fit, identifiability), full_landings) =
         unit(checkpoint, "full", predict, |predict| {
             let full_fit = fit(
@@ -101,6 +107,7 @@ pub fn cross_validate_with(
         two_row_held_out: errors(&folds, two_row_held_out),
         rows_within_10_pct: folds.iter().filter(|f| f.within_10_pct).count(),
         rows_within_interval: folds.iter().filter(|f| f.within_interval).count(),
+        accuracy,
         protocol: protocol.clone(),
         folds,
         full_fit,
@@ -131,21 +138,36 @@ pub fn cross_validate(
     let estimates: Estimates = reference::read(&paths.reference("lm-1-6-estimates.toml"))?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
     let model = table_model(paths, &table.row, &fields, 1.0)?;
+    let refined = table_model(paths, &table.row, &fields, ACCURACY_REFINEMENT)?;
     let held_out: Vec<u32> = table
         .row
         .iter()
         .map(|r| r.id)
         .filter(|id| !two_row.rows.contains(id))
         .collect();
-    let counted = |row: &Row, x: &[f64]| {
-        let stroke = model(row, x);
-        landed();
-        stroke
-    };
-    let mut cv = cross_validate_with(&table.row, &protocol, &held_out, &counted, checkpoint)?;
+    let mut cv = cross_validate_with(
+        &table.row,
+        &protocol,
+        &held_out,
+        &counted(&model, landed),
+        (&counted(&refined, landed), ACCURACY_REFINEMENT),
+        checkpoint,
+    )?;
     cv.facts = facts::check(paths, &overrides(&fields, &cv.full_fit.value))?.checks;
     cv.landings += 1;
     Ok(cv)
+}
+
+/// The model `model`, calling `landed` after each of its landings.
+fn counted<'a>(
+    model: &'a Predict<'a>,
+    landed: &'a (dyn Fn() + Sync),
+) -> impl Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a {
+    move |row, x| {
+        let stroke = model(row, x);
+        landed();
+        stroke
+    }
 }
 
 /// What the rows of a calibration `record` (the two-row protocol's, or any rows asked for)

@@ -6,6 +6,7 @@ use super::profile::Profile;
 use super::protocol::CvProtocol;
 use crate::calibrate::Fit;
 use crate::facts::FactCheck;
+use crate::reference::FitAccuracy;
 use serde::Serialize;
 
 /// Mean and largest |error| over a set of rows, ours (out of fold) and the report's.
@@ -38,6 +39,10 @@ pub struct CrossValidation {
     pub rows_within_10_pct: usize,
     /// Rows whose experiment lies within the prediction's interval.
     pub rows_within_interval: usize,
+    /// The accuracy the step settings give at the folds' fits: each fold's prediction of its
+    /// held-out row, and the same landing with every step limit refined (one fold after
+    /// another, in row order).
+    pub accuracy: FitAccuracy,
     /// The fit to every row.
     pub full_fit: Fit,
     /// What every row together determines.

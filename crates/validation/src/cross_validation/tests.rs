@@ -1,7 +1,7 @@
 //! The protocol on stroke laws known in closed form: folds, determination, intervals, resuming.
 
 use super::*;
-use crate::reference::Strut;
+use crate::reference::{Strut, INCH};
 
 fn row(id: u32, vv: f64, experiment: f64) -> Row {
     Row {
@@ -53,7 +53,7 @@ fn an_exact_model_is_predicted_out_of_fold_and_its_parameters_are_determined() {
         .collect();
     let predict = |r: &Row, x: &[f64]| Ok(linear(x, r.vv));
     let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-    let cv = cross_validate_with(&table, &p, &[1, 2, 3], &predict, None).unwrap();
+    let cv = cross_validate_with(&table, &p, &[1, 2, 3], &predict, (&predict, 8.0), None).unwrap();
     assert_eq!(cv.folds.len(), 6);
     for f in &cv.folds {
         assert!(
@@ -89,7 +89,7 @@ fn parameters_the_rows_cannot_separate_are_not_determined() {
         parameter("c", 2.0),
         parameter("unused", 2.0),
     ]);
-    let cv = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
+    let cv = cross_validate_with(&table, &p, &[1], &predict, (&predict, 8.0), None).unwrap();
     let id = &cv.identifiability;
     let d = &id.parameters;
     assert!(d[2].determined && d[2].ratio < 0.1, "{d:?}");
@@ -110,10 +110,10 @@ fn the_held_out_row_never_enters_its_fold() {
         .collect();
     let predict = |r: &Row, x: &[f64]| Ok(x[0] * r.vv.abs() + x[1]);
     let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-    let cv = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
+    let cv = cross_validate_with(&table, &p, &[1], &predict, (&predict, 8.0), None).unwrap();
     let mut moved = table.clone();
     moved[2].experiment *= 2.0;
-    let again = cross_validate_with(&moved, &p, &[1], &predict, None).unwrap();
+    let again = cross_validate_with(&moved, &p, &[1], &predict, (&predict, 8.0), None).unwrap();
     // Row 3's own fold is bit for bit the same fit; every other fold, which sees row 3, moves.
     assert_eq!(cv.folds[2].fit, again.folds[2].fit);
     assert_eq!(cv.folds[2].predicted_in, again.folds[2].predicted_in);
@@ -129,7 +129,7 @@ fn a_run_stopped_part_way_resumes_from_its_checkpoint_to_the_same_result() {
         .collect();
     let predict = |r: &Row, x: &[f64]| Ok(x[0] * r.vv.abs() + x[1]);
     let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-    let whole = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
+    let whole = cross_validate_with(&table, &p, &[1], &predict, (&predict, 8.0), None).unwrap();
     // A run that dies after a third of its landings (as a killed run would) ...
     let dir = tempfile::tempdir().unwrap();
     let checkpoint = Checkpoint::new(dir.path(), "this run").unwrap();
@@ -141,7 +141,9 @@ fn a_run_stopped_part_way_resumes_from_its_checkpoint_to_the_same_result() {
             predict(r, x)
         }
     };
-    assert!(cross_validate_with(&table, &p, &[1], &dying, Some(&checkpoint)).is_err());
+    assert!(
+        cross_validate_with(&table, &p, &[1], &dying, (&dying, 8.0), Some(&checkpoint)).is_err()
+    );
     let (kept, kept_landings) = checkpoint.kept();
     assert!(kept > 0, "some units finished before the kill");
     // ... resumes from what it kept, landing fewer, to the same result and count.
@@ -150,7 +152,15 @@ fn a_run_stopped_part_way_resumes_from_its_checkpoint_to_the_same_result() {
         resumed_calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         predict(r, x)
     };
-    let resumed = cross_validate_with(&table, &p, &[1], &counting, Some(&checkpoint)).unwrap();
+    let resumed = cross_validate_with(
+        &table,
+        &p,
+        &[1],
+        &counting,
+        (&counting, 8.0),
+        Some(&checkpoint),
+    )
+    .unwrap();
     assert_eq!(resumed, whole);
     let landed = resumed_calls.load(std::sync::atomic::Ordering::Relaxed);
     assert!(landed < whole.landings, "{landed} of {}", whole.landings);
@@ -175,13 +185,50 @@ fn intervals_widen_with_the_misfit_and_cover_the_truth_of_a_noisy_law() {
         .collect();
     let predict = |r: &Row, x: &[f64]| Ok(linear(x, r.vv));
     let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
-    let cv = cross_validate_with(&table, &p, &[1], &predict, None).unwrap();
+    let cv = cross_validate_with(&table, &p, &[1], &predict, (&predict, 8.0), None).unwrap();
     for f in &cv.folds {
         let width = (f.interval_in[1] - f.interval_in[0]) / f.predicted_in;
         assert!(width > 0.01 && width < 0.5, "row {}: {width}", f.held_out);
         assert!(f.interval_in[0] <= f.predicted_in && f.predicted_in <= f.interval_in[1]);
     }
     assert!(cv.identifiability.residual_variance > 0.0);
+}
+
+/// Each fold's prediction is landed again at its fit with the refined model, and the landings
+/// are counted: here the refined model is the exact law 1 % longer, so that every row's stated
+/// refined stroke is 1.01 times the fold's law at its own fit, not its prediction or the truth.
+#[test]
+fn a_cross_validation_states_the_accuracy_of_its_predictions_against_refined_runs() {
+    let table: Vec<Row> = (1..=5)
+        .map(|i| row(i, -(i as f64), 2.0 * i as f64 + 0.3 * (i as f64).sin()))
+        .collect();
+    let predict = |r: &Row, x: &[f64]| Ok(linear(x, r.vv));
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let refined = |r: &Row, x: &[f64]| {
+        calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(1.01 * linear(x, r.vv))
+    };
+    let p = protocol(vec![parameter("a", 1.0), parameter("b", 1.0)]);
+    let cv = cross_validate_with(&table, &p, &[1], &predict, (&refined, 8.0), None).unwrap();
+    let unrefined = cross_validate_with(&table, &p, &[1], &predict, (&predict, 8.0), None).unwrap();
+    let a = &cv.accuracy;
+    assert_eq!(a.refinement, 8.0);
+    let ids: Vec<u32> = a.row.iter().map(|r| r.id).collect();
+    assert_eq!(ids, vec![1, 2, 3, 4, 5]);
+    for ((r, f), row) in a.row.iter().zip(&cv.folds).zip(&table) {
+        assert_eq!(r.stroke_m, f.predicted_in * INCH, "row {}", r.id);
+        assert_eq!(
+            r.refined_stroke_m,
+            1.01 * linear(&f.fit.value, row.vv) * INCH,
+            "row {}",
+            r.id
+        );
+    }
+    assert_eq!(calls.load(std::sync::atomic::Ordering::Relaxed), 5);
+    // The folds are the same whatever the refined model; its landings are counted.
+    assert_eq!(cv.folds, unrefined.folds);
+    assert_eq!(cv.landings, unrefined.landings);
+    assert!(cv.landings > 5);
 }
 
 #[test]
