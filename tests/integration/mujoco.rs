@@ -129,8 +129,8 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
 /// The hard landing of the paired campaign that used to stop on the energy guard (Vh 26.8 ft/s,
 /// Vv 5 ft/s, slope 8°, heading 10°: its trailing legs strike, struts crush on their plateaus and
 /// bottom, stops engage and let go) closes its balance to second order in the step on MuJoCo:
-/// halving the step divides the residual by at least four (0.109 J at 20 µs, −0.005 J at 10 µs,
-/// of 1,008 J). The stroke joints' dry friction, the bearing friction and the crush plateau,
+/// halving the step divides the residual by at least four (0.097 J at 20 µs, −0.0065 J at 10
+/// µs, of 1,205 J put in, 1,008 J of it the touchdown kinetic energy). The stroke joints' dry friction, the bearing friction and the crush plateau,
 /// acts in the step the laws computed it for: the runner writes it into the joint's friction
 /// row after `mj_step1` has built the rows (`FRICTION_ROW_PLACEHOLDER`,
 /// crates/mujoco/src/mjcf.rs).
