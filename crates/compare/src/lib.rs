@@ -208,13 +208,22 @@ pub fn run_ensemble(
     let landings: Vec<(&Scenario, Option<f64>)> = std::iter::once((sc, frame_interval))
         .chain(copies.iter().map(|c| (c, None)))
         .collect();
-    let mut runs = landings
-        .par_iter()
-        .map(|(s, frames)| run_recorded(engine, path, s, *frames))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut runs = first_error_in_order(
+        landings
+            .par_iter()
+            .map(|(s, frames)| run_recorded(engine, path, s, *frames))
+            .collect(),
+    )?;
     let mut run = runs.remove(0);
     run.perturbed = runs;
     Ok(run)
+}
+
+/// The results of runs made in parallel, in their order, or the error of the first that
+/// failed in that order (not whichever thread failed first): the same error whatever the thread
+/// count.
+fn first_error_in_order<T>(results: Vec<Result<T, CompareError>>) -> Result<Vec<T>, CompareError> {
+    results.into_iter().collect()
 }
 
 /// Checks the time between a trajectory's frames, s.
@@ -406,10 +415,14 @@ pub fn compare_recorded(
     }
     let basis = metrics::Basis::of(sc)?;
     let (applicable, not_applicable) = split_applicable(sc, engines);
-    let runs = applicable
-        .iter()
-        .map(|e| run_ensemble(*e, path, sc, frame_interval))
-        .collect::<Result<Vec<_>, _>>()?;
+    // The engines land side by side (each with its ensemble in parallel too), collected in
+    // the order given: the same comparison, and the same error, whatever the thread count.
+    let runs = first_error_in_order(
+        applicable
+            .par_iter()
+            .map(|e| run_ensemble(*e, path, sc, frame_interval))
+            .collect(),
+    )?;
     let mut pairs = Vec::new();
     for (i, a) in runs.iter().enumerate() {
         for b in &runs[i + 1..] {

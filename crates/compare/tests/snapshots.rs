@@ -5,25 +5,45 @@
 //! three significant figures (`touchdown_compare::report`); time series are never
 //! snapshotted, only their summaries.
 
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 use touchdown_compare::{compare_scenario, report, Engine};
 
 #[test]
 fn every_scenario_compared_across_engines() {
+    // Every scenario is landed first, side by side on every core (a comparison alone keeps two
+    // cores busy only part of the time), then each is held against its snapshot in the glob's
+    // order.
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenarios");
+    let files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    let texts: BTreeMap<PathBuf, (String, String)> = files
+        .par_iter()
+        .map(|path| {
+            let c = compare_scenario(path, &Engine::ALL).unwrap_or_else(|e| panic!("{e}"));
+            let file = path.file_name().unwrap().to_string_lossy();
+            let text = report::text(&c).replace(&c.file, &format!("scenarios/{file}"));
+            let versions: Vec<String> = c
+                .engines
+                .iter()
+                .map(|(e, v)| format!("{}: {v}", e.name()))
+                .collect();
+            let description = format!(
+                "scenario sha256 {}; {}",
+                c.scenario_sha256,
+                versions.join(", ")
+            );
+            (path.canonicalize().unwrap(), (text, description))
+        })
+        .collect();
     insta::glob!("../../../scenarios", "*.toml", |path| {
-        let c = compare_scenario(path, &Engine::ALL).unwrap_or_else(|e| panic!("{e}"));
-        let file = path.file_name().unwrap().to_string_lossy();
-        let text = report::text(&c).replace(&c.file, &format!("scenarios/{file}"));
-        let versions: Vec<String> = c
-            .engines
-            .iter()
-            .map(|(e, v)| format!("{}: {v}", e.name()))
-            .collect();
+        let (text, description) = &texts[&path.canonicalize().unwrap()];
         let mut settings = insta::Settings::clone_current();
-        settings.set_description(format!(
-            "scenario sha256 {}; {}",
-            c.scenario_sha256,
-            versions.join(", ")
-        ));
+        settings.set_description(description.as_str());
         settings.set_omit_expression(true);
         settings.bind(|| insta::assert_snapshot!("comparison", text));
     });
