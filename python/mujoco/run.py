@@ -8,7 +8,8 @@ The Rust library LIB (crate touchdown-mujoco, built by cargo as
 target/<profile>/deps/libtouchdown_mujoco.so) loads the scenario, generates the MJCF model
 (the same as `touchdown export-mjcf`), and owns everything but MuJoCo itself: the strut laws,
 hysteresis, energy ledger, stability criteria, summary.json and history.csv. This script loads the
-model with the pinned `mujoco` package and steps it:
+model with the pinned `mujoco` package and hands LIB the model, its data and MuJoCo's own
+mj_step1 and mj_step2, and LIB steps it (touchdown_mujoco_run), each step:
 
     mj_step1   positions, velocities, tendons and sensors of the state, and the
                constraint rows
@@ -16,14 +17,17 @@ model with the pinned `mujoco` package and steps it:
                ctrl, the stroke joints' dry-friction bounds (bearing friction + plateau),
                and the engine and RCS loads on the vehicle (qfrc_applied),
                the curbs' and obstacle walls' force on the footpads (xfrc_applied)
-    (here)     copy the dry-friction bounds into the stroke joints' friction rows
+    (rows)     copy the dry-friction bounds into the stroke joints' friction rows
                (efc_frictionloss), which mj_step1 built from the model's placeholder
     mj_step2   forces, constraints, integration
 
+The viewer's and the profiler's loops are the same steps written here in Python.
+
 Options:
   --history   also write DIR/history.csv (one row per step)
-  --profile   print a JSON line with the wall time spent in MuJoCo, in the Rust library and in
-              this Python loop (the loop's own overhead), per landing and per step
+  --profile   step in a Python loop with a clock around each call and print a JSON line with
+              the wall time spent in MuJoCo (with its binding calls), in the Rust library and
+              in the loop itself, per landing and per step (what the library's loop saves)
   --viewer    watch the law-driven run in MuJoCo's passive viewer (needs a display and the
               `glfw` package, which the full `mujoco` package brings; see docs/engines.md)
 
@@ -41,6 +45,7 @@ read back by the `touchdown` command).
 
 import argparse
 import ctypes
+import glob
 import json
 import os
 import sys
@@ -115,6 +120,30 @@ class MjPointers(ctypes.Structure):
     ]
 
 
+class MjLoop(ctypes.Structure):
+    """Mirror of touchdown_mujoco::ffi::MjLoop."""
+
+    _fields_ = [
+        ("step1", ctypes.c_void_p),
+        ("step2", ctypes.c_void_p),
+        ("model", ctypes.c_void_p),
+        ("data", ctypes.c_void_p),
+        ("frictionloss", ctypes.c_void_p),
+        ("first_row", ctypes.c_size_t),
+    ]
+
+
+def half_steps():
+    """The addresses of mj_step1 and mj_step2 in the MuJoCo library the `mujoco` package
+    loaded (opening the same file again gives the same library)."""
+    folder = os.path.dirname(mujoco.__file__)
+    found = sorted(glob.glob(os.path.join(folder, "libmujoco.so*")))
+    if not found:
+        fail(f"no MuJoCo library (libmujoco.so*) in {folder}: run scripts/setup-python", SETUP_STATUS)
+    lib = ctypes.CDLL(found[0])
+    return tuple(ctypes.cast(getattr(lib, f), ctypes.c_void_p).value for f in ("mj_step1", "mj_step2"))
+
+
 class ModelSizes(ctypes.Structure):
     """Mirror of touchdown_mujoco::landing::ModelSizes."""
 
@@ -150,6 +179,10 @@ def load_library(path):
     lib.touchdown_mujoco_bind.restype = ctypes.c_int32
     lib.touchdown_mujoco_advance.argtypes = [p]
     lib.touchdown_mujoco_advance.restype = ctypes.c_int32
+    lib.touchdown_mujoco_run.argtypes = [p, ctypes.POINTER(MjLoop), ctypes.POINTER(ctypes.c_uint64)]
+    lib.touchdown_mujoco_run.restype = ctypes.c_int32
+    lib.touchdown_mujoco_no_clock.argtypes = []
+    lib.touchdown_mujoco_no_clock.restype = ctypes.c_double
     lib.touchdown_mujoco_finish.argtypes = [p, ctypes.c_char_p]
     lib.touchdown_mujoco_finish.restype = ctypes.c_int32
     lib.touchdown_mujoco_close.argtypes = [p]
@@ -368,19 +401,17 @@ def main(argv):
 
 
 def run(lib, h, model, data, friction):
-    """The plain loop: as little Python per step as the split step allows. `friction`: the
-    stroke joints' friction rows and the bounds advance writes for them."""
-    step1, step2, advance = mujoco.mj_step1, mujoco.mj_step2, lib.touchdown_mujoco_advance
-    rows, bounds = friction
-    steps = 0
-    while True:
-        step1(model, data)
-        status = advance(h)
-        if status != 0:
-            return status, steps
-        data.efc_frictionloss[rows] = bounds
-        step2(model, data)
-        steps += 1
+    """The plain loop, in the library (touchdown_mujoco_run): no Python per step. `friction`:
+    the stroke joints' friction rows (after an mj_step1) and the bounds advance writes for
+    them."""
+    rows, _ = friction
+    # MuJoCo's profiling timers, which nothing reads, cost a clock read at each stage's ends.
+    mujoco.set_mjcb_time(lib.touchdown_mujoco_no_clock)
+    step1, step2 = half_steps()
+    mj = MjLoop(step1, step2, model._address, data._address, data.efc_frictionloss.ctypes.data, rows.start)
+    steps = ctypes.c_uint64(0)
+    status = lib.touchdown_mujoco_run(h, ctypes.byref(mj), ctypes.byref(steps))
+    return status, steps.value
 
 
 def run_profiled(lib, h, model, data, friction):

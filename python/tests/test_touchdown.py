@@ -112,6 +112,30 @@ def test_mujoco_runs_from_the_package_installed_elsewhere_with_no_variable(tmp_p
     assert module.startswith(str(site)) and engine == "mujoco"
 
 
+def test_the_mujoco_runner_refuses_a_mujoco_whose_data_it_does_not_know(tmp_path, monkeypatch):
+    """The library's step loop reads the friction rows' address from mjData at the offset of
+    the pinned MuJoCo; it checks that offset against the bindings' address before the first
+    step, so a MuJoCo of another layout is refused by name, not written into at random."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("td_mujoco_runner", ROOT / "python" / "mujoco" / "run.py")
+    runner = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(runner)
+    lib = runner.load_library(str(ROOT / "target" / "release" / "libtouchdown_mujoco.so"))
+    flat = str(ROOT / "scenarios" / "flat-drop.toml")
+    monkeypatch.chdir(tmp_path)  # the runner works in its output folder
+    runner.land(lib, flat, str(tmp_path / "right"))
+    assert (tmp_path / "right" / "summary.json").is_file()
+    real = runner.MjLoop
+
+    def elsewhere(step1, step2, model, data, frictionloss, first_row):
+        return real(step1, step2, model, data, frictionloss + 8, first_row)
+
+    monkeypatch.setattr(runner, "MjLoop", elsewhere)
+    with pytest.raises(runner.Failure, match="efc_frictionloss is not at byte 161568"):
+        runner.land(lib, flat, str(tmp_path / "wrong"))
+
+
 def test_a_path_that_names_no_file_is_file_not_found(tmp_path, monkeypatch):
     """A one-line string is a path (scenario text spans lines): a missing file raises
     FileNotFoundError naming the path and the working directory, never a TOML error."""

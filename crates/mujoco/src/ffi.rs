@@ -1,17 +1,21 @@
 //! The C ABI through which the Python runner (`python/mujoco/run.py`, ctypes) drives a
 //! [`MujocoLanding`]: the force laws, hysteresis, energy ledger, stability criteria and outputs
-//! stay in Rust, in one implementation; Python owns MuJoCo and calls `mj_step1`/`mj_step2`.
+//! stay in Rust, in one implementation; Python owns MuJoCo (its model and data, loaded by the
+//! `mujoco` package).
 //!
 //! Calls, in order: [`touchdown_mujoco_open`] (scenario → runner and MJCF), then
 //! [`touchdown_mujoco_model_xml`] (the model to load), [`touchdown_mujoco_bind`] (MuJoCo's
-//! arrays), [`touchdown_mujoco_advance`] once per step between `mj_step1` and `mj_step2`,
-//! [`touchdown_mujoco_finish`] (summary.json), [`touchdown_mujoco_close`]. A call that fails
-//! returns a negative status (or null) and leaves its message for [`touchdown_mujoco_error`].
-//! No call panics across the boundary: a panic becomes an error message.
+//! arrays), then the steps: [`touchdown_mujoco_run`] (the whole loop here, calling the
+//! `mj_step1`/`mj_step2` of MuJoCo's library the runner hands over) or, for a loop that
+//! Python keeps (the viewer's, the profiler's), [`touchdown_mujoco_advance`] once per step
+//! between `mj_step1` and `mj_step2`; then [`touchdown_mujoco_finish`] (summary.json),
+//! [`touchdown_mujoco_close`]. A call that fails returns a negative status (or null) and
+//! leaves its message for [`touchdown_mujoco_error`]. No call panics across the boundary: a
+//! panic becomes an error message.
 
 use crate::landing::{GearIndex, MjArrays, ModelSizes, MujocoLanding, MUJOCO_WARNINGS};
 use crate::MujocoError;
-use std::ffi::{c_char, CStr, CString};
+use std::ffi::{c_char, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 use touchdown_record::History;
@@ -52,6 +56,37 @@ pub struct MjPointers {
     pub qfrc_applied: *mut f64,
     /// `data.xfrc_applied`.
     pub xfrc_applied: *mut f64,
+}
+
+/// `mj_step1` or `mj_step2` of the MuJoCo library the runner loaded: `void (const mjModel*,
+/// mjData*)`.
+pub type MjHalfStep = unsafe extern "C" fn(*const c_void, *mut c_void);
+
+/// Byte offset of the pointer `efc_frictionloss` in `mjData` of the pinned MuJoCo
+/// (python/requirements.txt; `offsetof(mjData, efc_frictionloss)` in the wheel's
+/// `include/mujoco/mjdata.h`). `mj_step1` places the constraint rows anew each step, so the
+/// loop reads the pointer from there each step; [`touchdown_mujoco_run`] first checks it
+/// against the address MuJoCo's own bindings give.
+pub const EFC_FRICTIONLOSS_OFFSET: usize = 161_568;
+
+/// What [`touchdown_mujoco_run`] steps: MuJoCo's half-steps, its model and data, and where the
+/// stroke joints' friction rows are.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct MjLoop {
+    /// `mj_step1` of the library that loaded `model`.
+    pub step1: Option<MjHalfStep>,
+    /// `mj_step2` of the same library.
+    pub step2: Option<MjHalfStep>,
+    /// The `mjModel*` of the bound model.
+    pub model: *const c_void,
+    /// The `mjData*` of the bound model.
+    pub data: *mut c_void,
+    /// `data.efc_frictionloss` as the bindings read it after an `mj_step1` (the check of
+    /// [`EFC_FRICTIONLOSS_OFFSET`]).
+    pub frictionloss: *const f64,
+    /// The first of the stroke joints' friction rows, one per gear in gear order.
+    pub first_row: usize,
 }
 
 /// A runner's state behind the C ABI.
@@ -122,6 +157,48 @@ impl Runner {
             }
         };
         Ok(i32::from(landing.advance(&mut arrays)?))
+    }
+
+    /// The landing's steps, each `mj_step1`, [`Runner::advance`], the stroke joints'
+    /// dry-friction bounds copied into their friction rows, `mj_step2`, until `advance` ends
+    /// the run (returns its status: 1) or fails; `steps` counts the completed steps.
+    ///
+    /// # Safety
+    /// `mj` holds MuJoCo's half-steps and the model and data this runner was bound to, alive
+    /// for the call, and nothing else touches them meanwhile.
+    unsafe fn run(&mut self, mj: &MjLoop, steps: &mut u64) -> Result<i32, MujocoError> {
+        let binding = |m: &str| Err(MujocoError::Binding(m.into()));
+        let (Some(step1), Some(step2)) = (mj.step1, mj.step2) else {
+            return binding("null mj_step1 or mj_step2");
+        };
+        let (Some(landing), Some(p)) = (self.landing.as_ref(), self.pointers) else {
+            return binding("run before a successful bind");
+        };
+        if mj.model.is_null() || mj.data.is_null() || mj.frictionloss.is_null() {
+            return binding("null model, data or friction rows");
+        }
+        let legs = landing.legs();
+        let rows = (mj.data as *const u8).add(EFC_FRICTIONLOSS_OFFSET) as *const *mut f64;
+        if !std::ptr::eq(*rows, mj.frictionloss) {
+            return Err(MujocoError::Binding(format!(
+                "mjData.efc_frictionloss is not at byte {EFC_FRICTIONLOSS_OFFSET} of this MuJoCo's \
+                 mjData: the library is built for the MuJoCo pinned in python/requirements.txt \
+                 (run scripts/setup-python)"
+            )));
+        }
+        loop {
+            step1(mj.model, mj.data);
+            let status = self.advance()?;
+            if status != 0 {
+                return Ok(status);
+            }
+            let row = (*rows).add(mj.first_row);
+            for k in 0..legs {
+                *row.add(k) = *p.friction_bound.add(k);
+            }
+            step2(mj.model, mj.data);
+            *steps += 1;
+        }
     }
 }
 
@@ -294,6 +371,41 @@ pub unsafe extern "C" fn touchdown_mujoco_advance(runner: *mut Runner) -> i32 {
         Some(r) => r.guard(Runner::advance),
         None => -1,
     }
+}
+
+/// A clock that reads 0 s, for MuJoCo's profiling callback (`mjcb_time`): the runner reads
+/// none of MuJoCo's timers (`mjData.timer`), whose clock costs about 4 % of a landing (two
+/// reads around each of about fifteen stages a step). Only the runner's process uses MuJoCo.
+#[no_mangle]
+pub extern "C" fn touchdown_mujoco_no_clock() -> f64 {
+    0.0
+}
+
+/// The landing's whole loop ([`Runner::run`]): MuJoCo's `mj_step1`, the step's work of
+/// [`touchdown_mujoco_advance`], the stroke joints' dry-friction bounds written into their
+/// friction rows, `mj_step2`, until the run ends. Returns 1 when it has ended, −1 on an error
+/// or a divergence (the message says when, where and which law); `steps` receives the number
+/// of steps taken.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was bound; `mj` points to an [`MjLoop`]
+/// whose functions are MuJoCo's `mj_step1` and `mj_step2` and whose model and data are those
+/// bound, alive for the call; `steps` is null or valid.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_run(
+    runner: *mut Runner,
+    mj: *const MjLoop,
+    steps: *mut u64,
+) -> i32 {
+    let (Some(runner), Some(mj)) = (runner.as_mut(), mj.as_ref()) else {
+        return -1;
+    };
+    let mut taken = 0;
+    let status = runner.guard(|r| unsafe { r.run(mj, &mut taken) });
+    if let Some(steps) = steps.as_mut() {
+        *steps = taken;
+    }
+    status
 }
 
 /// Ends the run: flushes the history and writes the summary (`summary.json`) to `summary`.

@@ -1,7 +1,8 @@
 //! One landing on the MuJoCo model, driven by the shared strut laws.
 //!
-//! The Python runner owns MuJoCo's `MjModel`/`MjData` and calls [`MujocoLanding::advance`]
-//! between `mj_step1` and `mj_step2` of every step, handing over MuJoCo's own arrays
+//! The Python runner owns MuJoCo's `MjModel`/`MjData`; the step loop (the C ABI's
+//! `touchdown_mujoco_run`) calls [`MujocoLanding::advance`] between `mj_step1` and `mj_step2`
+//! of every step, handing over MuJoCo's own arrays
 //! ([`MjArrays`]) located by the element names of the export ([`GearIndex`]). At state n:
 //! 1. read the vehicle's state, every gear's strokes and rates (stroke joint, secondary tendons,
 //!    sites) and the footpads' velocities (sensors);
@@ -16,7 +17,7 @@
 //!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
 //!    joint's dry-friction bound: the bearing bound plus, while the honeycomb crushes on a
 //!    plateau, the crush load (a bound that stops the stroke but never drives it; it is engaged
-//!    only while the strut compresses, like the rapier rebuild's plateau motor). The runner puts
+//!    only while the strut compresses, like the rapier rebuild's plateau motor). The step loop puts
 //!    that bound into the joint's friction row of this step (`efc_frictionloss`): MuJoCo builds
 //!    its constraint rows in `mj_step1`, from the model's `dof_frictionloss`, so a bound written
 //!    into the model here would act one step late (docs/engines.md, "The MuJoCo engine").

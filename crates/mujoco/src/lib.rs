@@ -1,11 +1,12 @@
 //! The TN D-7045 lander as a MuJoCo model (MJCF), generated from a scenario, and the runtime that
-//! drives it from Python with the shared force laws (docs/engines.md, "The MuJoCo engine").
+//! steps it with the shared force laws, MuJoCo loaded by its Python package (docs/engines.md,
+//! "The MuJoCo engine").
 //!
 //! | module | content |
 //! |---|---|
 //! | `mjcf` | the MJCF document: vehicle, gear links, joints, secondary tendons, actuators, sensors, footpad planes, touchdown keyframe |
 //! | `landing` | one law-driven landing over MuJoCo's arrays: kinematics in, strut laws out, with the bookkeeping shared with the rapier rebuild (`touchdown_multibody`): hysteresis committed once per step, energy ledger, stability criteria, history |
-//! | `ffi` | the C ABI of `landing` (this crate is also built as a `cdylib`), loaded with ctypes by the Python runner `python/mujoco/run.py` |
+//! | `ffi` | the C ABI of `landing` and its step loop (this crate is also built as a `cdylib`), loaded with ctypes by the Python runner `python/mujoco/run.py` |
 //! | `launch` | runs a scenario end to end: the project's Python environment, the runner and this library |
 //!
 //! Frames: MuJoCo's world frame is the report's inertial (surface) frame, Z normal to the
