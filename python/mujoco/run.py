@@ -45,6 +45,7 @@ read back by the `touchdown` command).
 
 import argparse
 import ctypes
+import functools
 import glob
 import json
 import os
@@ -133,6 +134,7 @@ class MjLoop(ctypes.Structure):
     ]
 
 
+@functools.cache
 def half_steps():
     """The addresses of mj_step1 and mj_step2 in the MuJoCo library the `mujoco` package
     loaded (opening the same file again gives the same library)."""
@@ -179,7 +181,7 @@ def load_library(path):
     lib.touchdown_mujoco_bind.restype = ctypes.c_int32
     lib.touchdown_mujoco_advance.argtypes = [p]
     lib.touchdown_mujoco_advance.restype = ctypes.c_int32
-    lib.touchdown_mujoco_run.argtypes = [p, ctypes.POINTER(MjLoop), ctypes.POINTER(ctypes.c_uint64)]
+    lib.touchdown_mujoco_run.argtypes = [p, ctypes.POINTER(MjLoop)]
     lib.touchdown_mujoco_run.restype = ctypes.c_int32
     lib.touchdown_mujoco_no_clock.argtypes = []
     lib.touchdown_mujoco_no_clock.restype = ctypes.c_double
@@ -331,11 +333,11 @@ def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
         timing = None
         friction = (rows, bounds)
         if mode == "viewer":
-            status, steps = run_with_viewer(lib, h, model, data, friction)
+            status = run_with_viewer(lib, h, model, data, friction)
         elif mode == "profile":
-            status, steps, timing = run_profiled(lib, h, model, data, friction)
+            status, timing = run_profiled(lib, h, model, data, friction)
         else:
-            status, steps = run(lib, h, model, data, friction)
+            status = run(lib, h, model, data, friction)
         check(status)
         refuse_warnings(log, "running the landing")
         check(lib.touchdown_mujoco_finish(h, os.path.join(out, "summary.json").encode()))
@@ -409,9 +411,7 @@ def run(lib, h, model, data, friction):
     mujoco.set_mjcb_time(lib.touchdown_mujoco_no_clock)
     step1, step2 = half_steps()
     mj = MjLoop(step1, step2, model._address, data._address, data.efc_frictionloss.ctypes.data, rows.start)
-    steps = ctypes.c_uint64(0)
-    status = lib.touchdown_mujoco_run(h, ctypes.byref(mj), ctypes.byref(steps))
-    return status, steps.value
+    return lib.touchdown_mujoco_run(h, ctypes.byref(mj))
 
 
 def run_profiled(lib, h, model, data, friction):
@@ -449,7 +449,7 @@ def run_profiled(lib, h, model, data, friction):
     t_rust -= per_read * calls
     clocks = per_read * 5 * calls
     python = total - t_mujoco - t_rust - clocks
-    return status, steps, {
+    return status, {
         "steps": steps,
         "loop_s": (total - clocks) * 1e-9,
         "mujoco_s": t_mujoco * 1e-9,
@@ -477,7 +477,6 @@ def run_with_viewer(lib, h, model, data, friction):
     rows, bounds = friction
     slow = 20.0
     frame = 1.0 / 60.0
-    steps = 0
     with mujoco.viewer.launch_passive(model, data) as viewer:
         wall = time.perf_counter()
         while viewer.is_running():
@@ -487,7 +486,6 @@ def run_with_viewer(lib, h, model, data, friction):
                 break
             data.efc_frictionloss[rows] = bounds
             mujoco.mj_step2(model, data)
-            steps += 1
             if data.time * slow >= time.perf_counter() - wall + frame:
                 viewer.sync()
                 time.sleep(frame)
@@ -496,7 +494,7 @@ def run_with_viewer(lib, h, model, data, friction):
         while viewer.is_running():
             viewer.sync()
             time.sleep(frame)
-    return status, steps
+    return status
 
 
 if __name__ == "__main__":

@@ -161,12 +161,12 @@ impl Runner {
 
     /// The landing's steps, each `mj_step1`, [`Runner::advance`], the stroke joints'
     /// dry-friction bounds copied into their friction rows, `mj_step2`, until `advance` ends
-    /// the run (returns its status: 1) or fails; `steps` counts the completed steps.
+    /// the run (returns its status: 1) or fails.
     ///
     /// # Safety
     /// `mj` holds MuJoCo's half-steps and the model and data this runner was bound to, alive
     /// for the call, and nothing else touches them meanwhile.
-    unsafe fn run(&mut self, mj: &MjLoop, steps: &mut u64) -> Result<i32, MujocoError> {
+    unsafe fn run(&mut self, mj: &MjLoop) -> Result<i32, MujocoError> {
         let binding = |m: &str| Err(MujocoError::Binding(m.into()));
         let (Some(step1), Some(step2)) = (mj.step1, mj.step2) else {
             return binding("null mj_step1 or mj_step2");
@@ -197,7 +197,6 @@ impl Runner {
                 *row.add(k) = *p.friction_bound.add(k);
             }
             step2(mj.model, mj.data);
-            *steps += 1;
         }
     }
 }
@@ -384,28 +383,18 @@ pub extern "C" fn touchdown_mujoco_no_clock() -> f64 {
 /// The landing's whole loop ([`Runner::run`]): MuJoCo's `mj_step1`, the step's work of
 /// [`touchdown_mujoco_advance`], the stroke joints' dry-friction bounds written into their
 /// friction rows, `mj_step2`, until the run ends. Returns 1 when it has ended, −1 on an error
-/// or a divergence (the message says when, where and which law); `steps` receives the number
-/// of steps taken.
+/// or a divergence (the message says when, where and which law).
 ///
 /// # Safety
 /// `runner` comes from [`touchdown_mujoco_open`] and was bound; `mj` points to an [`MjLoop`]
 /// whose functions are MuJoCo's `mj_step1` and `mj_step2` and whose model and data are those
-/// bound, alive for the call; `steps` is null or valid.
+/// bound, alive for the call.
 #[no_mangle]
-pub unsafe extern "C" fn touchdown_mujoco_run(
-    runner: *mut Runner,
-    mj: *const MjLoop,
-    steps: *mut u64,
-) -> i32 {
+pub unsafe extern "C" fn touchdown_mujoco_run(runner: *mut Runner, mj: *const MjLoop) -> i32 {
     let (Some(runner), Some(mj)) = (runner.as_mut(), mj.as_ref()) else {
         return -1;
     };
-    let mut taken = 0;
-    let status = runner.guard(|r| unsafe { r.run(mj, &mut taken) });
-    if let Some(steps) = steps.as_mut() {
-        *steps = taken;
-    }
-    status
+    runner.guard(|r| unsafe { r.run(mj) })
 }
 
 /// Ends the run: flushes the history and writes the summary (`summary.json`) to `summary`.
