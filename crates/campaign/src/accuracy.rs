@@ -1,10 +1,12 @@
 //! The accuracy a campaign's integrator settings give, measured and stated (docs/campaigns.md,
-//! "Accuracy"): the first landings of the campaign landed again on the core with its settings
-//! and with every step limit refined [`REFINEMENT`]/2 and [`REFINEMENT`] times
-//! (`touchdown_scenario::schema::Integrator::refine`), their outcomes and maxima compared: the
-//! settings' error against the finest, and the finest two against each other (how far the
-//! reference itself is from converged). The
-//! manifest of the whole campaign (and of the part that holds landing 0) carries the result.
+//! "Accuracy"): the first landings of the campaign landed again on each of its engines with
+//! its settings and with its step refined: on the core every step limit [`REFINEMENT`]/2 and
+//! [`REFINEMENT`] times (`touchdown_scenario::schema::Integrator::refine`), on a multibody
+//! engine its fixed step [`MULTIBODY_REFINEMENT`]/2 and [`MULTIBODY_REFINEMENT`] times
+//! (`touchdown_registry::refined`); their outcomes and maxima compared: the settings' error
+//! against the finest, and the finest two against each other (how far the reference itself is
+//! from converged). The manifest of the whole campaign (and of the part that holds landing 0)
+//! carries the result.
 //!
 //! It measures the error of the steps, not of the model: both runs are of the same laws.
 
@@ -20,8 +22,22 @@ use touchdown_record::{Outcome, RunError, Summary};
 use touchdown_registry::Engine;
 use touchdown_scenario::{Scenario, ScenarioError};
 
-/// How many times finer the reference runs' step limits are than the campaign's.
+/// How many times finer the core's reference runs' step limits are than the campaign's.
 pub const REFINEMENT: f64 = touchdown_scenario::schema::ACCURACY_REFINEMENT;
+
+/// How many times finer a multibody engine's reference runs' step is than the campaign's. Less
+/// than the core's: a multibody landing costs seconds at its own step (rapier about 5 s of a
+/// core for the 1/6-scale model's 1.5 s, docs/performance.md), and its sample lands each
+/// landing 1 + 2 + 4 times the steps again, about 7 % more on a paired campaign of 1,000.
+pub const MULTIBODY_REFINEMENT: f64 = 4.0;
+
+/// How many times finer `engine`'s reference runs' step is than the campaign's.
+pub fn refinement(engine: Engine) -> f64 {
+    match engine {
+        Engine::Core => REFINEMENT,
+        Engine::Rapier | Engine::Mujoco => MULTIBODY_REFINEMENT,
+    }
+}
 
 /// A campaign's landings per landing of its accuracy sample.
 pub const LANDINGS_PER_SAMPLE: u64 = 100;
@@ -115,14 +131,15 @@ pub struct Comparison {
     pub reference: Maxima,
 }
 
-/// The accuracy of a campaign's settings on its first landings ([`sample_size`]).
+/// The accuracy of a campaign's settings on one engine, on its first landings
+/// ([`sample_size`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Accuracy {
-    /// The engine measured (the core).
+    /// The engine measured.
     pub engine: String,
     /// The landings measured: `0..sample_landings`.
     pub sample_landings: u64,
-    /// How many times finer the reference runs' step limits are ([`REFINEMENT`]).
+    /// How many times finer the reference runs' step limits are ([`refinement`]).
     pub refinement: f64,
     /// Landings whose outcome (stable, unstable, undecided, stopped, refused) is the refined
     /// run's.
@@ -161,45 +178,63 @@ struct Runs {
     refined: Result<Summary, RunError>,
 }
 
-/// The accuracy of `campaign`'s settings on the core, on the first [`sample`] landings of
-/// the campaign planned with `landings` in all, landed on `threads` threads (all the machine's
-/// with `None`); `None` when the campaign does not land on the core. An engine that cannot be
-/// set up is an error, as in the campaign.
+/// The accuracy of a campaign's settings on each of its engines: the core's and each multibody
+/// engine's, in the campaign's order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Measured {
+    /// The core's, `None` when the campaign does not land on it.
+    pub core: Option<Accuracy>,
+    /// Each multibody engine's.
+    pub multibody: Vec<Accuracy>,
+}
+
+/// The accuracy of `campaign`'s settings on each of its engines, on the first [`sample`]
+/// landings of the campaign planned with `landings` in all, landed on `threads` threads (all
+/// the machine's with `None`). An engine that cannot be set up is an error, as in the
+/// campaign.
 pub fn measure(
     campaign: &Campaign,
     landings: u64,
     threads: Option<usize>,
-) -> Result<Option<Accuracy>, CampaignError> {
-    if !campaign.engines.contains(&Engine::Core) {
-        return Ok(None);
-    }
+) -> Result<Measured, CampaignError> {
     let n = sample(campaign, landings);
-    let runs: Vec<Option<Runs>> = pool(threads)?.install(|| {
-        (0..n)
-            .into_par_iter()
-            .map(|i| land_runs(campaign, i, &draws(campaign, i)))
-            .collect::<Result<_, _>>()
-    })?;
-    let not_refined = (0..n).filter(|i| runs[*i as usize].is_none()).collect();
-    let runs: Vec<Runs> = runs.into_iter().flatten().collect();
-    Ok(Some(compare(&runs, n, not_refined, campaign.confidence)))
+    let pool = pool(threads)?;
+    let mut measured = Measured::default();
+    for &engine in &campaign.engines {
+        let runs: Vec<Option<Runs>> = pool.install(|| {
+            (0..n)
+                .into_par_iter()
+                .map(|i| land_runs(campaign, engine, i, &draws(campaign, i)))
+                .collect::<Result<_, _>>()
+        })?;
+        let not_refined = (0..n).filter(|i| runs[*i as usize].is_none()).collect();
+        let runs: Vec<Runs> = runs.into_iter().flatten().collect();
+        let accuracy = compare(&runs, n, not_refined, campaign.confidence, engine);
+        match engine {
+            Engine::Core => measured.core = Some(accuracy),
+            Engine::Rapier | Engine::Mujoco => measured.multibody.push(accuracy),
+        }
+    }
+    Ok(measured)
 }
 
-/// Landing `landing` (its draws `drawn`) at the campaign's settings, half refined and refined;
-/// `Ok(None)` when its settings refined leave their ranges (a `max_steps` or `rtol` near its
-/// bound): not measured.
+/// Landing `landing` (its draws `drawn`) on `engine` at the campaign's settings, half refined
+/// and refined ([`refinement`]); `Ok(None)` when its settings refined leave their ranges (a
+/// `max_steps` or `rtol` near its bound): not measured.
 fn land_runs(
     campaign: &Campaign,
+    engine: Engine,
     landing: u64,
     drawn: &[Value],
 ) -> Result<Option<Runs>, CampaignError> {
-    let at = |refinement: f64| {
-        scenario(campaign, drawn).and_then(|sc| match refinement > 1.0 {
-            true => sc.with_integrator(|it| it.refine(refinement)),
+    let at = |factor: f64| {
+        scenario(campaign, drawn).and_then(|sc| match factor > 1.0 {
+            true => touchdown_registry::refined(engine, &sc, factor),
             false => Ok(sc),
         })
     };
-    let (run, half, refined) = (at(1.0), at(REFINEMENT / 2.0), at(REFINEMENT));
+    let fine = refinement(engine);
+    let (run, half, refined) = (at(1.0), at(fine / 2.0), at(fine));
     if run.is_ok() && (half.is_err() || refined.is_err()) {
         return Ok(None);
     }
@@ -209,7 +244,7 @@ fn land_runs(
             Err(e) => return Ok(Err(RunError::Refused(e))),
         };
         outcome(touchdown_registry::land_reusing_runner(
-            Engine::Core,
+            engine,
             &campaign.scenario_path,
             &sc,
             &mut (),
@@ -308,9 +343,16 @@ fn comparison<'a>(
     (settings.len() as u64, comparison)
 }
 
-/// The sample's outcomes and maxima compared (`n` landings, of which `not_refined` could not
-/// be refined and are not in `runs`), the outcomes' bound at `confidence`.
-fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>, confidence: f64) -> Accuracy {
+/// The sample's outcomes and maxima on `engine` compared (`n` landings, of which
+/// `not_refined` could not be refined and are not in `runs`), the outcomes' bound at
+/// `confidence`.
+fn compare(
+    runs: &[Runs],
+    n: u64,
+    not_refined: Vec<u64>,
+    confidence: f64,
+    engine: Engine,
+) -> Accuracy {
     let differ = |a: &Result<Summary, RunError>, b: &Result<Summary, RunError>| {
         Status::of(a.as_ref()) != Status::of(b.as_ref())
     };
@@ -341,9 +383,9 @@ fn compare(runs: &[Runs], n: u64, not_refined: Vec<u64>, confidence: f64) -> Acc
         confidence,
     ));
     Accuracy {
-        engine: Engine::Core.name().into(),
+        engine: engine.name().into(),
         sample_landings: n,
-        refinement: REFINEMENT,
+        refinement: refinement(engine),
         outcomes_identical: measured - outcomes_differ.len() as u64,
         not_refined,
         outcomes_differ,

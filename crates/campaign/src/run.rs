@@ -180,7 +180,7 @@ pub fn run(
     )?;
     let mut manifest = manifest;
     if range.start == 0 && !range.is_empty() {
-        manifest.accuracy = accuracy::measure(campaign, campaign.landings, threads)?;
+        manifest.state(accuracy::measure(campaign, campaign.landings, threads)?);
     }
     finish(&dir, journal, manifest, staging)
 }
@@ -394,7 +394,7 @@ pub fn add(
             Ok(())
         },
     )?;
-    manifest.accuracy = accuracy::measure(campaign, total, threads)?;
+    manifest.state(accuracy::measure(campaign, total, threads)?);
     finish(&building, journal, manifest, Some(staging))
 }
 
@@ -472,9 +472,10 @@ pub fn merge(
     }
     let mut manifest = first;
     // The accuracy is the part's that holds landing 0, measured as the whole campaign would.
-    manifest.accuracy = (read.iter())
-        .find(|(m, _)| m.part.first_landing < m.part.end_landing)
-        .and_then(|(m, _)| m.accuracy.clone());
+    let holder = (read.iter()).find(|(m, _)| m.part.first_landing < m.part.end_landing);
+    manifest.accuracy = holder.and_then(|(m, _)| m.accuracy.clone());
+    manifest.multibody_accuracy =
+        holder.map_or_else(Vec::new, |(m, _)| m.multibody_accuracy.clone());
     manifest.part = Part {
         first_landing: 0,
         end_landing: manifest.landings,

@@ -8,7 +8,7 @@
 //! ([`visit_column`]) by the analysis (`crate::analysis`); the statistics it computes and the
 //! manifest are written last ([`seal`]). This module reads and writes; it computes nothing.
 
-use crate::accuracy::Accuracy;
+use crate::accuracy::{Accuracy, Measured};
 use crate::record::{Cell, Column, Kind, Role, Row};
 use crate::spec::Campaign;
 use crate::CampaignError;
@@ -83,11 +83,15 @@ pub struct Manifest {
     pub part: Part,
     /// The records' columns.
     pub columns: Vec<Column>,
-    /// The accuracy of the campaign's settings, measured on its first landings
+    /// The accuracy of the campaign's settings on the core, measured on its first landings
     /// ([`crate::accuracy`]): in the manifest of a part that holds landing 0 and of the whole
     /// campaign; absent from the other parts and when the campaign does not land on the core.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accuracy: Option<Accuracy>,
+    /// The same on each multibody engine the campaign lands on, in its order; empty where
+    /// `accuracy` is absent (and in manifests written before it was stated).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub multibody_accuracy: Vec<Accuracy>,
     /// SHA-256 of each file the folder holds beside the manifest ([`SEALED`]), as written.
     pub files_sha256: BTreeMap<String, String>,
     /// SHA-256 of this manifest written with this field empty: a manifest edited after it was
@@ -99,6 +103,12 @@ pub struct Manifest {
 pub const SEALED: [&str; 3] = ["landings.jsonl", "landings.parquet", "statistics.json"];
 
 impl Manifest {
+    /// States the accuracy `measured` on each engine (`accuracy`, `multibody_accuracy`).
+    pub fn state(&mut self, measured: Measured) {
+        self.accuracy = measured.core;
+        self.multibody_accuracy = measured.multibody;
+    }
+
     /// The manifest of `campaign` (`landings` in all) for the part `part`.
     pub fn new(campaign: &Campaign, landings: u64, part: Part, columns: &[Column]) -> Manifest {
         Manifest {
@@ -125,6 +135,7 @@ impl Manifest {
             part,
             columns: columns.to_vec(),
             accuracy: None,
+            multibody_accuracy: Vec::new(),
             files_sha256: BTreeMap::new(),
             seal_sha256: String::new(),
         }

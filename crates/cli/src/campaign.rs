@@ -5,6 +5,7 @@ use crate::args::{CampaignAction, CampaignArgs, Format};
 use crate::{out, outln};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
+use touchdown_campaign::accuracy::Accuracy;
 use touchdown_campaign::fidelity::MultiFidelity;
 use touchdown_campaign::paired::{Pair, Report};
 use touchdown_campaign::record::Row;
@@ -235,18 +236,23 @@ fn header(m: &Manifest) -> String {
     )
 }
 
-/// The accuracy of the campaign's settings (docs/campaigns.md, "Accuracy"), as a paragraph.
+/// The accuracy of the campaign's settings on each engine (docs/campaigns.md, "Accuracy"), a
+/// paragraph each.
 fn accuracy_text(m: &Manifest) -> String {
-    use touchdown_campaign::accuracy::{Comparison, Worst};
-    let Some(a) = &m.accuracy else {
-        return if !m.engines.iter().any(|e| e == "core") {
-            "accuracy of the settings: not measured (measured on the core only)\n\n".into()
-        } else if m.part.first_landing > 0 {
+    let stated: Vec<&Accuracy> = m.accuracy.iter().chain(&m.multibody_accuracy).collect();
+    if stated.is_empty() {
+        return if m.part.first_landing > 0 {
             "accuracy of the settings: stated by the part that holds landing 0\n\n".into()
         } else {
             "accuracy of the settings: not measured\n\n".into()
         };
-    };
+    }
+    stated.into_iter().map(engine_accuracy_text).collect()
+}
+
+/// The accuracy of the campaign's settings on one engine, as a paragraph.
+fn engine_accuracy_text(a: &Accuracy) -> String {
+    use touchdown_campaign::accuracy::{Comparison, Worst};
     let n = a.sample_landings;
     let sample = match n {
         1 => "landing 0".to_string(),
@@ -257,8 +263,13 @@ fn accuracy_text(m: &Manifest) -> String {
         let list: Vec<String> = list.iter().map(u64::to_string).collect();
         list.join(", ")
     };
+    let limits = if a.engine == "core" {
+        "every step limit"
+    } else {
+        "its time step"
+    };
     let mut t = format!(
-        "accuracy of the settings ({}, {sample}, against runs with every step limit {fine}x finer; in brackets the runs {half}x finer against those, the reference's own spread):\n  outcomes identical on {} of {}",
+        "accuracy of the settings ({}, {sample}, against runs with {limits} {fine}x finer; in brackets the runs {half}x finer against those, the reference's own spread):\n  outcomes identical on {} of {}",
         a.engine,
         a.outcomes_identical,
         n.saturating_sub(a.not_refined.len() as u64),

@@ -36,6 +36,38 @@ pub fn time_step(engine: Engine, sc: &Scenario) -> Result<f64, ScenarioError> {
     }
 }
 
+/// `sc` landed by `engine` with its step `factor` times finer and nothing else changed: the
+/// core's every step limit and its run budget (`Integrator::refine`); a multibody engine's
+/// fixed step, with its contact settings stated as [`time_step`]'s derivation gives them at the
+/// unrefined step (MuJoCo derives its contact's time constant from the step: a finer step must
+/// not stiffen the contact it measures) and its run budget, `integrator.max_steps`, grown by
+/// `factor`. What a campaign's accuracy sample lands (docs/campaigns.md, "Accuracy").
+pub fn refined(engine: Engine, sc: &Scenario, factor: f64) -> Result<Scenario, ScenarioError> {
+    let sc = sc.clone();
+    // Settings are stated in the file's units, its [similarity] applied.
+    let (time, length) = (sc.units().time(), sc.units().length());
+    match engine {
+        Engine::Core => sc.with_integrator(|it| it.refine(factor)),
+        Engine::Rapier => {
+            let s = touchdown_multibody::RapierSettings::new(&sc)?;
+            sc.with_integrator(|it| it.max_steps *= factor)?
+                .with_rapier(|r| {
+                    r.timestep = Some(s.timestep / factor / time);
+                    r.contact_frequency = Some(s.contact_frequency * time);
+                })
+        }
+        Engine::Mujoco => {
+            let s = touchdown_multibody::MujocoSettings::new(&sc)?;
+            sc.with_integrator(|it| it.max_steps *= factor)?
+                .with_mujoco(|m| {
+                    m.timestep = Some(s.timestep / factor / time);
+                    m.contact_timeconst = Some(s.contact_timeconst / time);
+                    m.contact_width = Some(s.contact_width / length);
+                })
+        }
+    }
+}
+
 /// A landing that did not complete on an engine, with the scenario file it was read from.
 #[derive(Debug, thiserror::Error)]
 #[error("{engine} engine on {scenario}: {error}")]
@@ -208,6 +240,47 @@ mod tests {
                 assert!(unsupported(engine, m).is_some(), "{engine} {m:?}");
             }
             assert_eq!(unsupported(engine, Mechanism::Thrust), None);
+        }
+    }
+
+    /// A refined multibody run changes the step and the budget, nothing else: the contact is
+    /// the one derived at the unrefined step (MuJoCo's time constant is twice that step, not
+    /// twice the refined one), in a file that states none of it and in a Froude twin of one
+    /// that states all of it; the core's refinement is its integrator's.
+    #[test]
+    fn a_refined_multibody_run_has_its_step_finer_and_its_contact_unchanged() {
+        use touchdown_multibody::{MujocoSettings, RapierSettings};
+        let tmp = tempfile::tempdir().unwrap();
+        let twin = tmp.path().join("twin.toml");
+        let base = scenario("fig-25-26.toml").canonicalize().unwrap();
+        std::fs::write(
+            &twin,
+            format!(
+                "extends = {:?}\n[similarity]\nlength = 6.0\nmass = 216.0\ntime = 6.0\n",
+                base.display().to_string()
+            ),
+        )
+        .unwrap();
+        let derived = Scenario::load(scenario("robotic-lander-nominal.toml")).unwrap();
+        let twin = Scenario::load(&twin).unwrap();
+        assert!(derived.mujoco.timestep.is_none() && derived.mujoco.contact_timeconst.is_none());
+        assert!(twin.mujoco.timestep.is_some() && twin.rapier.contact_frequency.is_some());
+        for sc in [derived, twin] {
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+            let r = RapierSettings::new(&sc).unwrap();
+            let fine = refined(Engine::Rapier, &sc, 4.0).unwrap();
+            let rf = RapierSettings::new(&fine).unwrap();
+            assert!(close(rf.timestep, r.timestep / 4.0), "{rf:?} {r:?}");
+            assert!(close(rf.contact_frequency, r.contact_frequency));
+            assert_eq!(fine.integrator.max_steps, 4 * sc.integrator.max_steps);
+            let m = MujocoSettings::new(&sc).unwrap();
+            let mf = MujocoSettings::new(&refined(Engine::Mujoco, &sc, 4.0).unwrap()).unwrap();
+            assert!(close(mf.timestep, m.timestep / 4.0), "{mf:?} {m:?}");
+            assert!(close(mf.contact_timeconst, m.contact_timeconst));
+            assert!(close(mf.contact_width, m.contact_width));
+            let core = refined(Engine::Core, &sc, 4.0).unwrap();
+            assert!(close(core.integrator.dt_max, sc.integrator.dt_max / 4.0));
+            assert_eq!(core.integrator.max_steps, 4 * sc.integrator.max_steps);
         }
     }
 

@@ -7,6 +7,58 @@ use touchdown_campaign::run::run;
 use touchdown_campaign::Campaign;
 use touchdown_tests::root;
 
+/// A paired campaign states each multibody engine's accuracy as it states the core's
+/// (docs/campaigns.md, "Accuracy"): its first landing landed again on rapier at the step the
+/// file gives, and at a half and a quarter of it, written here by hand: the quarter takes four
+/// times the steps, and the manifest's errors and outcomes are those runs'.
+#[test]
+fn a_paired_campaign_states_each_multibody_engines_accuracy_against_its_step_refined() {
+    use touchdown_scenario::schema::Engine;
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("paired.toml");
+    paired_with(&file, 4);
+    let campaign = Campaign::load(&file).unwrap();
+    let (manifest, _) = run(&campaign, None, Some(1), None, false, |_| ()).unwrap();
+    assert_eq!(manifest.accuracy.map(|a| a.engine), Some("core".into()));
+    let [a] = manifest.multibody_accuracy.as_slice() else {
+        panic!(
+            "expected rapier's accuracy: {:?}",
+            manifest.multibody_accuracy
+        );
+    };
+    assert_eq!(
+        (a.engine.as_str(), a.sample_landings, a.refinement),
+        ("rapier", 1, 4.0)
+    );
+    let sc = touchdown_campaign::landing::scenario(&campaign, &draws(&campaign, 0)).unwrap();
+    let dt = touchdown_registry::time_step(Engine::Rapier, &sc).unwrap();
+    let seconds = sc.units().time();
+    let at = |f: f64| {
+        let sc = (sc.clone())
+            .with_rapier(|r| r.timestep = Some(dt / f / seconds))
+            .and_then(|sc| sc.with_integrator(|it| it.max_steps *= f))
+            .unwrap();
+        touchdown_registry::land(Engine::Rapier, &file, &sc, &mut (), None).unwrap()
+    };
+    let (x, half, x_ref) = (at(1.0), at(2.0), at(4.0));
+    assert!(
+        x_ref.steps >= 4 * x.steps - 4,
+        "{} against {}",
+        x_ref.steps,
+        x.steps
+    );
+    assert_eq!(a.outcomes_identical, u64::from(x.outcome == x_ref.outcome));
+    let largest = |s: &touchdown_record::Summary| {
+        s.max_primary_stroke_m.iter().fold(0.0f64, |m, x| m.max(*x))
+    };
+    let both = a.maxima.expect("the three runs completed");
+    let error =
+        |s: &touchdown_record::Summary| (largest(s) - largest(&x_ref)).abs() / largest(&x_ref);
+    assert_eq!(both.settings.largest_primary_stroke.fraction, error(&x));
+    assert_eq!(both.reference.largest_primary_stroke.fraction, error(&half));
+    assert!(error(&x) > 0.0, "the refined runs are other runs");
+}
+
 #[test]
 fn a_paired_campaign_lands_each_draw_on_every_engine_and_lists_where_they_disagree() {
     use touchdown_scenario::schema::Engine;
