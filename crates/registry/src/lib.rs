@@ -46,24 +46,24 @@ pub fn refined(engine: Engine, sc: &Scenario, factor: f64) -> Result<Scenario, S
     let sc = sc.clone();
     // Settings are stated in the file's units, its [similarity] applied.
     let (time, length) = (sc.units().time(), sc.units().length());
+    // A multibody run's budget grows with its steps.
+    let budget = |sc: Scenario| sc.with_integrator(|it| it.max_steps *= factor);
     match engine {
         Engine::Core => sc.with_integrator(|it| it.refine(factor)),
         Engine::Rapier => {
             let s = touchdown_multibody::RapierSettings::new(&sc)?;
-            sc.with_integrator(|it| it.max_steps *= factor)?
-                .with_rapier(|r| {
-                    r.timestep = Some(s.timestep / factor / time);
-                    r.contact_frequency = Some(s.contact_frequency * time);
-                })
+            budget(sc)?.with_rapier(|r| {
+                r.timestep = Some(s.timestep / factor / time);
+                r.contact_frequency = Some(s.contact_frequency * time);
+            })
         }
         Engine::Mujoco => {
             let s = touchdown_multibody::MujocoSettings::new(&sc)?;
-            sc.with_integrator(|it| it.max_steps *= factor)?
-                .with_mujoco(|m| {
-                    m.timestep = Some(s.timestep / factor / time);
-                    m.contact_timeconst = Some(s.contact_timeconst / time);
-                    m.contact_width = Some(s.contact_width / length);
-                })
+            budget(sc)?.with_mujoco(|m| {
+                m.timestep = Some(s.timestep / factor / time);
+                m.contact_timeconst = Some(s.contact_timeconst / time);
+                m.contact_width = Some(s.contact_width / length);
+            })
         }
     }
 }
