@@ -183,10 +183,10 @@ impl Units {
         self.force() / self.length()
     }
     /// Checks a unit written beside a number meant for this file (`"ft/s"`, `"deg"`,
-    /// `"lbf/ft"`, `"slug*ft^2"`, or `"1"` for a pure number): every unit it names must be the
-    /// file's own for that quantity, so that a number written in other units is refused rather
-    /// than read in the file's. Returns the unit as a name suffix (`ft_s`, `deg`, `lbf_ft`,
-    /// `slug_ft2`, `dimensionless`) or what is wrong.
+    /// `"lbf/ft"`, `"slug*ft^2"`, `"1/s"`, or `"1"` for a pure number): every unit it names must
+    /// be the file's own for that quantity, so that a number written in other units is refused
+    /// rather than read in the file's. Returns the unit as a name suffix (`ft_s`, `deg`,
+    /// `lbf_ft`, `slug_ft2`, `per_s`, `dimensionless`) or what is wrong.
     pub fn suffix_of(&self, unit: &str) -> Result<String, String> {
         let unit = unit.trim();
         if unit == "1" {
@@ -198,6 +198,11 @@ impl Units {
                 return Err(format!(
                     "{unit:?}: at most one `/` (everything after it divides: \"lbf/ft*s\" is lbf/(ft·s))"
                 ));
+            }
+            if n == 0 && part.trim() == "1" && unit.contains('/') {
+                // a reciprocal, "1/s": nothing above the `/`
+                suffix.push("per".to_string());
+                continue;
             }
             for token in part.split('*') {
                 let (name, power) = token.split_once('^').unwrap_or((token, "1"));
@@ -316,6 +321,26 @@ mod file_unit_tests {
         assert_eq!(u.file_unit_of("N/(m/s)^γ"), "lbf/(ft/s)^γ");
         assert_eq!(u.file_unit_of("s"), "s");
         assert_eq!(u.file_unit_of("rad"), "deg");
+    }
+
+    /// A campaign's dispersion writes its unit beside its numbers; the unit becomes the record
+    /// column's name suffix. A rate such as a contact's natural frequency is written `1/s`.
+    #[test]
+    fn a_unit_beside_numbers_names_its_column() {
+        let u: Units = toml::from_str(
+            "length = \"ft\"\nmass = \"slug\"\nforce = \"lbf\"\nangle = \"deg\"\ntime = \"s\"",
+        )
+        .unwrap();
+        assert_eq!(u.suffix_of("ft/s").unwrap(), "ft_s");
+        assert_eq!(u.suffix_of("slug*ft^2").unwrap(), "slug_ft2");
+        assert_eq!(u.suffix_of("1").unwrap(), "dimensionless");
+        assert_eq!(u.suffix_of("1/s").unwrap(), "per_s");
+        assert_eq!(u.suffix_of("1/ft^2").unwrap(), "per_ft2");
+        let other = u.suffix_of("1/m").unwrap_err();
+        assert!(other.contains("in ft, not m"), "{other}");
+        for wrong in ["1*s", "s/1", "1/1", "2/s"] {
+            assert!(u.suffix_of(wrong).is_err(), "{wrong} accepted");
+        }
     }
 }
 

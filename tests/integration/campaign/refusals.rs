@@ -43,6 +43,11 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
             "field `dispersion[0].unit`: \"ft\" is a length, but `touchdown.vertical_velocity` is a length/time: write its numbers in ft/s",
         ),
         (
+            "unit = \"ft/s\"\ndistribution = \"normal\"",
+            "unit = \"1/s\"\ndistribution = \"normal\"",
+            "field `dispersion[0].unit`: \"1/s\" is a 1/time, but `touchdown.vertical_velocity` is a length/time: write its numbers in ft/s",
+        ),
+        (
             "unit = \"deg\"",
             "unit = \"1\"",
             "is a pure number, but `touchdown.attitude[2]` is an angle: write its numbers in deg",
@@ -128,6 +133,29 @@ fn bad_campaign_files_are_refused_naming_the_file_and_the_field() {
     assert!(
         scene.contains("field `scenario`: the base scenario") && scene.contains("no-such.toml"),
         "{scene}"
+    );
+}
+
+/// A rate is written per second (`1/s`): a multibody contact's natural frequency dispersed
+/// over a list of values loads, and its record column names its unit.
+#[test]
+fn a_rate_is_dispersed_in_its_own_unit_per_second() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("rate.toml");
+    small_with(&file, 4);
+    let mut text = std::fs::read_to_string(&file).unwrap();
+    text.push_str(
+        "\n[[dispersion]]\nfield = \"engines.rapier.contact_frequency\"\nunit = \"1/s\"\ndistribution = \"list\"\nvalues = [4000.0, 6000.0]\n",
+    );
+    std::fs::write(&file, &text).unwrap();
+    let campaign = Campaign::load(&file).unwrap();
+    let rate = campaign.dispersions.last().unwrap();
+    assert_eq!(rate.column, "engines.rapier.contact_frequency_per_s");
+    std::fs::write(&file, text.replace("unit = \"1/s\"", "unit = \"1/m\"")).unwrap();
+    let message = Campaign::load(&file).unwrap_err().to_string();
+    assert!(
+        message.contains("the scenario states lengths in ft"),
+        "{message}"
     );
 }
 
