@@ -199,8 +199,8 @@ impl Units {
                     "{unit:?}: at most one `/` (everything after it divides: \"lbf/ft*s\" is lbf/(ft·s))"
                 ));
             }
-            if n == 0 && part.trim() == "1" && unit.contains('/') {
-                // a reciprocal, "1/s": nothing above the `/`
+            if n == 0 && part.trim() == "1" {
+                // a reciprocal, "1/s" (a lone "1" returned above): nothing above the `/`
                 suffix.push("per".to_string());
                 continue;
             }
