@@ -35,7 +35,8 @@ With --serve the runner lands one scenario per line of standard input, a JSON ob
 {"scenario": PATH, "out": DIR, "history": BOOL}, and answers each with one line
 `touchdown-reply {"status": S, "message": "..."}` on standard output (S as the exit status
 below; the files as below, in DIR), until standard input closes: Python's and MuJoCo's start-up
-are paid once for many landings (a campaign's).
+are paid once for many landings (a campaign's). A MuJoCo error in a step (mju_error, which never
+returns) ends the runner instead, with status 4 and the landing's diagnostic in its DIR.
 
 Exit status: 0 done; 1 the run failed (the message on stderr); 2 bad arguments or library; 3
 `mujoco` is not installed in this interpreter; 4 the landing stopped with a diagnostic (when,
@@ -131,19 +132,24 @@ class MjLoop(ctypes.Structure):
         ("data", ctypes.c_void_p),
         ("frictionloss", ctypes.c_void_p),
         ("first_row", ctypes.c_size_t),
+        ("set_log_handler", ctypes.c_void_p),
+        ("divergence_path", ctypes.c_char_p),
     ]
 
 
 @functools.cache
 def half_steps():
-    """The addresses of mj_step1 and mj_step2 in the MuJoCo library the `mujoco` package
-    loaded (opening the same file again gives the same library)."""
+    """The addresses of mj_step1, mj_step2 and mju_setLogHandler in the MuJoCo library the
+    `mujoco` package loaded (opening the same file again gives the same library)."""
     folder = os.path.dirname(mujoco.__file__)
     found = sorted(glob.glob(os.path.join(folder, "libmujoco.so*")))
     if not found:
         fail(f"no MuJoCo library (libmujoco.so*) in {folder}: run scripts/setup-python", SETUP_STATUS)
     lib = ctypes.CDLL(found[0])
-    return tuple(ctypes.cast(getattr(lib, f), ctypes.c_void_p).value for f in ("mj_step1", "mj_step2"))
+    return tuple(
+        ctypes.cast(getattr(lib, f), ctypes.c_void_p).value
+        for f in ("mj_step1", "mj_step2", "mju_setLogHandler")
+    )
 
 
 class ModelSizes(ctypes.Structure):
@@ -183,6 +189,8 @@ def load_library(path):
     lib.touchdown_mujoco_advance.restype = ctypes.c_int32
     lib.touchdown_mujoco_run.argtypes = [p, ctypes.POINTER(MjLoop)]
     lib.touchdown_mujoco_run.restype = ctypes.c_int32
+    lib.touchdown_mujoco_engine_error.argtypes = [p, ctypes.c_char_p]
+    lib.touchdown_mujoco_engine_error.restype = ctypes.c_int32
     lib.touchdown_mujoco_no_clock.argtypes = []
     lib.touchdown_mujoco_no_clock.restype = ctypes.c_double
     lib.touchdown_mujoco_finish.argtypes = [p, ctypes.c_char_p]
@@ -337,7 +345,7 @@ def land(lib, scenario, out, timestep=0.0, history=False, mode="plain"):
         elif mode == "profile":
             status, timing = run_profiled(lib, h, model, data, friction)
         else:
-            status = run(lib, h, model, data, friction)
+            status = run(lib, h, model, data, friction, out)
         check(status)
         refuse_warnings(log, "running the landing")
         check(lib.touchdown_mujoco_finish(h, os.path.join(out, "summary.json").encode()))
@@ -402,16 +410,26 @@ def main(argv):
 
 
 
-def run(lib, h, model, data, friction):
+def run(lib, h, model, data, friction, out):
     """The plain loop, in the library (touchdown_mujoco_run): no Python per step. `friction`:
     the stroke joints' friction rows (after an mj_step1) and the bounds advance writes for
-    them."""
+    them. A MuJoCo error in a step ends this process from the library, with the landing's
+    diagnostic in `out` (exit status 4)."""
     rows, _ = friction
     # MuJoCo's profiling timers, which nothing reads, cost a clock read at each stage's ends.
     mujoco.set_mjcb_time(lib.touchdown_mujoco_no_clock)
-    step1, step2 = half_steps()
-    mj = MjLoop(step1, step2, model._address, data._address, data.efc_frictionloss.ctypes.data, rows.start)
+    step1, step2, set_log_handler = half_steps()
+    mj = MjLoop(
+        step1, step2, model._address, data._address, data.efc_frictionloss.ctypes.data, rows.start,
+        set_log_handler, os.path.join(out, DIVERGENCE_FILE).encode(),
+    )
     return lib.touchdown_mujoco_run(h, ctypes.byref(mj))
+
+
+def engine_error(lib, h, error):
+    """The status of a landing whose step MuJoCo stopped with `error` (a mujoco.FatalError) in
+    a loop Python keeps: the library records the diagnostic."""
+    return lib.touchdown_mujoco_engine_error(h, str(error).encode())
 
 
 def run_profiled(lib, h, model, data, friction):
@@ -428,19 +446,23 @@ def run_profiled(lib, h, model, data, friction):
     steps = 0
     start = clock()
     while True:
-        a = clock()
-        step1(model, data)
-        b = clock()
-        status = advance(h)
-        c = clock()
-        t_mujoco += b - a
-        t_rust += c - b
-        if status != 0:
+        try:
+            a = clock()
+            step1(model, data)
+            b = clock()
+            status = advance(h)
+            c = clock()
+            t_mujoco += b - a
+            t_rust += c - b
+            if status != 0:
+                break
+            data.efc_frictionloss[rows] = bounds
+            a = clock()
+            step2(model, data)
+            t_mujoco += clock() - a
+        except mujoco.FatalError as e:
+            status = engine_error(lib, h, e)
             break
-        data.efc_frictionloss[rows] = bounds
-        a = clock()
-        step2(model, data)
-        t_mujoco += clock() - a
         steps += 1
     total = clock() - start
     # Per step: 5 clock reads, of which about one is inside each of the 3 timed spans.
@@ -480,12 +502,16 @@ def run_with_viewer(lib, h, model, data, friction):
     with mujoco.viewer.launch_passive(model, data) as viewer:
         wall = time.perf_counter()
         while viewer.is_running():
-            mujoco.mj_step1(model, data)
-            status = lib.touchdown_mujoco_advance(h)
-            if status != 0:
+            try:
+                mujoco.mj_step1(model, data)
+                status = lib.touchdown_mujoco_advance(h)
+                if status != 0:
+                    break
+                data.efc_frictionloss[rows] = bounds
+                mujoco.mj_step2(model, data)
+            except mujoco.FatalError as e:
+                status = engine_error(lib, h, e)
                 break
-            data.efc_frictionloss[rows] = bounds
-            mujoco.mj_step2(model, data)
             if data.time * slow >= time.perf_counter() - wall + frame:
                 viewer.sync()
                 time.sleep(frame)

@@ -128,8 +128,8 @@ def test_the_mujoco_runner_refuses_a_mujoco_whose_data_it_does_not_know(tmp_path
     assert (tmp_path / "right" / "summary.json").is_file()
     real = runner.MjLoop
 
-    def elsewhere(step1, step2, model, data, frictionloss, first_row):
-        return real(step1, step2, model, data, frictionloss + 8, first_row)
+    def elsewhere(step1, step2, model, data, frictionloss, *rest):
+        return real(step1, step2, model, data, frictionloss + 8, *rest)
 
     monkeypatch.setattr(runner, "MjLoop", elsewhere)
     with pytest.raises(runner.Failure, match="efc_frictionloss is not at byte 161568"):

@@ -396,3 +396,89 @@ fn a_mujoco_warning_stops_the_run_with_a_diagnostic() {
         Ok(_) => panic!("a MuJoCo warning went unnoticed"),
     }
 }
+
+/// A runner (in `dir`) that is `python/mujoco/run.py` with every model's arena cut to 12 KiB
+/// (`<size memory>`): enough to start the 2-2 landing at 8 ft/s, too little for MuJoCo's
+/// constraint solver once its footpads touch (`mj_stackAlloc: out of memory`, an `mju_error`).
+fn runner_with_a_small_arena(dir: &std::path::Path) -> std::path::PathBuf {
+    let wrapper = dir.join("small_arena_run.py");
+    let runner = root().join("python/mujoco/run.py");
+    std::fs::write(
+        &wrapper,
+        format!(
+            r#"import re, runpy, sys
+import mujoco
+compile_xml = mujoco.MjModel.from_xml_string
+mujoco.MjModel.from_xml_string = lambda xml: compile_xml(
+    re.sub(r"(<mujoco[^>]*>)", r'\1<size memory="12K"/>', xml, count=1)
+)
+sys.argv[0] = {runner:?}
+runpy.run_path({runner:?}, run_name="__main__")
+"#
+        ),
+    )
+    .unwrap();
+    wrapper
+}
+
+#[test]
+fn a_mujoco_error_in_a_step_stops_the_landing_with_a_diagnostic_on_every_loop() {
+    // An `mju_error` never returns to MuJoCo's caller. In the library's loop the runner's
+    // handler writes the landing's diagnostic and ends the process with the stopped status; a
+    // serving runner then ends too, and says so; in a loop Python keeps (`--profile`) the error
+    // comes back as `mujoco.FatalError` and stops the landing the same way.
+    let dir = tempfile::tempdir().unwrap();
+    let located = touchdown_mujoco::Launch::locate().unwrap_or_else(|e| panic!("{e}"));
+    let launch = touchdown_mujoco::Launch {
+        runner: runner_with_a_small_arena(dir.path()),
+        ..located
+    };
+    let path = scenario("table-i-2-2-vv8.toml");
+    let t_end = Scenario::load(&path).unwrap().integrator.t_end;
+    let stopped_in_the_step = |result: Result<touchdown_record::Summary, MujocoError>| match result
+    {
+        Err(MujocoError::Diverged(d)) => {
+            assert_eq!(d.law, touchdown_record::Law::Solver);
+            assert!(d.message.contains("mj_stackAlloc"), "{}", d.message);
+            assert!(!d.message.contains('\n'), "one line: {}", d.message);
+            assert!(d.time_s > 0.0 && d.time_s < t_end, "t = {} s", d.time_s);
+            assert!(d.state.position_m.iter().all(|x| x.is_finite()));
+        }
+        Err(e) => panic!("unexpected error {e}"),
+        Ok(_) => panic!("the landing completed in a 12 KiB arena"),
+    };
+    let out = dir.path().join("plain");
+    stopped_in_the_step(launch.run(&path, &out, false));
+    assert!(
+        !out.join("MUJOCO_LOG.TXT").exists(),
+        "the error is the diagnostic's, not a log's"
+    );
+
+    let mut worker = launch.worker().unwrap();
+    stopped_in_the_step(worker.run(&path, &dir.path().join("served"), false));
+    assert!(
+        worker.ended(),
+        "a serving runner that met a MuJoCo error has ended"
+    );
+
+    let profiled = dir.path().join("profiled");
+    let status = Command::new(&launch.python)
+        .arg(&launch.runner)
+        .arg(&path)
+        .arg("--out")
+        .arg(&profiled)
+        .arg("--library")
+        .arg(&launch.library)
+        .arg("--profile")
+        .output()
+        .unwrap();
+    assert_eq!(
+        status.status.code(),
+        Some(touchdown_mujoco::RUNNER_STOPPED_STATUS),
+        "{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    let diagnostic = std::fs::read_to_string(profiled.join("divergence.json")).unwrap();
+    let d: touchdown_record::Divergence = serde_json::from_str(&diagnostic).unwrap();
+    stopped_in_the_step(Err(MujocoError::Diverged(Box::new(d))));
+}

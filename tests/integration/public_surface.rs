@@ -134,7 +134,8 @@ fn the_rapier_engine_exports_its_run_and_its_simulation() {
     );
 }
 
-/// The MuJoCo engine: the landing its runner drives, the runner, the exported model.
+/// The MuJoCo engine: the landing its runner drives, the runner (and its stopped status), the
+/// exported model.
 #[test]
 fn the_mujoco_engine_exports_its_landing_its_runner_and_its_model() {
     assert_surface(
@@ -147,6 +148,7 @@ fn the_mujoco_engine_exports_its_landing_its_runner_and_its_model() {
             "use MujocoLanding",
             "use Launch",
             "use Worker",
+            "use RUNNER_STOPPED_STATUS",
             "use export",
             "use GENERATOR",
             "use unsupported",

@@ -12,9 +12,17 @@
 //! [`touchdown_mujoco_close`]. A call that fails returns a negative status (or null) and
 //! leaves its message for [`touchdown_mujoco_error`]. No call panics across the boundary: a
 //! panic becomes an error message.
+//!
+//! MuJoCo's own errors (`mju_error`: an arena too small for the step, say) never return to
+//! their caller. In the library's loop they reach [`on_mujoco_message`], which writes the
+//! landing's diagnostic (when, the state, MuJoCo's words) and ends the runner with the stopped
+//! status; in a loop Python keeps they come back as `mujoco.FatalError`, and the runner hands
+//! them to [`touchdown_mujoco_engine_error`].
 
 use crate::landing::{GearIndex, MjArrays, ModelSizes, MujocoLanding, MUJOCO_WARNINGS};
+use crate::launch::RUNNER_STOPPED_STATUS;
 use crate::MujocoError;
+use std::cell::Cell;
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
@@ -62,6 +70,39 @@ pub struct MjPointers {
 /// mjData*)`.
 pub type MjHalfStep = unsafe extern "C" fn(*const c_void, *mut c_void);
 
+/// MuJoCo's structured log message (`mjLogMessage` in the pinned MuJoCo's
+/// `include/mujoco/mjtype.h`), what its log handlers get.
+#[repr(C)]
+#[derive(Debug)]
+pub struct MjLogMessage {
+    /// `mjtLogLevel`: 0 debug, 1 info, 2 warning, 3 error ([`MJ_LOG_ERROR`]).
+    pub level: i32,
+    /// `mjtLogTopic` (0 for errors and warnings).
+    pub topic: i32,
+    /// The one-line subject, NUL-terminated.
+    pub subject: [c_char; 1024],
+    /// Multi-line detail, or null.
+    pub body: *const c_char,
+    /// The MuJoCo function that logged it, or null.
+    pub func: *const c_char,
+    /// MuJoCo's source file, or null.
+    pub file: *const c_char,
+    /// MuJoCo's source line, or 0.
+    pub line: i32,
+    /// Whether to prepend a time stamp (`mjtBool`).
+    pub timestamp: u8,
+}
+
+/// `mjLOG_ERROR`: a message after which MuJoCo expects its handler not to return.
+pub const MJ_LOG_ERROR: i32 = 3;
+
+/// A MuJoCo log handler, `mjfLogHandler`: `void (const mjLogMessage*)`.
+pub type MjLogHandler = unsafe extern "C" fn(*const MjLogMessage);
+
+/// `mju_setLogHandler` of the MuJoCo library the runner loaded: sets the global log handler
+/// and returns the one it replaces (MuJoCo's default when none was set).
+pub type MjSetLogHandler = unsafe extern "C" fn(Option<MjLogHandler>) -> Option<MjLogHandler>;
+
 /// Byte offset of the pointer `efc_frictionloss` in `mjData` of the pinned MuJoCo
 /// (python/requirements.txt; `offsetof(mjData, efc_frictionloss)` in the wheel's
 /// `include/mujoco/mjdata.h`). `mj_step1` places the constraint rows anew each step, so the
@@ -87,6 +128,99 @@ pub struct MjLoop {
     pub frictionloss: *const f64,
     /// The first of the stroke joints' friction rows, one per gear in gear order.
     pub first_row: usize,
+    /// `mju_setLogHandler` of the same library: the loop routes MuJoCo's errors to
+    /// [`on_mujoco_message`] while it steps.
+    pub set_log_handler: Option<MjSetLogHandler>,
+    /// Where [`on_mujoco_message`] writes the diagnostic of a MuJoCo error (the runner's
+    /// `divergence.json`), NUL-terminated.
+    pub divergence_path: *const c_char,
+}
+
+/// Where MuJoCo's messages go while [`Runner::run`] steps: the landing whose state a
+/// diagnostic reports, the file it is written to, and the handler MuJoCo had before, which
+/// still gets every message but the errors.
+#[derive(Debug, Clone, Copy)]
+struct ErrorSink {
+    landing: *const MujocoLanding,
+    path: *const c_char,
+    previous: Option<MjLogHandler>,
+}
+
+thread_local! {
+    /// This thread's [`ErrorSink`], while [`Runner::run`] steps.
+    static ERROR_SINK: Cell<Option<ErrorSink>> = const { Cell::new(None) };
+}
+
+/// The log handler of [`Runner::run`]'s loop. A message below an error goes to the handler
+/// MuJoCo had before (its warnings still land in `MUJOCO_LOG.TXT`, which the runner reads). An
+/// error, after which MuJoCo must not resume, ends the runner: the landing's diagnostic
+/// ([`MujocoLanding::engine_error`]) is written to the sink's file and said on standard error,
+/// and the process exits with [`RUNNER_STOPPED_STATUS`] (1 if the file cannot be written), as
+/// the runner does for any stopped landing. Nothing unwinds through MuJoCo.
+///
+/// # Safety
+/// Called by MuJoCo with a valid message, on the thread of [`Runner::run`].
+pub unsafe extern "C" fn on_mujoco_message(msg: *const MjLogMessage) {
+    let (Some(sink), Some(m)) = (ERROR_SINK.with(Cell::get), msg.as_ref()) else {
+        return;
+    };
+    if m.level != MJ_LOG_ERROR {
+        if let Some(previous) = sink.previous {
+            previous(msg);
+        }
+        return;
+    }
+    let status = catch_unwind(AssertUnwindSafe(|| {
+        let subject = std::slice::from_raw_parts(m.subject.as_ptr().cast::<u8>(), m.subject.len());
+        let mut what = match CStr::from_bytes_until_nul(subject) {
+            Ok(c) => c.to_string_lossy().into_owned(),
+            Err(_) => String::from_utf8_lossy(subject).into_owned(),
+        };
+        if !m.func.is_null() {
+            what = format!("{}: {what}", CStr::from_ptr(m.func).to_string_lossy());
+        }
+        if !m.body.is_null() {
+            what = format!(
+                "{what} ({})",
+                CStr::from_ptr(m.body).to_string_lossy().trim()
+            );
+        }
+        let Some(landing) = sink.landing.as_ref() else {
+            eprintln!("run.py: MuJoCo stopped with an error before the landing was bound: {what}");
+            return 1;
+        };
+        let divergence = landing.engine_error(&what);
+        eprintln!("run.py: {divergence}");
+        let path = CStr::from_ptr(sink.path).to_string_lossy().into_owned();
+        let written = serde_json::to_string(&divergence)
+            .map_err(|e| e.to_string())
+            .and_then(|json| std::fs::write(&path, json).map_err(|e| e.to_string()));
+        match written {
+            Ok(()) => RUNNER_STOPPED_STATUS,
+            Err(e) => {
+                eprintln!("run.py: cannot write the diagnostic {path}: {e}");
+                1
+            }
+        }
+    }))
+    .unwrap_or(1);
+    std::process::exit(status);
+}
+
+/// MuJoCo's log handler as [`Runner::run`]'s loop sets it, restored when dropped.
+struct LogHandlerSet {
+    set: MjSetLogHandler,
+    previous: Option<MjLogHandler>,
+}
+
+impl Drop for LogHandlerSet {
+    fn drop(&mut self) {
+        ERROR_SINK.with(|s| s.set(None));
+        // SAFETY: `set` is the library's mju_setLogHandler and `previous` what it returned.
+        unsafe {
+            (self.set)(self.previous);
+        }
+    }
 }
 
 /// A runner's state behind the C ABI.
@@ -168,14 +302,20 @@ impl Runner {
     /// for the call, and nothing else touches them meanwhile.
     unsafe fn run(&mut self, mj: &MjLoop) -> Result<i32, MujocoError> {
         let binding = |m: &str| Err(MujocoError::Binding(m.into()));
-        let (Some(step1), Some(step2)) = (mj.step1, mj.step2) else {
-            return binding("null mj_step1 or mj_step2");
+        let (Some(step1), Some(step2), Some(set_log_handler)) =
+            (mj.step1, mj.step2, mj.set_log_handler)
+        else {
+            return binding("null mj_step1, mj_step2 or mju_setLogHandler");
         };
         let (Some(landing), Some(p)) = (self.landing.as_ref(), self.pointers) else {
             return binding("run before a successful bind");
         };
-        if mj.model.is_null() || mj.data.is_null() || mj.frictionloss.is_null() {
-            return binding("null model, data or friction rows");
+        if mj.model.is_null()
+            || mj.data.is_null()
+            || mj.frictionloss.is_null()
+            || mj.divergence_path.is_null()
+        {
+            return binding("null model, data, friction rows or diagnostic path");
         }
         let legs = landing.legs();
         let rows = (mj.data as *const u8).add(EFC_FRICTIONLOSS_OFFSET) as *const *mut f64;
@@ -186,7 +326,26 @@ impl Runner {
                  (run scripts/setup-python)"
             )));
         }
+        let handler = LogHandlerSet {
+            set: set_log_handler,
+            previous: set_log_handler(Some(on_mujoco_message)),
+        };
+        // The sink's landing is taken anew before each half-step, after `advance` has
+        // borrowed the landing mutably: the handler only reads it, and only while MuJoCo runs.
+        let sink = |r: &Runner| {
+            ERROR_SINK.with(|s| {
+                s.set(Some(ErrorSink {
+                    landing: r
+                        .landing
+                        .as_ref()
+                        .map_or(std::ptr::null(), |l| l as *const _),
+                    path: mj.divergence_path,
+                    previous: handler.previous,
+                }))
+            })
+        };
         loop {
+            sink(self);
             step1(mj.model, mj.data);
             let status = self.advance()?;
             if status != 0 {
@@ -196,6 +355,7 @@ impl Runner {
             for k in 0..legs {
                 *row.add(k) = *p.friction_bound.add(k);
             }
+            sink(self);
             step2(mj.model, mj.data);
         }
     }
@@ -368,6 +528,32 @@ pub unsafe extern "C" fn touchdown_mujoco_bind(
 pub unsafe extern "C" fn touchdown_mujoco_advance(runner: *mut Runner) -> i32 {
     match runner.as_mut() {
         Some(r) => r.guard(Runner::advance),
+        None => -1,
+    }
+}
+
+/// Stops the landing on an error MuJoCo raised in a step of a loop Python keeps (`what`: the
+/// `mujoco.FatalError`'s words): sets the runner's divergence
+/// ([`MujocoLanding::engine_error`], read with [`touchdown_mujoco_divergence`]) and error, and
+/// returns −1.
+///
+/// # Safety
+/// `runner` comes from [`touchdown_mujoco_open`] and was bound; `what` is a NUL-terminated
+/// string.
+#[no_mangle]
+pub unsafe extern "C" fn touchdown_mujoco_engine_error(
+    runner: *mut Runner,
+    what: *const c_char,
+) -> i32 {
+    match runner.as_mut() {
+        Some(r) => r.guard(|r| {
+            let what = text(what, "MuJoCo's error")?;
+            let landing = r
+                .landing
+                .as_ref()
+                .ok_or_else(|| MujocoError::Binding("an error before a successful bind".into()))?;
+            Err(MujocoError::Diverged(Box::new(landing.engine_error(what))))
+        }),
         None => -1,
     }
 }

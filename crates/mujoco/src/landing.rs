@@ -497,6 +497,24 @@ impl MujocoLanding {
         }
     }
 
+    /// The diagnostic of an error MuJoCo raised in its own step (`mju_error`, `what` in its
+    /// words, its lines joined into one): the landing stops in the engine's solver, at the
+    /// state the last step booked.
+    pub fn engine_error(&self, what: &str) -> touchdown_record::Divergence {
+        let what = what
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        Fault {
+            law: Law::Solver,
+            leg: None,
+            message: format!("MuJoCo stopped with an error in its step: {what}"),
+        }
+        .at(self.t, &self.vehicle)
+    }
+
     fn diverged(&self, fault: Fault) -> MujocoError {
         MujocoError::Diverged(Box::new(fault.at(self.t, &self.vehicle)))
     }

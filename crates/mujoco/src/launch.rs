@@ -169,7 +169,8 @@ pub struct Worker {
 impl Worker {
     /// Lands `scenario` and writes `summary.json`, and with `history` also `history.csv`, into
     /// `out`, as [`Launch::run`] does. A worker that fails outside a landing (it died, it hung
-    /// past the wall-clock guard) is of no further use: start another.
+    /// past the wall-clock guard), or that [`Worker::ended`] on one (a MuJoCo error in a step),
+    /// is of no further use: start another.
     pub fn run(
         &mut self,
         scenario: &Path,
@@ -187,7 +188,7 @@ impl Worker {
             None => Err(std::io::Error::other("the runner's input is closed")),
         };
         if let Err(e) = sent {
-            return Err(self.died(&format!("cannot send it the landing: {e}")));
+            return Err(self.died(&format!("cannot send it the landing: {e}"), None));
         }
         match self
             .replies
@@ -208,20 +209,30 @@ impl Worker {
                     "the runner was still going after the {RUNNER_WALL_CLOCK_S} s wall-clock guard and was stopped"
                 )))
             }
-            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => Err(self.died("it ended")),
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                Err(self.died("it ended", Some(out)))
+            }
         }
     }
 
-    /// The error of a runner that ended or cannot be reached: what it said on standard error.
-    fn died(&mut self, what: &str) -> MujocoError {
+    /// Whether the runner has ended (it cannot land another scenario).
+    pub fn ended(&mut self) -> bool {
+        !matches!(self.child.try_wait(), Ok(None))
+    }
+
+    /// The error of a runner that ended or cannot be reached: what it said on standard error,
+    /// or the diagnostic it left in `out` when it ended on a stopped landing (a MuJoCo error in
+    /// the library's loop, `ffi::on_mujoco_message`).
+    fn died(&mut self, what: &str, out: Option<&Path>) -> MujocoError {
         let status = self.child.wait().ok().and_then(|s| s.code());
         let said = self
             .errors
             .lock()
             .map(|e| e.trim().to_string())
             .unwrap_or_default();
-        match status {
-            Some(RUNNER_SETUP_STATUS) => setup_error(said),
+        match (status, out) {
+            (Some(RUNNER_SETUP_STATUS), _) => setup_error(said),
+            (Some(RUNNER_STOPPED_STATUS), Some(out)) => stopped(said, out),
             _ => MujocoError::Runner(format!("the serving runner failed ({what}): {said}")),
         }
     }
@@ -241,20 +252,7 @@ fn outcome(status: Option<i32>, message: String, out: &Path) -> Result<Summary, 
     match status {
         Some(0) => {}
         Some(RUNNER_SETUP_STATUS) => return Err(setup_error(message)),
-        Some(RUNNER_STOPPED_STATUS) => {
-            let path = out.join(DIVERGENCE_FILE);
-            let read = std::fs::read_to_string(&path)
-                .map_err(|e| e.to_string())
-                .and_then(|text| serde_json::from_str(&text).map_err(|e| e.to_string()));
-            let _ = std::fs::remove_file(&path);
-            return match read {
-                Ok(d) => Err(MujocoError::Diverged(Box::new(d))),
-                Err(e) => Err(MujocoError::Runner(format!(
-                    "{message} (and its diagnostic {} cannot be read: {e})",
-                    path.display()
-                ))),
-            };
-        }
+        Some(RUNNER_STOPPED_STATUS) => return Err(stopped(message, out)),
         _ => return Err(MujocoError::Runner(message)),
     }
     let path = out.join("summary.json");
@@ -263,6 +261,23 @@ fn outcome(status: Option<i32>, message: String, out: &Path) -> Result<Summary, 
     })?;
     serde_json::from_str(&text)
         .map_err(|e| MujocoError::Runner(format!("{}: not a summary: {e}", path.display())))
+}
+
+/// The error of a landing the runner stopped with a diagnostic, which it wrote into `out`
+/// (`message`: what it said).
+fn stopped(message: String, out: &Path) -> MujocoError {
+    let path = out.join(DIVERGENCE_FILE);
+    let read = std::fs::read_to_string(&path)
+        .map_err(|e| e.to_string())
+        .and_then(|text| serde_json::from_str(&text).map_err(|e| e.to_string()));
+    let _ = std::fs::remove_file(&path);
+    match read {
+        Ok(d) => MujocoError::Diverged(Box::new(d)),
+        Err(e) => MujocoError::Runner(format!(
+            "{message} (and its diagnostic {} cannot be read: {e})",
+            path.display()
+        )),
+    }
 }
 
 /// Runs `cmd` (its standard output discarded, its standard error collected) for at most

@@ -23,7 +23,7 @@ mod launch;
 mod mjcf;
 
 pub use landing::{refusal, GearIndex, MjArrays, ModelSizes, MujocoLanding};
-pub use launch::{Launch, Worker};
+pub use launch::{Launch, Worker, RUNNER_STOPPED_STATUS};
 pub use mjcf::{export, GENERATOR};
 pub use touchdown_multibody::unsupported;
 

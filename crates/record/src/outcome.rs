@@ -43,7 +43,7 @@ pub enum Law {
     EnergyBalance,
     /// The run budget, `integrator.max_steps` (docs/robustness.md, "Budgets").
     RunBudget,
-    /// The engine's own constraint solver (MuJoCo's warnings).
+    /// The engine's own constraint solver (MuJoCo's warnings, and its errors in a step).
     Solver,
 }
 

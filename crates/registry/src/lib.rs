@@ -144,8 +144,9 @@ where
                 None => runner.insert(touchdown_mujoco::Launch::locate()?.worker()?),
             };
             let result = worker.run(resolved, dir, history);
-            // A runner that failed outside a landing is replaced by the next landing.
-            if matches!(result, Err(touchdown_mujoco::MujocoError::Runner(_))) {
+            // A runner that failed outside a landing, or ended on one (a MuJoCo error stops
+            // the landing and ends its process), is replaced by the next landing.
+            if matches!(result, Err(touchdown_mujoco::MujocoError::Runner(_))) || worker.ended() {
                 *runner = None;
             }
             result
