@@ -438,6 +438,138 @@ impl GearLaws {
 mod tests {
     use super::*;
 
+    /// Stroke-out rate of [`strut`], N/m (the extension stop's rate too).
+    const K_SO: f64 = 1e7;
+
+    /// A primary strut: onset 1e5 N/m, 1,000 N to 0.1 m, stops at [`K_SO`] with restitution
+    /// `e`; no viscous force, no bearing friction.
+    fn strut(e: f64) -> PrimaryStrutLaw {
+        let stages = [Stage {
+            crush_load: 1000.0,
+            stroke_end: 0.1,
+        }];
+        PrimaryStrutLaw {
+            honeycomb: Honeycomb::new(LoadStroke::new(1e5, &stages, K_SO).unwrap(), 1e6, e)
+                .unwrap(),
+            viscous: Viscous::NONE,
+            bearing: Bearing {
+                friction_coefficient: 0.0,
+                inner_cylinder_length: 0.3,
+                initial_overlap: 0.1,
+            },
+        }
+    }
+
+    /// The extension stop's mapping by hand: past full extension (c < 0) the primary pulls
+    /// back with K_so·(−c) on first loading, a tension (negative in the compression-positive
+    /// convention), on the loading line below its deepest point and on the unloading curve
+    /// K_so·d_max·(d/d_max)^n above it; its memory is its own (a bottomed honeycomb keeps its
+    /// x_max through an extension, its bottoming ended as at any stroke below its capacity, and
+    /// the extension stop's engagement ends above full extension); it stores what it would
+    /// return, e²·F·d/2.
+    #[test]
+    fn the_extension_stop_pulls_back_with_its_own_memory() {
+        let e = 0.5;
+        let law = strut(e);
+        let n = 2.0 / (e * e) - 1.0;
+        let fresh = PrimaryMemory::default();
+        let d = 2e-3;
+        assert_eq!(law.stroke_force(-d, fresh), -K_SO * d);
+        assert_eq!(law.stop_force(-d, fresh), -K_SO * d);
+        assert_eq!(law.branch(-d, fresh), (Branch::ExtensionStop, K_SO));
+        let stored = law.stored_energy(-d, fresh);
+        assert!((stored - e * e * K_SO * d * d / 2.0).abs() <= 1e-12 * stored);
+        // Between full extension and the honeycomb's onset nothing acts.
+        assert_eq!(law.stroke_force(0.0, fresh), 0.0);
+
+        // Bottomed first: 5 mm past the capacity, committed, then out to −d.
+        let mut memory = fresh;
+        law.commit(0.105, &mut memory);
+        let bottomed = memory.compression;
+        assert!(law.stop_force(0.105, memory) > 0.0);
+        law.commit(-d, &mut memory);
+        let mut unbottomed = bottomed;
+        law.honeycomb.commit(0.05, &mut unbottomed);
+        assert_eq!(unbottomed.max_stroke(), 0.105);
+        assert_eq!(
+            memory.compression, unbottomed,
+            "the honeycomb's memory is its own"
+        );
+        assert_eq!(memory.extension_depth, d);
+        assert_eq!(
+            law.stroke_force(-d, memory),
+            -K_SO * d,
+            "the stop is its own"
+        );
+        // Coming back: the unloading curve, its own rate.
+        let half = law.stroke_force(-d / 2.0, memory);
+        assert!((half + K_SO * d * 0.5f64.powf(n)).abs() <= 1e-12 * K_SO * d);
+        assert_eq!(
+            law.branch(-d / 2.0, memory),
+            (Branch::ExtensionStop, law.honeycomb.stop.unloading_rate())
+        );
+        // Back above full extension the engagement ends and the honeycomb is as it was.
+        law.commit(0.01, &mut memory);
+        assert_eq!(memory.extension_depth, 0.0);
+        assert_eq!(memory.compression, unbottomed);
+        assert_eq!(
+            law.stroke_force(-d, memory),
+            -K_SO * d,
+            "a new engagement loads afresh"
+        );
+    }
+
+    /// A footpad mass m pulling the strut past full extension at speed v, m·c̈ = −F(c) with
+    /// each accepted stroke committed (velocity Verlet, as an engine steps): the closed forms
+    /// of a linear stop. It goes v·√(m/K_so) deep, stores e² of its kinetic energy there,
+    /// and leaves full extension at e·v, compressing (a plastic stop keeps it where it
+    /// stopped).
+    #[test]
+    fn a_footpad_pulling_past_full_extension_leaves_at_e_times_its_speed() {
+        let (m, v) = (5.0, 2.0);
+        let depth = v * (m / K_SO).sqrt();
+        for e in [0.0, 0.3, 0.5, 0.8, 1.0] {
+            let law = strut(e);
+            let dt = 1e-3 * (m / law.honeycomb.stop.stiffest_rate()).sqrt();
+            let mut memory = PrimaryMemory::default();
+            let (mut c, mut rate) = (0.0, -v);
+            let mut deepest_energy = 0.0;
+            for _ in 0..10_000_000 {
+                let a0 = -law.stroke_force(c, memory) / m;
+                c += rate * dt + 0.5 * a0 * dt * dt;
+                let a1 = -law.stroke_force(c, memory) / m;
+                let was = rate;
+                rate += 0.5 * (a0 + a1) * dt;
+                law.commit(c, &mut memory);
+                if was < 0.0 && rate >= 0.0 {
+                    deepest_energy = law.stored_energy(c, memory);
+                    if e == 0.0 {
+                        break;
+                    }
+                }
+                if c >= 0.0 {
+                    break;
+                }
+            }
+            let kinetic = 0.5 * m * v * v;
+            assert!(
+                (deepest_energy - e * e * kinetic).abs() <= 2e-3 * kinetic,
+                "e = {e}: stored {deepest_energy} J at the deepest point, e²·{kinetic} J expected"
+            );
+            if e == 0.0 {
+                assert!((-c - depth).abs() < 1e-3 * depth, "e = 0: held at {c} m");
+                assert!(rate.abs() < 1e-3 * v, "a plastic stop keeps it: {rate} m/s");
+            } else {
+                assert!((memory.extension_depth, c >= 0.0) == (0.0, true));
+                assert!(
+                    (rate - e * v).abs() < 2e-3 * e * v,
+                    "e = {e}: left at {rate} m/s, {} expected",
+                    e * v
+                );
+            }
+        }
+    }
+
     #[test]
     fn the_stiffest_law_engaged_is_named_with_its_branch() {
         let load = |leg, force, branch, rate| StrutLoad {
