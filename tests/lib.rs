@@ -3,7 +3,7 @@
 use nalgebra::Vector3;
 use std::path::PathBuf;
 use touchdown_laws::{GearLaws, LoadStroke};
-use touchdown_record::{Outcome, Summary};
+use touchdown_record::{Outcome, Sample, Summary};
 use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::Scenario;
 
@@ -265,5 +265,55 @@ pub fn assert_rebounds_fall(
     assert!(
         rises[3] < 0.05 * rises[0],
         "{label}: still bouncing {rises:?}"
+    );
+}
+
+/// `fig-25-26` with spikes 0.02 ft deep in place of its wall (docs/errata.md, "Spikes, not a
+/// wall"), written by [`variant`] as `name` (one name per test: tests run side by side).
+pub fn spiked_fig_25_26(name: &str) -> PathBuf {
+    variant(
+        "fig-25-26.toml",
+        name,
+        "[surface]\nobstacle = 0.0\nspike_depth = 0.02\n",
+    )
+}
+
+/// Spikes, not a wall (docs/errata.md, "Spikes, not a wall"): along the `samples` of a landing
+/// of the spiked `fig-25-26` ([`spiked_fig_25_26`], scenario `sc`) on `engine`, a footpad more
+/// than its engagement depth above its plane at two samples running feels no lateral restraint
+/// (its `restraint_force` is 0 N), and the uphill footpads 3 and 4, which leave the ground,
+/// move sideways with their gear while they fly; the spikes do hold the footpads in the ground
+/// (a restraint force somewhere), so that a restraint never built does not pass.
+pub fn assert_spikes_let_go_of_flying_footpads(engine: &str, sc: &Scenario, samples: &[Sample]) {
+    let held = samples
+        .iter()
+        .flat_map(|s| s.legs.iter().map(|g| g.restraint_force.abs()))
+        .fold(0.0, f64::max);
+    assert!(
+        held > 1.0,
+        "{engine}: the spikes never held a footpad ({held} N)"
+    );
+    let mut flew = [0.0f64; 4];
+    for pair in samples.windows(2) {
+        for (i, p) in sc.surface.pads.iter().enumerate() {
+            let depth = p.spike_depth;
+            assert!(depth > 0.0, "fig-25-26 has spikes");
+            let out = |s: &Sample| s.legs[i].pad_position.z > p.plane() + depth;
+            if out(&pair[0]) && out(&pair[1]) {
+                let f = pair[1].legs[i].restraint_force;
+                assert!(
+                    f == 0.0,
+                    "{engine}: leg {} held by {f} N at t = {} s, out of the ground",
+                    i + 1,
+                    pair[1].t
+                );
+                let moved = pair[1].legs[i].pad_position.xy() - pair[0].legs[i].pad_position.xy();
+                flew[i] += moved.norm();
+            }
+        }
+    }
+    assert!(
+        flew[2] > 0.01 && flew[3] > 0.01,
+        "{engine}: the flying footpads moved {flew:?} m sideways"
     );
 }

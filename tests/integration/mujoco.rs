@@ -482,3 +482,21 @@ fn a_mujoco_error_in_a_step_stops_the_landing_with_a_diagnostic_on_every_loop() 
     let d: touchdown_record::Divergence = serde_json::from_str(&diagnostic).unwrap();
     stopped_in_the_step(Err(MujocoError::Diverged(Box::new(d))));
 }
+
+/// Spikes, not a wall (docs/errata.md, "Spikes, not a wall"), on MuJoCo: its obstacle wall
+/// lets go of a footpad that lifts out of the ground, as the core's and the rebuild's do
+/// (`rapier.rs`, `a_spike_lets_go_of_a_footpad_that_lifts_out`).
+#[test]
+fn a_spike_lets_go_of_a_footpad_that_lifts_out_on_mujoco() {
+    let path = touchdown_tests::spiked_fig_25_26("spiked-mujoco");
+    let sc = Scenario::load(&path).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let launch = touchdown_mujoco::Launch::locate().unwrap_or_else(|e| panic!("{e}"));
+    launch
+        .run(&path, out.path(), true)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut samples = Vec::new();
+    touchdown_record::history::read(&out.path().join("history.csv"), |s| samples.push(s.clone()))
+        .unwrap();
+    touchdown_tests::assert_spikes_let_go_of_flying_footpads("mujoco", &sc, &samples);
+}

@@ -268,44 +268,14 @@ fn a_wall_holds_a_lifted_footpad_in_the_rebuild() {
     );
 }
 
-/// Spikes, not a wall (docs/errata.md, "Spikes, not a wall"): on `fig-25-26` with spikes
-/// 0.02 ft deep in place of its wall, on the core and the rebuild, a footpad more than its engagement depth above its
-/// plane at two samples running feels no lateral restraint (its `restraint_force` is 0 N), and
-/// the uphill footpads that leave the ground move sideways with their gear while they fly.
+/// Spikes, not a wall (docs/errata.md, "Spikes, not a wall"), on the core and the rebuild
+/// (`touchdown_tests::assert_spikes_let_go_of_flying_footpads`; MuJoCo's in
+/// `mujoco.rs`).
 #[test]
 fn a_spike_lets_go_of_a_footpad_that_lifts_out() {
-    let path = touchdown_tests::variant(
-        "fig-25-26.toml",
-        "spiked",
-        "[surface]\nobstacle = 0.0\nspike_depth = 0.02\n",
-    );
-    let sc = Scenario::load(&path).unwrap();
+    let sc = Scenario::load(touchdown_tests::spiked_fig_25_26("spiked")).unwrap();
     let (core, rapier) = histories_of(&sc);
     for (engine, h) in [("core", &core.1), ("rapier", &rapier.1)] {
-        let mut flew = [0.0f64; 4];
-        for pair in h.windows(2) {
-            for (i, p) in sc.surface.pads.iter().enumerate() {
-                let depth = p.spike_depth;
-                assert!(depth > 0.0, "fig-25-26 has spikes");
-                let out = |s: &Sample| s.legs[i].pad_position.z > p.plane() + depth;
-                if out(&pair[0]) && out(&pair[1]) {
-                    let f = pair[1].legs[i].restraint_force;
-                    assert!(
-                        f == 0.0,
-                        "{engine}: leg {} held by {f} N at t = {} s, out of the ground",
-                        i + 1,
-                        pair[1].t
-                    );
-                    let moved =
-                        pair[1].legs[i].pad_position.xy() - pair[0].legs[i].pad_position.xy();
-                    flew[i] += moved.norm();
-                }
-            }
-        }
-        // The uphill legs 3 and 4 rise out of the ground and swing with their gear.
-        assert!(
-            flew[2] > 0.01 && flew[3] > 0.01,
-            "{engine}: the flying footpads moved {flew:?} m sideways"
-        );
+        touchdown_tests::assert_spikes_let_go_of_flying_footpads(engine, &sc, h);
     }
 }
