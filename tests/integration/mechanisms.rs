@@ -861,3 +861,87 @@ fn the_viscous_force_dissipates_what_its_law_gives_along_the_strokes_on_every_en
         assert!(e.residual_j.abs() < 0.01 * total, "{engine}: {e:?}");
     }
 }
+
+/// The descent engine in free flight (eqs. 69-71), an independent solution: released 0.8 ft
+/// above level ground at rest, the vehicle falls as m·z̈ = F1·e^(−K·t)·AMP(ZNOZ) − m·g, solved
+/// here by RK4 at 1 µs with the tailoff (t2 = 0) and the amplification table's linear
+/// interpolation in the nozzle clearance ZNOZ = z + R_T,z written out by hand; the nozzle
+/// passes from 0.95 to 0.60 ft, where AMP rises from 1.003 to 1.029. On the core its
+/// footpads ride rigidly, so m is the vehicle's; on rapier and MuJoCo the gear links hang on
+/// their lossless extension stops and move with it, so m is the whole multibody's (the thrust
+/// acts on the vehicle alone). Within 5e-4 of the fall and of the speed: the amplification's
+/// whole effect is 3.7e-3 of the fall and 2.6e-3 of the speed, the tailoff's far more; the
+/// core comes within 6e-7, rapier and MuJoCo within 6e-5 (their links ring on the stops).
+#[test]
+fn a_vehicle_falls_under_its_tailing_off_amplified_thrust_as_its_equation_of_motion_gives() {
+    let free_flight = "[touchdown]\nvertical_velocity = 0.0\nclearance = 0.8\n\
+                       [primary_strut.compression]\nstop_restitution = 1.0\n";
+    for engine in Engine::ALL {
+        let rigid = if engine == Engine::Core {
+            "[footpad]\ndetached = \"rigid\"\n"
+        } else {
+            ""
+        };
+        let path = variant(
+            "thrust-tailoff.toml",
+            &format!("free-flight-{engine}"),
+            &format!("{free_flight}{rigid}"),
+        );
+        let sc = Scenario::load(&path).unwrap();
+        let thrust = sc.thrust.clone().unwrap();
+        let (f1, k) = (thrust.thrust, thrust.decay_rate.unwrap());
+        assert_eq!(
+            (thrust.tailoff_start, thrust.clock_at_touchdown),
+            (0.0, 0.0)
+        );
+        let table = thrust.amplification.unwrap();
+        let amp = |znoz: f64| {
+            let (first, last) = (table[0], table[table.len() - 1]);
+            if znoz <= first.0 {
+                return first.1;
+            }
+            if znoz >= last.0 {
+                return last.1;
+            }
+            let i = table.iter().position(|p| p.0 > znoz).unwrap();
+            let ((x0, y0), (x1, y1)) = (table[i - 1], table[i]);
+            y0 + (y1 - y0) * (znoz - x0) / (x1 - x0)
+        };
+        let g = sc.vehicle.gravity;
+        let mass = match engine {
+            Engine::Core => sc.vehicle.mass,
+            _ => {
+                let link = sc.footpad.mass * (1.0 + sc.links.outer_cylinder_mass_ratio);
+                sc.vehicle.mass + sc.legs.len() as f64 * link
+            }
+        };
+        let (_, rows) = landed_with_history(engine, &path);
+        let (t, z, vz) = (
+            rows.column("t_s"),
+            rows.column("z_m"),
+            rows.column("vz_m_s"),
+        );
+        let (t_end, z_end, vz_end) = (t[t.len() - 1], z[z.len() - 1], vz[vz.len() - 1]);
+        // RK4 of (z, ż) from the run's start.
+        let accel = |t: f64, z: f64| f1 * (-k * t).exp() * amp(z + thrust.nozzle_exit.z) / mass - g;
+        let n = (t_end / 1e-6).round() as usize;
+        let h = t_end / n as f64;
+        let (mut zs, mut v) = (z[0], vz[0]);
+        for i in 0..n {
+            let ti = i as f64 * h;
+            let (k1z, k1v) = (v, accel(ti, zs));
+            let (k2z, k2v) = (v + 0.5 * h * k1v, accel(ti + 0.5 * h, zs + 0.5 * h * k1z));
+            let (k3z, k3v) = (v + 0.5 * h * k2v, accel(ti + 0.5 * h, zs + 0.5 * h * k2z));
+            let (k4z, k4v) = (v + h * k3v, accel(ti + h, zs + h * k3z));
+            zs += h / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
+            v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+        }
+        let fall = (z_end - zs) / (z[0] - zs);
+        let speed = (vz_end - v) / v;
+        assert!(
+            fall.abs() < 5e-4 && speed.abs() < 5e-4,
+            "{engine}: at t = {t_end} s z = {z_end} m (RK4 {zs} m, {fall:.2e} of the fall), \
+             ż = {vz_end} m/s (RK4 {v} m/s, {speed:.2e})"
+        );
+    }
+}
