@@ -1004,41 +1004,52 @@ fn a_nozzle_crushes_to_the_depth_its_constant_load_gives_on_every_engine() {
 }
 
 /// The honeycomb's unloading branch in a run, on every engine (docs/engines.md, "Shared laws
-/// and their oracles"): after its largest stroke x_max, where it carried F_max, each primary of
+/// and their oracles"): after its largest stroke x_max, where it carried F_max, each strut of
 /// the symmetric drop unloads along the backoff line F = F_max − K_B·(x_max − x) of the
 /// scenario's own K_B while it carries load, and carries none below it (shorter than its
-/// permanent set); this checks each engine's committed memory and force against the closed
+/// permanent set): the primaries in compression, the secondaries, which the drop pulls, on
+/// their tension side. This checks each engine's committed memory and force against the closed
 /// form, which the drop's largest-stroke test does not reach. Within 1e-6 of F_max; the history
 /// prints 10 significant digits, and every engine comes within 1e-8.
 #[test]
-fn every_engine_unloads_its_primaries_along_the_backoff_line() {
+fn every_engine_unloads_its_struts_along_the_backoff_line() {
     let path = scenario("flat-drop.toml");
     let sc = Scenario::load(&path).unwrap();
-    let k_b = sc.primary.compression.backoff_rate;
+    let struts = [
+        ("primary", sc.primary.compression.backoff_rate),
+        ("sec31", sc.secondary.tension.backoff_rate),
+        ("sec41", sc.secondary.tension.backoff_rate),
+    ];
     for engine in Engine::ALL {
         let (_, rows) = landed_with_history(engine, &path);
         for leg in 1..=sc.legs.len() {
-            let x = rows.column(&format!("leg{leg}_primary_stroke_m"));
-            let f = rows.column(&format!("leg{leg}_primary_force_n"));
-            let top = (0..x.len()).fold(0, |m, k| if x[k] > x[m] { k } else { m });
-            let (x_max, f_max) = (x[top], f[top]);
-            let mut unloaded = 0;
-            for k in top + 1..x.len() {
-                // Slack once the line reaches zero: the strut is shorter than its permanent set.
-                let line = (f_max - k_b * (x_max - x[k])).max(0.0);
-                unloaded += usize::from(line > 0.0);
+            for (strut, k_b) in struts {
+                let x = rows.column(&format!("leg{leg}_{strut}_stroke_m"));
+                let f = rows.column(&format!("leg{leg}_{strut}_force_n"));
+                let top = (0..x.len()).fold(0, |m, k| if x[k] > x[m] { k } else { m });
+                let (x_max, f_max) = (x[top], f[top]);
                 assert!(
-                    (f[k] - line).abs() <= 1e-6 * f_max,
-                    "{engine}, leg {leg}: {} N at stroke {} m, the backoff line from ({x_max} m, \
-                     {f_max} N) gives {line} N",
-                    f[k],
-                    x[k]
+                    x_max > 0.0 && f_max > 0.0,
+                    "{engine}, leg {leg} {strut}: not loaded"
+                );
+                let mut unloaded = 0;
+                for k in top + 1..x.len() {
+                    // Slack once the line reaches zero: shorter than its permanent set.
+                    let line = (f_max - k_b * (x_max - x[k])).max(0.0);
+                    unloaded += usize::from(line > 0.0);
+                    assert!(
+                        (f[k] - line).abs() <= 1e-6 * f_max,
+                        "{engine}, leg {leg} {strut}: {} N at stroke {} m, the backoff line \
+                         from ({x_max} m, {f_max} N) gives {line} N",
+                        f[k],
+                        x[k]
+                    );
+                }
+                assert!(
+                    unloaded >= 10,
+                    "{engine}, leg {leg} {strut}: {unloaded} samples unloading"
                 );
             }
-            assert!(
-                unloaded >= 10,
-                "{engine}, leg {leg}: {unloaded} samples unloading"
-            );
         }
     }
 }
