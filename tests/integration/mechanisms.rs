@@ -1003,53 +1003,91 @@ fn a_nozzle_crushes_to_the_depth_its_constant_load_gives_on_every_engine() {
     }
 }
 
+/// The samples of a history after the strut's extreme stroke on one side (`side` +1: the
+/// positive strokes, −1: the negative), checked against the backoff line of that side's
+/// honeycomb, F = F_ext − K_B·(x_ext − x) in that side's direction, while the stroke stays on
+/// that side; no load where the line has reached zero (shorter than the permanent set).
+/// Returns how many samples were unloading along it.
+fn assert_unloads_along_the_backoff_line(
+    what: &str,
+    x: &[f64],
+    f: &[f64],
+    side: f64,
+    k_b: f64,
+) -> usize {
+    let top = (0..x.len()).fold(0, |m, k| if side * x[k] > side * x[m] { k } else { m });
+    let (x_ext, f_ext) = (side * x[top], side * f[top]);
+    assert!(
+        x_ext > 0.0 && f_ext > 0.0,
+        "{what}: not loaded on this side"
+    );
+    let mut unloaded = 0;
+    for k in (top + 1..x.len()).take_while(|&k| side * x[k] > 0.0) {
+        let line = (f_ext - k_b * (x_ext - side * x[k])).max(0.0);
+        unloaded += usize::from(line > 0.0);
+        assert!(
+            (side * f[k] - line).abs() <= 1e-6 * f_ext,
+            "{what}: {} N at stroke {} m, the backoff line from ({} m, {} N) gives {} N",
+            f[k],
+            x[k],
+            side * x_ext,
+            side * f_ext,
+            side * line
+        );
+    }
+    unloaded
+}
+
 /// The honeycomb's unloading branch in a run, on every engine (docs/engines.md, "Shared laws
-/// and their oracles"): after its largest stroke x_max, where it carried F_max, each strut of
-/// the symmetric drop unloads along the backoff line F = F_max − K_B·(x_max − x) of the
-/// scenario's own K_B while it carries load, and carries none below it (shorter than its
-/// permanent set): the primaries in compression, the secondaries, which the drop pulls, on
-/// their tension side. This checks each engine's committed memory and force against the closed
+/// and their oracles"): after its largest stroke x_max, where it carried F_max, a strut unloads
+/// along the backoff line F = F_max − K_B·(x_max − x) of the scenario's own K_B while it carries
+/// load, and carries none below it (shorter than its permanent set). The symmetric drop
+/// checks the primaries in compression and the secondaries, which it pulls, on their tension
+/// side; the 2-2 landing at 8 ft/s (to 0.5 s) the secondaries' compression side, two of which it
+/// crushes 59 mm. This checks each engine's committed memories and forces against the closed
 /// form, which the drop's largest-stroke test does not reach. Within 1e-6 of F_max; the history
 /// prints 10 significant digits, and every engine comes within 1e-8.
 #[test]
 fn every_engine_unloads_its_struts_along_the_backoff_line() {
-    let path = scenario("flat-drop.toml");
-    let sc = Scenario::load(&path).unwrap();
-    let struts = [
-        ("primary", sc.primary.compression.backoff_rate),
-        ("sec31", sc.secondary.tension.backoff_rate),
-        ("sec41", sc.secondary.tension.backoff_rate),
-    ];
+    let drop = scenario("flat-drop.toml");
+    let two_two = variant(
+        "table-i-2-2-vv8.toml",
+        "unloading",
+        "[integrator]\nt_end = 0.5\n",
+    );
     for engine in Engine::ALL {
-        let (_, rows) = landed_with_history(engine, &path);
-        for leg in 1..=sc.legs.len() {
-            for (strut, k_b) in struts {
-                let x = rows.column(&format!("leg{leg}_{strut}_stroke_m"));
-                let f = rows.column(&format!("leg{leg}_{strut}_force_n"));
-                let top = (0..x.len()).fold(0, |m, k| if x[k] > x[m] { k } else { m });
-                let (x_max, f_max) = (x[top], f[top]);
-                assert!(
-                    x_max > 0.0 && f_max > 0.0,
-                    "{engine}, leg {leg} {strut}: not loaded"
-                );
-                let mut unloaded = 0;
-                for k in top + 1..x.len() {
-                    // Slack once the line reaches zero: shorter than its permanent set.
-                    let line = (f_max - k_b * (x_max - x[k])).max(0.0);
-                    unloaded += usize::from(line > 0.0);
-                    assert!(
-                        (f[k] - line).abs() <= 1e-6 * f_max,
-                        "{engine}, leg {leg} {strut}: {} N at stroke {} m, the backoff line \
-                         from ({x_max} m, {f_max} N) gives {line} N",
-                        f[k],
-                        x[k]
-                    );
+        for (path, sides) in [
+            (
+                &drop,
+                [("primary", 1.0), ("sec31", 1.0), ("sec41", 1.0)].as_slice(),
+            ),
+            (&two_two, [("sec31", -1.0), ("sec41", -1.0)].as_slice()),
+        ] {
+            let sc = Scenario::load(path).unwrap();
+            let (_, rows) = landed_with_history(engine, path);
+            let mut unloaded = 0;
+            for leg in 1..=sc.legs.len() {
+                for &(strut, side) in sides {
+                    let k_b = match (strut, side > 0.0) {
+                        ("primary", _) => sc.primary.compression.backoff_rate,
+                        (_, true) => sc.secondary.tension.backoff_rate,
+                        (_, false) => sc.secondary.compression.backoff_rate,
+                    };
+                    let x = rows.column(&format!("leg{leg}_{strut}_stroke_m"));
+                    let f = rows.column(&format!("leg{leg}_{strut}_force_n"));
+                    let what = format!("{engine}, {}, leg {leg} {strut}", path.display());
+                    let n = assert_unloads_along_the_backoff_line(&what, &x, &f, side, k_b);
+                    if path == &drop {
+                        assert!(n >= 10, "{what}: {n} samples unloading");
+                    }
+                    unloaded += n;
                 }
-                assert!(
-                    unloaded >= 10,
-                    "{engine}, leg {leg} {strut}: {unloaded} samples unloading"
-                );
             }
+            assert!(
+                unloaded >= 40,
+                "{engine}, {}: {unloaded} samples unloading",
+                path.display()
+            );
         }
     }
 }
