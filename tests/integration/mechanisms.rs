@@ -22,6 +22,13 @@ fn load(name: &str, overrides: &[(&str, f64)]) -> Scenario {
     Scenario::load_with(scenario(name), overrides).expect("scenario loads")
 }
 
+/// The whole multibody's mass on rapier and MuJoCo, kg: the vehicle and, on every leg, the
+/// footpad and its outer-cylinder link (`engines.links.outer_cylinder_mass_ratio` of it).
+fn multibody_mass(sc: &Scenario) -> f64 {
+    let link = sc.footpad.mass * (1.0 + sc.links.outer_cylinder_mass_ratio);
+    sc.vehicle.mass + sc.legs.len() as f64 * link
+}
+
 fn run(sc: &Scenario) -> Simulation {
     let mut sim = Simulation::new(sc).expect("core builds");
     while !sim.finished() {
@@ -554,26 +561,34 @@ impl Rows {
     }
 }
 
+/// `sim` run to its end with every state written to the history file `path` (`legs` legs).
+fn recorded<L: Landing>(mut sim: L, path: &Path, legs: usize) -> Summary
+where
+    L::Error: std::fmt::Display,
+{
+    let mut h = History::create(path, legs).unwrap();
+    let summary = sim.run(&mut h).unwrap_or_else(|e| panic!("{e}"));
+    h.finish().unwrap();
+    summary
+}
+
 /// A landing on `engine`: its summary and its history, a row at the start and after every step.
 fn landed_with_history(engine: Engine, path: &Path) -> (Summary, Rows) {
     let sc = Scenario::load(path).unwrap_or_else(|e| panic!("{e}"));
     let out = path.with_extension(engine.to_string());
     std::fs::create_dir_all(&out).unwrap();
-    let recorded = |sim: &mut dyn FnMut(&mut History) -> Summary| {
-        let mut h = History::create(&out.join("history.csv"), sc.legs.len()).unwrap();
-        let summary = sim(&mut h);
-        h.finish().unwrap();
-        summary
-    };
+    let history = out.join("history.csv");
     let summary = match engine {
-        Engine::Core => {
-            let mut sim = Simulation::new(&sc).unwrap_or_else(|e| panic!("{e}"));
-            recorded(&mut |h| sim.run(h).unwrap_or_else(|e| panic!("{e}")))
-        }
-        Engine::Rapier => {
-            let mut sim = RapierSimulation::new(&sc).unwrap_or_else(|e| panic!("{e}"));
-            recorded(&mut |h| sim.run(h).unwrap_or_else(|e| panic!("{e}")))
-        }
+        Engine::Core => recorded(
+            Simulation::new(&sc).unwrap_or_else(|e| panic!("{e}")),
+            &history,
+            sc.legs.len(),
+        ),
+        Engine::Rapier => recorded(
+            RapierSimulation::new(&sc).unwrap_or_else(|e| panic!("{e}")),
+            &history,
+            sc.legs.len(),
+        ),
         Engine::Mujoco => {
             let launch = Launch::locate().unwrap_or_else(|e| panic!("{e}"));
             launch
@@ -581,7 +596,7 @@ fn landed_with_history(engine: Engine, path: &Path) -> (Summary, Rows) {
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
         }
     };
-    let rows = Rows::read(&out.join("history.csv"));
+    let rows = Rows::read(&history);
     let _ = std::fs::remove_dir_all(&out);
     (summary, rows)
 }
@@ -597,9 +612,7 @@ fn thrust_equal_to_weight_keeps_the_multibody_engines_descending_steadily() {
     // that settling from taking energy, so the vehicle's kinetic energy measures the thrust
     // alone.
     let sc = load("thrust-tailoff.toml", &[]);
-    let links = sc.footpad.mass * (1.0 + sc.links.outer_cylinder_mass_ratio);
-    let total = sc.vehicle.mass + sc.legs.len() as f64 * links;
-    let thrust = total * sc.vehicle.gravity / LBF;
+    let thrust = multibody_mass(&sc) * sc.vehicle.gravity / LBF;
     let path = variant(
         "thrust-tailoff.toml",
         "multibody-descent",
@@ -910,10 +923,7 @@ fn a_vehicle_falls_under_its_tailing_off_amplified_thrust_as_its_equation_of_mot
         let g = sc.vehicle.gravity;
         let mass = match engine {
             Engine::Core => sc.vehicle.mass,
-            _ => {
-                let link = sc.footpad.mass * (1.0 + sc.links.outer_cylinder_mass_ratio);
-                sc.vehicle.mass + sc.legs.len() as f64 * link
-            }
+            _ => multibody_mass(&sc),
         };
         let (_, rows) = landed_with_history(engine, &path);
         let (t, z, vz) = (
@@ -963,10 +973,7 @@ fn a_nozzle_crushes_to_the_depth_its_constant_load_gives_on_every_engine() {
     for engine in Engine::ALL {
         let (mass, rigid) = match engine {
             Engine::Core => (base.vehicle.mass, "[footpad]\ndetached = \"rigid\"\n"),
-            _ => {
-                let link = base.footpad.mass * (1.0 + base.links.outer_cylinder_mass_ratio);
-                (base.vehicle.mass + base.legs.len() as f64 * link, "")
-            }
+            _ => (multibody_mass(&base), ""),
         };
         let thrust = mass * base.vehicle.gravity / LBF;
         let path = variant(
