@@ -29,6 +29,18 @@ impl Evaluations {
     }
 }
 
+/// The vehicle at `v` as the propulsion laws read it, with its centre of mass's `velocity`
+/// in body axes (m/s).
+fn attitude<'a>(v: &'a VehicleState, velocity: &'a Vector3<f64>) -> Attitude<'a> {
+    Attitude {
+        position: &v.position,
+        velocity,
+        t_bi: &v.t_bi,
+        theta: &v.euler.theta,
+        omega: &v.omega,
+    }
+}
+
 /// Power of the vehicle-level mechanisms on the vehicle, W: all of them (`applied`), and the
 /// driving ones' part (`driving`: thrust and RCS, whose positive work is energy put in).
 #[derive(Debug, Clone, Copy, Default)]
@@ -86,7 +98,9 @@ impl Mechanisms {
     /// (`touchdown_laws::scene::rigid_vehicle`).
     pub fn new(s: &Scenario, slosh: Option<Slosh>) -> Result<Mechanisms, ScenarioError> {
         Ok(Mechanisms {
-            propulsion: Propulsion::from_scenario(s)?,
+            // the rim arrested within the report scheme's longest step (the strides scheme
+            // takes no longer one while the rim can reach the surface: State::stride_step)
+            propulsion: Propulsion::from_scenario(s, s.integrator.dt_max)?,
             slosh,
             soil: scene::soil_from_scenario(s)?,
             curbs: scene::curbs_from_scenario(s)?,
@@ -141,13 +155,13 @@ impl Mechanisms {
         for m in p.mechanisms() {
             state.evaluations.tick(m);
         }
-        let attitude = Attitude {
-            position: &v.position,
-            t_bi: &v.t_bi,
-            theta: &v.euler.theta,
-            omega: &v.omega,
-        };
-        let mut out = p.loads(t, first_contact, &attitude, state.nozzle_crush); // eqs. (72)-(73), (80)-(81)
+        let velocity = v.t_bi.transpose() * v.velocity;
+        let mut out = p.loads(
+            t,
+            first_contact,
+            &attitude(v, &velocity),
+            state.nozzle_crush,
+        ); // eqs. (72)-(73), (80)-(81)
         if let Some(slosh) = &self.slosh {
             state.evaluations.tick(Mechanism::Slosh);
             let axial = slosh.axial(&state.slosh_specific_force);
@@ -159,6 +173,18 @@ impl Mechanisms {
             out.torque += slosh.torque(&lateral); // eq. (117), corrected
         }
         Some(out)
+    }
+
+    /// Whether the nozzle's rim can reach the surface within `horizon` (s) from the vehicle
+    /// at `v` with the crush committed in `state`.
+    pub fn nozzle_within_reach(
+        &self,
+        state: &MechanismState,
+        v: &VehicleState,
+        horizon: f64,
+    ) -> bool {
+        let velocity = v.t_bi.transpose() * v.velocity;
+        (self.propulsion).rim_within_reach(&attitude(v, &velocity), state.nozzle_crush, horizon)
     }
 
     /// Slosh acceleration q̈ at state `v` (eq. 109, corrected), the lagged specific force in

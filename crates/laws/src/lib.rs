@@ -46,7 +46,9 @@ pub use rcs::{DownwardTranslation, Rcs, RcsLoads, RcsMode, RcsParams};
 pub use sliding::sliding_friction;
 pub use slosh::Slosh;
 pub use soil::{Soil, VerticalStep};
-pub use thrust::{engine_loads, Amplification, EngineLoads, Nozzle, RimContact, Tailoff};
+pub use thrust::{
+    engine_loads, Amplification, EngineLoads, Nozzle, RimArrest, RimContact, Tailoff,
+};
 pub use viscous::Viscous;
 
 /// An error raised by a force law: bad parameters at construction, or a state in which the law

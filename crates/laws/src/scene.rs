@@ -3,7 +3,9 @@
 //! (eqs. 108-117). Every engine builds them here, so the mapping from scenario to law exists
 //! once; a parameter a law rejects is reported against its scenario field.
 
-use crate::thrust::{engine_loads, nozzle_clearance, Amplification, EngineLoads, Nozzle, Tailoff};
+use crate::thrust::{
+    engine_loads, nozzle_clearance, Amplification, EngineLoads, Nozzle, RimArrest, Tailoff,
+};
 use crate::{LawError, Rcs, Slosh};
 use nalgebra::{Matrix3, Vector3};
 use touchdown_scenario::model::Mechanism;
@@ -35,8 +37,12 @@ pub struct DescentEngine {
 }
 
 impl DescentEngine {
-    /// The scene's descent engine, if it declares one.
-    pub fn from_scenario(s: &Scenario) -> Result<Option<DescentEngine>, ScenarioError> {
+    /// The scene's descent engine, if it declares one, for an engine whose steps are at most
+    /// `longest_step` (s): the nozzle's rim is arrested within it ([`RimArrest`]).
+    pub fn from_scenario(
+        s: &Scenario,
+        longest_step: f64,
+    ) -> Result<Option<DescentEngine>, ScenarioError> {
         let Some(t) = &s.thrust else { return Ok(None) };
         let tailoff = Tailoff::new(
             t.thrust,
@@ -55,10 +61,15 @@ impl DescentEngine {
         };
         let nozzle = match t.nozzle_crushing {
             None => None,
-            Some((radius, load)) => Some(
-                Nozzle::new(t.nozzle_exit, radius, load)
-                    .map_err(field(s, "thrust.nozzle_crushing"))?,
-            ),
+            Some((radius, load)) => {
+                let v = &s.vehicle;
+                let arrest = RimArrest::new(v.mass, &v.inertia, longest_step)
+                    .map_err(field(s, "thrust.nozzle_crushing"))?;
+                Some(
+                    Nozzle::new(t.nozzle_exit, radius, load, arrest)
+                        .map_err(field(s, "thrust.nozzle_crushing"))?,
+                )
+            }
         };
         Ok(Some(DescentEngine {
             tailoff,
@@ -68,27 +79,36 @@ impl DescentEngine {
         }))
     }
 
-    /// F_TF and MTF in body axes (eqs. 72-73) at simulation time `t` (s) with the vehicle's
-    /// centre of mass at `position` (m, inertial), attitude `t_bi` and the committed nozzle
-    /// crush `crush` (m along Z_B).
+    /// F_TF and MTF in body axes (eqs. 72-73) at simulation time `t` (s) with the vehicle at
+    /// `a` and the committed nozzle crush `crush` (m along Z_B).
     #[inline]
-    pub fn loads(
-        &self,
-        t: f64,
-        position: &Vector3<f64>,
-        t_bi: &Matrix3<f64>,
-        crush: f64,
-    ) -> EngineLoads {
+    pub fn loads(&self, t: f64, a: &Attitude, crush: f64) -> EngineLoads {
+        let (position, t_bi) = (a.position, a.t_bi);
         let clearance = nozzle_clearance(&self.exit, crush, position, t_bi, NOZZLE_SURFACE_Z);
         let taf = self.amplification.factor(clearance) * self.tailoff.thrust(t); // eq. (71)
         let (ffl, r_f) = match &self.nozzle {
             Some(n) => {
                 let rim = n.rim_contact(crush, position, t_bi, NOZZLE_SURFACE_Z);
-                (n.force(&rim), rim.centroid)
+                (n.force(&rim, a.velocity, a.omega), rim.centroid)
             }
             None => (0.0, self.exit),
         };
         engine_loads(taf, &self.exit, ffl, &r_f) // eqs. (72)-(73)
+    }
+
+    /// Whether the nozzle's rim, with the committed crush `crush` (m), can reach the surface
+    /// within `horizon` (s) from the vehicle at `a`: its lowest point is at most the distance
+    /// any rim point can descend in that time at the vehicle's present rates (|ω| times the
+    /// farthest rim point's reach, plus the centre of mass's descent). False without nozzle
+    /// crushing.
+    pub fn rim_within_reach(&self, a: &Attitude, crush: f64, horizon: f64) -> bool {
+        let Some(n) = &self.nozzle else { return false };
+        let centre = self.exit + Vector3::new(0.0, 0.0, crush);
+        let tilt = a.t_bi[(2, 0)].hypot(a.t_bi[(2, 1)]); // the rim's lowest point, closed form
+        let lowest = nozzle_clearance(&self.exit, crush, a.position, a.t_bi, NOZZLE_SURFACE_Z)
+            - n.exit_radius() * tilt;
+        let descent = -(a.t_bi * a.velocity).z + a.omega.norm() * (centre.norm() + n.exit_radius());
+        lowest <= horizon * descent.max(0.0)
     }
 
     /// How far the nozzle rim penetrates the surface beyond the committed crush `crush` (m),
@@ -129,6 +149,8 @@ impl AppliedLoads {
 pub struct Attitude<'a> {
     /// Centre of mass, inertial (surface) frame, m.
     pub position: &'a Vector3<f64>,
+    /// Velocity of the centre of mass, body axes, m/s.
+    pub velocity: &'a Vector3<f64>,
     /// T_BI, body → inertial.
     pub t_bi: &'a Matrix3<f64>,
     /// Euler angles θ (eq. 1 order), rad.
@@ -150,10 +172,11 @@ pub struct Propulsion {
 }
 
 impl Propulsion {
-    /// What `s` declares of the engine and the RCS.
-    pub fn from_scenario(s: &Scenario) -> Result<Propulsion, ScenarioError> {
+    /// What `s` declares of the engine and the RCS, for an engine whose steps are at most
+    /// `longest_step` (s).
+    pub fn from_scenario(s: &Scenario, longest_step: f64) -> Result<Propulsion, ScenarioError> {
         Ok(Propulsion {
-            engine: DescentEngine::from_scenario(s)?,
+            engine: DescentEngine::from_scenario(s, longest_step)?,
             rcs: rcs_from_scenario(s)?,
         })
     }
@@ -190,7 +213,7 @@ impl Propulsion {
     ) -> AppliedLoads {
         let mut out = AppliedLoads::default();
         if let Some(engine) = &self.engine {
-            let e = engine.loads(t, a.position, a.t_bi, nozzle_crush);
+            let e = engine.loads(t, a, nozzle_crush);
             out.force += e.force; // eq. (72)
             out.torque += e.torque; // eq. (73)
             out.driving.0 += e.thrust.0;
@@ -209,6 +232,12 @@ impl Propulsion {
             out.driving.1 += r.torque;
         }
         out
+    }
+
+    /// Whether the nozzle's rim can reach the surface within `horizon` (s) from the vehicle at
+    /// `a` with the committed crush `nozzle_crush` (m) ([`DescentEngine::rim_within_reach`]).
+    pub fn rim_within_reach(&self, a: &Attitude, nozzle_crush: f64, horizon: f64) -> bool {
+        (self.engine).is_some_and(|e| e.rim_within_reach(a, nozzle_crush, horizon))
     }
 
     /// Commits an accepted state (vehicle at `position`, m, attitude `t_bi`): the nozzle crush

@@ -4,8 +4,9 @@
 //! - [`Amplification`]: the ground-effect factor AMP(ZNOZ) of fig. 16 (missing from the report:
 //!   a table), eq. (71): TAF = AMP·F_THRUST along +Z_B.
 //! - [`Nozzle`]: constant-load crushing of the nozzle exit rim against the surface plane
-//!   (docs/errata.md, "Eqs. (72)-(73): nozzle crushing"): the force FFL = F_c·(fraction of the rim in contact) along +Z_B, applied at
-//!   the centroid R_F of the contacting arc.
+//!   (docs/errata.md, "Eqs. (72)-(73): nozzle crushing"): the force FFL = F_c·(fraction of
+//!   the rim in contact) along +Z_B, applied at the centroid R_F of the contacting arc, bounded
+//!   by what stops the rim within a step ([`RimArrest`]).
 //! - [`engine_loads`]: F_TF = TAF + FFL and MTF = R_T×TAF + R_F×FFL in body axes,
 //!   eqs. (72)-(73). Eq. (74), FTFI = T_BI·F_TF, is the caller's.
 //!
@@ -215,28 +216,73 @@ pub struct RimContact {
     pub penetration: f64,
 }
 
+/// What arrests the nozzle's rim within a step (docs/errata.md, "Eqs. (72)-(73): nozzle
+/// crushing"): the vehicle's mass M (kg) and inverse inertia J⁻¹ (body axes, 1/(kg·m²)),
+/// which give the rim's effective mass along Z_B, and the arrest time τ (s), the longest step
+/// of the engine that applies the law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RimArrest {
+    mass: f64,
+    inertia_inv: Matrix3<f64>,
+    time: f64,
+}
+
+impl RimArrest {
+    /// From the vehicle's mass M (kg, > 0) and inertia J about its centre of mass (body axes,
+    /// kg·m², positive definite) and the arrest time τ (s, > 0).
+    pub fn new(mass: f64, inertia: &Matrix3<f64>, time: f64) -> Result<Self, LawError> {
+        positive("vehicle mass", mass)?;
+        positive("nozzle arrest time", time)?;
+        let inertia_inv = inertia
+            .try_inverse()
+            .filter(|j| j.iter().all(|x| x.is_finite()))
+            .ok_or(LawError::NotPositive {
+                name: "vehicle inertia's determinant",
+                value: inertia.determinant(),
+            })?;
+        Ok(RimArrest {
+            mass,
+            inertia_inv,
+            time,
+        })
+    }
+
+    /// The vehicle's effective mass for a force along Z_B at `at` (body axes, m from the
+    /// centre of mass), kg: 1/m_eff = 1/M + (r×ẑ_B)·J⁻¹·(r×ẑ_B), the free rigid body's
+    /// response at that point (the legs and footpads can only make it heavier).
+    pub fn effective_mass(&self, at: &Vector3<f64>) -> f64 {
+        let arm = at.cross(&Vector3::z());
+        1.0 / (1.0 / self.mass + arm.dot(&(self.inertia_inv * arm)))
+    }
+}
+
 /// Constant-load crushing of the descent-engine nozzle (eqs. 72-73, docs/errata.md, "Eqs. (72)-(73): nozzle crushing").
 ///
 /// The exit rim is the circle of radius r_e about the exit-plane centroid R_T in the
 /// X_B–Y_B plane, shifted by the stored crush c (m, ≥ 0) along +Z_B (the nozzle shortens).
-/// The crushing force FFL = F_c·(rim fraction in contact) acts along +Z_B at the centroid R_F
-/// of the contacting arc. The crush c is the law's memory: the caller commits
-/// `c ← c + penetration` at accepted states, so a force exists only while the rim is at or
-/// beyond the stored crush (constant-load crushing, no rebound force).
+/// The crushing force FFL acts along +Z_B at the centroid R_F of the contacting arc while the
+/// rim moves into the surface at speed s: F_c·(rim fraction in contact), or less, what stops
+/// the rim within the arrest time τ, m_eff·s/τ ([`RimArrest`]); none while the rim stands or
+/// leaves. It never does work on the vehicle but negative. The crush c is the law's memory:
+/// the caller commits `c ← c + penetration` at accepted states, so a force exists only while
+/// the rim is at or beyond the stored crush (constant-load crushing, no rebound force).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Nozzle {
     exit_centroid: Vector3<f64>,
     exit_radius: f64,
     crush_load: f64,
+    arrest: RimArrest,
 }
 
 impl Nozzle {
-    /// A nozzle from its exit-plane centroid R_T (body axes, m), exit radius r_e (m, > 0) and
-    /// crush load F_c (N, ≥ 0: the constant compressive failure load of the whole rim).
+    /// A nozzle from its exit-plane centroid R_T (body axes, m), exit radius r_e (m, > 0),
+    /// crush load F_c (N, ≥ 0: the constant compressive failure load of the whole rim) and
+    /// what arrests its rim.
     pub fn new(
         exit_centroid: Vector3<f64>,
         exit_radius: f64,
         crush_load: f64,
+        arrest: RimArrest,
     ) -> Result<Self, LawError> {
         for &v in exit_centroid.iter() {
             finite("nozzle exit centroid R_T", v)?;
@@ -247,7 +293,13 @@ impl Nozzle {
             exit_centroid,
             exit_radius,
             crush_load,
+            arrest,
         })
+    }
+
+    /// The exit radius r_e, m.
+    pub fn exit_radius(&self) -> f64 {
+        self.exit_radius
     }
 
     /// The rim's contact with the surface plane Z = `surface_z` (m, inertial), sampled at
@@ -292,10 +344,26 @@ impl Nozzle {
         }
     }
 
-    /// Nozzle crushing load FFL, N, along +Z_B (eq. 72): F_c·fraction of the rim in contact.
+    /// Nozzle crushing load FFL, N, along +Z_B (eq. 72) on the vehicle whose centre of mass
+    /// moves at `velocity` (m/s) and which turns at `omega` (rad/s), both body axes: with the
+    /// rim moving into the surface at s = −ẑ_B·(v + ω×R_F), min(F_c·fraction of the rim in
+    /// contact, m_eff·s/τ); 0 for s ≤ 0, so FFL·s ≥ 0 at every evaluation.
     #[inline]
-    pub fn force(&self, contact: &RimContact) -> f64 {
-        self.crush_load * contact.fraction
+    pub fn force(
+        &self,
+        contact: &RimContact,
+        velocity: &Vector3<f64>,
+        omega: &Vector3<f64>,
+    ) -> f64 {
+        if contact.fraction == 0.0 {
+            return 0.0;
+        }
+        let approach = -(velocity + omega.cross(&contact.centroid)).z;
+        if approach <= 0.0 {
+            return 0.0;
+        }
+        let arrest = self.arrest.effective_mass(&contact.centroid) * approach / self.arrest.time;
+        (self.crush_load * contact.fraction).min(arrest)
     }
 }
 
@@ -416,9 +484,72 @@ mod tests {
         assert!(Amplification::new(&[], &[]).is_err());
     }
 
-    // Exit plane 2 m below the CM, exit radius 0.5 m, crush load 2e4 N.
+    // Exit plane 2 m below the CM, exit radius 0.5 m, crush load 2e4 N, on a 1,000 kg vehicle
+    // of inertia diag(2000, 3000, 4000) kg·m², arrested within 1 ms.
+    fn arrest() -> RimArrest {
+        let inertia = Matrix3::from_diagonal(&Vector3::new(2000.0, 3000.0, 4000.0));
+        RimArrest::new(1000.0, &inertia, 1e-3).unwrap()
+    }
+
     fn nozzle() -> Nozzle {
-        Nozzle::new(Vector3::new(0.0, 0.0, -2.0), 0.5, 2.0e4).unwrap()
+        Nozzle::new(Vector3::new(0.0, 0.0, -2.0), 0.5, 2.0e4, arrest()).unwrap()
+    }
+
+    /// Falling at 10 m/s: the arrest bound (1000 kg·10 m/s / 1 ms = 1e7 N) is far above F_c.
+    fn falling() -> Vector3<f64> {
+        Vector3::new(0.0, 0.0, -10.0)
+    }
+
+    #[test]
+    fn the_rim_pushes_only_while_it_moves_into_the_surface() {
+        // Upright, the whole rim at the plane (centroid on the axis: m_eff = M).
+        let n = nozzle();
+        let pos = Vector3::new(0.0, 0.0, 1.95);
+        let c = n.rim_contact(0.0, &pos, &Matrix3::identity(), 0.0);
+        let still = Vector3::zeros();
+        assert_eq!(n.force(&c, &falling(), &still), 2.0e4, "crushing: F_c");
+        assert_eq!(n.force(&c, &still, &still), 0.0, "standing: no push");
+        assert_eq!(n.force(&c, &-falling(), &still), 0.0, "leaving: no push");
+        // Slower than F_c·τ/M = 2 cm/s the load is what stops the rim within τ: M·s/τ.
+        let slow = Vector3::new(0.0, 0.0, -0.005);
+        assert!((n.force(&c, &slow, &still) - 1000.0 * 0.005 / 1e-3).abs() < 1e-9);
+        // Whatever the motion, the load never does positive work on the vehicle: FFL·s ≥ 0.
+        for k in 0..200 {
+            let a = k as f64;
+            let v = Vector3::new((a * 0.7).sin(), (a * 1.3).cos(), 0.05 * (a * 0.37).sin());
+            let w = Vector3::new(0.02 * (a * 0.9).cos(), 0.02 * (a * 1.1).sin(), 0.1);
+            let f = n.force(&c, &v, &w);
+            let s = -(v + w.cross(&c.centroid)).z;
+            assert!(
+                f >= 0.0 && f * s >= 0.0 && (s > 0.0 || f == 0.0),
+                "{f} N at {s} m/s"
+            );
+            assert!(f <= 2.0e4);
+        }
+    }
+
+    #[test]
+    fn an_offset_rim_is_arrested_through_its_effective_mass() {
+        // A force along ẑ at r = (x, y, z) turns the body about r×ẑ = (y, −x, 0):
+        // 1/m_eff = 1/M + y²/Jxx + x²/Jyy, whatever z.
+        let a = arrest();
+        let r = Vector3::new(0.3, -0.4, -2.0);
+        let expected = 1.0 / (1.0 / 1000.0 + 0.16 / 2000.0 + 0.09 / 3000.0);
+        assert!((a.effective_mass(&r) - expected).abs() < 1e-9);
+        assert!((a.effective_mass(&Vector3::new(0.0, 0.0, -5.0)) - 1000.0).abs() < 1e-12);
+        // Rolling: the low side of a rolling vehicle descends at ω_x·|y| though its centre of
+        // mass stands still, and the rim crushes there.
+        let n = nozzle();
+        let th = 0.2f64;
+        let tbi = t_bi(&Vector3::new(th, 0.0, 0.0));
+        let pos = Vector3::new(0.0, 0.0, 2.0 * th.cos() + 1e-9);
+        let c = n.rim_contact(0.0, &pos, &tbi, 0.0);
+        let rolling = Vector3::new(1.0, 0.0, 0.0); // low side (y < 0) moves along −Z_B
+        assert!(n.force(&c, &Vector3::zeros(), &rolling) > 0.0);
+        assert_eq!(n.force(&c, &Vector3::zeros(), &-rolling), 0.0);
+        assert!(RimArrest::new(0.0, &Matrix3::identity(), 1e-3).is_err());
+        assert!(RimArrest::new(1.0, &Matrix3::identity(), 0.0).is_err());
+        assert!(RimArrest::new(1.0, &Matrix3::zeros(), 1e-3).is_err());
     }
 
     #[test]
@@ -428,7 +559,7 @@ mod tests {
         let c = n.rim_contact(0.0, &pos, &Matrix3::identity(), 0.0);
         assert_eq!(c.fraction, 0.0);
         assert_eq!(c.penetration, 0.0);
-        assert_eq!(n.force(&c), 0.0);
+        assert_eq!(n.force(&c, &falling(), &Vector3::zeros()), 0.0);
         let clearance = nozzle_clearance(&n.exit_centroid, 0.0, &pos, &Matrix3::identity(), 0.0);
         assert!((clearance - 0.1).abs() < 1e-12);
     }
@@ -442,7 +573,7 @@ mod tests {
         assert_eq!(c.fraction, 1.0);
         assert!((c.penetration - 0.05).abs() < 1e-12);
         assert!((c.centroid - Vector3::new(0.0, 0.0, -2.0)).norm() < 1e-12);
-        assert_eq!(n.force(&c), 2.0e4);
+        assert_eq!(n.force(&c, &falling(), &Vector3::zeros()), 2.0e4);
         // Committing the crush brings the rim up to the plane along +Z_B.
         let c2 = n.rim_contact(c.penetration, &pos, &Matrix3::identity(), 0.0);
         assert!(c2.penetration < 1e-12);
@@ -467,7 +598,7 @@ mod tests {
         assert!((c.centroid.y + 2.0 * 0.5 / std::f64::consts::PI).abs() < 0.02);
         assert!(c.centroid.x.abs() < 1e-9, "symmetric about the roll axis");
         assert!((c.centroid.z + 2.0).abs() < 1e-12);
-        assert!((n.force(&c) - 2.0e4 * 35.0 / 72.0).abs() < 1e-9);
+        assert!((n.force(&c, &falling(), &Vector3::zeros()) - 2.0e4 * 35.0 / 72.0).abs() < 1e-9);
     }
 
     #[test]

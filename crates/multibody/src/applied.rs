@@ -32,10 +32,12 @@ pub struct VehicleLoads {
 }
 
 impl VehicleLoads {
-    /// What `sc` declares of the engine and the RCS (nothing evaluated without them).
-    pub fn new(sc: &Scenario) -> Result<VehicleLoads, ScenarioError> {
+    /// What `sc` declares of the engine and the RCS (nothing evaluated without them), for an
+    /// engine stepping `dt` (s): the loads are held over a step, so the nozzle's rim is arrested
+    /// within one.
+    pub fn new(sc: &Scenario, dt: f64) -> Result<VehicleLoads, ScenarioError> {
         Ok(VehicleLoads {
-            propulsion: Propulsion::from_scenario(sc)?,
+            propulsion: Propulsion::from_scenario(sc, dt)?,
             ..Default::default()
         })
     }
@@ -61,9 +63,11 @@ impl VehicleLoads {
         self.evaluations += 1;
         let r = &v.rotation;
         let omega = r.transpose() * v.angular_velocity;
+        let velocity = r.transpose() * v.velocity;
         let theta = touchdown_frames::euler_from_t_bi(r);
         let attitude = Attitude {
             position: &v.position,
+            velocity: &velocity,
             t_bi: r,
             theta: &theta,
             omega: &omega,

@@ -264,7 +264,7 @@ impl GearModel {
             previous: vec![StrutKinematics::default(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
-            applied: VehicleLoads::new(sc)?,
+            applied: VehicleLoads::new(sc, dt)?,
             curb_memory: curbs.as_ref().map_or_else(Vec::new, Curbs::memories),
             curb_forces: vec![Vector3::zeros(); n],
             wall_forces: vec![Vector3::zeros(); n],

@@ -332,7 +332,8 @@ impl State {
     /// mode to [`IMPLICIT_MODE_STEP`]·min(`mode_step`, 1). Both within [Δt_max,
     /// `stride`·Δt_max]. While
     /// a footpad slides, Δt_max: its forces, frozen over the step (eq. 97), book its friction
-    /// work to first order in the step.
+    /// work to first order in the step. While the nozzle's rim can reach the surface within
+    /// a stride, Δt_max: the rim is arrested within that step (`touchdown_laws::RimArrest`).
     pub(crate) fn stride_step(&self, model: &Model) -> Stride {
         let it = &model.integrator;
         let sliding = |(p, s): (&Footpad, &PadSurface)| {
@@ -342,6 +343,9 @@ impl State {
             return Stride::none(it.dt_max);
         }
         let longest = it.dt_max * it.stride;
+        if (model.mechanisms).nozzle_within_reach(&self.mechanisms, &self.vehicle, longest) {
+            return Stride::none(it.dt_max);
+        }
         let (resolved, all) = self.engaged_stiffness(model, longest);
         let step = |omega_dt: f64, k: f64| {
             let omega_squared = model.stroke_mobility * k;
