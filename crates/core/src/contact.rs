@@ -9,6 +9,7 @@
 use crate::gear::GearState;
 use crate::ledger::PadWork;
 use crate::model::Model;
+use crate::state::SlidingStart;
 use crate::state::State;
 use crate::surface::{advance_sliding, touch_down, ContactState, Footpad, SlidingForces};
 use crate::vehicle::VehicleState;
@@ -214,8 +215,14 @@ impl State {
     }
 
     /// Frozen in-plane forces on footpad `i` at the accepted state `v` (eqs. 85, 96-99
-    /// corrected: the footpad receives −FPI = T_BI·FP).
-    fn sliding_forces(&mut self, model: &Model, i: usize, v: &VehicleState) -> SlidingForces {
+    /// corrected: the footpad receives −FPI = T_BI·FP), and the soil's lateral drag FDRAG
+    /// in them (N; 0 off soil).
+    fn sliding_forces(
+        &mut self,
+        model: &Model,
+        i: usize,
+        v: &VehicleState,
+    ) -> (SlidingForces, f64) {
         if model.mechanisms.soil.is_some() {
             self.mechanisms.tick(Mechanism::Soil);
         }
@@ -227,12 +234,12 @@ impl State {
         let pad = &self.pads[i];
         let xy = Vector2::new(pad.position.x, pad.position.y);
         let v_xy = Vector2::new(pad.velocity.x, pad.velocity.y);
-        let mut drag = sliding_friction(model.surfaces[i].friction, fzi); // eq. (85)
+        let mut soil_drag = 0.0;
         if let Some(soil) = &model.mechanisms.soil {
             // eqs. (102), (104): FGRND = FDRAG + FDRAGP, both along −v̂
             let depth = model.surfaces[i].plane() - pad.position.z;
             let sp = (xy - pad.touchdown_xy).norm();
-            drag += soil.lateral_drag(depth, sp, v_xy.norm());
+            soil_drag = soil.lateral_drag(depth, sp, v_xy.norm());
         }
         let curb_xy = match &model.mechanisms.curbs {
             Some(curbs) => curbs.force(
@@ -245,23 +252,26 @@ impl State {
             ),
             None => Vector2::zeros(),
         };
-        SlidingForces {
+        let forces = SlidingForces {
             gear_xy: Vector2::new(on_pad.x, on_pad.y),
             curb_xy,
-            drag,
+            drag: sliding_friction(model.surfaces[i].friction, fzi) + soil_drag, // eq. (85)
             gravity_xy: Vector2::new(model.gravity.x, model.gravity.y),
             fzi,
             mass: model.footpad_mass,
             rounding: model.force_rounding,
-        }
+        };
+        (forces, soil_drag)
     }
 
     /// Step 2: the sliding footpads advance over `dt` (s) with their forces frozen at the
-    /// accepted state `old` (eq. 97); their start is kept for the stages.
+    /// accepted state `old` (eq. 97); their start is kept for the stages, and with their
+    /// forces for [`State::correct_sliding_pads`].
     pub(crate) fn advance_pads(&mut self, model: &Model, dt: f64, old: &VehicleState) -> PadWork {
         let mut w = PadWork::default();
         for i in 0..self.pads.len() {
             self.pad_start[i] = (self.pads[i].position, self.pads[i].velocity);
+            self.sliding_start[i] = None;
             if self.pads[i].state != ContactState::Contact {
                 self.pads[i].curb_xy = self.curbs_off_surface(model, i);
                 continue;
@@ -269,30 +279,82 @@ impl State {
             if model.surfaces[i].locked() {
                 continue;
             }
-            let f = self.sliding_forces(model, i, old);
-            let m = model.footpad_mass;
-            let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
-            advance_sliding(&mut self.pads[i], &f, dt);
-            if let Some(soil) = &model.mechanisms.soil {
-                // eq. (103) with constant forces over the step; the soil only resists
-                // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
-                let load = f.fzi - m * model.gravity.z; // FZI + weight, downward positive
-                let plane = model.surfaces[i].plane();
-                let step = soil.advance_vertical(plane - p0.z, -v0.z, load, m, dt);
-                let pad = &mut self.pads[i];
-                pad.position.z = plane - step.depth;
-                pad.velocity.z = -step.rate;
-                w.gear -= f.fzi * (pad.position.z - p0.z);
-                w.soil += step.work;
-            }
-            let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
-            let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
-            w.gear += f.gear_xy.dot(&dp);
-            w.curbs += f.curb_xy.dot(&dp);
-            w.energy_change += 0.5 * m * (v1.norm_squared() - v0.norm_squared())
-                - m * model.gravity.dot(&(p1 - p0));
+            let (f, soil_drag) = self.sliding_forces(model, i, old);
+            self.sliding_start[i] = Some(SlidingStart {
+                pad: self.pads[i],
+                forces: f,
+                soil_drag,
+            });
+            self.advance_pad(model, i, &f, dt, &mut w);
         }
         w
+    }
+
+    /// Step 5 for the footpads on the surface: each sliding footpad advanced again over `dt`
+    /// (s) from the start of the step with the forces the vehicle's corrector uses (eq. 24),
+    /// the gear's ½(F_k + F*) in the plane and FZI likewise, F* the gear's at the trial
+    /// `trial` with the vehicle predicted at `pred`; the Coulomb drag on that FZI, the soil's
+    /// and the curbs' forces as frozen. The footpad and the vehicle then feel the same gear
+    /// force over the step, and the work it does on each is booked with it (docs/errata.md,
+    /// "Sliding footpads corrected with the vehicle").
+    pub(crate) fn correct_sliding_pads(
+        &mut self,
+        model: &Model,
+        dt: f64,
+        pred: &VehicleState,
+        trial: &[GearState],
+    ) -> PadWork {
+        let mut w = PadWork::default();
+        for (i, gear) in trial.iter().enumerate() {
+            let Some(start) = self.sliding_start[i] else {
+                continue;
+            };
+            let on_pad = pred.t_bi * gear.fp; // −FPI at the trial, eq. (67) reversed
+            let f0 = &start.forces;
+            let fzi = 0.5 * (f0.fzi + -on_pad.z);
+            let f = SlidingForces {
+                gear_xy: (f0.gear_xy + Vector2::new(on_pad.x, on_pad.y)) * 0.5,
+                drag: sliding_friction(model.surfaces[i].friction, fzi) + start.soil_drag,
+                fzi,
+                ..*f0
+            };
+            self.pads[i] = start.pad;
+            self.advance_pad(model, i, &f, dt, &mut w);
+        }
+        w
+    }
+
+    /// Footpad `i` on the surface advanced over `dt` (s) under the constant forces `f`
+    /// (eq. 97; on soil eq. 103), the work of the step added to `w`.
+    fn advance_pad(
+        &mut self,
+        model: &Model,
+        i: usize,
+        f: &SlidingForces,
+        dt: f64,
+        w: &mut PadWork,
+    ) {
+        let m = model.footpad_mass;
+        let (p0, v0) = (self.pads[i].position, self.pads[i].velocity);
+        advance_sliding(&mut self.pads[i], f, dt);
+        if let Some(soil) = &model.mechanisms.soil {
+            // eq. (103) with constant forces over the step; the soil only resists
+            // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
+            let load = f.fzi - m * model.gravity.z; // FZI + weight, downward positive
+            let plane = model.surfaces[i].plane();
+            let step = soil.advance_vertical(plane - p0.z, -v0.z, load, m, dt);
+            let pad = &mut self.pads[i];
+            pad.position.z = plane - step.depth;
+            pad.velocity.z = -step.rate;
+            w.gear -= f.fzi * (pad.position.z - p0.z);
+            w.soil += step.work;
+        }
+        let (p1, v1) = (self.pads[i].position, self.pads[i].velocity);
+        let dp = Vector2::new(p1.x - p0.x, p1.y - p0.y);
+        w.gear += f.gear_xy.dot(&dp);
+        w.curbs += f.curb_xy.dot(&dp);
+        w.energy_change +=
+            0.5 * m * (v1.norm_squared() - v0.norm_squared()) - m * model.gravity.dot(&(p1 - p0));
     }
 
     /// The in-plane force of its curbs on footpad `i` with inertia off the surface, after its

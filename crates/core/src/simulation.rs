@@ -136,6 +136,7 @@ impl Simulation {
             extremes: Extremes::new(n, capacities),
             pad_views: vec![PadView::default(); n],
             pad_start: vec![(Vector3::zeros(), Vector3::zeros()); n],
+            sliding_start: vec![None; n],
             held: Vec::with_capacity(n),
             leg_loads: (vec![Vector3::zeros(); n], vec![Vector3::zeros(); n]),
             settled: None,

@@ -7,7 +7,7 @@ use crate::gear::GearState;
 use crate::mechanisms::{MechanismState, Power};
 use crate::settling::LegTerms;
 use crate::stiction::Held;
-use crate::surface::Footpad;
+use crate::surface::{Footpad, SlidingForces};
 use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
 use touchdown_laws::GearMemory;
@@ -59,6 +59,9 @@ pub(crate) struct State {
     /// interpolate the sliding footpads between these and their end of step; the footpads off
     /// the surface start their stages from them), m, m/s.
     pub(crate) pad_start: Vec<(Vector3<f64>, Vector3<f64>)>,
+    /// Each footpad sliding on the surface at the start of the step, with its frozen forces
+    /// (reused; `None` for the others).
+    pub(crate) sliding_start: Vec<Option<SlidingStart>>,
     /// The footpads off the surface whose bearing friction an evaluation sets last (reused).
     pub(crate) held: Vec<Held>,
     /// Each leg's force on the vehicle (inertial axes, N) and torque about its centre of mass
@@ -82,4 +85,16 @@ pub(crate) struct Relaxation {
     pub(crate) secondary: [f64; 2],
     /// The secondaries' bending lengthening λ31, λ41 (eq. 47), gone with the bending load.
     pub(crate) bending: [f64; 2],
+}
+
+/// A footpad on the surface at the start of a step and the forces frozen on it there
+/// (eq. 97), from which the corrector advances it again ([`State::correct_sliding_pads`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SlidingStart {
+    /// The footpad at the start of the step.
+    pub(crate) pad: Footpad,
+    /// Its forces at the accepted state.
+    pub(crate) forces: SlidingForces,
+    /// The soil's lateral drag FDRAG in `forces.drag`, N (eq. 102; 0 off soil).
+    pub(crate) soil_drag: f64,
 }

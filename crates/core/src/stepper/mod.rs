@@ -9,7 +9,9 @@
 //! 2. footpads in sliding contact advance over Δt with their forces frozen at t_k (eq. 97);
 //! 3. the vehicle is predicted with c = 0 (eqs. 22-23);
 //! 4. forces and accelerations are evaluated at the prediction (trial, nothing committed);
-//! 5. the vehicle is corrected with c from eq. (24);
+//! 5. the sliding footpads advance again over Δt from t_k with the gear's force the vehicle's
+//!    corrector uses, ½(F_k + F*) (F* at the trial), and the vehicle is corrected with c from
+//!    eq. (24);
 //! 6. forces are evaluated at the corrected state, the contact logic runs, and if a footpad
 //!    changed state the forces are evaluated again;
 //! 7. the honeycomb memories are committed at that accepted state, whose accelerations are

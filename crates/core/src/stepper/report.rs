@@ -6,7 +6,7 @@ use super::secant::{secant, strut_secants};
 use super::{limit_step, strides, Advance, Scratch, Stepper, Stride};
 use crate::gear;
 use crate::gear::GearState;
-use crate::ledger::Quadrature;
+use crate::ledger::{PadWork, Quadrature};
 use crate::loads::Loads;
 use crate::model::Model;
 use crate::state::State;
@@ -39,9 +39,10 @@ impl Stepper for PredictorCorrector {
     ) -> Result<Advance, RunError> {
         let (dt, explicit) = step_size(model, state);
         let dt = limit_step(model, state, dt);
-        let pads = state.advance_pads(model, dt, old);
+        state.advance_pads(model, dt, old);
         let implicit = dt > explicit;
-        let trial_power = predict_correct(model, state, &mut self.scratch, dt, old, implicit)?;
+        let (trial_power, pads) =
+            predict_correct(model, state, &mut self.scratch, dt, old, implicit)?;
         Ok(Advance {
             dt,
             quadrature: Quadrature::Trapezoid { trial_power },
@@ -111,7 +112,8 @@ fn correct<T: Quantity>(x: T, x_dot: T, x_ddot: T, trial: T, dt: f64) -> (T, T) 
 /// Steps 3-5 of the report's scheme from the accepted state `old` over `dt` (s), the trial
 /// evaluated into `scratch.trial`, the corrected state written into `scratch.new` (the vehicle
 /// corrected `implicit`ly on its footpads on the surface, [`strides`], on a step past the
-/// explicit corrector's): returns the vehicle-level mechanisms' power at the trial, W.
+/// explicit corrector's): returns the vehicle-level mechanisms' power at the trial, W, and
+/// the work on the sliding footpads, advanced again with the forces the corrector uses.
 fn predict_correct(
     model: &Model,
     state: &mut State,
@@ -119,7 +121,7 @@ fn predict_correct(
     dt: f64,
     old: &VehicleState,
     implicit: bool,
-) -> Result<f64, RunError> {
+) -> Result<(f64, PadWork), RunError> {
     let slosh = model.mechanisms.slosh.is_some();
     // 3. predictor, c = 0 (eqs. 22-23); the footpads off the surface too (eqs. 16-18)
     let inertial = model.inertial;
@@ -145,6 +147,8 @@ fn predict_correct(
     if inertial {
         correct_footpads(model, state, &pred, scratch, &mut loads, dt);
     }
+    // the footpads on the surface with the gear's force the vehicle's corrector uses
+    let pads = state.correct_sliding_pads(model, dt, &pred, &scratch.trial);
     state.accelerate(model, &mut pred, &loads)?;
     if implicit {
         // the vehicle on the struts of its footpads on the surface, implicit
@@ -179,7 +183,7 @@ fn predict_correct(
             dt,
         );
     }
-    Ok(loads.applied_power.applied)
+    Ok((loads.applied_power.applied, pads))
 }
 
 /// A footpad's corrected state and the changes of its struts' forces the correction found.
