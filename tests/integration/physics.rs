@@ -224,7 +224,7 @@ fn energy_closes_on_the_table_i_landings() {
 /// with the vehicle"): a sliding footpad and the vehicle feel one strut force over a step, so a
 /// sliding landing closes its energy balance as the others do. `level-sliding` at a fixed step
 /// of 0.4 ms, and the same lander set down at 1 ft/s with U = 0.1 sliding on to 1 s, end within
-/// 0.2 % of the energy put in on the core (measured 0.08 % and 0.07 %). With the footpads'
+/// 0.2 % of the energy put in on the core (measured 0.07 % and 0.08 %). With the footpads'
 /// forces frozen over the step the first ended at 1.8 % and the second stopped on the energy
 /// guard (2 %) at 0.274 s.
 #[test]

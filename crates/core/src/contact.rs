@@ -20,6 +20,14 @@ use touchdown_record::RunError;
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::schema::ReleaseRule;
 
+/// The load footpad presses its surface with, N: the gear's FZI (eq. 67, positive pressing it
+/// in) and the footpad's own weight normal to the surface, PMASS·(−g_z) (docs/errata.md,
+/// "Eq. (85): FDRAG is FDRAGP"): the surface's normal reaction on a footpad resting on it, the
+/// normal load of its friction and the soil's vertical load (eq. 103).
+fn surface_reaction(model: &Model, fzi: f64) -> f64 {
+    fzi - model.footpad_mass * model.gravity.z
+}
+
 /// How far past its plane a footpad off the surface may be at the end of an adaptive step
 /// before the step is shortened to locate its landing, m.
 pub const CONTACT_EVENT_DEPTH: f64 = 1e-9;
@@ -255,7 +263,8 @@ impl State {
         let forces = SlidingForces {
             gear_xy: Vector2::new(on_pad.x, on_pad.y),
             curb_xy,
-            drag: sliding_friction(model.surfaces[i].friction, fzi) + soil_drag, // eq. (85)
+            drag: sliding_friction(model.surfaces[i].friction, surface_reaction(model, fzi)) // eq. (85)
+                + soil_drag,
             gravity_xy: Vector2::new(model.gravity.x, model.gravity.y),
             fzi,
             mass: model.footpad_mass,
@@ -314,7 +323,8 @@ impl State {
             let fzi = 0.5 * (f0.fzi + -on_pad.z);
             let f = SlidingForces {
                 gear_xy: (f0.gear_xy + Vector2::new(on_pad.x, on_pad.y)) * 0.5,
-                drag: sliding_friction(model.surfaces[i].friction, fzi) + start.soil_drag,
+                drag: sliding_friction(model.surfaces[i].friction, surface_reaction(model, fzi))
+                    + start.soil_drag,
                 fzi,
                 ..*f0
             };
@@ -340,7 +350,7 @@ impl State {
         if let Some(soil) = &model.mechanisms.soil {
             // eq. (103) with constant forces over the step; the soil only resists
             // penetration and holds a resting footpad rigid-plastically (eq. 101 row).
-            let load = f.fzi - m * model.gravity.z; // FZI + weight, downward positive
+            let load = surface_reaction(model, f.fzi); // FZI + weight, downward positive
             let plane = model.surfaces[i].plane();
             let step = soil.advance_vertical(plane - p0.z, -v0.z, load, m, dt);
             let pad = &mut self.pads[i];

@@ -7,9 +7,11 @@
 pub const VELOCITY_ROUNDING: f64 = 1e-9;
 
 /// Magnitude of the sliding-friction drag on a footpad, N (report FDRAGP):
-/// `U·max(FZI, 0)`, where `normal_load` is FZI, the inertial Z component of the gear force on
-/// the vehicle, positive when the gear presses the pad into the surface (eq. (85), corrected
-/// label; see docs/errata.md). The caller applies it against the sliding direction.
+/// `U·max(N, 0)`, where `normal_load` N is the surface's normal reaction on the footpad: the
+/// gear's load FZI pressing it in (the inertial Z component of the gear force on the vehicle)
+/// and the footpad's own weight normal to the surface (eq. (85), corrected label, the weight
+/// added; docs/errata.md, "Eq. (85): FDRAG is FDRAGP"). The caller applies it against the
+/// sliding direction.
 #[inline]
 pub fn sliding_friction(friction_coefficient: f64, normal_load: f64) -> f64 {
     friction_coefficient * normal_load.max(0.0)
