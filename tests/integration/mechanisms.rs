@@ -325,7 +325,9 @@ fn rigid_footpads_leaving_curbs_keep_their_energy() {
 }
 
 fn curbs_crush_as_their_table_says(detached: Detached) {
-    let mut sc = Scenario::load(variant("curb-slide.toml", "core-curbs", FRICTIONLESS_CURBS))
+    // one file per test: the two run at once
+    let name = format!("core-curbs-{detached:?}");
+    let mut sc = Scenario::load(variant("curb-slide.toml", &name, FRICTIONLESS_CURBS))
         .unwrap_or_else(|e| panic!("{e}"));
     sc.footpad.detached = detached;
     let mut sim = Simulation::new(&sc).expect("core builds");
@@ -371,12 +373,13 @@ fn curbs_crush_as_their_table_says(detached: Detached) {
     }
     // The footpad equations freeze the curb force over a step (eq. 97), so the booked work
     // lags the table's area by the force's change over a step on the stiff onset, at every
-    // loading and unloading: 2.8 % at 0.104 s, 11.5 % at the end of the 1.5 s run, over which
-    // the rocking vehicle's footpads strike their curbs again and again (an open defect of the
-    // explicit curb force, docs/errata.md, "Stability decisions and maxima").
+    // loading and unloading (docs/errata.md, "Stability decisions and maxima"): within 2 % at
+    // the end of the 1.5 s run, over which the rocking vehicle's footpads strike their curbs
+    // again and again; measured 0.30 % with inertia, 0.87 % with the massless footpad (11.5 %
+    // before the corrections of the contact logic).
     let booked = sim.summary().energy.mechanisms_j;
     assert!(
-        (booked / expected - 1.0).abs() < 0.15,
+        (booked / expected - 1.0).abs() < 0.02,
         "{detached:?}: booked {booked} J vs table {expected} J"
     );
 }

@@ -183,6 +183,9 @@ impl Mechanisms {
         v: &VehicleState,
         horizon: f64,
     ) -> bool {
+        if !self.declared.contains(&Mechanism::NozzleCrushing) {
+            return false;
+        }
         let velocity = v.t_bi.transpose() * v.velocity;
         (self.propulsion).rim_within_reach(&attitude(v, &velocity), state.nozzle_crush, horizon)
     }
