@@ -1182,6 +1182,98 @@ fn a_settled_lander_slides_at_the_deceleration_its_friction_gives_on_every_engin
     }
 }
 
+/// The mean of `x`.
+fn mean(x: &[f64]) -> f64 {
+    x.iter().sum::<f64>() / x.len() as f64
+}
+
+/// The RCS's attitude hold in a run (eqs. 75-80), on every engine: a level vehicle in free
+/// flight spinning about Z_B at ω0 = 20 deg/s, holding its yaw with k1 = 1, k2 = 0.3 s, a
+/// 1 deg deadband EM and a yaw torque T. While E = k1·Dψ + k2·ω ≥ EM the jets brake it at
+/// a: ω = ω0 − a·t, Dψ = ω0·t − a·t²/2, until E falls below EM at the root t_off of
+/// −(k1·a/2)·t² + (k1·ω0 − k2·a)·t + k2·ω0 − EM = 0; then it turns freely at
+/// ω1 = ω0 − a·t_off (backwards: E keeps falling, and reaches −EM only 0.8 s later). On the
+/// core, whose footpads ride rigidly off the surface, a is T/I_z of the vehicle, within 1e-6;
+/// on rapier and MuJoCo the gear's links turn with it, and a is the run's own, the
+/// least-squares slope of ω over the first 0.15 s (22 % below T/I_z). Given a, every engine's
+/// jets stop within 1 ms of t_off (measured 0.2, 0.3 and 0.4 ms on the core, rapier and
+/// MuJoCo; their steps are 0.2 ms and 20 µs, the links' swing blurs the multibody's) and it
+/// then turns at ω1 within 1e-3 of ω0 (measured 1e-4, 4e-6 and 5e-4). Without the attitude
+/// gain (k1 = 0) the jets would stop at 0.145 s and leave it turning forwards at +3.3 deg/s,
+/// 0.29·ω0 away.
+#[test]
+fn the_rcs_attitude_hold_brakes_a_spin_as_its_switching_law_gives_on_every_engine() {
+    let base = load("flat-drop.toml", &[]);
+    let i_z = base.vehicle.inertia[(2, 2)];
+    let (w0, a_core) = (20f64.to_radians(), 2.0); // rad/s, rad/s²
+    let torque = a_core * i_z / (LBF * FT); // ft·lbf
+    let (k1, k2, em) = (1.0, 0.3, 1f64.to_radians());
+    for engine in Engine::ALL {
+        let rigid = match engine {
+            Engine::Core => "[footpad]\ndetached = \"rigid\"\n",
+            _ => "",
+        };
+        let path = variant(
+            "flat-drop.toml",
+            &format!("rcs-hold-{engine}"),
+            &format!(
+                "[rcs]\nmode = \"attitude_hold\"\nattitude_gain = [{k1}, {k1}, {k1}]\n\
+                 rate_gain = [{k2}, {k2}, {k2}]\ndeadband = [1.0, 1.0, 1.0]\n\
+                 torque = [0.0, 0.0, {torque:.17e}]\ncommanded_attitude = [0.0, 0.0, 0.0]\n\
+                 [touchdown]\nclearance = 20.0\nvertical_velocity = 0.0\n\
+                 body_rates = [0.0, 0.0, 20.0]\n[integrator]\nt_end = 0.5\n{rigid}"
+            ),
+        );
+        let (s, rows) = landed_with_history(engine, &path);
+        assert!(
+            s.first_contact_s.iter().all(Option::is_none),
+            "{engine}: touched"
+        );
+        let (t, w) = (rows.column("t_s"), rows.column("omega_z_rad_s"));
+        let tilt = ["theta_x_rad", "theta_y_rad"].map(|c| rows.column(c));
+        let tilted = tilt.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(tilted < 1e-6, "{engine}: tilted {tilted} rad");
+        let at = |time: f64| t.iter().position(|&x| x >= time - 1e-12).unwrap();
+        // the braking: the least-squares slope of ω over the first 0.15 s
+        let k = at(0.15);
+        let (tm, wm) = (mean(&t[..k]), mean(&w[..k]));
+        let (num, den) = (0..k).fold((0.0, 0.0), |(n, d), j| {
+            (n + (t[j] - tm) * (w[j] - wm), d + (t[j] - tm) * (t[j] - tm))
+        });
+        let a = -num / den;
+        if engine == Engine::Core {
+            assert!(
+                (a / a_core - 1.0).abs() < 1e-6,
+                "core: brakes at {a} rad/s²"
+            );
+        }
+        let (qa, qb, qc) = (-0.5 * k1 * a, k1 * w0 - k2 * a, k2 * w0 - em);
+        let t_off = (-qb - (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+        let w1 = w0 - a * t_off;
+        // The jets' stop: the last 5 ms window braking at a/2 or more ends 2.5 ms after it
+        // (the links' swing moves a multibody's ω by a few per cent of a·5 ms).
+        let window = 5e-3;
+        let off = (at(window)..w.len())
+            .rev()
+            .find(|&j| {
+                let i = at(t[j] - window);
+                w[i] - w[j] >= 0.5 * a * (t[j] - t[i])
+            })
+            .unwrap();
+        let stopped = t[off] - 0.5 * window;
+        assert!(
+            (stopped - t_off).abs() <= 1e-3,
+            "{engine}: the jets stopped at {stopped} s, the switching law gives {t_off} s"
+        );
+        let end = w.len() - 1;
+        assert!(
+            (w[end] - w1).abs() <= 1e-3 * w0,
+            "{engine}: turns at {} rad/s after the jets stop, the switching law gives {w1}",
+            w[end]
+        );
+    }
+}
+
 /// The RCS's downward translation in a run (eqs. 81-82), on every engine: on the symmetric drop,
 /// with the attitude torques off and the translation 10 lbf along −Z_B from 0.02 s after the
 /// first contact, the RCS does no work before its switch and afterwards exactly F·(z_s − z) on
