@@ -43,7 +43,7 @@ use crate::surface::{ContactState, Footpad};
 use crate::vehicle::VehicleState;
 use touchdown_laws::{Branch, GearLaws, Stop};
 use touchdown_record::RunError;
-use touchdown_scenario::model::{Leg, PadSurface};
+use touchdown_scenario::model::Leg;
 use touchdown_scenario::schema::Scheme;
 
 /// The space a stepper works in: the new state of the step, and gear states, one per leg (the
@@ -333,15 +333,15 @@ impl State {
     /// resolving only the modes in which a maximum can be made to ω·Δt ≤ `mode_step` and every
     /// mode to [`IMPLICIT_MODE_STEP`]·min(`mode_step`, 1). Both within [Δt_max,
     /// `stride`·Δt_max]. While
-    /// a footpad slides, Δt_max: its forces, frozen over the step (eq. 97), book its friction
-    /// work to first order in the step. While the nozzle's rim can reach the surface within
-    /// a stride, Δt_max: the rim is arrested within that step (`touchdown_laws::RimArrest`).
+    /// a footpad slides (with friction or without), Δt_max: the implicit corrector linearises
+    /// the struts about footpads that stay where they are, and a sliding footpad moves on the
+    /// gear's mean force (docs/errata.md, "Sliding footpads corrected with the vehicle"). While
+    /// the nozzle's rim can reach the surface within a stride, Δt_max: the rim is arrested
+    /// within that step (`touchdown_laws::RimArrest`).
     pub(crate) fn stride_step(&self, model: &Model) -> Stride {
         let it = &model.integrator;
-        let sliding = |(p, s): (&Footpad, &PadSurface)| {
-            p.state == ContactState::Contact && !p.walled && !p.stuck && s.friction > 0.0
-        };
-        if it.scheme != Scheme::Strides || self.pads.iter().zip(&model.surfaces).any(sliding) {
+        let sliding = |p: &Footpad| p.state == ContactState::Contact && !p.walled && !p.stuck;
+        if it.scheme != Scheme::Strides || self.pads.iter().any(sliding) {
             return Stride::none(it.dt_max);
         }
         let longest = it.dt_max * it.stride;
