@@ -7,7 +7,7 @@
 
 use crate::vehicle::VehicleState;
 use nalgebra::{Vector2, Vector3};
-use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion};
+use touchdown_laws::scene::{self, AppliedLoads, Attitude, Propulsion, Reach};
 use touchdown_laws::{Bending, CrushMemory, Curbs, Slosh, Soil};
 use touchdown_scenario::model::Mechanism;
 use touchdown_scenario::{Scenario, ScenarioError};
@@ -26,18 +26,6 @@ impl Evaluations {
     /// Evaluations of `m` so far.
     pub fn get(&self, m: Mechanism) -> u64 {
         self.0[m as usize]
-    }
-}
-
-/// The vehicle at `v` as the propulsion laws read it, with its centre of mass's `velocity`
-/// in body axes (m/s).
-fn attitude<'a>(v: &'a VehicleState, velocity: &'a Vector3<f64>) -> Attitude<'a> {
-    Attitude {
-        position: &v.position,
-        velocity,
-        t_bi: &v.t_bi,
-        theta: &v.euler.theta,
-        omega: &v.omega,
     }
 }
 
@@ -156,12 +144,14 @@ impl Mechanisms {
             state.evaluations.tick(m);
         }
         let velocity = v.t_bi.transpose() * v.velocity;
-        let mut out = p.loads(
-            t,
-            first_contact,
-            &attitude(v, &velocity),
-            state.nozzle_crush,
-        ); // eqs. (72)-(73), (80)-(81)
+        let attitude = Attitude {
+            position: &v.position,
+            velocity: &velocity,
+            t_bi: &v.t_bi,
+            theta: &v.euler.theta,
+            omega: &v.omega,
+        };
+        let mut out = p.loads(t, first_contact, &attitude, state.nozzle_crush); // eqs. (72)-(73), (80)-(81)
         if let Some(slosh) = &self.slosh {
             state.evaluations.tick(Mechanism::Slosh);
             let axial = slosh.axial(&state.slosh_specific_force);
@@ -183,11 +173,13 @@ impl Mechanisms {
         v: &VehicleState,
         horizon: f64,
     ) -> bool {
-        if !self.declared.contains(&Mechanism::NozzleCrushing) {
-            return false;
-        }
-        let velocity = v.t_bi.transpose() * v.velocity;
-        (self.propulsion).rim_within_reach(&attitude(v, &velocity), state.nozzle_crush, horizon)
+        let reach = Reach {
+            position: &v.position,
+            t_bi: &v.t_bi,
+            omega: &v.omega,
+            sink_rate: -v.velocity.z,
+        };
+        (self.propulsion).rim_within_reach(&reach, state.nozzle_crush, horizon)
     }
 
     /// Slosh acceleration q̈ at state `v` (eq. 109, corrected), the lagged specific force in

@@ -97,17 +97,18 @@ impl DescentEngine {
     }
 
     /// Whether the nozzle's rim, with the committed crush `crush` (m), can reach the surface
-    /// within `horizon` (s) from the vehicle at `a`: its lowest point is at most the distance
-    /// any rim point can descend in that time at the vehicle's present rates (|ω| times the
-    /// farthest rim point's reach, plus the centre of mass's descent). False without nozzle
-    /// crushing.
-    pub fn rim_within_reach(&self, a: &Attitude, crush: f64, horizon: f64) -> bool {
+    /// within `horizon` (s) from the vehicle at `reach`: its lowest point is at most the
+    /// distance any rim point can descend in that time at the vehicle's present rates (|ω|
+    /// times the farthest rim point's reach, plus the centre of mass's sink rate). False
+    /// without nozzle crushing.
+    pub fn rim_within_reach(&self, reach: &Reach, crush: f64, horizon: f64) -> bool {
         let Some(n) = &self.nozzle else { return false };
+        let t_bi = reach.t_bi;
         let centre = self.exit + Vector3::new(0.0, 0.0, crush);
-        let tilt = a.t_bi[(2, 0)].hypot(a.t_bi[(2, 1)]); // the rim's lowest point, closed form
-        let lowest = nozzle_clearance(&self.exit, crush, a.position, a.t_bi, NOZZLE_SURFACE_Z)
+        let tilt = t_bi[(2, 0)].hypot(t_bi[(2, 1)]); // the rim's lowest point, closed form
+        let lowest = nozzle_clearance(&self.exit, crush, reach.position, t_bi, NOZZLE_SURFACE_Z)
             - n.exit_radius() * tilt;
-        let descent = -(a.t_bi * a.velocity).z + a.omega.norm() * (centre.norm() + n.exit_radius());
+        let descent = reach.sink_rate + reach.omega.norm() * (centre.norm() + n.exit_radius());
         lowest <= horizon * descent.max(0.0)
     }
 
@@ -157,6 +158,20 @@ pub struct Attitude<'a> {
     pub theta: &'a Vector3<f64>,
     /// Angular velocity ω, body axes, rad/s.
     pub omega: &'a Vector3<f64>,
+}
+
+/// How far and how fast the vehicle can carry its nozzle's rim, as
+/// [`Propulsion::rim_within_reach`] reads it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reach<'a> {
+    /// Centre of mass, inertial (surface) frame, m.
+    pub position: &'a Vector3<f64>,
+    /// T_BI, body → inertial.
+    pub t_bi: &'a Matrix3<f64>,
+    /// Angular velocity ω, rad/s (its magnitude is read).
+    pub omega: &'a Vector3<f64>,
+    /// The centre of mass's descent rate −Ż, inertial, m/s.
+    pub sink_rate: f64,
 }
 
 /// The scene's propulsion: the descent engine with its nozzle (eqs. 69-74) and the RCS
@@ -235,9 +250,10 @@ impl Propulsion {
     }
 
     /// Whether the nozzle's rim can reach the surface within `horizon` (s) from the vehicle at
-    /// `a` with the committed crush `nozzle_crush` (m) ([`DescentEngine::rim_within_reach`]).
-    pub fn rim_within_reach(&self, a: &Attitude, nozzle_crush: f64, horizon: f64) -> bool {
-        (self.engine).is_some_and(|e| e.rim_within_reach(a, nozzle_crush, horizon))
+    /// `reach` with the committed crush `nozzle_crush` (m) ([`DescentEngine::rim_within_reach`]);
+    /// false without nozzle crushing.
+    pub fn rim_within_reach(&self, reach: &Reach, nozzle_crush: f64, horizon: f64) -> bool {
+        (self.engine).is_some_and(|e| e.rim_within_reach(reach, nozzle_crush, horizon))
     }
 
     /// Commits an accepted state (vehicle at `position`, m, attitude `t_bi`): the nozzle crush
