@@ -290,7 +290,7 @@ impl State {
             }
             let (f, soil_drag) = self.sliding_forces(model, i, old);
             self.sliding_start[i] = Some(SlidingStart {
-                pad: self.pads[i],
+                stuck: self.pads[i].stuck,
                 forces: f,
                 soil_drag,
             });
@@ -328,7 +328,10 @@ impl State {
                 fzi,
                 ..*f0
             };
-            self.pads[i] = start.pad;
+            // back to the start of the step: the advance changes nothing else of the footpad
+            let pad = &mut self.pads[i];
+            (pad.position, pad.velocity) = self.pad_start[i];
+            pad.stuck = start.stuck;
             self.advance_pad(model, i, &f, dt, &mut w);
         }
         w

@@ -87,12 +87,14 @@ pub(crate) struct Relaxation {
     pub(crate) bending: [f64; 2],
 }
 
-/// A footpad on the surface at the start of a step and the forces frozen on it there
-/// (eq. 97), from which the corrector advances it again ([`State::correct_sliding_pads`]).
+/// What the corrector needs, besides its position and velocity in
+/// [`State::pad_start`], to advance a footpad on the surface again from the start of the step
+/// ([`State::correct_sliding_pads`]): whether it was stuck there and the forces frozen on it
+/// (eq. 97).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SlidingStart {
-    /// The footpad at the start of the step.
-    pub(crate) pad: Footpad,
+    /// Whether the footpad was stuck at the start of the step ([`Footpad::stuck`]).
+    pub(crate) stuck: bool,
     /// Its forces at the accepted state.
     pub(crate) forces: SlidingForces,
     /// The soil's lateral drag FDRAG in `forces.drag`, N (eq. 102; 0 off soil).
