@@ -1182,9 +1182,14 @@ fn a_settled_lander_slides_at_the_deceleration_its_friction_gives_on_every_engin
     }
 }
 
-/// The mean of `x`.
-fn mean(x: &[f64]) -> f64 {
-    x.iter().sum::<f64>() / x.len() as f64
+/// The least-squares slope of `y` against `x`.
+fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let (xm, ym) = (mean(x), mean(y));
+    let (num, den) = x.iter().zip(y).fold((0.0, 0.0), |(n, d), (a, b)| {
+        (n + (a - xm) * (b - ym), d + (a - xm) * (a - xm))
+    });
+    num / den
 }
 
 /// The RCS's attitude hold in a run (eqs. 75-80), on every engine: a level vehicle in free
@@ -1236,11 +1241,7 @@ fn the_rcs_attitude_hold_brakes_a_spin_as_its_switching_law_gives_on_every_engin
         let at = |time: f64| t.iter().position(|&x| x >= time - 1e-12).unwrap();
         // the braking: the least-squares slope of ω over the first 0.15 s
         let k = at(0.15);
-        let (tm, wm) = (mean(&t[..k]), mean(&w[..k]));
-        let (num, den) = (0..k).fold((0.0, 0.0), |(n, d), j| {
-            (n + (t[j] - tm) * (w[j] - wm), d + (t[j] - tm) * (t[j] - tm))
-        });
-        let a = -num / den;
+        let a = -slope(&t[..k], &w[..k]);
         if engine == Engine::Core {
             assert!(
                 (a / a_core - 1.0).abs() < 1e-6,
