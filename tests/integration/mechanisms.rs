@@ -1182,6 +1182,67 @@ fn a_settled_lander_slides_at_the_deceleration_its_friction_gives_on_every_engin
     }
 }
 
+/// Sliding friction's breakaway threshold (eqs. 96-100; the multibody engines' contact
+/// friction with the same U), on every engine: a lander set down upright on a 10° slope (its
+/// attitude the surface's, at 1 ft/s) slides iff U < tan α. Below it (U = 0.8·tan α) the
+/// settled lander accelerates downhill as −Δv_Y = U·(g_n·Δt + Δv_Z) − g_t·Δt (g_t = g·sin α,
+/// g_n = g·cos α; momentum along the slope of a body whose footpads all slide), within 0.1 % of
+/// U: measured 0.01 % on every engine. Above it (U = 1.2·tan α) the footpads stand: their drift
+/// over the last second is below 1e-4 of the free slide's ½·g_t·t² over that second (85 µm): 0 on
+/// the core, whose stuck footpads hold exactly, and 15 µm on MuJoCo, whose regularised friction
+/// creeps. rapier's footpads creep 0.97 mm over it, at a speed that does not change with its
+/// step, its solver iterations or its contact stiffness (docs/engines.md, "Shared laws and
+/// their oracles"): it is held to the sliding half only.
+#[test]
+fn a_lander_on_a_slope_slides_below_its_friction_threshold_and_stands_above_it_on_every_engine() {
+    let alpha = 10f64.to_radians();
+    let (window, hold) = (0.75, 0.5); // s: where the slide and the hold are measured
+    for (factor, sliding) in [(0.8, true), (1.2, false)] {
+        let u = factor * alpha.tan();
+        let path = variant(
+            "level-sliding.toml",
+            &format!("slope-threshold-{factor}"),
+            &format!(
+                "[surface]\nslope = 10.0\nfriction = {u:.17e}\n[touchdown]\n\
+                 attitude_reference = \"surface\"\nclearance = 0.0\nvertical_velocity = -1.0\n\
+                 horizontal_velocity = [0.0, 0.0]\n[integrator]\nt_end = 1.5\n"
+            ),
+        );
+        let g = Scenario::load(&path).unwrap().vehicle.gravity;
+        let (g_t, g_n) = (g * alpha.sin(), g * alpha.cos());
+        for engine in Engine::ALL {
+            if !sliding && engine == Engine::Rapier {
+                continue;
+            }
+            let (_, rows) = landed_with_history(engine, &path);
+            let t = rows.column("t_s");
+            let at = |time: f64| t.iter().position(|&x| x >= time - 1e-9).unwrap();
+            let b = t.len() - 1;
+            if sliding {
+                let (vy, vz) = (rows.column("vy_m_s"), rows.column("vz_m_s"));
+                let a = at(window);
+                let dt = t[b] - t[a];
+                let friction = (g_t * dt - (vy[b] - vy[a])) / (g_n * dt + vz[b] - vz[a]);
+                assert!(
+                    (friction / u - 1.0).abs() < 1e-3,
+                    "{engine}: slides as if U = {friction}, the surface's is {u}"
+                );
+            } else {
+                let a = at(hold);
+                let free = 0.5 * g_t * (t[b] - t[a]).powi(2);
+                for leg in 1..=4 {
+                    let y = rows.column(&format!("leg{leg}_pad_y_m"));
+                    let drift = y[b] - y[a];
+                    assert!(
+                        drift.abs() < 1e-4 * free,
+                        "{engine}: footpad {leg} drifts {drift} m on a slope its friction holds"
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// The least-squares slope of `y` against `x`.
 fn slope(x: &[f64], y: &[f64]) -> f64 {
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
