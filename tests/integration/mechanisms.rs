@@ -1190,9 +1190,10 @@ fn a_settled_lander_slides_at_the_deceleration_its_friction_gives_on_every_engin
 /// U: measured 0.01 % on every engine. Above it (U = 1.2·tan α) the footpads stand: their drift
 /// over the last second is below 1e-4 of the free slide's ½·g_t·t² over that second (85 µm): 0 on
 /// the core, whose stuck footpads hold exactly, and 15 µm on MuJoCo, whose regularised friction
-/// creeps. rapier's footpads creep 0.97 mm over it, at a speed that does not change with its
-/// step, its solver iterations or its contact stiffness (docs/engines.md, "Shared laws and
-/// their oracles"): it is held to the sliding half only.
+/// creeps. rapier's footpads creep 0.97 mm over it: its trunnions are spherical joints, so each
+/// strut may spin about itself, and the friction force, 0.002 L2P below the strut axis, spins
+/// it and rolls its footpad downhill (docs/engines.md, "Shared laws and their oracles"). It is
+/// held to the sliding half only.
 #[test]
 fn a_lander_on_a_slope_slides_below_its_friction_threshold_and_stands_above_it_on_every_engine() {
     let alpha = 10f64.to_radians();
