@@ -118,16 +118,24 @@ fn area(curve: &LoadStroke, x: f64) -> f64 {
 }
 
 /// Maximum strokes of leg 1, m, of a symmetric vertical drop on flat ground with locked
-/// footpads, frictionless and without viscous forces, computed independently of any engine:
-/// the primary's compression c and the secondaries' S31, S41 (tension positive). At maximum
-/// stroke the vehicle is at rest, so its initial kinetic energy plus the potential energy
-/// released by the drop h equals the work of monotonic loading of every strut. The balance is
-/// solved for h (pure translation: the footpad fixed in space moves up by h in body axes), and
-/// the strokes are the gear's at h: point 1 at L21 along the primary for the cantilever, the
-/// footpad itself for the tripod (eqs. 27-34). Gear masses are left out (the report's gear is
-/// massless).
+/// footpads, without viscous forces, computed independently of any engine: the primary's
+/// compression c and the secondaries' S31, S41 (tension positive). At maximum stroke the
+/// vehicle is at rest, so its initial kinetic energy plus the potential energy released by the
+/// drop h equals the work of monotonic loading of every strut and of the primary's bearing
+/// friction. The balance is solved for h (pure translation: the footpad fixed in space moves up
+/// by h in body axes), and the strokes are the gear's at h: point 1 at L21 along the primary for
+/// the cantilever, the footpad itself for the tripod (eqs. 27-34). Gear masses are left out (the
+/// report's gear is massless).
+///
+/// The bearing friction's work is derived here from statics, not from the laws' code: the
+/// secondaries pull point 1 with their virgin-curve forces along their own axes; the primary,
+/// pinned at its trunnion B2, balances their part normal to it at L21 with a side load FM at the
+/// footpad, |FM|·|V2P| = |F⊥|·L21; the inner cylinder, a beam on its two bearings (bearing 1 at
+/// D1 from the footpad, bearing 2 at D1 − D2, D2 = D2₀ + c), carries FM with
+/// F2 − F1 = FM and F2·(D1 − D2) = F1·D1 (moments about the footpad), and the friction
+/// μB·(F1 + F2) opposes the compression along the whole monotonic stroke. A tripod's primary is
+/// a two-force member (FM = 0).
 pub fn analytic_drop_strokes(sc: &Scenario) -> [f64; 3] {
-    assert_eq!(sc.primary.bearing_friction, 0.0);
     assert_eq!(sc.primary.viscous.coefficient, 0.0);
     let laws = GearLaws::from_scenario(sc).unwrap();
     let m = sc.vehicle.mass;
@@ -160,13 +168,63 @@ pub fn analytic_drop_strokes(sc: &Scenario) -> [f64; 3] {
             area(&laws.secondary.honeycomb.compression.curve, -s)
         }
     };
+    let secondary_force = |s: f64| {
+        if s >= 0.0 {
+            laws.secondary.honeycomb.tension.curve.force(s)
+        } else {
+            -laws.secondary.honeycomb.compression.curve.force(-s)
+        }
+    };
+    // The bearing friction on each primary at the drop h, N.
+    let (mu, d1) = (
+        sc.primary.bearing_friction,
+        sc.primary.inner_cylinder_length,
+    );
+    let friction = |h: f64| -> Vec<f64> {
+        sc.legs
+            .iter()
+            .zip(strokes(h))
+            .map(|(leg, [c, s3, s4])| {
+                if mu == 0.0 || tripod {
+                    return 0.0;
+                }
+                let v2p = leg.bp + Vector3::new(0.0, 0.0, h) - leg.b2;
+                let axis = v2p.normalize();
+                let b1 = leg.b2 + axis * leg.l21;
+                let pull = (leg.b3 - b1).normalize() * secondary_force(s3)
+                    + (leg.b4 - b1).normalize() * secondary_force(s4);
+                let fm = (pull - axis * pull.dot(&axis)).norm() * leg.l21 / v2p.norm();
+                let d2 = sc.primary.initial_overlap + c;
+                let f1 = fm * (d1 - d2) / d2;
+                mu * (f1 + (f1 + fm))
+            })
+            .collect()
+    };
+    // Its work from 0 to h, J: the trapezoid over 2,000 steps of the drop.
+    let friction_work = |h: f64| -> f64 {
+        if mu == 0.0 || tripod {
+            return 0.0;
+        }
+        let n = 2000;
+        let (mut w, mut prev_f, mut prev_c) = (0.0, friction(0.0), strokes(0.0));
+        for k in 1..=n {
+            let hk = h * k as f64 / n as f64;
+            let (f, c) = (friction(hk), strokes(hk));
+            for j in 0..f.len() {
+                w += 0.5 * (f[j] + prev_f[j]) * (c[j][0] - prev_c[j][0]);
+            }
+            (prev_f, prev_c) = (f, c);
+        }
+        w
+    };
     let work = |h: f64| -> f64 {
-        strokes(h)
+        let struts: f64 = strokes(h)
             .iter()
             .map(|[c, s3, s4]| {
                 area(&laws.primary.honeycomb.curve, *c) + secondary_area(*s3) + secondary_area(*s4)
             })
-            .sum()
+            .sum();
+        struts + friction_work(h)
     };
     let balance = |h: f64| 0.5 * m * v * v + m * g * h - work(h);
     let (mut lo, mut hi) = (0.0, 0.3);
