@@ -115,6 +115,45 @@ mod tests {
         );
     }
 
+    /// Eqs. (53)-(58): the primary, pinned at its trunnion B2, takes −FS from the secondaries at
+    /// point 1 (L21 along its axis) and −FM from the footpad at its length; its moments about
+    /// B2 balance, and FM is normal to it (an axial FS leaves none). The printed eq. (54),
+    /// MS = FS × V21, turns FM the other way and fails the balance.
+    #[test]
+    fn the_side_load_balances_the_primary_about_its_trunnion() {
+        let cases = [
+            (
+                Vector3::new(120.0, -40.0, 35.0),
+                Vector3::new(0.6, 0.0, -0.8),
+                0.35,
+                1.1,
+            ),
+            (
+                Vector3::new(-5.0, 300.0, 0.0),
+                Vector3::new(-0.36, 0.48, -0.8),
+                0.2,
+                0.9,
+            ),
+            (
+                Vector3::new(0.0, 0.0, -80.0),
+                Vector3::new(0.0, 0.0, -1.0),
+                0.5,
+                0.8,
+            ),
+        ];
+        for (fs, axis, l21, length) in cases {
+            let axis: Vector3<f64> = axis.normalize();
+            let fm = side_load(&fs, &axis, l21, length);
+            let moment = (axis * l21).cross(&-fs) + (axis * length).cross(&-fm);
+            assert!(moment.norm() < 1e-12 * fs.norm(), "moment {moment}");
+            assert!(fm.dot(&axis).abs() < 1e-12 * fs.norm(), "axial part");
+            let normal = (fs - axis * fs.dot(&axis)).norm();
+            assert!((fm.norm() - normal * l21 / length).abs() < 1e-12 * fs.norm());
+        }
+        let axial = side_load(&Vector3::new(0.0, 0.0, 50.0), &Vector3::z(), 0.3, 1.0);
+        assert_eq!(axial.norm(), 0.0);
+    }
+
     #[test]
     fn friction_opposes_stroking() {
         let l = B.loads(100.0, 0.0).unwrap();
