@@ -68,8 +68,11 @@ impl State {
     /// the trial (`trial`). The report's scheme books it with the forces the corrector used
     /// (eq. 24: the accepted state k and the trial at the prediction), so that the ledger and
     /// the vehicle's energy see the same forces even when a footpad leaves the surface in the
-    /// step: honeycomb ½(F_k + F*)·(x_{k+1} − x_k), viscous and bearing friction
-    /// ½(P_k + P*)·Δt. A Runge–Kutta scheme books its own quadrature of the stage powers.
+    /// step: honeycomb and bearing friction ½(F_k + F*)·(x_{k+1} − x_k), viscous ½(P_k + P*)·Δt.
+    /// (Bearing friction booked by its power, μB·(F1 + F2)·|ċ| at both ends, counted as
+    /// dissipated what the mean force did not remove wherever ċ changes sign within a step:
+    /// docs/errata.md, "Bearing friction booked with the force the vehicle feels".) A
+    /// Runge–Kutta scheme books its own quadrature of the stage powers.
     /// Every gear strokes through the step as its footpad moves, on the surface or off it.
     pub(crate) fn book_strut_work(
         &mut self,
@@ -89,7 +92,7 @@ impl State {
                 Quadrature::Trapezoid { .. } => {
                     l.honeycomb += 0.5 * (a.fcp + t.fcp) * (c_end - a.primary_stroke);
                     l.viscous += 0.5 * (a.fvp * a.primary_rate + t.fvp * t.primary_rate) * dt;
-                    l.bearing += 0.5 * (a.fbr * a.primary_rate + t.fbr * t.primary_rate) * dt;
+                    l.bearing += 0.5 * (a.fbr + t.fbr) * (c_end - a.primary_stroke);
                     t
                 }
                 Quadrature::Stages { .. } => b,
