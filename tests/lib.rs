@@ -67,6 +67,25 @@ pub fn variant(base: &str, name: &str, extra: &str) -> PathBuf {
     path
 }
 
+/// The slope of [`set_down_on_a_slope`], deg.
+pub const SLOPE_DEG: f64 = 10.0;
+
+/// A variant of scenario `base` named `name`, set down on a [`SLOPE_DEG`] slope in the slope's
+/// attitude, its first footpad on the surface at t = 0, at 1 ft/s into it and `along_x` ft/s
+/// along the slope's level line (+X), on ground of friction `friction`, run to 1.5 s: the
+/// settled lander of the sliding, curb-friction and rocking oracles.
+pub fn set_down_on_a_slope(base: &str, name: &str, friction: f64, along_x: f64) -> PathBuf {
+    variant(
+        base,
+        name,
+        &format!(
+            "[surface]\nslope = {SLOPE_DEG:?}\nfriction = {friction:?}\n[touchdown]\n\
+             attitude_reference = \"surface\"\nclearance = 0.0\nvertical_velocity = -1.0\n\
+             horizontal_velocity = [{along_x:?}, 0.0]\n[integrator]\nt_end = 1.5\n"
+        ),
+    )
+}
+
 /// Every bundled landing (scenarios/*.toml; the vehicle files are not landings), sorted.
 pub fn bundled_landings() -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(root().join("scenarios"))

@@ -13,7 +13,7 @@ use touchdown_record::{History, Summary};
 use touchdown_scenario::model::{LoadStroke, Mechanism};
 use touchdown_scenario::schema::{Detached, Engine};
 use touchdown_scenario::Scenario;
-use touchdown_tests::{scenario, variant};
+use touchdown_tests::{scenario, set_down_on_a_slope, variant, SLOPE_DEG};
 
 const FT: f64 = 0.3048;
 const LBF: f64 = 4.448_221_615_260_5;
@@ -1196,19 +1196,12 @@ fn a_settled_lander_slides_at_the_deceleration_its_friction_gives_on_every_engin
 /// held to the sliding half only.
 #[test]
 fn a_lander_on_a_slope_slides_below_its_friction_threshold_and_stands_above_it_on_every_engine() {
-    let alpha = 10f64.to_radians();
+    let alpha = SLOPE_DEG.to_radians();
     let (window, hold) = (0.75, 0.5); // s: where the slide and the hold are measured
     for (factor, sliding) in [(0.8, true), (1.2, false)] {
         let u = factor * alpha.tan();
-        let path = variant(
-            "level-sliding.toml",
-            &format!("slope-threshold-{factor}"),
-            &format!(
-                "[surface]\nslope = 10.0\nfriction = {u:.17e}\n[touchdown]\n\
-                 attitude_reference = \"surface\"\nclearance = 0.0\nvertical_velocity = -1.0\n\
-                 horizontal_velocity = [0.0, 0.0]\n[integrator]\nt_end = 1.5\n"
-            ),
-        );
+        let name = format!("slope-threshold-{factor}");
+        let path = set_down_on_a_slope("level-sliding.toml", &name, u, 0.0);
         let g = Scenario::load(&path).unwrap().vehicle.gravity;
         let (g_t, g_n) = (g * alpha.sin(), g * alpha.cos());
         for engine in Engine::ALL {
@@ -1255,18 +1248,11 @@ fn a_lander_on_a_slope_slides_below_its_friction_threshold_and_stands_above_it_o
 /// measured value is 0, and a UW taken 5 % off fails.
 #[test]
 fn footpads_sliding_along_curbs_are_braked_by_their_curb_friction_on_every_engine() {
-    let alpha = 10f64.to_radians();
-    let path = variant(
-        "curb-slide.toml",
-        "curb-friction",
-        "[surface]\nslope = 10.0\nfriction = 0.0\n[touchdown]\nattitude_reference = \"surface\"\n\
-         clearance = 0.0\nvertical_velocity = -1.0\nhorizontal_velocity = [3.0, 0.0]\n\
-         [integrator]\nt_end = 1.5\n",
-    );
+    let path = set_down_on_a_slope("curb-slide.toml", "curb-friction", 0.0, 3.0);
     let sc = Scenario::load(&path).unwrap();
     let uw = sc.surface.curbs[0].friction;
     assert!(uw > 0.0 && sc.surface.curbs.iter().all(|c| c.friction == uw));
-    let g_t = sc.vehicle.gravity * alpha.sin();
+    let g_t = sc.vehicle.gravity * SLOPE_DEG.to_radians().sin();
     for engine in Engine::ALL {
         let (_, rows) = landed_with_history(engine, &path);
         let (t, vx, vy) = (

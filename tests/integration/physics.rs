@@ -4,7 +4,9 @@ use nalgebra::Vector3;
 use touchdown_core::{Landing, Observer, Simulation};
 use touchdown_scenario::schema::Detached;
 use touchdown_scenario::Scenario;
-use touchdown_tests::{assert_drop_strokes_to_the_energy_balance, scenario};
+use touchdown_tests::{
+    assert_drop_strokes_to_the_energy_balance, scenario, set_down_on_a_slope, SLOPE_DEG,
+};
 
 /// A scenario that extends `base` (under scenarios/) with extra TOML.
 fn variant(base: &str, name: &str, extra: &str) -> Scenario {
@@ -264,16 +266,9 @@ fn a_sliding_lander_closes_its_energy_balance_on_the_core() {
 /// with it: 1.10 % at 1.5 s, first order in the step.
 #[test]
 fn a_rocking_lander_books_its_bearing_friction_as_the_vehicle_feels_it_on_the_core() {
-    let u = 1.2 * 10f64.to_radians().tan();
-    let sc = variant(
-        "level-sliding.toml",
-        "rocking-on-a-slope",
-        &format!(
-            "[surface]\nslope = 10.0\nfriction = {u:.17e}\n[touchdown]\n\
-             attitude_reference = \"surface\"\nclearance = 0.0\nvertical_velocity = -1.0\n\
-             horizontal_velocity = [0.0, 0.0]\n[integrator]\nt_end = 1.5\n"
-        ),
-    );
+    let u = 1.2 * SLOPE_DEG.to_radians().tan();
+    let path = set_down_on_a_slope("level-sliding.toml", "rocking-on-a-slope", u, 0.0);
+    let sc = Scenario::load(&path).unwrap_or_else(|e| panic!("{e}"));
     assert!(sc.primary.bearing_friction > 0.0);
     let s = touchdown_core::run(&sc).unwrap_or_else(|e| panic!("{e}"));
     let rel = s.energy.residual_j.abs() / s.energy.scale();
