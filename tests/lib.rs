@@ -4,6 +4,7 @@ use nalgebra::Vector3;
 use std::path::PathBuf;
 use touchdown_laws::{GearLaws, LoadStroke};
 use touchdown_record::{Outcome, Sample, Summary};
+use touchdown_scenario::model::Leg;
 use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::Scenario;
 
@@ -194,45 +195,44 @@ pub fn analytic_drop_strokes(sc: &Scenario) -> [f64; 3] {
             -laws.secondary.honeycomb.compression.curve.force(-s)
         }
     };
-    // The bearing friction on each primary at the drop h, N.
+    // The bearing friction on `leg`'s primary at the drop h, its strokes `[c, s3, s4]`, N.
     let (mu, d1) = (
         sc.primary.bearing_friction,
         sc.primary.inner_cylinder_length,
     );
-    let friction = |h: f64| -> Vec<f64> {
-        sc.legs
-            .iter()
-            .zip(strokes(h))
-            .map(|(leg, [c, s3, s4])| {
-                if mu == 0.0 || tripod {
-                    return 0.0;
-                }
-                let v2p = leg.bp + Vector3::new(0.0, 0.0, h) - leg.b2;
-                let axis = v2p.normalize();
-                let b1 = leg.b2 + axis * leg.l21;
-                let pull = (leg.b3 - b1).normalize() * secondary_force(s3)
-                    + (leg.b4 - b1).normalize() * secondary_force(s4);
-                let fm = (pull - axis * pull.dot(&axis)).norm() * leg.l21 / v2p.norm();
-                let d2 = sc.primary.initial_overlap + c;
-                let f1 = fm * (d1 - d2) / d2;
-                mu * (f1 + (f1 + fm))
-            })
-            .collect()
+    let friction = |leg: &Leg, h: f64, [c, s3, s4]: [f64; 3]| -> f64 {
+        let v2p = leg.bp + Vector3::new(0.0, 0.0, h) - leg.b2;
+        let axis = v2p.normalize();
+        let b1 = leg.b2 + axis * leg.l21;
+        let pull = (leg.b3 - b1).normalize() * secondary_force(s3)
+            + (leg.b4 - b1).normalize() * secondary_force(s4);
+        let fm = (pull - axis * pull.dot(&axis)).norm() * leg.l21 / v2p.norm();
+        let d2 = sc.primary.initial_overlap + c;
+        let f1 = fm * (d1 - d2) / d2;
+        let f2 = f1 + fm;
+        mu * (f1 + f2)
     };
-    // Its work from 0 to h, J: the trapezoid over 2,000 steps of the drop.
+    // Its work from 0 to h over every leg, J: the trapezoid over 2,000 steps of the drop.
     let friction_work = |h: f64| -> f64 {
         if mu == 0.0 || tripod {
             return 0.0;
         }
+        let at = |hk: f64| -> Vec<(f64, f64)> {
+            let s = strokes(hk);
+            sc.legs
+                .iter()
+                .zip(s)
+                .map(|(leg, st)| (friction(leg, hk, st), st[0]))
+                .collect()
+        };
         let n = 2000;
-        let (mut w, mut prev_f, mut prev_c) = (0.0, friction(0.0), strokes(0.0));
+        let (mut w, mut prev) = (0.0, at(0.0));
         for k in 1..=n {
-            let hk = h * k as f64 / n as f64;
-            let (f, c) = (friction(hk), strokes(hk));
-            for j in 0..f.len() {
-                w += 0.5 * (f[j] + prev_f[j]) * (c[j][0] - prev_c[j][0]);
+            let now = at(h * k as f64 / n as f64);
+            for ((f, c), (f0, c0)) in now.iter().zip(&prev) {
+                w += 0.5 * (f + f0) * (c - c0);
             }
-            (prev_f, prev_c) = (f, c);
+            prev = now;
         }
         w
     };
