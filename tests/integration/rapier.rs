@@ -171,6 +171,61 @@ fn engine_settings_are_checked_like_file_fields() {
     );
 }
 
+/// Between the end stops the rebuild may take several base steps at once
+/// (`engines.rapier.stride`; docs/engines.md, "A longer step between the stops"). On the 2-2
+/// landing at 8 ft/s, where no stop engages, two base steps at once take about half the steps,
+/// close the energy balance, and move each leg's maxima by no more than twice the base step's
+/// own convergence (the step halved): at first order an error C·h at the base step is C·h/2
+/// at half of it and at most 2·C·h at the long step, so the long step's change from the base
+/// step is at most C·h, twice the convergence.
+#[test]
+fn a_longer_step_between_the_stops_halves_the_steps_within_the_step_convergence() {
+    let sc = Scenario::load(scenario("table-i-2-2-vv8.toml")).unwrap();
+    let base = sc.rapier.timestep.unwrap();
+    let land = |timestep: f64, stride: f64| {
+        let sc = (sc.clone())
+            .with_rapier(|r| {
+                r.timestep = Some(timestep);
+                r.stride = Some(stride);
+            })
+            .unwrap();
+        touchdown_rapier::run(&sc).unwrap()
+    };
+    let (fixed, half, long) = (land(base, 1.0), land(0.5 * base, 1.0), land(base, 2.0));
+    assert!(
+        (long.steps as f64) < 0.55 * fixed.steps as f64,
+        "{} steps against {}",
+        long.steps,
+        fixed.steps
+    );
+    let e = &long.energy;
+    assert!(
+        e.residual_j.abs() < 0.01 * e.kinetic_initial_j,
+        "residual {} J of {} J",
+        e.residual_j,
+        e.kinetic_initial_j
+    );
+    assert_eq!(long.outcome, fixed.outcome);
+    let channels = |s: &touchdown_record::Summary| {
+        let mut c = s.max_primary_stroke_m.clone();
+        c.extend(s.max_secondary_compression_m.iter().flatten());
+        c.extend(s.max_secondary_tension_m.iter().flatten());
+        c
+    };
+    let (f, h, l) = (channels(&fixed), channels(&half), channels(&long));
+    let convergence = f
+        .iter()
+        .zip(&h)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    for (i, (a, b)) in f.iter().zip(&l).enumerate() {
+        assert!(
+            (a - b).abs() <= 2.0 * convergence,
+            "channel {i}: {b} m against {a} m at the base step; the step halved moves a maximum by up to {convergence} m"
+        );
+    }
+}
+
 #[test]
 fn every_table_i_landing_closes_its_balance_and_agrees_on_the_outcome() {
     for name in validation_landings() {

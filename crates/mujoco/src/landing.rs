@@ -185,7 +185,7 @@ fn check(what: &str, leg: usize, id: i32, len: i32) -> Result<usize, MujocoError
 fn book_for(sc: &Scenario) -> Result<((GearModel, GearState), MujocoSettings), ScenarioError> {
     sc.require_engine(Engine::Mujoco, crate::unsupported)?;
     let settings = MujocoSettings::new(sc)?;
-    Ok((GearModel::new(sc, settings.timestep)?, settings))
+    Ok((GearModel::new(sc, settings.timestep, 1)?, settings))
 }
 
 /// Refuses `sc` as a MuJoCo landing would, in this process: the command line asks before it

@@ -26,6 +26,7 @@
 use crate::applied::VehicleLoads;
 use crate::motion::{BodyMotion, Fault};
 use crate::step::stiffest_rate;
+use crate::stride::StepRule;
 use crate::strut::{strut_forces, StrutForces, StrutKinematics};
 use crate::wall::ObstacleWall;
 use nalgebra::{Vector2, Vector3};
@@ -174,6 +175,8 @@ pub struct GearModel {
     max_steps: u64,
     /// End of the run, s (`integrator.t_end`).
     t_end: f64,
+    /// The engine's step, base and long (`crate::stride`).
+    rule: StepRule,
 }
 
 /// What the steps of a multibody landing change (see the module documentation).
@@ -212,6 +215,8 @@ pub struct GearState {
     /// Each footpad's first contact point (XPI, YPI), m (eq. 86).
     touchdown_xy: Vec<Vector2<f64>>,
     curb_evaluations: u64,
+    /// The last step's length, s (zero before the first).
+    last_dt: f64,
 }
 
 impl GearState {
@@ -243,18 +248,25 @@ impl GearState {
 }
 
 impl GearModel {
-    /// The gear of `sc` and its state at touchdown, nothing booked yet, for an engine stepping
-    /// `dt` (s).
-    pub fn new(sc: &Scenario, dt: f64) -> Result<(GearModel, GearState), ScenarioError> {
+    /// The gear of `sc` and its state at touchdown, nothing booked yet, for an engine whose
+    /// base step is `dt` (s) and that takes steps of up to `max_stride` base steps between
+    /// the stops where the scene allows them ([`GearModel::next_step`]; 1: `dt` throughout).
+    pub fn new(
+        sc: &Scenario,
+        dt: f64,
+        max_stride: u32,
+    ) -> Result<(GearModel, GearState), ScenarioError> {
         let n = sc.legs.len();
         let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         let laws = GearLaws::from_scenario(sc)?;
+        let rule = StepRule::new(sc, &laws, dt, max_stride)?;
         let capacities = StrutCapacities::new(laws.capacities());
         let primary_rate = stiffest_rate(&laws.primary.honeycomb);
         let walls = (sc.surface.pads.iter())
             .map(|p| {
-                p.locked()
-                    .then(|| ObstacleWall::new(p.hold_height(), sc.footpad.mass, primary_rate, dt))
+                p.locked().then(|| {
+                    ObstacleWall::new(p.hold_height(), sc.footpad.mass, primary_rate, rule.long())
+                })
             })
             .collect();
         let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
@@ -276,6 +288,7 @@ impl GearModel {
             pad_views: vec![PadView::default(); n],
             touchdown_xy: vec![Vector2::zeros(); n],
             curb_evaluations: 0,
+            last_dt: 0.0,
             walls,
         };
         let model = GearModel {
@@ -292,6 +305,7 @@ impl GearModel {
             energy_floor_j: sc.energy_floor_j(),
             max_steps: sc.integrator.max_steps,
             t_end: sc.integrator.t_end,
+            rule,
         };
         Ok((model, state))
     }
@@ -315,6 +329,25 @@ impl GearModel {
     /// obstacle walls.
     pub fn loads_footpads(&self) -> bool {
         self.curbs.is_some() || self.walls
+    }
+
+    /// The length of the next step from time `t` (s) in `state`, s: the long step where no
+    /// stop is engaged or can engage within it, the base step otherwise (`crate::stride`).
+    pub fn next_step(&self, state: &GearState, t: f64) -> f64 {
+        self.rule.next(
+            &state.kin,
+            &state.previous,
+            &state.memory,
+            state.last_dt,
+            t,
+            self.t_end,
+        )
+    }
+
+    /// The step between the stops, s: the long step of [`GearModel::next_step`] (the base
+    /// step where the scene allows none longer).
+    pub fn long_step(&self) -> f64 {
+        self.rule.long()
     }
 
     /// Whether the landing in `state` has ended at time `t` (s): an unstable decision, if the
@@ -368,6 +401,7 @@ impl GearModel {
         } = *step;
         state.previous.copy_from_slice(&state.kin);
         state.kin.copy_from_slice(kinematics);
+        state.last_dt = dt;
         for (i, pad) in pads.iter().enumerate() {
             self.book_contact(state, i, pad, now.t, dt);
         }

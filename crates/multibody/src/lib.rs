@@ -6,6 +6,7 @@
 //! | `capabilities` | what the multibody engines model of the scene's optional mechanisms |
 //! | `strut` | the strut laws at one state of a multibody gear (eqs. 49-63): explicit forces, the plateau and bearing-friction bounds, their work over a step |
 //! | `step` | the time step and footpad contact, stated or derived from the stiffest gear mode and the contact radius, and the explicit-step check |
+//! | `stride` | the step between the end stops: a longer step where no stop is engaged or can engage within it |
 //! | `motion` | the vehicle body's motion after a step, and what stops a run before it is placed in time and state |
 //! | `applied` | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
 //! | `wall` | the obstacle wall that holds a locked footpad laterally from its landing until it rises above the wall (fig. 17) |
@@ -16,6 +17,7 @@ mod book;
 mod capabilities;
 mod motion;
 mod step;
+mod stride;
 mod strut;
 mod wall;
 

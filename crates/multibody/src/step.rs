@@ -57,9 +57,14 @@ pub fn stiffest_rate(h: &Honeycomb) -> f64 {
 /// they meet at, together with the primary (the footpad node on its three struts, bounded by
 /// the trace of its stiffness over PMASS).
 pub fn gear_modes(sc: &Scenario, laws: &GearLaws) -> [Mode; 2] {
-    let k_primary = stiffest_rate(&laws.primary.honeycomb);
+    gear_modes_with(sc, laws, stiffest_rate)
+}
+
+/// [`gear_modes`] with each honeycomb's rate taken as `rate` gives it, N/m.
+pub fn gear_modes_with(sc: &Scenario, laws: &GearLaws, rate: fn(&Honeycomb) -> f64) -> [Mode; 2] {
+    let k_primary = rate(&laws.primary.honeycomb);
     let sec = &laws.secondary.honeycomb;
-    let k_secondary = stiffest_rate(&sec.tension).max(stiffest_rate(&sec.compression));
+    let k_secondary = rate(&sec.tension).max(rate(&sec.compression));
     let pmass = sc.footpad.mass;
     let primary = Mode {
         what: "primary strut on the footpad mass",

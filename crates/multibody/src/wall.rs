@@ -9,8 +9,8 @@
 //! The wall is a lateral spring-damper between the footpad and the point where it landed,
 //! applied as an explicit force like the curbs': stiffness four times the primary strut's
 //! stiffest rate (so the footpad's mode on the wall is twice as fast as its stiffest mode on
-//! its strut, and the wall is rigid beside the gear), but no stiffer than the engine's step
-//! resolves (ω·Δt ≤ 0.5 on PMASS, half of what the engines allow a strut law: on a gear too
+//! its strut, and the wall is rigid beside the gear), but no stiffer than the engine's longest
+//! step (its step between the stops, `crate::stride`) resolves (ω·Δt ≤ 0.5 on PMASS, half of what the engines allow a strut law: on a gear too
 //! stiff for that the wall is as stiff as the step allows, and never the mode that refuses a
 //! step), critically damped on the footpad mass PMASS. Its work is booked with the contact's
 //! (the contact-event account), as a locked footpad's lateral impulses are.
@@ -38,7 +38,7 @@ pub struct ObstacleWall {
 
 impl ObstacleWall {
     /// The wall of a footpad of mass `mass` (kg) on a gear whose primary strut's stiffest rate
-    /// is `primary_rate` (N/m), `height` (m) high, in an engine stepping `dt` (s).
+    /// is `primary_rate` (N/m), `height` (m) high, in an engine whose longest step is `dt` (s).
     pub fn new(height: f64, mass: f64, primary_rate: f64, dt: f64) -> ObstacleWall {
         let resolved = mass * (WALL_OMEGA_DT / dt).powi(2);
         let stiffness = (WALL_STIFFNESS_RATIO * primary_rate).min(resolved);

@@ -1,4 +1,5 @@
-//! One landing on the rapier multibody: fixed steps, the strut laws applied before each step,
+//! One landing on the rapier multibody: steps of the base length, or longer between the end
+//! stops (`touchdown_multibody::GearModel::next_step`), the strut laws applied before each step,
 //! hysteresis committed after it, an energy ledger, the shared stability criteria and
 //! divergence checks.
 //!
@@ -57,10 +58,10 @@ impl RapierSimulation {
     pub fn new(scenario: &Scenario) -> Result<RapierSimulation, RunError> {
         scenario.require_engine(Engine::Rapier, crate::unsupported)?;
         let rs = RapierSettings::new(scenario)?;
-        let (gear, gear_state) = GearModel::new(scenario, rs.timestep)?;
+        let (gear, gear_state) = GearModel::new(scenario, rs.timestep, scenario.rapier.stride)?;
         let n = scenario.legs.len();
         let assembly = assembly::build(scenario, &rs)?;
-        let settings = settings(&rs, &assembly.masses);
+        let settings = settings(&rs, &assembly.masses, gear.long_step());
         let mut sim = RapierSimulation {
             name: scenario.file.name.clone(),
             gear,
@@ -290,9 +291,15 @@ fn footpad_velocity(assembly: &Assembly) -> impl Fn(usize) -> Vector3<f64> + '_ 
 impl Landing for RapierSimulation {
     type Error = RunError;
 
-    /// One fixed step (see the module documentation).
+    /// One step (see the module documentation): the base step, or the long one where no
+    /// stop is engaged or can engage within it (`GearModel::next_step`).
     fn step(&mut self) -> Result<(), RunError> {
-        let dt = self.assembly.world.integration_parameters.dt;
+        let dt = self.gear.next_step(&self.gear_state, self.t);
+        let p = &mut self.assembly.world.integration_parameters;
+        // The contacts start from the last step's impulses, scaled to this step's length
+        // (the same force), as rapier's one solver iteration a step needs them.
+        p.warmstart_coefficient = dt / p.dt;
+        p.dt = dt;
         // User forces and torques persist in rapier until cleared, and are cleared separately.
         for (h, _) in &self.bodies {
             let rb = &mut self.assembly.world.bodies[*h];
@@ -379,11 +386,17 @@ impl Landing for RapierSimulation {
     }
 }
 
-/// The engine's settings as used, for the summary (names carry their units).
-fn settings(r: &RapierSettings, masses: &LinkMasses) -> serde_json::Map<String, serde_json::Value> {
+/// The engine's settings as used, for the summary (names carry their units); `long_step`: the
+/// step between the stops, s.
+fn settings(
+    r: &RapierSettings,
+    masses: &LinkMasses,
+    long_step: f64,
+) -> serde_json::Map<String, serde_json::Value> {
     let mut m = serde_json::Map::new();
     m.insert("rapier3d_f64".into(), "0.36.1".into());
     m.insert("timestep_s".into(), r.timestep.into());
+    m.insert("timestep_between_stops_s".into(), long_step.into());
     m.insert("solver_substeps".into(), 1.into());
     m.insert("contact_frequency_hz".into(), r.contact_frequency.into());
     m.insert(

@@ -207,6 +207,14 @@ impl Check<'_> {
     ) -> Result<f64, ScenarioError> {
         self.si(field, self.non_negative(field, v)?, scale)
     }
+    /// A whole number ≥ 1 (a count), checked against its range like [`Check::si`].
+    pub(crate) fn whole(&self, field: &str, v: f64) -> Result<u32, ScenarioError> {
+        let x = self.si(field, self.positive(field, v)?, 1.0)?;
+        if x.fract() != 0.0 {
+            return Err(self.err(field, format!("expected a whole number, got {v}")));
+        }
+        Ok(x as u32)
+    }
     /// [`Check::finite`], then [`Check::si`].
     pub(crate) fn finite_si(&self, field: &str, v: f64, scale: f64) -> Result<f64, ScenarioError> {
         self.si(field, self.finite(field, v)?, scale)

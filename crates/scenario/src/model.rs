@@ -564,6 +564,9 @@ pub struct Rapier {
     pub contact_frequency: Option<f64>,
     /// Contact damping ratio.
     pub contact_damping_ratio: f64,
+    /// The most time steps one step may take between the end stops (≥ 1; 1: the time step
+    /// throughout).
+    pub stride: u32,
 }
 
 /// Settings of the MuJoCo export, SI.

@@ -238,6 +238,7 @@ pub const RANGES: &[Range] = &[
     usual(row("engines.rapier.timestep", "s", O(0.0), C(0.1), "a positive step; the engine refuses one that cannot reach t_end within its run budget"), 1e-9, 0.1),
     row("engines.rapier.contact_frequency", "Hz", C(1.0), C(1e7), "a contact from 1 Hz to 10 MHz"),
     row("engines.rapier.contact_damping_ratio", "", C(0.0), C(100.0), "a damping ratio"),
+    row("engines.rapier.stride", "", C(1.0), C(64.0), "a whole number of time steps"),
     usual(row("engines.mujoco.timestep", "s", O(0.0), C(0.1), "a positive step; the engine refuses one that cannot reach t_end within its run budget"), 1e-9, 0.1),
     usual(row("engines.mujoco.contact_timeconst", "s", O(0.0), C(1.0), "a contact time constant, at least twice the step"), 2e-9, 1.0),
     row("engines.mujoco.contact_width", "m", O(0.0), C(1.0), "a penetration up to a metre"),

@@ -108,6 +108,7 @@ pub(crate) fn resolve_rapier(
             r.contact_damping_ratio,
             1.0,
         )?,
+        stride: c.whole("engines.rapier.stride", r.stride.unwrap_or(1.0))?,
     })
 }
 

@@ -111,6 +111,13 @@ pub struct Rapier {
     /// Damping ratio of the footpad contact constraint; dimensionless.
     #[serde(default = "one")]
     pub contact_damping_ratio: f64,
+    /// The most time steps one step may take where no end stop is engaged or can engage
+    /// within it; dimensionless, a whole number ≥ 1. The step taken there is the largest
+    /// multiple up to this that keeps the honeycombs' stiffest mode at the time step's ω·Δt
+    /// (docs/engines.md, "A longer step between the stops"). Absent: 1, the time step
+    /// throughout.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stride: Option<f64>,
 }
 
 impl Default for Rapier {
@@ -119,6 +126,7 @@ impl Default for Rapier {
             timestep: None,
             contact_frequency: None,
             contact_damping_ratio: one(),
+            stride: None,
         }
     }
 }
