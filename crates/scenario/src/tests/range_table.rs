@@ -60,6 +60,12 @@ fn every_numeric_field_has_a_range_checked_on_load() {
         "strides",
         "[integrator]\nscheme = \"strides\"\nstride = 8.0\nmode_step = 1.0\n",
     ));
+    // rapier's step between the stops.
+    files.push(fig_25_26_with(
+        dir,
+        "rapier-stride",
+        "[engines.rapier]\nstride = 2.0\n",
+    ));
     // The settled end's tolerance.
     files.push(fig_25_26_with(
         dir,
