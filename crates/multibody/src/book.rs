@@ -259,16 +259,18 @@ impl GearModel {
         let n = sc.legs.len();
         let gravity = touchdown_frames::gravity_inertial(sc.vehicle.gravity, sc.surface.slope);
         let laws = GearLaws::from_scenario(sc)?;
-        let rule = StepRule::new(sc, &laws, dt, max_stride)?;
         let capacities = StrutCapacities::new(laws.capacities());
         let primary_rate = stiffest_rate(&laws.primary.honeycomb);
-        let walls = (sc.surface.pads.iter())
+        let walls: Vec<Option<ObstacleWall>> = (sc.surface.pads.iter())
             .map(|p| {
-                p.locked().then(|| {
-                    ObstacleWall::new(p.hold_height(), sc.footpad.mass, primary_rate, rule.long())
-                })
+                p.locked()
+                    .then(|| ObstacleWall::new(p.hold_height(), sc.footpad.mass, primary_rate, dt))
             })
             .collect();
+        let wall_step = (walls.iter().flatten())
+            .map(|w| w.longest_step(sc.footpad.mass))
+            .fold(f64::INFINITY, f64::min);
+        let rule = StepRule::new(sc, &laws, dt, max_stride, wall_step)?;
         let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
         let state = GearState {
             memory: vec![GearMemory::default(); n],

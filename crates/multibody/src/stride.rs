@@ -13,8 +13,9 @@
 //! step at its current rate plus the rate's change over the last step, scaled to the long
 //! step. The stops thus always engage, load and release under the base step, and the long
 //! step never spans an engagement. A scene whose own explicit mechanisms are tied to the base
-//! step (curbs, a descent engine's nozzle) keeps the base step throughout; the obstacle walls
-//! and spikes are built for the long step (`crate::wall`). Every rule is a ratio of like
+//! step (curbs, a descent engine's nozzle) keeps the base step throughout, and the long step
+//! is no longer than the obstacle walls and spikes resolve (`crate::wall`), which are built
+//! for the base step: the stride changes no law. Every rule is a ratio of like
 //! quantities and holds over all legs alike, so a Froude twin and a mirrored landing step
 //! alike.
 
@@ -40,12 +41,14 @@ pub struct StepRule {
 
 impl StepRule {
     /// The rule of `sc` with its `laws`, on an engine whose base step is `base` (s) and whose
-    /// long step may take up to `max_stride` base steps.
+    /// long step may take up to `max_stride` base steps and be no longer than `wall_step` (s,
+    /// the longest step its obstacle walls resolve; infinite without walls).
     pub fn new(
         sc: &Scenario,
         laws: &GearLaws,
         base: f64,
         max_stride: u32,
+        wall_step: f64,
     ) -> Result<StepRule, ScenarioError> {
         let stiffest = omega_max(&gear_modes_with(sc, laws, stiffest_rate));
         let soft = omega_max(&gear_modes_with(sc, laws, soft_rate));
@@ -54,7 +57,9 @@ impl StepRule {
         let stride = if tied || soft <= 0.0 {
             1
         } else {
-            ((stiffest / soft).floor() as u32).clamp(1, max_stride.max(1))
+            let by_modes = (stiffest / soft).floor();
+            let by_walls = (wall_step / base).floor();
+            (by_modes.min(by_walls).min(f64::from(max_stride)).max(1.0)) as u32
         };
         let c = laws.capacities();
         Ok(StepRule {
@@ -138,21 +143,26 @@ mod tests {
         // of √21.75 = 4.66: four base steps at most.
         let (sc, laws) = scenario("table-i-2-2-vv8.toml");
         for (max, long) in [(1, 1), (2, 2), (4, 4), (8, 4)] {
-            let rule = StepRule::new(&sc, &laws, 2.0e-5, max).unwrap();
+            let rule = StepRule::new(&sc, &laws, 2.0e-5, max, f64::INFINITY).unwrap();
             assert_eq!(rule.long(), 2.0e-5 * f64::from(long), "at most {max}");
         }
         // Curbs and a descent engine are applied explicitly at the base step's rates.
         for tied in ["curb-slide.toml", "thrust-tailoff.toml"] {
             let (sc, laws) = scenario(tied);
-            let rule = StepRule::new(&sc, &laws, 2.0e-5, 4).unwrap();
+            let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, f64::INFINITY).unwrap();
             assert_eq!(rule.long(), 2.0e-5, "{tied}");
         }
+        // Walls that resolve 2.5 base steps allow two at most, whatever the modes allow.
+        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 5.0e-5).unwrap();
+        assert_eq!(rule.long(), 4.0e-5);
+        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 3.0e-5).unwrap();
+        assert_eq!(rule.long(), 2.0e-5);
     }
 
     #[test]
     fn a_long_step_is_taken_only_clear_of_every_stop() {
         let (sc, laws) = scenario("table-i-2-2-vv8.toml");
-        let rule = StepRule::new(&sc, &laws, 1.0e-4, 2).unwrap();
+        let rule = StepRule::new(&sc, &laws, 1.0e-4, 2, f64::INFINITY).unwrap();
         let [cap_p, cap_c, cap_t] = rule.capacity;
         let h = rule.long();
         // A gear stroking at 1 m/s, half-way along each stroke.

@@ -9,8 +9,8 @@
 //! The wall is a lateral spring-damper between the footpad and the point where it landed,
 //! applied as an explicit force like the curbs': stiffness four times the primary strut's
 //! stiffest rate (so the footpad's mode on the wall is twice as fast as its stiffest mode on
-//! its strut, and the wall is rigid beside the gear), but no stiffer than the engine's longest
-//! step (its step between the stops, `crate::stride`) resolves (ω·Δt ≤ 0.5 on PMASS, half of what the engines allow a strut law: on a gear too
+//! its strut, and the wall is rigid beside the gear), but no stiffer than the engine's step
+//! resolves (ω·Δt ≤ 0.5 on PMASS, half of what the engines allow a strut law: on a gear too
 //! stiff for that the wall is as stiff as the step allows, and never the mode that refuses a
 //! step), critically damped on the footpad mass PMASS. Its work is booked with the contact's
 //! (the contact-event account), as a locked footpad's lateral impulses are.
@@ -38,7 +38,7 @@ pub struct ObstacleWall {
 
 impl ObstacleWall {
     /// The wall of a footpad of mass `mass` (kg) on a gear whose primary strut's stiffest rate
-    /// is `primary_rate` (N/m), `height` (m) high, in an engine whose longest step is `dt` (s).
+    /// is `primary_rate` (N/m), `height` (m) high, in an engine stepping `dt` (s).
     pub fn new(height: f64, mass: f64, primary_rate: f64, dt: f64) -> ObstacleWall {
         let resolved = mass * (WALL_OMEGA_DT / dt).powi(2);
         let stiffness = (WALL_STIFFNESS_RATIO * primary_rate).min(resolved);
@@ -48,6 +48,13 @@ impl ObstacleWall {
             damping: 2.0 * (stiffness * mass).sqrt(),
             anchor: None,
         }
+    }
+
+    /// The longest step that resolves the wall's mode on a footpad of mass `mass` (kg) as its
+    /// construction asks (ω·Δt ≤ 0.5), s: a step between the stops (`crate::stride`) may not
+    /// be longer, so that the wall is the same law at every step.
+    pub fn longest_step(&self, mass: f64) -> f64 {
+        WALL_OMEGA_DT * (mass / self.stiffness).sqrt()
     }
 
     /// Updates the wall after a step at whose end the footpad stands at `xy` (m) and
@@ -96,6 +103,14 @@ mod tests {
         );
         let stiff = omega(&ObstacleWall::new(0.3, m, 1.0e8, dt), m) * dt;
         assert!((stiff - WALL_OMEGA_DT).abs() < 1e-12, "{stiff}");
+        // The longest step it resolves: 0.5/ω, the step itself where the bound binds.
+        let soft = ObstacleWall::new(0.3, m, 1.0e6, dt).longest_step(m);
+        assert!(
+            (soft - WALL_OMEGA_DT / (4.0e6 / m).sqrt()).abs() < 1e-15,
+            "{soft}"
+        );
+        let bound = ObstacleWall::new(0.3, m, 1.0e8, dt).longest_step(m);
+        assert!((bound / dt - 1.0).abs() < 1e-12, "{bound}");
     }
 
     #[test]

@@ -114,8 +114,8 @@ pub struct Rapier {
     /// The most time steps one step may take where no end stop is engaged or can engage
     /// within it; dimensionless, a whole number ≥ 1. The step taken there is the largest
     /// multiple up to this that keeps the honeycombs' stiffest mode at the time step's ω·Δt
-    /// (docs/engines.md, "A longer step between the stops"). Absent: 1, the time step
-    /// throughout.
+    /// and that the obstacle walls and spikes resolve (docs/engines.md, "A longer step between
+    /// the stops"). Absent: 1, the time step throughout.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stride: Option<f64>,
 }
