@@ -270,15 +270,22 @@ impl GearModel {
         let wall_step = (walls.iter().flatten())
             .map(|w| w.longest_step(sc.footpad.mass))
             .fold(f64::INFINITY, f64::min);
-        let rule = StepRule::new(sc, &laws, dt, max_stride, wall_step)?;
         let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
+        let applied = VehicleLoads::new(sc, dt)?;
+        // The curbs and the nozzle are explicit at rates tied to the base step.
+        let max_stride = if curbs.is_some() || !applied.is_empty() {
+            1
+        } else {
+            max_stride
+        };
+        let rule = StepRule::new(sc, &laws, dt, max_stride, wall_step);
         let state = GearState {
             memory: vec![GearMemory::default(); n],
             kin: vec![StrutKinematics::default(); n],
             previous: vec![StrutKinematics::default(); n],
             forces: vec![StrutForces::default(); n],
             contacts: vec![PadContact::default(); n],
-            applied: VehicleLoads::new(sc, dt)?,
+            applied,
             curb_memory: curbs.as_ref().map_or_else(Vec::new, Curbs::memories),
             curb_forces: vec![Vector3::zeros(); n],
             wall_forces: vec![Vector3::zeros(); n],

@@ -46,22 +46,23 @@ pub struct Mode {
 /// A honeycomb's stiffest rate, N/m: its backoff (rebound) rate, its stroke-out stop's rate or
 /// its onset ramp's, whichever is largest (eqs. 49-52).
 pub fn stiffest_rate(h: &Honeycomb) -> f64 {
+    soft_rate(h).max(h.curve.stroke_out_rate())
+}
+
+/// A honeycomb's stiffest rate between its stops, N/m: its backoff (rebound) rate K_B or its
+/// onset ramp's, whichever is larger (eqs. 49-52).
+pub fn soft_rate(h: &Honeycomb) -> f64 {
     h.backoff_rate
-        .max(h.curve.stroke_out_rate())
         .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
 }
 
-/// The two explicit gear modes of `sc` with its `laws`: the primary's stiffest rate on the
-/// footpad mass PMASS, and the secondaries': for the cantilever on the outer link's rotation
+/// The two explicit gear modes of `sc` with its `laws`, each honeycomb's rate taken as `rate`
+/// gives it (N/m; [`stiffest_rate`] for the modes the base step resolves): the primary's rate
+/// on the footpad mass PMASS, and the secondaries': for the cantilever on the outer link's rotation
 /// about its trunnion seen at point 1 (links as in `sc.links`), for the tripod on the footpad
 /// they meet at, together with the primary (the footpad node on its three struts, bounded by
 /// the trace of its stiffness over PMASS).
-pub fn gear_modes(sc: &Scenario, laws: &GearLaws) -> [Mode; 2] {
-    gear_modes_with(sc, laws, stiffest_rate)
-}
-
-/// [`gear_modes`] with each honeycomb's rate taken as `rate` gives it, N/m.
-pub fn gear_modes_with(sc: &Scenario, laws: &GearLaws, rate: fn(&Honeycomb) -> f64) -> [Mode; 2] {
+pub fn gear_modes(sc: &Scenario, laws: &GearLaws, rate: fn(&Honeycomb) -> f64) -> [Mode; 2] {
     let k_primary = rate(&laws.primary.honeycomb);
     let sec = &laws.secondary.honeycomb;
     let k_secondary = rate(&sec.tension).max(rate(&sec.compression));
@@ -101,7 +102,7 @@ fn time_step(
     stated: Option<f64>,
     field: &str,
 ) -> Result<(f64, Mode), ScenarioError> {
-    let modes = gear_modes(sc, &GearLaws::from_scenario(sc)?);
+    let modes = gear_modes(sc, &GearLaws::from_scenario(sc)?, stiffest_rate);
     let stiffest = if modes[1].omega > modes[0].omega {
         modes[1]
     } else {

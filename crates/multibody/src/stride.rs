@@ -19,11 +19,10 @@
 //! quantities and holds over all legs alike, so a Froude twin and a mirrored landing step
 //! alike.
 
-use crate::applied::VehicleLoads;
-use crate::step::{gear_modes_with, stiffest_rate, Mode};
+use crate::step::{gear_modes, soft_rate, stiffest_rate, Mode};
 use crate::strut::StrutKinematics;
-use touchdown_laws::{GearLaws, GearMemory, Honeycomb};
-use touchdown_scenario::{Scenario, ScenarioError};
+use touchdown_laws::{GearLaws, GearMemory};
+use touchdown_scenario::Scenario;
 
 /// Safety factor on what a strut can stroke in a long step, against its gap to a stop.
 const REACH_FACTOR: f64 = 2.0;
@@ -41,32 +40,32 @@ pub struct StepRule {
 
 impl StepRule {
     /// The rule of `sc` with its `laws`, on an engine whose base step is `base` (s) and whose
-    /// long step may take up to `max_stride` base steps and be no longer than `wall_step` (s,
-    /// the longest step its obstacle walls resolve; infinite without walls).
+    /// long step may take up to `max_stride` base steps (1 where the scene's own explicit
+    /// mechanisms tie it to the base step) and be no longer than `wall_step` (s, the longest
+    /// step its obstacle walls resolve; infinite without walls).
     pub fn new(
         sc: &Scenario,
         laws: &GearLaws,
         base: f64,
         max_stride: u32,
         wall_step: f64,
-    ) -> Result<StepRule, ScenarioError> {
-        let stiffest = omega_max(&gear_modes_with(sc, laws, stiffest_rate));
-        let soft = omega_max(&gear_modes_with(sc, laws, soft_rate));
-        let tied = !sc.surface.curbs.is_empty() || !VehicleLoads::new(sc, base)?.is_empty();
+    ) -> StepRule {
+        let stiffest = omega_max(&gear_modes(sc, laws, stiffest_rate));
+        let soft = omega_max(&gear_modes(sc, laws, soft_rate));
         // stiffest ≥ soft by construction: the soft rates are among the stiffest's.
-        let stride = if tied || soft <= 0.0 {
-            1
+        let by_modes = if soft > 0.0 {
+            (stiffest / soft).floor()
         } else {
-            let by_modes = (stiffest / soft).floor();
-            let by_walls = (wall_step / base).floor();
-            (by_modes.min(by_walls).min(f64::from(max_stride)).max(1.0)) as u32
+            1.0
         };
+        let by_walls = (wall_step / base).floor();
+        let stride = by_modes.min(by_walls).min(f64::from(max_stride)).max(1.0) as u32;
         let c = laws.capacities();
-        Ok(StepRule {
+        StepRule {
             base,
             stride,
             capacity: [c[0].0, c[1].0, c[2].0],
-        })
+        }
     }
 
     /// The long step, s (the base step where the scene allows none longer).
@@ -114,13 +113,6 @@ impl StepRule {
     }
 }
 
-/// A honeycomb's stiffest rate between its stops, N/m: its rebound rate K_B or its onset
-/// ramp's, whichever is larger (eqs. 49-52).
-fn soft_rate(h: &Honeycomb) -> f64 {
-    h.backoff_rate
-        .max(h.curve.vertices().nth(1).map(|(x, f)| f / x).unwrap_or(0.0))
-}
-
 /// The largest angular frequency among `modes`, rad/s.
 fn omega_max(modes: &[Mode; 2]) -> f64 {
     modes[0].omega.max(modes[1].omega)
@@ -143,26 +135,26 @@ mod tests {
         // of √21.75 = 4.66: four base steps at most.
         let (sc, laws) = scenario("table-i-2-2-vv8.toml");
         for (max, long) in [(1, 1), (2, 2), (4, 4), (8, 4)] {
-            let rule = StepRule::new(&sc, &laws, 2.0e-5, max, f64::INFINITY).unwrap();
+            let rule = StepRule::new(&sc, &laws, 2.0e-5, max, f64::INFINITY);
             assert_eq!(rule.long(), 2.0e-5 * f64::from(long), "at most {max}");
         }
         // Curbs and a descent engine are applied explicitly at the base step's rates.
         for tied in ["curb-slide.toml", "thrust-tailoff.toml"] {
-            let (sc, laws) = scenario(tied);
-            let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, f64::INFINITY).unwrap();
-            assert_eq!(rule.long(), 2.0e-5, "{tied}");
+            let (sc, _) = scenario(tied);
+            let (gear, _) = crate::GearModel::new(&sc, 1.0e-5, 4).unwrap();
+            assert_eq!(gear.long_step(), 1.0e-5, "{tied}");
         }
         // Walls that resolve 2.5 base steps allow two at most, whatever the modes allow.
-        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 5.0e-5).unwrap();
+        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 5.0e-5);
         assert_eq!(rule.long(), 4.0e-5);
-        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 3.0e-5).unwrap();
+        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 3.0e-5);
         assert_eq!(rule.long(), 2.0e-5);
     }
 
     #[test]
     fn a_long_step_is_taken_only_clear_of_every_stop() {
         let (sc, laws) = scenario("table-i-2-2-vv8.toml");
-        let rule = StepRule::new(&sc, &laws, 1.0e-4, 2, f64::INFINITY).unwrap();
+        let rule = StepRule::new(&sc, &laws, 1.0e-4, 2, f64::INFINITY);
         let [cap_p, cap_c, cap_t] = rule.capacity;
         let h = rule.long();
         // A gear stroking at 1 m/s, half-way along each stroke.
