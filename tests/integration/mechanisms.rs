@@ -660,6 +660,109 @@ fn thrust_equal_to_weight_keeps_the_multibody_engines_descending_steadily() {
     }
 }
 
+/// The primary's extension stop in a run, on every engine, against a closed form. The lander
+/// hovers on thrust equal to its vehicle's weight, its primaries vertical (R3 = R1, fig. 23).
+/// Its footpads start at full extension with no load and hang from their struts. Along a
+/// vertical primary their load is axial: it passes through the trunnion B2, the secondaries
+/// carry nothing, and each footpad moves along its strut alone. Relative to the parts above
+/// it (the vehicle, and the outer-cylinder links of the multibody engines), a footpad of mass
+/// m is a step load F* = m·T/(M_u + n·m) on the stop. T is the thrust, M_u the mass above the
+/// footpads, n the number of legs.
+///
+/// On the stop's loading line F = K_so·d, the first deepest point is twice the static depth:
+/// d₁ = 2·F*/K_so. The stop then unloads along K_so·d₁·(d/d₁)^k, k = 2/e² − 1 ("End stops",
+/// docs/errata.md). The footpad rises to where that curve has given back the load's work,
+/// r = d/d₁ with (1 − r^(k+1))/(k + 1) = (1 − r)/2. At e = 0.5 that is r = 0.787, and at e = 1
+/// the footpad comes back to full extension, r = 0. The step is 5 µs on every engine:
+/// ω·Δt ≈ 0.04 on the loading line and 0.1 on the unloading curve, so a sampled deepest point
+/// is within (ω·Δt)²/8 = 2e-4 of the true one. Measured: d₁ within 1.2e-5 (core) and 6.3e-5
+/// (rapier, MuJoCo) of the closed form, r within 1e-4. Without the outer-cylinder links in
+/// M_u the multibody engines' d₁ would be 0.25 % off, and the bar of 1e-3 fails it.
+#[test]
+fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_engine() {
+    let sc = load("thrust-tailoff.toml", &[]);
+    let thrust = sc.vehicle.mass * sc.vehicle.gravity; // N
+    let r1 = sc.legs[0].b2.xy().norm() / FT; // ft, the file's unit
+    let rate = sc.primary.compression.stroke_out_rate; // N/m
+    let (m, n) = (sc.footpad.mass, sc.legs.len() as f64);
+    // r = d/d₁ where the footpad turns back up: bisection on the energy balance.
+    let turning = |e: f64| {
+        if e == 1.0 {
+            return 0.0;
+        }
+        let k = 2.0 / (e * e) - 1.0;
+        let gap = |r: f64| (1.0 - r.powf(k + 1.0)) / (k + 1.0) - 0.5 * (1.0 - r);
+        let (mut lo, mut hi) = (0.0, 1.0 - 1e-9); // gap(0) < 0 < gap(just below 1)
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if gap(mid) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    for e in [0.5, 1.0] {
+        let path = variant(
+            "thrust-tailoff.toml",
+            &format!("hanging-footpads-e{e}"),
+            &format!(
+                "[gear.parametric]\nr3 = {r1:.17e}\n\
+                 [touchdown]\nvertical_velocity = 0.0\nclearance = 0.2\n\
+                 [thrust]\nthrust = {:.17e}\ntailoff_start = 100.0\n\
+                 [thrust.amplification]\nclearance = [0.0, 1.0]\nfactor = [1.0, 1.0]\n\
+                 [primary_strut.compression]\nstop_restitution = {e}\n\
+                 [integrator]\nt_end = 0.003\ndt_max = 5e-6\n\
+                 [engines.rapier]\ntimestep = 5e-6\n[engines.mujoco]\ntimestep = 5e-6\n",
+                thrust / LBF
+            ),
+        );
+        for engine in Engine::ALL {
+            let links = match engine {
+                Engine::Core => 0.0,
+                _ => n * m * sc.links.outer_cylinder_mass_ratio,
+            };
+            let load = m * thrust / (sc.vehicle.mass + links + n * m);
+            let expected = 2.0 * load / rate;
+            let (s, rows) = landed_with_history(engine, &path);
+            assert!(
+                s.t_end_s > 0.0029,
+                "{engine} e = {e}: ended at {} s",
+                s.t_end_s
+            );
+            assert!(s.first_contact_s.iter().all(Option::is_none), "{engine}");
+            for leg in 1..=sc.legs.len() {
+                let depth: Vec<f64> = rows
+                    .column(&format!("leg{leg}_primary_stroke_m"))
+                    .iter()
+                    .map(|c| -c)
+                    .collect();
+                // The first deepest point, then the first highest after it.
+                let deepest = (1..depth.len())
+                    .find(|&k| depth[k] < depth[k - 1])
+                    .map(|k| k - 1)
+                    .unwrap_or_else(|| panic!("{engine} leg {leg}: no deepest point"));
+                let d1 = depth[deepest];
+                let highest = (deepest + 1..depth.len())
+                    .find(|&k| depth[k] > depth[k - 1])
+                    .map(|k| depth[k - 1])
+                    .unwrap_or_else(|| panic!("{engine} leg {leg}: no turn after {d1} m"));
+                assert!(
+                    (d1 / expected - 1.0).abs() < 1e-3,
+                    "{engine} e = {e} leg {leg}: deepest {d1:.6e} m, 2·F*/K_so = {expected:.6e} m"
+                );
+                let r = turning(e);
+                assert!(
+                    (highest / d1 - r).abs() < 2e-3,
+                    "{engine} e = {e} leg {leg}: turned at {:.4} of the deepest, expected {r:.4}",
+                    highest / d1
+                );
+            }
+        }
+    }
+}
+
 /// The multibody engines apply the RCS through the shared law: a yaw rate in free flight falls
 /// while the rate error is outside the deadband and the firing stops at its edge. The vehicle's
 /// rate ends within 10 % below the edge, not at it: the gear links hang on free trunnion
