@@ -725,13 +725,14 @@ fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_e
                 thrust / LBF
             ),
         );
+        let r = turning(e);
         for engine in Engine::ALL {
-            let links = match engine {
-                Engine::Core => 0.0,
-                _ => n * m * sc.links.outer_cylinder_mass_ratio,
+            // M_u + n·m: the core's vehicle and footpads, the multibody's links besides.
+            let total = match engine {
+                Engine::Core => sc.vehicle.mass + n * m,
+                _ => multibody_mass(&sc),
             };
-            let load = m * thrust / (sc.vehicle.mass + links + n * m);
-            let expected = 2.0 * load / rate;
+            let expected = 2.0 * m * thrust / total / rate;
             let (s, rows) = landed_with_history(engine, &path);
             assert!(
                 s.t_end_s > 0.0029,
@@ -759,7 +760,6 @@ fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_e
                     (d1 / expected - 1.0).abs() < 1e-3,
                     "{engine} e = {e} leg {leg}: deepest {d1:.6e} m, 2·F*/K_so = {expected:.6e} m"
                 );
-                let r = turning(e);
                 assert!(
                     (highest / d1 - r).abs() < 2e-3,
                     "{engine} e = {e} leg {leg}: turned at {:.4} of the deepest, expected {r:.4}",
