@@ -778,6 +778,120 @@ fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_e
     }
 }
 
+/// The bearing friction holds a flying footpad's stroke up to its bound μB·(F1 + F2), F1 and F2
+/// the inner cylinder's bearing loads under the side load FM (eqs. 59-63), on every engine. The
+/// rig: the lander of `hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_engine`
+/// (primaries vertical), rising off the ground it starts above and spinning about its vertical
+/// axis at ω, so that each footpad's centripetal force m·ω²·r is a side load FM across its
+/// primary, under thrust of five times the vehicle's weight, so that each footpad hangs on its
+/// primary's elastic extension stop (e = 1, K_so) with the axial load F_a = m·T/(M_u + n·m);
+/// the stops are ten times softer than the vehicle's, so that the depths are micrometres, and
+/// viscous dampers on the secondaries settle the footpads' swing as the spin loads them. Then
+/// the thrust tails off (T = T₀·e^(−k·(t − t₂))) slowly against the stop's own mode: the stop
+/// pushes the footpad back up as F_a falls, and the friction, at its bound while the footpad
+/// slides, holds the stop at K_so·d = F_a + μB·(F1 + F2). Once the thrust is gone the footpad
+/// should stay where it stopped, held at the bound: K_so·d = μB·(F1 + F2), with F1 + F2 =
+/// FM·(2·D1 − D2)/D2 from the inner cylinder's moments (bearing 1 at D1 from the footpad,
+/// bearing 2 at D1 − D2), worked out here from the run's own ω and footpad radius, not from the
+/// laws' code.
+///
+/// rapier and MuJoCo take FM from the secondaries' force by the massless primary's moments
+/// (eqs. 53-58), which on a gear with an outer-cylinder link also counts the link's own
+/// centripetal load: their bound is larger by the link's moment over the footpad's,
+/// m_o·(l_o/2)/(m·L), and they are held to that. The hold with the thrust gone is checked on the
+/// core only: rapier's and MuJoCo's dry friction creep under a load below their bound
+/// (docs/engines.md, "Shared laws and their oracles").
+#[test]
+fn spinning_footpads_hang_on_their_bearing_friction_as_its_statics_give_on_every_engine() {
+    let sc = load("thrust-tailoff.toml", &[]);
+    let r1 = sc.legs[0].b2.xy().norm() / FT; // ft, the file's unit
+    let omega: f64 = 5.0; // rad/s
+    let thrust = 5.0 * sc.vehicle.mass * sc.vehicle.gravity; // N
+    let (t2, k, t_end) = (0.1, 15.0, 0.6); // s, 1/s, s
+    let path = variant(
+        "thrust-tailoff.toml",
+        "held-footpads",
+        &format!(
+            "[gear.parametric]\nr3 = {r1:.17e}\n\
+             [touchdown]\nvertical_velocity = 0.0\nclearance = 1.0\n\
+             body_rates = [0.0, 0.0, {:.17e}]\n\
+             [thrust]\nthrust = {:.17e}\ntailoff_start = {t2}\ndecay_rate = {k}\n\
+             [thrust.amplification]\nclearance = [0.0, 1.0]\nfactor = [1.0, 1.0]\n\
+             [primary_strut.bearing]\nfriction = 0.3\n\
+             [primary_strut.compression]\nstop_restitution = 1.0\nstroke_out_rate = 87000.0\n\
+             [secondary_strut]\nviscous = {{ coefficient = 20.0, exponent = 1.0 }}\n\
+             [integrator]\nt_end = {t_end}\n",
+            omega.to_degrees(),
+            thrust / LBF
+        ),
+    );
+    let sc = Scenario::load(&path).unwrap();
+    let (m, n) = (sc.footpad.mass, sc.legs.len() as f64);
+    let p = &sc.primary;
+    let leg = &sc.legs[0];
+    let outer = sc.links.outer_cylinder_mass_ratio * m;
+    let l_outer = sc.links.outer_cylinder_length(leg, p, sc.arrangement);
+    for engine in Engine::ALL {
+        let (total, links) = match engine {
+            Engine::Core => (sc.vehicle.mass + n * m, 1.0),
+            _ => (
+                multibody_mass(&sc),
+                1.0 + outer * 0.5 * l_outer / (m * leg.l2p),
+            ),
+        };
+        let (s, rows) = landed_with_history(engine, &path);
+        assert!(
+            s.t_end_s > t_end - 1e-3,
+            "{engine}: ended at {} s",
+            s.t_end_s
+        );
+        assert!(s.first_contact_s.iter().all(Option::is_none), "{engine}");
+        let time = rows.column("t_s");
+        let w = rows.column("omega_z_rad_s");
+        let (x, y) = (rows.column("x_m"), rows.column("y_m"));
+        for i in 1..=sc.legs.len() {
+            let col = |q: &str| rows.column(&format!("leg{i}_{q}"));
+            let (px, py) = (col("pad_x_m"), col("pad_y_m"));
+            let (c, stop) = (col("primary_stroke_m"), col("primary_stop_force_n"));
+            // Each row's stop force over the load and the friction bound the statics give.
+            let row = |j: usize| {
+                let t = time[j];
+                let f_a = m * thrust * (-k * (t - t2)).min(0.0).exp() / total; // eqs. (69)-(70)
+                let f_m = m * w[j] * w[j] * (px[j] - x[j]).hypot(py[j] - y[j]);
+                let d2 = p.initial_overlap + c[j];
+                let bound = p.bearing_friction * f_m * (2.0 * p.inner_cylinder_length - d2) / d2;
+                (t, -stop[j], f_a, bound)
+            };
+            let mean = |from: f64, to: f64, f: &dyn Fn(f64, f64, f64) -> f64| {
+                let v: Vec<f64> = (0..time.len())
+                    .map(row)
+                    .filter(|(t, ..)| (from..=to).contains(t))
+                    .map(|(_, s, f_a, b)| f(s, f_a, b))
+                    .collect();
+                (v.iter().sum::<f64>() / v.len() as f64, v)
+            };
+            // Sliding back as the thrust tails off: the friction at its bound.
+            let (sliding, _) = mean(t2 + 0.05, t2 + 0.25, &|s, f_a, b| (s - f_a) / b);
+            assert!(
+                (sliding / links - 1.0).abs() < 5e-3,
+                "{engine} leg {i}: (K_so·d − F_a)/(μB·(F1 + F2)) = {sliding:.5} while sliding, \
+                 expected {links:.5}"
+            );
+            if engine == Engine::Core {
+                // Held where it stopped once the thrust is gone.
+                let (held, each) = mean(t_end - 0.1, t_end, &|s, f_a, b| s / (f_a + b));
+                let worst = each.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
+                assert!(
+                    (held - 1.0).abs() < 5e-3 && worst < 0.03,
+                    "{engine} leg {i}: held at {held:.5} of its bound on average, {worst:.4} at worst"
+                );
+                eprintln!("{engine} leg {i}: held at {held:.5}, {worst:.4} at worst");
+            }
+            eprintln!("{engine} leg {i}: sliding {sliding:.5} (links {links:.5})");
+        }
+    }
+}
+
 /// The multibody engines apply the RCS through the shared law: a yaw rate in free flight falls
 /// while the rate error is outside the deadband and the firing stops at its edge. The vehicle's
 /// rate ends within 10 % below the edge, not at it: the gear links hang on free trunnion
