@@ -22,6 +22,9 @@ pub struct LoadStroke {
     x: [f64; MAX_VERTICES],
     f: [f64; MAX_VERTICES],
     n: usize,
+    /// x[n − 1], the stroke at the end of the last stage (m), kept beside the vertices: the
+    /// laws read it at every evaluation.
+    capacity: f64,
     stroke_out_rate: f64,
 }
 
@@ -76,6 +79,7 @@ impl LoadStroke {
             x,
             f,
             n,
+            capacity: x[n - 1],
             stroke_out_rate,
         })
     }
@@ -98,7 +102,7 @@ impl LoadStroke {
                 let (x0, x1, f0, f1) = (self.x[i - 1], self.x[i], self.f[i - 1], self.f[i]);
                 f0 + (f1 - f0) * (x - x0) / (x1 - x0)
             }
-            None => self.f[self.n - 1] + self.stroke_out_rate * (x - self.x[self.n - 1]),
+            None => self.f[self.n - 1] + self.stroke_out_rate * (x - self.capacity),
         }
     }
 
@@ -148,8 +152,9 @@ impl LoadStroke {
     }
 
     /// Stroke at which the last stage is exhausted (bottoming begins), m.
+    #[inline]
     pub fn capacity(&self) -> f64 {
-        self.x[self.n - 1]
+        self.capacity
     }
 
     /// Vertices (stroke m, force N) of the curve, from (0, 0) to the end of the last stage.
@@ -183,6 +188,7 @@ impl LoadStroke {
         for i in 0..self.n {
             out.x[i] = self.x[i] + self.f[i] / k_t;
         }
+        out.capacity = out.x[self.n - 1];
         out.stroke_out_rate = series_rate(self.stroke_out_rate, k_t);
         Ok(out)
     }

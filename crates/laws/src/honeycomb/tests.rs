@@ -333,6 +333,9 @@ fn trunnion_spring_gives_series_rates_and_shifts_every_stage() {
     let v: Vec<_> = t.curve.vertices().collect();
     assert!((v[1].0 - (0.01 + 1000.0 / kt)).abs() < 1e-12);
     assert!((v[4].0 - (0.2 + 3000.0 / kt)).abs() < 1e-12);
+    // The capacity moves with the last vertex: the stop starts where the shifted curve ends.
+    assert_eq!(t.curve.capacity(), v[v.len() - 1].0);
+    assert!(t.curve.capacity() > h.curve.capacity());
     // Permanent set is unchanged by the trunnion spring: x_max − F/K_B.
     let mut m = CrushMemory::default();
     t.commit(0.05 + 1000.0 / kt, &mut m);
