@@ -29,6 +29,34 @@ fn multibody_mass(sc: &Scenario) -> f64 {
     sc.vehicle.mass + sc.legs.len() as f64 * link
 }
 
+/// The whole mass the thrust moves on `engine`, kg: the vehicle and its footpads, and on rapier
+/// and MuJoCo their outer-cylinder links besides.
+fn moving_mass(engine: Engine, sc: &Scenario) -> f64 {
+    match engine {
+        Engine::Core => sc.vehicle.mass + sc.legs.len() as f64 * sc.footpad.mass,
+        _ => multibody_mass(sc),
+    }
+}
+
+/// A variant `name` of `thrust-tailoff.toml` whose primaries are vertical (R3 = R1, fig. 23),
+/// under thrust `thrust` (N) not amplified near the ground, with `extra` TOML, which begins in
+/// the `[thrust]` table (its tailoff): the lander whose footpads hang on their struts of the
+/// extension-stop and held-friction oracles.
+fn hanging_footpads(name: &str, thrust: f64, extra: &str) -> std::path::PathBuf {
+    let sc = load("thrust-tailoff.toml", &[]);
+    let r1 = sc.legs[0].b2.xy().norm() / FT; // ft, the file's unit
+    variant(
+        "thrust-tailoff.toml",
+        name,
+        &format!(
+            "[gear.parametric]\nr3 = {r1:.17e}\n\
+             [thrust.amplification]\nclearance = [0.0, 1.0]\nfactor = [1.0, 1.0]\n\
+             [thrust]\nthrust = {:.17e}\n{extra}",
+            thrust / LBF
+        ),
+    )
+}
+
 fn run(sc: &Scenario) -> Simulation {
     let mut sim = Simulation::new(sc).expect("core builds");
     while !sim.finished() {
@@ -686,9 +714,8 @@ fn thrust_equal_to_weight_keeps_the_multibody_engines_descending_steadily() {
 fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_engine() {
     let sc = load("thrust-tailoff.toml", &[]);
     let thrust = sc.vehicle.mass * sc.vehicle.gravity; // N
-    let r1 = sc.legs[0].b2.xy().norm() / FT; // ft, the file's unit
     let rate = sc.primary.compression.stroke_out_rate; // N/m
-    let (m, n) = (sc.footpad.mass, sc.legs.len() as f64);
+    let m = sc.footpad.mass;
     // r = d/d₁ where the footpad turns back up: bisection on the energy balance.
     let turning = |e: f64| {
         if e == 1.0 {
@@ -711,28 +738,21 @@ fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_e
         0.5 * (lo + hi)
     };
     for e in [0.0, 0.5, 1.0] {
-        let path = variant(
-            "thrust-tailoff.toml",
+        let path = hanging_footpads(
             &format!("hanging-footpads-e{e}"),
+            thrust,
             &format!(
-                "[gear.parametric]\nr3 = {r1:.17e}\n\
+                "tailoff_start = 100.0\n\
                  [touchdown]\nvertical_velocity = 0.0\nclearance = 0.2\n\
-                 [thrust]\nthrust = {:.17e}\ntailoff_start = 100.0\n\
-                 [thrust.amplification]\nclearance = [0.0, 1.0]\nfactor = [1.0, 1.0]\n\
                  [primary_strut.compression]\nstop_restitution = {e}\n\
                  [integrator]\nt_end = 0.003\ndt_max = 5e-6\n\
-                 [engines.rapier]\ntimestep = 5e-6\n[engines.mujoco]\ntimestep = 5e-6\n",
-                thrust / LBF
+                 [engines.rapier]\ntimestep = 5e-6\n[engines.mujoco]\ntimestep = 5e-6\n"
             ),
         );
         let r = turning(e);
         for engine in Engine::ALL {
-            // M_u + n·m: the core's vehicle and footpads, the multibody's links besides.
-            let total = match engine {
-                Engine::Core => sc.vehicle.mass + n * m,
-                _ => multibody_mass(&sc),
-            };
-            let expected = 2.0 * m * thrust / total / rate;
+            // M_u + n·m: the mass the thrust moves.
+            let expected = 2.0 * m * thrust / moving_mass(engine, &sc) / rate;
             let (s, rows) = landed_with_history(engine, &path);
             assert!(
                 s.t_end_s > 0.0029,
@@ -804,40 +824,34 @@ fn hanging_footpads_stretch_their_extension_stops_as_a_step_load_does_on_every_e
 #[test]
 fn spinning_footpads_hang_on_their_bearing_friction_as_its_statics_give_on_every_engine() {
     let sc = load("thrust-tailoff.toml", &[]);
-    let r1 = sc.legs[0].b2.xy().norm() / FT; // ft, the file's unit
     let omega: f64 = 5.0; // rad/s
     let thrust = 5.0 * sc.vehicle.mass * sc.vehicle.gravity; // N
     let (t2, k, t_end) = (0.1, 15.0, 0.6); // s, 1/s, s
-    let path = variant(
-        "thrust-tailoff.toml",
+    let path = hanging_footpads(
         "held-footpads",
+        thrust,
         &format!(
-            "[gear.parametric]\nr3 = {r1:.17e}\n\
+            "tailoff_start = {t2}\ndecay_rate = {k}\n\
              [touchdown]\nvertical_velocity = 0.0\nclearance = 1.0\n\
              body_rates = [0.0, 0.0, {:.17e}]\n\
-             [thrust]\nthrust = {:.17e}\ntailoff_start = {t2}\ndecay_rate = {k}\n\
-             [thrust.amplification]\nclearance = [0.0, 1.0]\nfactor = [1.0, 1.0]\n\
              [primary_strut.bearing]\nfriction = 0.3\n\
              [primary_strut.compression]\nstop_restitution = 1.0\nstroke_out_rate = 87000.0\n\
              [secondary_strut]\nviscous = {{ coefficient = 20.0, exponent = 1.0 }}\n\
              [integrator]\nt_end = {t_end}\n",
-            omega.to_degrees(),
-            thrust / LBF
+            omega.to_degrees()
         ),
     );
     let sc = Scenario::load(&path).unwrap();
-    let (m, n) = (sc.footpad.mass, sc.legs.len() as f64);
+    let m = sc.footpad.mass;
     let p = &sc.primary;
     let leg = &sc.legs[0];
     let outer = sc.links.outer_cylinder_mass_ratio * m;
     let l_outer = sc.links.outer_cylinder_length(leg, p, sc.arrangement);
     for engine in Engine::ALL {
-        let (total, links) = match engine {
-            Engine::Core => (sc.vehicle.mass + n * m, 1.0),
-            _ => (
-                multibody_mass(&sc),
-                1.0 + outer * 0.5 * l_outer / (m * leg.l2p),
-            ),
+        let total = moving_mass(engine, &sc);
+        let links = match engine {
+            Engine::Core => 1.0,
+            _ => 1.0 + outer * 0.5 * l_outer / (m * leg.l2p),
         };
         let (s, rows) = landed_with_history(engine, &path);
         assert!(
