@@ -115,7 +115,8 @@ impl State {
         // eqs. (83)-(84): the legs' loads in the order of crate::summation, and the mechanisms'.
         let order = &model.sum_order;
         let total = |f: &[Vector3<f64>], q: &[Vector3<f64>]| {
-            (order.sum(f) + applied_force, order.sum(q) + applied_torque)
+            let (force, torque) = order.sum_loads(f, q);
+            (force + applied_force, torque + applied_torque)
         };
         let (mut force, mut torque) = total(&leg_force, &leg_torque);
         if !held.is_empty() {

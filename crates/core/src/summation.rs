@@ -104,21 +104,31 @@ impl SumOrder {
         SumOrder { groups }
     }
 
-    /// The sum of `terms` (one per leg) in this order: [`SumOrder::sum_by`]'s loop written out,
-    /// which the loads' evaluation calls twice a force evaluation (through the closure it
-    /// cost 0.5 % more instructions of a campaign, docs/performance.md, "T_BI written out, the
-    /// legs' sums in place").
+    /// The sums of the legs' forces and of their moments (one of each per leg) in this order:
+    /// [`SumOrder::sum_by`]'s loop written out for the two in one pass, which the loads'
+    /// evaluation calls once a force evaluation (through the closure it cost 0.5 % more
+    /// instructions of a campaign, docs/performance.md, "T_BI written out, the legs' sums in
+    /// place"; one pass for the two, "The legs' forces and moments summed in one pass").
     #[inline]
-    pub(crate) fn sum(&self, terms: &[Vector3<f64>]) -> Vector3<f64> {
-        let mut total = Vector3::zeros();
+    pub(crate) fn sum_loads(
+        &self,
+        forces: &[Vector3<f64>],
+        moments: &[Vector3<f64>],
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let (mut force, mut moment) = (Vector3::zeros(), Vector3::zeros());
         for g in &self.groups {
-            total += match *g {
-                Group::One(i) => terms[i],
-                Group::Two([i, j]) => terms[i] + terms[j],
-                Group::Four([a, c, b, d]) => (terms[a] + terms[c]) + (terms[b] + terms[d]),
+            let (f, m) = match *g {
+                Group::One(i) => (forces[i], moments[i]),
+                Group::Two([i, j]) => (forces[i] + forces[j], moments[i] + moments[j]),
+                Group::Four([a, c, b, d]) => (
+                    (forces[a] + forces[c]) + (forces[b] + forces[d]),
+                    (moments[a] + moments[c]) + (moments[b] + moments[d]),
+                ),
             };
+            force += f;
+            moment += m;
         }
-        total
+        (force, moment)
     }
 
     /// The sum from `zero` of each leg's `term` (by index) in this order.
@@ -181,6 +191,16 @@ mod tests {
         ]
     }
 
+    /// [`SumOrder::sum_loads`] of `t` as the forces, with `t` reversed as the moments: each
+    /// the sum [`SumOrder::sum_by`] gives, bit for bit.
+    fn sum(order: &SumOrder, t: &[Vector3<f64>]) -> Vector3<f64> {
+        let reversed: Vec<_> = t.iter().rev().copied().collect();
+        let (force, moment) = order.sum_loads(t, &reversed);
+        assert_eq!(force, order.sum_by(Vector3::zeros(), |i| t[i]));
+        assert_eq!(moment, order.sum_by(Vector3::zeros(), |i| reversed[i]));
+        force
+    }
+
     /// Three legs of a square and a fourth at (x, y).
     fn legs(x: f64, y: f64) -> [Leg; 4] {
         [leg(1.0, 1.0), leg(-1.0, 1.0), leg(-1.0, -1.0), leg(x, y)]
@@ -190,12 +210,12 @@ mod tests {
     fn renumbered_legs_sum_alike() {
         let legs = legs(1.0, -1.0);
         let t = terms();
-        let reference = SumOrder::new(&legs).sum(&t);
+        let reference = sum(&SumOrder::new(&legs), &t);
         for shift in 1..4 {
             let map: Vec<usize> = (0..4).map(|k| (k + shift) % 4).collect();
             let renumbered: Vec<Leg> = map.iter().map(|&i| legs[i]).collect();
             let moved: Vec<_> = map.iter().map(|&i| t[i]).collect();
-            assert_eq!(SumOrder::new(&renumbered).sum(&moved), reference);
+            assert_eq!(sum(&SumOrder::new(&renumbered), &moved), reference);
         }
     }
 
@@ -207,8 +227,8 @@ mod tests {
         let image: Vec<Leg> = legs.iter().map(|l| leg(-l.b2.x, l.b2.y)).collect();
         let mirrored: Vec<_> = t.iter().map(mirror).collect();
         assert_eq!(
-            SumOrder::new(&image).sum(&mirrored),
-            mirror(&SumOrder::new(&legs).sum(&t))
+            sum(&SumOrder::new(&image), &mirrored),
+            mirror(&sum(&SumOrder::new(&legs), &t))
         );
         // Twins (±x) are summed as a pair, singles alone.
         assert_eq!(SumOrder::new(&legs).groups.len(), 3);
@@ -232,11 +252,11 @@ mod tests {
             |v| Vector3::new(v.y, v.x, v.z),
             |v| Vector3::new(-v.y, -v.x, v.z),
         ];
-        let reference = SumOrder::new(&legs).sum(&t);
+        let reference = sum(&SumOrder::new(&legs), &t);
         for g in maps {
             let image: Vec<Leg> = legs.iter().map(|l| leg(g(&l.b2).x, g(&l.b2).y)).collect();
             let moved: Vec<_> = t.iter().map(g).collect();
-            assert_eq!(SumOrder::new(&image).sum(&moved), g(&reference));
+            assert_eq!(sum(&SumOrder::new(&image), &moved), g(&reference));
         }
         assert_eq!(SumOrder::new(&legs).groups.len(), 1);
     }

@@ -238,8 +238,9 @@ fn correct_footpads(
             (pad.position, pad.velocity) = (c.position, c.velocity);
         }
     }
-    loads.force += model.sum_order.sum(&leg_force);
-    loads.torque += model.sum_order.sum(&leg_torque);
+    let (force, torque) = model.sum_order.sum_loads(&leg_force, &leg_torque);
+    loads.force += force;
+    loads.torque += torque;
     state.leg_loads = (leg_force, leg_torque);
 }
 
