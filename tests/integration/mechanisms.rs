@@ -559,7 +559,7 @@ fn multibody_engines_refuse_mechanisms_they_do_not_model() {
 }
 
 /// A landing's history, one row per step (`history.csv` as written).
-struct Rows {
+pub(crate) struct Rows {
     header: Vec<String>,
     rows: Vec<Vec<f64>>,
 }
@@ -576,7 +576,7 @@ impl Rows {
     }
 
     /// The column `name` over the run.
-    fn column(&self, name: &str) -> Vec<f64> {
+    pub(crate) fn column(&self, name: &str) -> Vec<f64> {
         let k = self.header.iter().position(|h| h == name).unwrap();
         self.rows.iter().map(|r| r[k]).collect()
     }
@@ -604,7 +604,7 @@ where
 }
 
 /// A landing on `engine`: its summary and its history, a row at the start and after every step.
-fn landed_with_history(engine: Engine, path: &Path) -> (Summary, Rows) {
+pub(crate) fn landed_with_history(engine: Engine, path: &Path) -> (Summary, Rows) {
     let sc = Scenario::load(path).unwrap_or_else(|e| panic!("{e}"));
     let out = path.with_extension(engine.to_string());
     std::fs::create_dir_all(&out).unwrap();
