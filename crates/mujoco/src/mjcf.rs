@@ -100,18 +100,15 @@ fn hinge_axes(axis: &Vector3<f64>, b2: &Vector3<f64>) -> (Vector3<f64>, Vector3<
         .into_iter()
         .find(|r| r.norm() > 0.0)
         .map_or_else(Vector3::x, |r| r.normalize());
-    // Each candidate is a unit vector: the first not within about 6° of the strut is taken.
+    // The tangential and radial directions are normal to each other: a strut within 6° of
+    // the one is at least 84° from the other.
     let normal_to_strut = |v: Vector3<f64>| v - axis * axis.dot(&v);
-    let e1 = [
-        Vector3::z().cross(&radial),
-        radial,
-        Vector3::x(),
-        Vector3::y(),
-    ]
-    .into_iter()
-    .map(normal_to_strut)
-    .find(|v| v.norm() > 0.1)
-    .unwrap_or_else(Vector3::x)
+    let tangential = normal_to_strut(Vector3::z().cross(&radial));
+    let e1 = if tangential.norm() > 0.1 {
+        tangential
+    } else {
+        normal_to_strut(radial)
+    }
     .normalize();
     (e1, axis.cross(&e1))
 }
@@ -380,5 +377,8 @@ mod tests {
         let b2 = Vector3::new(0.0, 0.5, 0.1);
         let (e1, _) = hinge_axes(&-Vector3::z(), &b2);
         assert!((e1.x.abs() - 1.0).abs() < 1e-15, "{e1}");
+        // A strut along its leg's tangential direction takes the radial one first.
+        let (e1, e2) = hinge_axes(&Vector3::x(), &b2);
+        assert!((e1.y.abs() - 1.0).abs() < 1e-15 && e2.dot(&Vector3::x()).abs() < 1e-15);
     }
 }
