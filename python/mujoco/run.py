@@ -14,7 +14,7 @@ mj_step1 and mj_step2, and LIB steps it (touchdown_mujoco_run), each step:
     mj_step1   positions, velocities, tendons and sensors of the state, and the
                constraint rows
     advance    (Rust) book the last step, commit the honeycombs, evaluate the laws, write
-               ctrl, the stroke joints' dry-friction bounds (bearing friction + plateau),
+               ctrl, the stroke joints' dry-friction bounds (bearing friction),
                and the engine and RCS loads on the vehicle (qfrc_applied),
                the curbs' and obstacle walls' force on the footpads (xfrc_applied)
     (rows)     copy the dry-friction bounds into the stroke joints' friction rows

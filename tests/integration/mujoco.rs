@@ -126,41 +126,74 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
     }
 }
 
-/// The hard landing of the paired campaign that used to stop on the energy guard (Vh 26.8 ft/s,
-/// Vv 5 ft/s, slope 8°, heading 10°: its trailing legs strike, struts crush on their plateaus and
-/// bottom, stops engage and let go) lands on MuJoCo with its balance closed within 1e-4 of its
-/// touchdown kinetic energy (1,008 J) at 20 µs and at 10 µs: −0.014 J and +0.049 J. The stroke
-/// joints' dry friction, the bearing friction and the crush plateau, acts in the step the laws
-/// computed it for: the runner writes it into the joint's friction row after `mj_step1` has
-/// built the rows (`FRICTION_ROW_PLACEHOLDER`, crates/mujoco/src/mjcf.rs). Written into the
-/// model's `dof_frictionloss`, as it was, it acted a step late: a strut leaving its onset ramp
-/// for its plateau had neither for one step, and the residual was 0.60 J and 0.30 J
-/// (docs/engines.md, "Energy ledger").
+/// The stroke joints' dry friction, the bearing friction μB·(F1 + F2), acts in the step the laws
+/// computed it for: the runner writes it into the joint's friction row after `mj_step1` has built
+/// the rows (`FRICTION_ROW_PLACEHOLDER`, crates/mujoco/src/mjcf.rs). Written into the model's
+/// `dof_frictionloss`, as it once was, it acts a step late, and each hand-over of the bound
+/// leaves about Δt·F·v in the balance. The 2-2 landing at 8 ft/s with μB = 0.3, whose bearings
+/// take 19 J of its 136 J, closes its balance within 1e-4 of its touchdown kinetic energy at
+/// 20 µs and at 10 µs: +0.0061 J and +0.0030 J; with the row a step late (a scratch build,
+/// 2026-12-03) +0.054 J and +0.027 J (docs/engines.md, "Energy ledger").
 ///
-/// This test held the residual to second order in the step, the 10 µs residual at most a
-/// quarter of the 20 µs one (0.097 J and −0.0065 J then). That was a change of sign, not an
-/// order: once MuJoCo's trunnions took their hinges in the leg's own order (docs/engines.md,
-/// "A universal joint's hinges in the leg's own order") the same landing gave −0.014, +0.049,
-/// +0.039 and +0.002 J at 20, 10, 5 and 2.5 µs, and the symmetric drops, which that change
-/// does not move, halve their residual with the step (`stroke-out` 0.0164, 0.0082, 0.0042 J;
-/// `flat-drop` 0.0086, 0.0043, 0.0022 J): MuJoCo's balance keeps a first-order term that is
-/// not the friction's (docs/engines.md, "Energy ledger").
+/// Until 2026-12-03 the row carried the crush plateau too, and this test held the hard landing
+/// of the paired campaign (Vh 26.8 ft/s, Vv 5 ft/s, slope 8°, heading 10°) to the same bound:
+/// −0.014 J and +0.049 J of 1,008 J, 0.60 J and 0.30 J with the row a step late. With the
+/// plateau an explicit force (docs/engines.md, "Model" of the MuJoCo engine) that landing gives
+/// +0.103, +0.042, +0.017 and −0.0006 J at 20, 10, 5 and 2.5 µs (+0.53 and +0.18 J with the
+/// bearing row a step late): its first-order part at 20 µs, 1.03e-4 of its energy, accrues as
+/// the secondaries' end stops let go of an airborne footpad, not in the row.
 #[test]
-fn the_stroke_joints_dry_friction_acts_in_its_own_step_on_mujoco() {
-    let hard = "[surface]\nslope = 8.0\n[touchdown]\nvertical_velocity = -5.0\n\
-                horizontal_velocity = [0.0, 26.8]\nattitude = [5.0, 0.0, 10.0]\n\
-                [integrator]\nt_end = 0.5\n";
-    let residual = |step: &str| {
-        let name = format!("hard-landing-{step}");
-        let extra = format!("{hard}[engines.mujoco]\ntimestep = {step}\n");
-        let s = mujoco(&variant("table-i-2-2-vv8.toml", &name, &extra), &name);
-        (s.energy.residual_j, s.energy.kinetic_initial_j)
-    };
+fn the_stroke_joints_bearing_friction_acts_in_its_own_step_on_mujoco() {
+    let rough = "[primary_strut.bearing]\nfriction = 0.3\n";
     for step in ["2.0e-5", "1.0e-5"] {
-        let (r, energy) = residual(step);
+        let name = format!("bearing-friction-{step}");
+        let extra = format!("{rough}[engines.mujoco]\ntimestep = {step}\n");
+        let s = mujoco(&variant("table-i-2-2-vv8.toml", &name, &extra), &name);
+        let (r, energy) = (s.energy.residual_j, s.energy.kinetic_initial_j);
+        // The bearings do a part of the landing's work that a row a step late would show.
+        assert!(
+            s.energy.bearing_friction_j > 0.1 * energy,
+            "{} J of bearing work of {energy} J at a step of {step} s",
+            s.energy.bearing_friction_j
+        );
         assert!(
             r.abs() < 1e-4 * energy,
             "{r} J of {energy} J at a step of {step} s"
+        );
+    }
+}
+
+/// A honeycomb held below its crush load does not crush, and gives back its rebound: after its
+/// second impact (0.34 s) the 2-2 landing at 8 ft/s rocks on its leading legs, whose primaries
+/// carry at most 737 N of their 1,136 N crush load and stroke between 35.1 and 43.6 mm from 0.36
+/// to 0.62 s (the core 34.5 to 43.7 mm, rapier 34.4 to 43.9). The test asks each of them to
+/// stroke over at least 4 mm there. With the crush load in the stroke joint's dry-friction row,
+/// as it was until 2026-12-03, the row held the strut both ways and its soft creep kept it on
+/// the plateau: the leading primaries stayed between 43.86 and 43.89 mm, the honeycomb crushing
+/// below its crush load and keeping its rebound (docs/engines.md, "Model" of the MuJoCo engine).
+#[test]
+fn a_honeycomb_below_its_crush_load_gives_back_its_rebound_on_mujoco() {
+    let path = variant(
+        "table-i-2-2-vv8.toml",
+        "rocking-on-the-leading-legs",
+        "[integrator]\nt_end = 0.62\n",
+    );
+    let (_, rows) =
+        crate::mechanisms::landed_with_history(touchdown_scenario::schema::Engine::Mujoco, &path);
+    let t = rows.column("t_s");
+    for leg in [1, 2] {
+        let stroke = rows.column(&format!("leg{leg}_primary_stroke_m"));
+        let window = || {
+            t.iter()
+                .zip(&stroke)
+                .filter(|(t, _)| (0.36..=0.62).contains(*t))
+                .map(|(_, c)| *c)
+        };
+        let low = window().fold(f64::INFINITY, f64::min);
+        let high = window().fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            high - low > 4e-3,
+            "leg {leg}: its primary between {low} and {high} m from 0.36 to 0.62 s"
         );
     }
 }
@@ -197,6 +230,11 @@ fn a_plastic_stop_lands_on_mujoco() {
     crate::physics::assert_plastic_stops_land(&s);
 }
 
+/// The landings and legs whose largest primary strokes MuJoCo and rapier land 3 % to 5 % of the
+/// landing's largest stroke apart, where both are determined
+/// (`every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier`).
+const APART_FROM_RAPIER: [(&str, usize); 2] = [("fig-25-26.toml", 1), ("fig-25-26.toml", 2)];
+
 /// Every Table I landing and `fig-25-26` on MuJoCo: its balance, its outcome, and its primaries
 /// against rapier's and the core's wherever they are determined. Two probes say where they are
 /// not (docs/engines.md, "Rounding-decided channels"): the core's copies, and on a landing that
@@ -209,10 +247,21 @@ fn a_plastic_stop_lands_on_mujoco() {
 /// `table-i-2-2-vv4` (6.17 and 6.85 mm, rapier 6.03 and 6.03 mm) while the core made the 2-2
 /// landings its own mirror images only to rounding and MuJoCo's trunnions took their hinges in
 /// an order set by the body axes.
+///
+/// One disagreement with rapier is listed, [`APART_FROM_RAPIER`], and the test fails if it goes
+/// away or grows past 5 % of the largest stroke: `fig-25-26`'s leading primaries, made as the
+/// vehicle rocks at 0.69-0.77 s, are 68.54 and 68.78 mm on MuJoCo against 65.75 and 65.92 mm on
+/// rapier (4.1 and 4.2 %), where MuJoCo comes within 1.3 % of the core (67.91 mm) and rapier
+/// within 3.2 %. It is neither step (MuJoCo 67.99-69.05 mm, rapier 64.93-66.91 mm at 20, 10 and
+/// 5 µs) nor rapier's plateau motor (the plateau a force on rapier too, a scratch build,
+/// 2026-12-03: 64.93 and 65.30 mm). It came when MuJoCo's crush plateau became a force: with
+/// the plateau in its stroke joint's friction row MuJoCo's were 64.32 and 64.32 mm, the row
+/// holding its struts through the rocking (docs/engines.md, "Model" of the MuJoCo engine).
 #[test]
 fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_rapier() {
     let mut failures = vec![];
     let mut undetermined = vec![];
+    let mut apart = vec![];
     for name in validation_landings() {
         let path = scenario(&name);
         let sc = Scenario::load(&path).unwrap();
@@ -270,7 +319,10 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
                     gaps[1]
                 ));
             } else if (m - r).abs() >= 0.03 * largest {
-                failures.push(format!("{name} leg {}: mujoco {m} m, rapier {r} m", i + 1));
+                apart.push((name.clone(), i + 1));
+                if (m - r).abs() >= 0.05 * largest {
+                    failures.push(format!("{name} leg {}: mujoco {m} m, rapier {r} m", i + 1));
+                }
             }
             // Within 10 % of the core's stroke (of a tenth of the largest, for small strokes):
             // the agreement docs/validation.md states as the target for the core and the
@@ -306,11 +358,16 @@ fn every_table_i_landing_on_mujoco_closes_its_balance_and_agrees_with_core_and_r
         undetermined.join("\n")
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    // Twelve today: `fig-25-26`'s four legs against rapier and against the core, MuJoCo parting
-    // its mirror legs by 8.4 mm (downhill) and 6.3 mm (uphill), and the uphill primaries of the
-    // 2-2 landings at 4 and 6 ft/s against the core's copies; more is a landing that rounding
-    // newly decides, to look at.
-    assert!(undetermined.len() <= 12, "{}", undetermined.join("\n"));
+    let listed: Vec<(String, usize)> = APART_FROM_RAPIER
+        .iter()
+        .map(|&(name, leg)| (name.to_string(), leg))
+        .collect();
+    assert_eq!(apart, listed, "primaries 3 % or more apart from rapier's");
+    // Eight today: `fig-25-26`'s uphill primaries against rapier, which parts its mirror legs
+    // by 3.7 mm, and against the core's copies, and the uphill primaries of the 2-2 landings at
+    // 4 and 6 ft/s against the core's copies; more is a landing that rounding newly decides, to
+    // look at.
+    assert!(undetermined.len() <= 8, "{}", undetermined.join("\n"));
 }
 
 #[test]

@@ -14,10 +14,9 @@
 //! 4. unless the run has ended, write the forces for the step n → n+1: the engine and RCS loads
 //!    on the vehicle (`qfrc_applied`, if the scene has them), the curbs' and obstacle walls'
 //!    force on the footpads (`xfrc_applied`, if the scene has either), the explicit primary
-//!    force and the secondary tendon forces into `ctrl` (overwritten every step), and the stroke
-//!    joint's dry-friction bound: the bearing bound plus, while the honeycomb crushes on a
-//!    plateau, the crush load (a bound that stops the stroke but never drives it; it is engaged
-//!    only while the strut compresses, like the rapier rebuild's plateau motor). The step loop puts
+//!    force (the honeycomb's whole law, crush plateau included, as the core applies it, and the
+//!    viscous force) and the secondary tendon forces into `ctrl` (overwritten every step), and
+//!    the stroke joint's dry-friction bound, the bearing bound. The step loop puts
 //!    that bound into the joint's friction row of this step (`efc_frictionloss`): MuJoCo builds
 //!    its constraint rows in `mj_step1`, from the model's `dof_frictionloss`, so a bound written
 //!    into the model here would act one step late (docs/engines.md, "The MuJoCo engine").
@@ -425,13 +424,15 @@ impl MujocoLanding {
     fn apply(&self, mj: &mut MjArrays) {
         for (i, g) in self.index.iter().enumerate() {
             let f = self.gear_state.forces(i);
-            // A compression-positive strut force pushes the footpad away: it extends q.
-            mj.ctrl[g.primary as usize] = f.honeycomb + f.viscous;
+            // A compression-positive strut force pushes the footpad away: it extends q. The crush
+            // plateau is a force here, not a bound: a friction row holds a stroke both ways
+            // (docs/engines.md, "Model" of the MuJoCo engine).
+            mj.ctrl[g.primary as usize] = f.honeycomb + f.crush_load + f.viscous;
             // A tension pulls the tendon shorter.
             for (j, force) in f.secondary().into_iter().enumerate() {
                 mj.ctrl[g.secondary[j] as usize] = -force;
             }
-            mj.friction_bound[i] = f.bearing_bound + f.crush_load;
+            mj.friction_bound[i] = f.bearing_bound;
         }
         if !self.gear_state.applied().is_empty() {
             // eqs. (72)-(74), (80)-(82): the free joint's generalized forces are the force in

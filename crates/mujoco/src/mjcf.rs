@@ -14,10 +14,8 @@
 //!   the tripod (two-force members: a tendon carries force along itself only).
 //! - Actuators, all driven by the runner from the shared laws: `legN_primary` (force along the
 //!   stroke joint, N, positive extends), `legN_s31`, `legN_s41` (tendon forces, N, positive
-//!   lengthens). The stroke joint's dry friction is the bearing friction bound plus, while the
-//!   honeycomb crushes on a plateau, the crush load: a bound that can stop the stroke but never
-//!   drive it, solved by MuJoCo's constraint solver as stiff as the step allows (time constant
-//!   2Δt, MuJoCo's floor). The runner writes it into the joint's friction row of each step
+//!   lengthens). The stroke joint's dry friction is the bearing friction bound, solved by MuJoCo's
+//!   constraint solver as stiff as the step allows (time constant 2Δt, MuJoCo's floor). The runner writes it into the joint's friction row of each step
 //!   ([`FRICTION_ROW_PLACEHOLDER`]), with constraint islands off so that the solver reads it.
 //! - Sensors for the runner, per gear: `legN_contact` (the net force of the plane on the
 //!   footpad, world axes, and the number of contacts), `legN_pad_velocity`, `legN_pad_rate`
@@ -64,8 +62,7 @@ pub const CONTACT_MARGIN_PER_WIDTH: f64 = 1e-6;
 /// known only after `mj_step1` (the laws read the state it computes), and it may be zero; so the
 /// model keeps a non-zero placeholder that makes the row exist every step, and the runner writes
 /// the step's bound into the row before `mj_step2`. Written into the model instead, the bound
-/// would act a step late: the plateau would take the stroke a step after the honeycomb left it,
-/// and the bearing friction would follow its load a step behind (docs/engines.md, "Energy
+/// would act a step late: the bearing friction would follow its load a step behind (docs/engines.md, "Energy
 /// ledger"). The least positive double, so that the model loaded without the runner (MuJoCo's
 /// viewer) has no friction to speak of, whatever the vehicle's scale.
 pub const FRICTION_ROW_PLACEHOLDER: f64 = f64::MIN_POSITIVE;
@@ -124,7 +121,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
     let solref = nums(&[mj.contact_timeconst, mj.contact_damping_ratio]);
     let [i0, i1] = CONTACT_IMPEDANCE;
     let solimp = nums(&[i0, i1, mj.contact_width]);
-    // The stroke joint's dry friction holds the crush plateau as stiff as the step allows
+    // The stroke joint's dry friction holds the bearing friction as stiff as the step allows
     // (MuJoCo's floor, twice the step), whatever the contacts' time constant.
     let solref_friction = nums(&[
         touchdown_scenario::model::Mujoco::MIN_TIMECONST_PER_STEP * mj.timestep,
@@ -213,7 +210,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
         };
         let _ = writeln!(
             w,
-            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction: bearing friction plus the plateau crush load, as stiff as the step allows, written by the runner into this joint's friction row every step; the model's frictionloss is a placeholder that makes MuJoCo build the row -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" frictionloss=\"{friction_placeholder}\" solreffriction=\"{solref_friction}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
+            "      <site name=\"leg{n}_b3\" pos=\"{}\"/>\n      <site name=\"leg{n}_b4\" pos=\"{}\"/>\n      <body name=\"leg{n}_outer\" pos=\"{}\">\n        <joint name=\"leg{n}_trunnion_1\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <joint name=\"leg{n}_trunnion_2\" type=\"hinge\" pos=\"0 0 0\" axis=\"{}\"/>\n        <!-- outer cylinder, trunnion to gland bearing ({} m): {} kg, solid-cylinder inertia about its centre -->\n        <inertial pos=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n        <geom name=\"leg{n}_outer\" type=\"capsule\" fromto=\"0 0 0 {}\" size=\"{}\" rgba=\"0.7 0.7 0.7 1\"/>\n        {point1_on_outer}<body name=\"leg{n}_footpad\" pos=\"{}\">\n          <!-- q = extension along V2P; compression stroke c = -q. Dry friction: the bearing friction, as stiff as the step allows, written by the runner into this joint's friction row every step; the model's frictionloss is a placeholder that makes MuJoCo build the row -->\n          <joint name=\"leg{n}_stroke\" type=\"slide\" pos=\"0 0 0\" axis=\"{}\" frictionloss=\"{friction_placeholder}\" solreffriction=\"{solref_friction}\" solimpfriction=\"{solimp}\"/>\n          <inertial pos=\"0 0 0\" mass=\"{}\" diaginertia=\"{}\"/>\n          {point1_on_footpad}<geom name=\"leg{n}_footpad\" type=\"sphere\" size=\"{}\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{} rgba=\"0.9 0.6 0.1 1\"/>\n        </body>\n      </body>",
             vec3(&leg.b3),
             vec3(&leg.b4),
             vec3(&leg.b2),

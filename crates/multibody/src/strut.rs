@@ -4,8 +4,9 @@
 //!
 //! - primary strut: the honeycomb's elastic branches (onset, rebound, bottoming, extension stop)
 //!   and the viscous force are explicit axial forces; a honeycomb crushing on a plateau
-//!   (compressing on its virgin curve) is a one-sided force bound, the crush load, that the
-//!   engine's joint motor may use to stop the stroke but never to drive it; bearing friction is
+//!   (compressing on its virgin curve) is the crush load, which rapier's joint motor takes as a
+//!   bound that may stop the stroke but never drive it, and MuJoCo applies as a force, the
+//!   core's law (a friction row would hold the stroke both ways); bearing friction is
 //!   a dry-friction bound μB·(F1 + F2) from the report's statics (eqs. 53-63), with the side load
 //!   FM of the massless-strut closed form; the tripod's primary, a two-force member, has neither
 //!   (FM = 0, FBR = 0: docs/errata.md, "Tripod gear");
@@ -46,9 +47,10 @@ pub struct StrutKinematics {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StrutForces {
     /// Explicit primary honeycomb force (elastic branches, stops), N, compression positive;
-    /// zero while the plateau bound holds the strut.
+    /// zero while the strut crushes on a plateau (`crush_load`).
     pub honeycomb: f64,
-    /// Plateau force bound (the crush load), N; zero unless crushing.
+    /// The crush load, N, while the strut crushes on a plateau, zero otherwise: rapier holds it as
+    /// the bound of its plateau motor, MuJoCo applies it as a force with `honeycomb`.
     pub crush_load: f64,
     /// Primary viscous force FVP, N, compression positive.
     pub viscous: f64,
