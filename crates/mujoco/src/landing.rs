@@ -427,7 +427,7 @@ impl MujocoLanding {
             // A compression-positive strut force pushes the footpad away: it extends q. The crush
             // plateau is a force here, not a bound: a friction row holds a stroke both ways
             // (docs/engines.md, "Model" of the MuJoCo engine).
-            mj.ctrl[g.primary as usize] = f.honeycomb + f.crush_load + f.viscous;
+            mj.ctrl[g.primary as usize] = f.axial();
             // A tension pulls the tendon shorter.
             for (j, force) in f.secondary().into_iter().enumerate() {
                 mj.ctrl[g.secondary[j] as usize] = -force;

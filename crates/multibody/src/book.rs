@@ -684,9 +684,8 @@ impl GearModel {
         let loads = (state.kin.iter().zip(&state.forces).zip(&state.memory))
             .enumerate()
             .flat_map(|(i, ((k, f), m))| {
-                let primary = f.honeycomb + f.crush_load + f.viscous;
                 self.laws
-                    .strut_loads(i, m, (k.c, primary), (k.s, f.secondary()))
+                    .strut_loads(i, m, (k.c, f.axial()), (k.s, f.secondary()))
             });
         StrutLoad::stiffest(loads)
     }

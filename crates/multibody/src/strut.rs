@@ -82,6 +82,12 @@ impl StrutForces {
         ]
     }
 
+    /// The primary's axial force without the bearing friction, N, compression positive: the
+    /// honeycomb's law (the plateau at its crush load while engaged) and the viscous force.
+    pub fn axial(&self) -> f64 {
+        self.honeycomb + self.crush_load + self.viscous
+    }
+
     /// The primary axial force F2P, N, compression positive (eq. 50), with the plateau at its
     /// bound while engaged and the bearing friction at its bound against the stroking rate.
     pub fn primary(&self, c_dot: f64) -> f64 {
@@ -90,7 +96,7 @@ impl StrutForces {
         } else {
             self.bearing_bound * c_dot.signum()
         };
-        self.honeycomb + self.crush_load + self.viscous + friction
+        self.axial() + friction
     }
 
     /// The work done on the gear between the states `a` and `b` by the laws whose forces are
