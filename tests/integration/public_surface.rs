@@ -105,6 +105,7 @@ fn the_multibody_crate_exports_only_what_the_engines_use() {
             "use RapierSettings",
             "use StrutForces",
             "use StrutKinematics",
+            "use hinge_axes",
         ],
     );
 }

@@ -568,10 +568,6 @@ fn settings(
         "secondary_struts".into(),
         "massless two-force members (spatial tendons)".into(),
     );
-    m.insert(
-        "obstacle_lock_friction".into(),
-        crate::mjcf::LOCK_FRICTION.into(),
-    );
     for (name, value) in touchdown_multibody::CONTACT_FLAG_SETTINGS {
         m.insert(name.into(), value.into());
     }

@@ -27,19 +27,15 @@
 //!   contact width above its plane ([`CONTACT_MARGIN_PER_WIDTH`]).
 //!
 //! Only what the scene needs is written: a frictionless footpad gets a frictionless contact
-//! (`condim` 1), no lock is written for a surface without obstacles.
+//! (`condim` 1).
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::fmt::Write;
 use touchdown_frames::gravity_inertial;
-use touchdown_multibody::MujocoSettings;
+use touchdown_multibody::{hinge_axes, MujocoSettings};
 use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::schema::Arrangement;
 use touchdown_scenario::{Scenario, ScenarioError};
-
-/// Contact friction that stands for an obstacle lock (OBST > 0): the footpad sticks laterally
-/// while it bears on its plane and the lateral load stays below 100 times the normal load.
-pub const LOCK_FRICTION: f64 = 100.0;
 
 /// `solimp[0..2]` of the footpad contacts: impedance 0.99 at zero penetration rising to 0.999
 /// over the contact width (`solimp[2]`, `MujocoSettings::contact_width`), i.e. nearly a hard
@@ -80,34 +76,6 @@ fn nums(v: &[f64]) -> String {
 
 fn vec3(v: &Vector3<f64>) -> String {
     nums(&[v.x, v.y, v.z])
-}
-
-/// The universal joint's hinge axes at a primary trunnion `b2` (body axes, m) for a strut
-/// along the unit vector `axis`: the first, fixed in the vehicle, along the leg's tangential
-/// direction ẑ × r̂ (r̂ the horizontal direction of B2 from the centre line; of the strut where
-/// B2 is on it) made normal to the strut, the second normal to both. A universal joint's two
-/// hinges do not commute (the orientations (a, b) reaches differ from those of (b, a) at second
-/// order in its angles), so the axes come from the leg's own geometry: a leg and its mirror
-/// image get mirror-image joints in the same order, and a symmetric landing stays symmetric
-/// (test `a_leg_and_its_mirror_image_get_mirror_image_trunnions`). Where the tangential
-/// direction runs along the strut, the radial one.
-fn hinge_axes(axis: &Vector3<f64>, b2: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let horizontal = |v: &Vector3<f64>| Vector3::new(v.x, v.y, 0.0);
-    let radial = [horizontal(b2), horizontal(axis)]
-        .into_iter()
-        .find(|r| r.norm() > 0.0)
-        .map_or_else(Vector3::x, |r| r.normalize());
-    // The tangential and radial directions are normal to each other: a strut within 6° of
-    // the one is at least 84° from the other.
-    let normal_to_strut = |v: Vector3<f64>| v - axis * axis.dot(&v);
-    let tangential = normal_to_strut(Vector3::z().cross(&radial));
-    let e1 = if tangential.norm() > 0.1 {
-        tangential
-    } else {
-        normal_to_strut(radial)
-    }
-    .normalize();
-    (e1, axis.cross(&e1))
 }
 
 /// The MJCF document of `sc`'s lander, standalone (loads in MuJoCo and opens in its viewer),
@@ -171,7 +139,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
             "    <!-- leg {n}'s ground plane: Z = -HOLE = {} m, lowered by the contact radius so that BP is on it when the sphere touches -->\n    <geom name=\"leg{n}_plane\" type=\"plane\" pos=\"0 0 {}\" size=\"0 0 1\" contype=\"{bit}\" conaffinity=\"{bit}\" solref=\"{solref}\" solimp=\"{solimp}\" margin=\"{margin}\"{}/>",
             nums(&[pad.plane()]),
             nums(&[pad.plane() - r]),
-            contact_friction(pad.locked(), pad.friction),
+            contact_friction(pad.friction),
             n = i + 1,
             bit = 1u32 << i,
         );
@@ -228,7 +196,7 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
             nums(&[pmass]),
             nums(&[i_pad, i_pad, i_pad]),
             nums(&[r]),
-            contact_friction(pad.locked(), pad.friction),
+            contact_friction(pad.friction),
             bit = 1u32 << i,
         );
     }
@@ -294,15 +262,16 @@ pub fn export(sc: &Scenario) -> Result<String, ScenarioError> {
     Ok(x)
 }
 
-/// `condim` and `friction` attributes of a footpad contact: frictionless (condim 1) when the
-/// surface has neither friction nor an obstacle, Coulomb friction U otherwise, the lock friction
-/// on a surface with obstacles.
-fn contact_friction(locked: bool, friction: f64) -> String {
-    let mu = if locked { LOCK_FRICTION } else { friction };
-    if mu == 0.0 {
+/// `condim` and `friction` attributes of a footpad contact: frictionless (condim 1) on a
+/// frictionless surface, Coulomb friction U otherwise. A locked footpad's contact has the
+/// surface's friction too: its restraint is the obstacle wall or spikes
+/// (`touchdown_multibody::wall`), not the contact (docs/engines.md, "The footpad's lateral
+/// restraint").
+fn contact_friction(friction: f64) -> String {
+    if friction == 0.0 {
         " condim=\"1\"".into()
     } else {
-        format!(" condim=\"3\" friction=\"{} 0 0\"", nums(&[mu]))
+        format!(" condim=\"3\" friction=\"{} 0 0\"", nums(&[friction]))
     }
 }
 
@@ -313,69 +282,4 @@ fn xml_text(s: &str) -> String {
         .replace('>', "&gt;")
         .replace('"', "&quot;")
         .replace("--", "- -")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::hinge_axes;
-    use nalgebra::{Matrix3, Vector3};
-
-    /// The report's gear: a leg at azimuth `deg` (degrees, from +X_B) with its trunnion at
-    /// radius 0.5 m, 0.12 m up, and its footpad at radius 0.68 m, 0.29 m below it: a strut
-    /// 23° off the vertical, as the 1/6-scale model's (|V̂2P·ẑ| = 0.92).
-    fn leg(deg: f64) -> (Vector3<f64>, Vector3<f64>) {
-        let (s, c) = deg.to_radians().sin_cos();
-        let b2 = Vector3::new(0.5 * c, 0.5 * s, 0.12);
-        let bp = Vector3::new(0.68 * c, 0.68 * s, -0.29);
-        ((bp - b2).normalize(), b2)
-    }
-
-    /// A leg and its mirror image get mirror-image universal joints with their hinges in the
-    /// same order, under the mirrors that map the report's four legs onto each other: x → −x
-    /// (the 1-2-1 landing's), y → −y, and x ↔ y (the 2-2 landing's, which maps leg 1 onto
-    /// leg 2). Hinges are axes: parallel either way. With the hinges picked against the body
-    /// axes (the first along V̂2P × x̂ wherever the strut is within 26° of the vertical) legs
-    /// along X_B took the tangential hinge first and legs along Y_B last, and a symmetric 2-2
-    /// landing on MuJoCo came out asymmetric: the uphill primaries of `fig-25-26` 10.0 and
-    /// 16.3 mm on mirror legs 3 and 4.
-    #[test]
-    fn a_leg_and_its_mirror_image_get_mirror_image_trunnions() {
-        let mirrors = [
-            Matrix3::from_diagonal(&Vector3::new(-1.0, 1.0, 1.0)),
-            Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, 1.0)),
-            Matrix3::new(0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0),
-        ];
-        for deg in [0.0, 30.0, 45.0, 90.0, 135.0, 180.0, 270.0, 300.0] {
-            let (axis, b2) = leg(deg);
-            let (e1, e2) = hinge_axes(&axis, &b2);
-            // unit, normal to the strut and to each other
-            for (u, v) in [(e1, axis), (e2, axis), (e1, e2)] {
-                assert!(u.dot(&v).abs() < 1e-15, "{deg}°: {u} against {v}");
-            }
-            assert!((e1.norm() - 1.0).abs() < 1e-15 && (e2.norm() - 1.0).abs() < 1e-15);
-            // the first hinge is the leg's tangential direction, fixed in the vehicle
-            let tangential = Vector3::z().cross(&Vector3::new(b2.x, b2.y, 0.0).normalize());
-            assert!(
-                (e1.dot(&tangential).abs() - 1.0).abs() < 1e-15,
-                "{deg}°: {e1}"
-            );
-            for m in mirrors {
-                let (f1, f2) = hinge_axes(&(m * axis), &(m * b2));
-                for (image, hinge) in [(f1, m * e1), (f2, m * e2)] {
-                    assert!(
-                        (image.dot(&hinge).abs() - 1.0).abs() < 1e-15,
-                        "{deg}°: the image's hinge {image} is not the hinge's image {hinge}"
-                    );
-                }
-            }
-        }
-        // A vertical strut (the primaries of a lander whose footpads hang below their
-        // trunnions) still has the tangential hinge first.
-        let b2 = Vector3::new(0.0, 0.5, 0.1);
-        let (e1, _) = hinge_axes(&-Vector3::z(), &b2);
-        assert!((e1.x.abs() - 1.0).abs() < 1e-15, "{e1}");
-        // A strut along its leg's tangential direction takes the radial one first.
-        let (e1, e2) = hinge_axes(&Vector3::x(), &b2);
-        assert!((e1.y.abs() - 1.0).abs() < 1e-15 && e2.dot(&Vector3::x()).abs() < 1e-15);
-    }
 }

@@ -267,18 +267,12 @@ impl GearModel {
                     .then(|| ObstacleWall::new(p.hold_height(), sc.footpad.mass, primary_rate, dt))
             })
             .collect();
-        let wall_step = (walls.iter().flatten())
-            .map(|w| w.longest_step(sc.footpad.mass))
-            .fold(f64::INFINITY, f64::min);
         let curbs = touchdown_laws::scene::curbs_from_scenario(sc)?;
         let applied = VehicleLoads::new(sc, dt)?;
-        // The curbs and the nozzle are explicit at rates tied to the base step.
-        let max_stride = if curbs.is_some() || !applied.is_empty() {
-            1
-        } else {
-            max_stride
-        };
-        let rule = StepRule::new(sc, &laws, dt, max_stride, wall_step);
+        // The curbs, the nozzle and the walls are explicit at rates tied to the base step.
+        let tied = curbs.is_some() || !applied.is_empty() || walls.iter().any(Option::is_some);
+        let max_stride = if tied { 1 } else { max_stride };
+        let rule = StepRule::new(sc, &laws, dt, max_stride);
         let state = GearState {
             memory: vec![GearMemory::default(); n],
             kin: vec![StrutKinematics::default(); n],

@@ -9,6 +9,7 @@
 //! | `stride` | the step between the end stops: a longer step where no stop is engaged or can engage within it |
 //! | `motion` | the vehicle body's motion after a step, and what stops a run before it is placed in time and state |
 //! | `applied` | the vehicle-level mechanisms applied as a force and torque on the vehicle: descent engine, nozzle crushing, RCS (eqs. 69-82), their work, the nozzle crush committed |
+//! | `trunnion` | the universal joint at a primary trunnion: its two hinges, in the leg's own order |
 //! | `wall` | the obstacle wall that holds a locked footpad laterally from its landing until it rises above the wall (fig. 17) |
 //! | `book` | the gear bookkeeping, a model no step changes and a state: kinematics before and after a step, hysteresis committed once per step, contact work, the curbs' force on the footpads (eqs. 86-95) with their crush committed once per step, energy ledger, stability criteria, extremes, summary and history samples |
 
@@ -19,6 +20,7 @@ mod motion;
 mod step;
 mod stride;
 mod strut;
+mod trunnion;
 mod wall;
 
 pub use applied::{StepWork, VehicleLoads};
@@ -29,3 +31,4 @@ pub use capabilities::unsupported;
 pub use motion::{BodyMotion, Fault};
 pub use step::{MujocoSettings, RapierSettings};
 pub use strut::{StrutForces, StrutKinematics, StrutWork};
+pub use trunnion::hinge_axes;

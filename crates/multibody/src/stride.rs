@@ -13,9 +13,9 @@
 //! step at its current rate plus the rate's change over the last step, scaled to the long
 //! step. The stops thus always engage, load and release under the base step, and the long
 //! step never spans an engagement. A scene whose own explicit mechanisms are tied to the base
-//! step (curbs, a descent engine's nozzle) keeps the base step throughout, and the long step
-//! is no longer than the obstacle walls and spikes resolve (`crate::wall`), which are built
-//! for the base step: the stride changes no law. Every rule is a ratio of like
+//! step (curbs, a descent engine's nozzle, the obstacle walls and spikes, `crate::wall`, which
+//! is as stiff as the base step resolves) keeps the base step throughout: the stride changes
+//! no law. Every rule is a ratio of like
 //! quantities and holds over all legs alike, so a Froude twin and a mirrored landing step
 //! alike.
 
@@ -41,15 +41,8 @@ pub struct StepRule {
 impl StepRule {
     /// The rule of `sc` with its `laws`, on an engine whose base step is `base` (s) and whose
     /// long step may take up to `max_stride` base steps (1 where the scene's own explicit
-    /// mechanisms tie it to the base step) and be no longer than `wall_step` (s, the longest
-    /// step its obstacle walls resolve; infinite without walls).
-    pub fn new(
-        sc: &Scenario,
-        laws: &GearLaws,
-        base: f64,
-        max_stride: u32,
-        wall_step: f64,
-    ) -> StepRule {
+    /// mechanisms tie it to the base step).
+    pub fn new(sc: &Scenario, laws: &GearLaws, base: f64, max_stride: u32) -> StepRule {
         let stiffest = omega_max(&gear_modes(sc, laws, stiffest_rate));
         let soft = omega_max(&gear_modes(sc, laws, soft_rate));
         // stiffest ≥ soft by construction: the soft rates are among the stiffest's.
@@ -58,8 +51,7 @@ impl StepRule {
         } else {
             1.0
         };
-        let by_walls = (wall_step / base).floor();
-        let stride = by_modes.min(by_walls).min(f64::from(max_stride)).max(1.0) as u32;
+        let stride = by_modes.min(f64::from(max_stride)).max(1.0) as u32;
         let c = laws.capacities();
         StepRule {
             base,
@@ -135,26 +127,26 @@ mod tests {
         // of √21.75 = 4.66: four base steps at most.
         let (sc, laws) = scenario("table-i-2-2-vv8.toml");
         for (max, long) in [(1, 1), (2, 2), (4, 4), (8, 4)] {
-            let rule = StepRule::new(&sc, &laws, 2.0e-5, max, f64::INFINITY);
+            let rule = StepRule::new(&sc, &laws, 2.0e-5, max);
             assert_eq!(rule.long(), 2.0e-5 * f64::from(long), "at most {max}");
         }
-        // Curbs and a descent engine are applied explicitly at the base step's rates.
-        for tied in ["curb-slide.toml", "thrust-tailoff.toml"] {
+        // Curbs, a descent engine and the spikes' walls are applied explicitly at the base
+        // step's rates.
+        for tied in [
+            "curb-slide.toml",
+            "thrust-tailoff.toml",
+            "table-i-2-2-vv8.toml",
+        ] {
             let (sc, _) = scenario(tied);
             let (gear, _) = crate::GearModel::new(&sc, 1.0e-5, 4).unwrap();
             assert_eq!(gear.long_step(), 1.0e-5, "{tied}");
         }
-        // Walls that resolve 2.5 base steps allow two at most, whatever the modes allow.
-        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 5.0e-5);
-        assert_eq!(rule.long(), 4.0e-5);
-        let rule = StepRule::new(&sc, &laws, 2.0e-5, 4, 3.0e-5);
-        assert_eq!(rule.long(), 2.0e-5);
     }
 
     #[test]
     fn a_long_step_is_taken_only_clear_of_every_stop() {
         let (sc, laws) = scenario("table-i-2-2-vv8.toml");
-        let rule = StepRule::new(&sc, &laws, 1.0e-4, 2, f64::INFINITY);
+        let rule = StepRule::new(&sc, &laws, 1.0e-4, 2);
         let [cap_p, cap_c, cap_t] = rule.capacity;
         let h = rule.long();
         // A gear stroking at 1 m/s, half-way along each stroke.

@@ -1,10 +1,9 @@
 //! The obstacle wall of a locked footpad (OBST > 0, fig. 17), as the report defines it: "a
 //! vertical cylindrical wall with its height equal to OBST"; "the footpad is not completely
 //! free until [its] Z-position coordinate ... indicates that the footpad is above the
-//! constraining obstacle". The engines' contact friction (the lock friction) holds a footpad
-//! only while it bears on its plane; the wall holds it laterally from each landing until it
-//! rises above the wall, bearing or not, as the core's footpad with inertia is held
-//! (docs/errata.md, "Footpads with inertia").
+//! constraining obstacle". The wall alone holds the footpad laterally, from each landing until
+//! it rises above the wall, bearing or not, as the core's footpad with inertia is held
+//! (docs/errata.md, "Footpads with inertia"); the engines' contact friction is the surface's.
 //!
 //! The wall is a lateral spring-damper between the footpad and the point where it landed,
 //! applied as an explicit force like the curbs': stiffness four times the primary strut's
@@ -48,13 +47,6 @@ impl ObstacleWall {
             damping: 2.0 * (stiffness * mass).sqrt(),
             anchor: None,
         }
-    }
-
-    /// The longest step that resolves the wall's mode on a footpad of mass `mass` (kg) as its
-    /// construction asks (ω·Δt ≤ 0.5), s: a step between the stops (`crate::stride`) may not
-    /// be longer, so that the wall is the same law at every step.
-    pub fn longest_step(&self, mass: f64) -> f64 {
-        WALL_OMEGA_DT * (mass / self.stiffness).sqrt()
     }
 
     /// Updates the wall after a step at whose end the footpad stands at `xy` (m) and
@@ -103,14 +95,6 @@ mod tests {
         );
         let stiff = omega(&ObstacleWall::new(0.3, m, 1.0e8, dt), m) * dt;
         assert!((stiff - WALL_OMEGA_DT).abs() < 1e-12, "{stiff}");
-        // The longest step it resolves: 0.5/ω, the step itself where the bound binds.
-        let soft = ObstacleWall::new(0.3, m, 1.0e6, dt).longest_step(m);
-        assert!(
-            (soft - WALL_OMEGA_DT / (4.0e6 / m).sqrt()).abs() < 1e-15,
-            "{soft}"
-        );
-        let bound = ObstacleWall::new(0.3, m, 1.0e8, dt).longest_step(m);
-        assert!((bound / dt - 1.0).abs() < 1e-12, "{bound}");
     }
 
     #[test]

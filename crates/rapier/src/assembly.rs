@@ -2,7 +2,8 @@
 //!
 //! - Vehicle: the multibody root (free joint), mass M and the full inertia tensor J at its centre
 //!   of mass, no collider, sleeping off.
-//! - Per gear: a spherical joint at the primary trunnion B2 to the outer-cylinder link; a
+//! - Per gear: a universal joint at the primary trunnion B2 to the outer-cylinder link (two
+//!   revolute joints about `hinge_axes` joined by a massless yoke at B2); a
 //!   prismatic joint along the undeformed strut axis V̂2P to the inner cylinder, whose origin is
 //!   the footpad ball joint BP (joint coordinate q = extension, so the compression stroke is
 //!   c = −q); the inner body carries the effective footpad mass PMASS and a ball collider of the
@@ -16,15 +17,11 @@
 use nalgebra::{Matrix3, Vector3};
 use rapier3d_f64::prelude::*;
 use touchdown_frames::gravity_inertial;
-use touchdown_multibody::RapierSettings;
+use touchdown_multibody::{hinge_axes, RapierSettings};
 use touchdown_record::RunError;
 use touchdown_scenario::initial::initial_state;
 use touchdown_scenario::schema::{Arrangement, Engine};
 use touchdown_scenario::Scenario;
-
-/// Friction coefficient that stands for an obstacle lock (OBST > 0): the footpad sticks
-/// laterally while it bears on its plane, as the core's locked footpad does while in contact.
-pub const LOCK_FRICTION: f64 = 1.0e6;
 
 /// Damping of the plateau velocity motor, N/(m/s): large enough that the motor is a hard
 /// velocity constraint up to its force bound.
@@ -281,11 +278,12 @@ pub fn build(sc: &Scenario, rs: &RapierSettings) -> Result<Assembly, RunError> {
         );
         let group = Group::from_bits_truncate(1 << i);
         let groups = InteractionGroups::new(group, group, InteractionTestMode::And);
-        let friction = if surface.locked() {
-            LOCK_FRICTION
-        } else {
-            surface.friction
-        };
+        // The contact's friction is the surface's, U, on a locked surface too: the restraint
+        // holds a locked footpad laterally (`touchdown_multibody::wall`, at BP); a lock by
+        // contact friction as well held the contact point, PR below BP, and the two fought
+        // as the footpad turned with its gear (docs/engines.md, "The footpad's lateral
+        // restraint").
+        let friction = surface.friction;
         let footpad_collider = world.colliders.insert_with_parent(
             ColliderBuilder::ball(pr)
                 .density(0.0)
@@ -307,13 +305,32 @@ pub fn build(sc: &Scenario, rs: &RapierSettings) -> Result<Assembly, RunError> {
             ground,
             &mut world.bodies,
         );
-        let trunnion = SphericalJointBuilder::new()
-            .local_anchor1(to_rapier(&leg.b2))
-            .local_anchor2(to_rapier(&(leg.b2 - outer_com)));
-        world
-            .multibody_joints
-            .insert(vehicle, outer, trunnion, true)
-            .ok_or_else(|| not_built("the trunnion joint could not be inserted"))?;
+        // The universal joint at B2: rapier's multibody joints turn about one axis or all
+        // three, so it is two revolute joints about the hinges both engines take
+        // (`hinge_axes`), the first fixed in the vehicle, joined by a massless yoke at B2.
+        let (e1, e2) = hinge_axes(&axis, &leg.b2);
+        let yoke = world.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .pose(pose_of(&leg.b2))
+                .linvel(velocity_of(&leg.b2))
+                .angvel(to_rapier(&omega_world))
+                .can_sleep(false),
+        );
+        // (parent, child, hinge, anchor on the parent, anchor on the child): every body's
+        // frame starts in the vehicle's attitude, so a hinge in body axes is one in each
+        let hinges = [
+            (vehicle, yoke, e1, leg.b2, Vector3::zeros()),
+            (yoke, outer, e2, Vector3::zeros(), leg.b2 - outer_com),
+        ];
+        for (parent, child, hinge, on_parent, on_child) in hinges {
+            let joint = RevoluteJointBuilder::new(to_rapier(&hinge))
+                .local_anchor1(to_rapier(&on_parent))
+                .local_anchor2(to_rapier(&on_child));
+            world
+                .multibody_joints
+                .insert(parent, child, joint, true)
+                .ok_or_else(|| not_built("the trunnion joint could not be inserted"))?;
+        }
         let stroke = PrismaticJointBuilder::new(to_rapier(&axis))
             .local_anchor1(to_rapier(&(leg.bp - outer_com)))
             .local_anchor2(Vector::ZERO)

@@ -4,7 +4,7 @@
 //!
 //! | module | content |
 //! |---|---|
-//! | `assembly` | the multibody: vehicle root, per gear a spherical trunnion joint, outer-cylinder link, prismatic stroke joint, inner cylinder with footpad; one ground plane per footpad |
+//! | `assembly` | the multibody: vehicle root, per gear a universal trunnion joint (two hinges and a massless yoke), outer-cylinder link, prismatic stroke joint, inner cylinder with footpad; one ground plane per footpad |
 //! | `struts` | the shared laws applied to the joints: honeycomb (explicit elastic, plateau as a one-sided velocity motor), viscous, bearing friction as per-DOF dry friction, secondary struts as massless two-force members |
 //! | `simulation` | the fixed-step run, energy ledger, stability criteria (`touchdown_record`), divergence checks |
 //!

@@ -13,7 +13,7 @@
 //!    strokes, update the stability criteria and the extremes, and check for divergence.
 
 use crate::assembly::{
-    self, body_state, to_na, to_rapier, Assembly, BodyState, Inertia, LinkMasses, LOCK_FRICTION,
+    self, body_state, to_na, to_rapier, Assembly, BodyState, Inertia, LinkMasses,
 };
 use crate::struts;
 use nalgebra::Vector3;
@@ -408,7 +408,6 @@ fn settings(
         "secondary_struts".into(),
         "massless two-force members".into(),
     );
-    m.insert("obstacle_lock_friction".into(), LOCK_FRICTION.into());
     for (name, value) in touchdown_multibody::CONTACT_FLAG_SETTINGS {
         m.insert(name.into(), value.into());
     }
