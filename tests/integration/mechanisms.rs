@@ -1476,6 +1476,56 @@ fn a_lander_on_a_slope_slides_below_its_friction_threshold_and_stands_above_it_o
     }
 }
 
+/// A spiked footpad's restraint holds what its gear does not, and no more, on every engine:
+/// on `fig-25-26` the leading footpads 1 and 2 stand held in their depressions from 0.12 to
+/// 0.2 s while the vehicle pitches over them and their struts carry nothing. The restraint then
+/// holds the footpad against the slope alone: the lateral share of its weight, m·g·sin α, with
+/// m the footpad's mass (and on the multibody engines its outer-cylinder link's, 0.1 of it),
+/// 0.16 N on the core, measured 0.21 N on rapier and MuJoCo; the test allows twice
+/// (PMASS + link)·g·sin α. While the multibody engines also locked the footpad by its contact's
+/// friction the two restraints fought as the footpad turned with its gear, and the wall held
+/// 15-17 kN on rapier and 110-140 N on MuJoCo there (docs/engines.md, "The footpad's lateral
+/// restraint").
+#[test]
+fn a_spiked_footpad_under_a_slack_gear_is_held_against_the_slope_alone_on_every_engine() {
+    let path = variant(
+        "fig-25-26.toml",
+        "slack-hold",
+        "[integrator]\nt_end = 0.25\n",
+    );
+    let sc = Scenario::load(&path).unwrap();
+    let alpha = sc.surface.slope;
+    let mass = sc.footpad.mass * (1.0 + sc.links.outer_cylinder_mass_ratio);
+    let bound = 2.0 * mass * sc.vehicle.gravity * alpha.sin();
+    for engine in Engine::ALL {
+        let (_, rows) = landed_with_history(engine, &path);
+        let t = rows.column("t_s");
+        let window: Vec<usize> = (0..t.len())
+            .filter(|&k| (0.12..=0.2).contains(&t[k]))
+            .collect();
+        assert!(window.len() > 10, "{engine}: {} samples", window.len());
+        for leg in [1, 2] {
+            let column = |name: &str| rows.column(&format!("leg{leg}_{name}"));
+            let gear = ["primary_force_n", "sec31_force_n", "sec41_force_n"].map(column);
+            let held = column("restraint_force_n");
+            for &k in &window {
+                assert!(
+                    gear.iter().all(|f| f[k] == 0.0),
+                    "{engine}: leg {leg}'s gear carries a force at {} s",
+                    t[k]
+                );
+                assert!(
+                    held[k] > 0.0 && held[k] <= bound,
+                    "{engine}: leg {leg} held with {} N at {} s, its lateral weight {} N",
+                    held[k],
+                    t[k],
+                    0.5 * bound
+                );
+            }
+        }
+    }
+}
+
 /// Curb friction UW (eqs. 94-95) in a run, on every engine: on a 10° frictionless slope a
 /// lander set down in the slope's attitude moving at 3 ft/s along +X slides 6 mm downhill into
 /// the curbs of `curb-slide.toml` (their normal +Y, UW = 0.2) and then along them, pressed into
