@@ -134,10 +134,12 @@ fn the_symmetric_drop_strokes_as_the_analytic_value_on_mujoco() {
 /// Until 2026-12-03 the row carried the crush plateau too, and this test held the hard landing
 /// of the paired campaign (Vh 26.8 ft/s, Vv 5 ft/s, slope 8°, heading 10°) to the same bound:
 /// −0.014 J and +0.049 J of 1,008 J, 0.60 J and 0.30 J with the row a step late. With the
-/// plateau an explicit force (docs/engines.md, "Model" of the MuJoCo engine) that landing gives
+/// plateau an explicit force (docs/engines.md, "Model" of the MuJoCo engine) that landing gave
 /// +0.103, +0.042, +0.017 and −0.0006 J at 20, 10, 5 and 2.5 µs (+0.53 and +0.18 J with the
-/// bearing row a step late): its first-order part at 20 µs, 1.03e-4 of its energy, accrues as
-/// the secondaries' end stops let go of an airborne footpad, not in the row.
+/// bearing row a step late): its first-order part at 20 µs, 1.03e-4 of its energy, accrued as
+/// the secondaries' end stops let go of an airborne footpad, not in the row. Without the
+/// contacts' lock friction ("The footpad's lateral restraint") it gives +0.125, +0.028, +0.025
+/// and +0.008 J.
 #[test]
 fn the_stroke_joints_bearing_friction_acts_in_its_own_step_on_mujoco() {
     let rough = "[primary_strut.bearing]\nfriction = 0.3\n";
@@ -161,8 +163,8 @@ fn the_stroke_joints_bearing_friction_acts_in_its_own_step_on_mujoco() {
 
 /// A honeycomb held below its crush load does not crush, and gives back its rebound: after its
 /// second impact (0.34 s) the 2-2 landing at 8 ft/s rocks on its leading legs, whose primaries
-/// carry at most 737 N of their 1,136 N crush load and stroke between 35.1 and 43.6 mm from 0.36
-/// to 0.62 s (the core 34.5 to 43.7 mm, rapier 34.4 to 43.9). The test asks each of them to
+/// carry at most 764 N of their 1,136 N crush load and stroke between 34.6 and 43.8 mm from 0.36
+/// to 0.62 s (the core 34.5 to 43.7 mm, rapier 34.6 to 43.8). The test asks each of them to
 /// stroke over at least 4 mm there. With the crush load in the stroke joint's dry-friction row,
 /// as it was until 2026-12-03, the row held the strut both ways and its soft creep kept it on
 /// the plateau: the leading primaries stayed between 43.86 and 43.89 mm, the honeycomb crushing

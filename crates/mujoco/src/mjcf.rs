@@ -14,8 +14,9 @@
 //!   the tripod (two-force members: a tendon carries force along itself only).
 //! - Actuators, all driven by the runner from the shared laws: `legN_primary` (force along the
 //!   stroke joint, N, positive extends), `legN_s31`, `legN_s41` (tendon forces, N, positive
-//!   lengthens). The stroke joint's dry friction is the bearing friction bound, solved by MuJoCo's
-//!   constraint solver as stiff as the step allows (time constant 2Δt, MuJoCo's floor). The runner writes it into the joint's friction row of each step
+//!   lengthens). The stroke joint's dry friction is the bearing friction bound, solved by
+//!   MuJoCo's constraint solver as stiff as the step allows (time constant 2Δt, MuJoCo's
+//!   floor). The runner writes it into the joint's friction row of each step
 //!   ([`FRICTION_ROW_PLACEHOLDER`]), with constraint islands off so that the solver reads it.
 //! - Sensors for the runner, per gear: `legN_contact` (the net force of the plane on the
 //!   footpad, world axes, and the number of contacts), `legN_pad_velocity`, `legN_pad_rate`
@@ -58,8 +59,8 @@ pub const CONTACT_MARGIN_PER_WIDTH: f64 = 1e-6;
 /// known only after `mj_step1` (the laws read the state it computes), and it may be zero; so the
 /// model keeps a non-zero placeholder that makes the row exist every step, and the runner writes
 /// the step's bound into the row before `mj_step2`. Written into the model instead, the bound
-/// would act a step late: the bearing friction would follow its load a step behind (docs/engines.md, "Energy
-/// ledger"). The least positive double, so that the model loaded without the runner (MuJoCo's
+/// would act a step late: the bearing friction would follow its load a step behind
+/// (docs/engines.md, "Energy ledger"). The least positive double, so that the model loaded without the runner (MuJoCo's
 /// viewer) has no friction to speak of, whatever the vehicle's scale.
 pub const FRICTION_ROW_PLACEHOLDER: f64 = f64::MIN_POSITIVE;
 
