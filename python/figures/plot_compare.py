@@ -125,7 +125,8 @@ def read_trace(path: Path) -> dict:
 
 def channel_key(ch: dict) -> str:
     """A channel of the comparison's document as this script names it: its quantity, and for a
-    stroke its leg and strut ("primary_stroke leg 1"), for an energy its account."""
+    stroke its leg and strut ("primary_stroke leg 1"), for an energy its account, for a
+    pitch-rate extreme its sense ("peak_pitch_rate negative")."""
     key = ch["quantity"]
     if "leg" in ch:
         key += f" leg {ch['leg']}"
@@ -133,6 +134,8 @@ def channel_key(ch: dict) -> str:
             key += f" {ch['strut']}"
     if "account" in ch:
         key += f" {ch['account']}"
+    if "sense" in ch:
+        key += f" {ch['sense']}"
     return key
 
 
@@ -334,6 +337,10 @@ def verdict_table(ax, verdicts: dict | None, channels: list[tuple[str, str]], le
         unit = verdicts["units"].get(name, "")
         tolerance = next((p["channels"][name]["tolerance"] for p in pairs if name in p["channels"]), None)
         header.append(shown + ("" if tolerance is None else f"\n≤ {verdict_value(tolerance, unit)}"))
+    # More than four columns: each verdict over its value (NOT DETERMINED on two lines), so
+    # that the cells stay readable.
+    narrow = len(channels) > 4
+    separator = "\n" if narrow else " "
     text, colours = [], []
     for p in pairs:
         row = [f"{engine_name(p['a'])}–{engine_name(p['b'])}"]
@@ -345,12 +352,14 @@ def verdict_table(ax, verdicts: dict | None, channels: list[tuple[str, str]], le
                 row_colours.append("white")
             else:
                 unit = verdicts["units"].get(name, "")
-                row.append(f"{VERDICT_WORDS[ch['verdict']]} {verdict_value(ch['difference'], unit)}")
+                word = VERDICT_WORDS[ch["verdict"]].replace(" ", separator)
+                row.append(f"{word}{separator}{verdict_value(ch['difference'], unit)}")
                 row_colours.append(VERDICT_COLOURS[ch["verdict"]])
         text.append(row)
         colours.append(row_colours)
     lines = max(h.count("\n") + 1 for h in header)
-    height = min(1.0 - legend_height - 0.1, 0.11 * (len(text) + 0.6 * lines + 0.3))
+    cell_lines = max(cell.count("\n") + 1 for row in text for cell in row)
+    height = min(1.0 - legend_height - 0.1, 0.11 * (len(text) * (0.5 + 0.5 * cell_lines) + 0.6 * lines + 0.3))
     width = min(1.0, 0.24 + max(0.3, 0.19 * len(channels)))
     table = ax.table(
         cellText=text,
@@ -431,10 +440,12 @@ def traces(args: argparse.Namespace) -> None:
             None,
             None,
             [
-                ("peak_pitch_rate", "peak"),
-                ("peak_pitch_rate_time", "time of peak"),
-                ("pitch_rate_history_rms_difference", "history RMS"),
-                ("pitch_rate_history_largest_difference", "history max."),
+                ("peak_pitch_rate positive", "peak +"),
+                ("peak_pitch_rate_time positive", "time of\npeak +"),
+                ("peak_pitch_rate negative", "peak −"),
+                ("peak_pitch_rate_time negative", "time of\npeak −"),
+                ("pitch_rate_history_rms_difference", "history\nRMS"),
+                ("pitch_rate_history_largest_difference", "history\nmax."),
             ],
         ),
         (

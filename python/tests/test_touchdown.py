@@ -63,6 +63,8 @@ def test_a_settled_landing_ends_early_with_the_full_runs_maxima():
     assert np.allclose(early["max_primary_stroke_m"], full["max_primary_stroke_m"], rtol=0, atol=eps)
     assert early["peak_primary_force_n"] == full["peak_primary_force_n"]
     assert early["peak_pitch_rate_rad_s"] == full["peak_pitch_rate_rad_s"]
+    for extreme in ("min_pitch_rate_rad_s", "max_pitch_rate_rad_s"):
+        assert early[extreme] == full[extreme]
     with pytest.raises(touchdown.ScenarioInvalid) as e:
         touchdown.run(ROOT / "scenarios" / "soil-drop.toml", overrides={"stability.settled_tolerance": 0.001})
     assert "stability.settled_tolerance" in str(e.value) and "soil" in str(e.value)

@@ -43,6 +43,8 @@ fn maxima(s: &Summary) -> Vec<(String, f64)> {
             s.peak_specific_force_m_s2,
         ),
         ("peak pitch rate".to_string(), s.peak_pitch_rate_rad_s),
+        ("smallest pitch rate".to_string(), s.min_pitch_rate_rad_s),
+        ("largest pitch rate".to_string(), s.max_pitch_rate_rad_s),
         (
             "minimum stability distance".to_string(),
             s.min_stability_distance_m,

@@ -18,7 +18,7 @@ const WINDOW: &str = "[integrator]\nt_end = 0.3\n";
 
 /// The landing's measures in the model's dimensions, each a list over the legs or struts:
 /// a twin's lengths divided by [`LENGTH`], its rates multiplied by [`TIME`].
-fn measures(s: &Summary, length: f64, time: f64) -> [(&'static str, Vec<f64>); 6] {
+fn measures(s: &Summary, length: f64, time: f64) -> [(&'static str, Vec<f64>); 7] {
     let flat = |v: &[[f64; 2]]| v.iter().flatten().map(|x| x / length).collect();
     [
         (
@@ -38,6 +38,10 @@ fn measures(s: &Summary, length: f64, time: f64) -> [(&'static str, Vec<f64>); 6
             vec![s.min_stability_distance_m / length],
         ),
         ("peak pitch rate", vec![s.peak_pitch_rate_rad_s * time]),
+        (
+            "pitch rate extremes",
+            vec![s.min_pitch_rate_rad_s * time, s.max_pitch_rate_rad_s * time],
+        ),
         (
             "peak specific force",
             vec![s.peak_specific_force_m_s2 * time * time / length],

@@ -143,6 +143,14 @@ fn figures(s: &Summary, map: Option<&Map>) -> Vec<(String, f64)> {
         ("end time".to_string(), s.t_end_s),
         ("peak pitch rate".to_string(), s.peak_pitch_rate_rad_s),
         (
+            "peak pitch rate, negative".to_string(),
+            s.min_pitch_rate_rad_s,
+        ),
+        (
+            "peak pitch rate, positive".to_string(),
+            s.max_pitch_rate_rad_s,
+        ),
+        (
             "minimum stability distance".to_string(),
             s.min_stability_distance_m,
         ),
@@ -185,7 +193,7 @@ fn scaled_differences(
                 || name == "mechanisms"
             {
                 energy_scale
-            } else if name == "peak pitch rate" {
+            } else if name.starts_with("peak pitch rate") {
                 scales.rate_rad_s
             } else if name == "minimum stability distance" {
                 // A signed distance that is near zero on a grazing overturn: measured against

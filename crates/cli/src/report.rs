@@ -86,6 +86,14 @@ pub fn text(sc: &Scenario, s: &Summary, set: &[crate::Set]) -> String {
     );
     let _ = writeln!(
         o,
+        "  in each sense:            {:+.4} rad/s at t = {:.4} s, {:+.4} rad/s at t = {:.4} s",
+        s.min_pitch_rate_rad_s,
+        s.min_pitch_rate_time_s,
+        s.max_pitch_rate_rad_s,
+        s.max_pitch_rate_time_s
+    );
+    let _ = writeln!(
+        o,
         "minimum stability distance: {} at t = {:.4} s{}",
         len(s.min_stability_distance_m),
         s.min_stability_distance_time_s,

@@ -90,7 +90,7 @@ pub const PEAK_PITCH_RATE: Tolerance = Tolerance {
     quantity: "peak_pitch_rate",
     limit: 0.05,
     difference_unit: OWN_VALUE,
-    measured_as: "fraction of the larger peak magnitude (at least 2.5 % of the vehicle's rate scale, the inverse of its time scale)",
+    measured_as: "fraction of the larger peak magnitude of either sense (at least 2.5 % of the vehicle's rate scale, the inverse of its time scale); each sense's extreme is a channel",
     reason: "the pitch rate drives the overturn; 5 % of its peak moves a stability boundary by about as much as the report's 0.05 ft/s search tolerance at 8 ft/s",
 };
 
@@ -100,7 +100,7 @@ pub const PEAK_PITCH_RATE_TIME: Tolerance = Tolerance {
     quantity: "peak_pitch_rate_time",
     limit: 0.038,
     difference_unit: TIME_SCALE,
-    measured_as: "the difference of the times of the peaks, as a fraction of the vehicle's time scale",
+    measured_as: "the time from each engine's peak to the nearest time the other's pitch rate is within the peak pitch rate's tolerance of its own peak (the larger of the two), as a fraction of the vehicle's time scale; each sense's extreme is a channel",
     reason: "10 ms on the 1/6-scale model (time scale 0.263 s), 5 % of a 0.2 s landing: the same phase of the landing",
 };
 
@@ -214,8 +214,64 @@ impl Strut {
     }
 }
 
+/// The sense of a pitch-rate extreme: each sense's extreme is a channel of its own, so that a
+/// landing that rocks with two swings of nearly one magnitude is compared swing by swing, not
+/// by which of the two happened to be the larger (docs/engines.md, "Channels and tolerances").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Sense {
+    /// The largest pitch rate (≥ 0; `max_pitch_rate_rad_s` of the summary).
+    Positive,
+    /// The smallest pitch rate (≤ 0; `min_pitch_rate_rad_s` of the summary).
+    Negative,
+}
+
+impl Sense {
+    /// The sense as the text reports name it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Sense::Positive => "positive",
+            Sense::Negative => "negative",
+        }
+    }
+
+    /// The summary's extreme of the pitch rate in this sense and its time, (rad/s, s).
+    fn extreme(self, s: &touchdown_record::Summary) -> (f64, f64) {
+        match self {
+            Sense::Positive => (s.max_pitch_rate_rad_s, s.max_pitch_rate_time_s),
+            Sense::Negative => (s.min_pitch_rate_rad_s, s.min_pitch_rate_time_s),
+        }
+    }
+
+    /// +1 or −1: the pitch rate times it is the rate in this sense.
+    fn sign(self) -> f64 {
+        match self {
+            Sense::Positive => 1.0,
+            Sense::Negative => -1.0,
+        }
+    }
+}
+
+/// How far, s, time `t` is from the nearest state of `run`'s trace at which its pitch rate
+/// lies within `band` (rad/s) of its extreme in `sense` (the summary's, at its own time
+/// whether or not the trace holds that state). Only the states its summary measured count
+/// (up to the crossing of an overturn).
+fn from_near_peak(run: &EngineRun, sense: Sense, band: f64, t: f64) -> f64 {
+    let s = &run.summary;
+    let end = match (s.outcome, s.decision_time_s) {
+        (Outcome::Unstable, Some(crossing)) => crossing,
+        _ => f64::INFINITY,
+    };
+    let (extreme, at) = sense.extreme(s);
+    let (trace, k) = (&run.trace, sense.sign());
+    (trace.t.iter().zip(&trace.pitch_rate))
+        .take_while(|(ti, _)| **ti <= end)
+        .filter(|(_, q)| k * **q >= k * extreme - band)
+        .fold((t - at).abs(), |d, (ti, _)| d.min((t - ti).abs()))
+}
+
 /// One channel of a pair comparison, identified by data: its quantity (the family of its
-/// tolerance), and the leg, strut or energy account it is about.
+/// tolerance), and the leg, strut, energy account or sense it is about.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Channel {
     /// The quantity compared: the `quantity` of its [`Tolerance`].
@@ -229,6 +285,9 @@ pub struct Channel {
     /// The energy account, as history.csv's column without `_j` (energy channels).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub account: Option<&'static str>,
+    /// The sense of a pitch-rate extreme (the peak pitch rate channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sense: Option<Sense>,
     /// The SI unit of `a`, `b` and `absolute_difference`.
     pub unit: &'static str,
     /// The first engine's value (left out of the history channels, which compare two time
@@ -295,16 +354,15 @@ impl Verdict {
 const STRUT_COUNT: &str = "struts";
 
 impl Channel {
-    /// What the channel is about: its quantity, leg, strut and energy account.
-    pub(crate) fn key(
-        &self,
-    ) -> (
-        &'static str,
-        Option<usize>,
-        Option<Strut>,
-        Option<&'static str>,
-    ) {
-        (self.quantity, self.leg, self.strut, self.account)
+    /// What the channel is about: its quantity, leg, strut, energy account and sense.
+    pub(crate) fn key(&self) -> Key {
+        (
+            self.quantity,
+            self.leg,
+            self.strut,
+            self.account,
+            self.sense,
+        )
     }
 
     /// Whether `a`, `b` and `absolute_difference` count struts rather than measure a quantity
@@ -314,16 +372,17 @@ impl Channel {
     }
 
     /// The channel as the text reports name it ("primary stroke leg 1", "secondary stroke leg
-    /// 2 3-1", "energy: viscous").
+    /// 2 3-1", "energy: viscous", "peak pitch rate, negative").
     pub fn name(&self) -> String {
         let family = TOLERANCES
             .iter()
             .find(|t| t.quantity == self.quantity)
             .map_or(self.quantity, |t| t.channel);
-        match (self.leg, self.strut, self.account) {
-            (Some(leg), Some(Strut::Primary), _) => format!("{family} leg {leg}"),
-            (Some(leg), Some(strut), _) => format!("{family} leg {leg} {}", strut.label()),
-            (_, _, Some(account)) => format!("{family}: {}", account.replace('_', " ")),
+        match (self.leg, self.strut, self.account, self.sense) {
+            (Some(leg), Some(Strut::Primary), _, _) => format!("{family} leg {leg}"),
+            (Some(leg), Some(strut), _, _) => format!("{family} leg {leg} {}", strut.label()),
+            (_, _, Some(account), _) => format!("{family}: {}", account.replace('_', " ")),
+            (_, _, _, Some(sense)) => format!("{family}, {}", sense.label()),
             _ => family.to_string(),
         }
     }
@@ -426,12 +485,22 @@ fn relative(a: f64, b: f64, floor: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(floor)
 }
 
-/// What a channel is about: its leg, strut or energy account.
+/// What a channel is about: its quantity, leg, strut, energy account and sense.
+pub(crate) type Key = (
+    &'static str,
+    Option<usize>,
+    Option<Strut>,
+    Option<&'static str>,
+    Option<Sense>,
+);
+
+/// What a channel is about: its leg, strut, energy account or sense.
 #[derive(Default)]
 struct About {
     leg: Option<usize>,
     strut: Option<Strut>,
     account: Option<&'static str>,
+    sense: Option<Sense>,
 }
 
 /// A channel of two values `a` and `b` (`unit`), or of a history difference when they are
@@ -449,6 +518,7 @@ fn channel(
         leg: about.leg,
         strut: about.strut,
         account: about.account,
+        sense: about.sense,
         unit,
         a: values.map(|v| v.0),
         b: values.map(|v| v.1),
@@ -568,31 +638,46 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
     let tolerance = |family: &Tolerance| basis.tolerance(family);
     let rate_floor = PITCH_RATE_FLOOR * basis.rate();
     let mut channels = stroke_channels(sa, sb, basis);
+    // Each sense's extreme against the larger peak of either engine in either sense: the
+    // landing's pitching scale, so that a small swing back is judged by what it does to the
+    // landing, not by its own size.
     let (qa, qb) = (sa.peak_pitch_rate_rad_s, sb.peak_pitch_rate_rad_s);
-    let d = relative(qa, qb, rate_floor);
-    channels.push(values(
-        About::default(),
-        "rad/s",
-        (qa, qb),
-        d,
-        &tolerance(&PEAK_PITCH_RATE),
-    ));
-    // A landing that does not pitch (a symmetric drop) has a peak of solver noise whose time
-    // means nothing: it counts as 0.
+    let peak = qa.abs().max(qb.abs()).max(rate_floor);
+    // A sense the landing does not pitch in (a symmetric drop either way) has an extreme of
+    // solver noise whose time means nothing: it counts as 0.
     let no_pitch = NO_PITCH * basis.rate();
-    let time_of = |q: f64, t: f64| if q.abs() < no_pitch { 0.0 } else { t };
-    let (ta, tb) = (
-        time_of(qa, sa.peak_pitch_rate_time_s),
-        time_of(qb, sb.peak_pitch_rate_time_s),
-    );
-    let d = (ta - tb).abs() / basis.scales.time_s;
-    channels.push(values(
-        About::default(),
-        "s",
-        (ta, tb),
-        d,
-        &tolerance(&PEAK_PITCH_RATE_TIME),
-    ));
+    let time_of = |(q, t): (f64, f64)| if q.abs() < no_pitch { 0.0 } else { t };
+    for sense in [Sense::Positive, Sense::Negative] {
+        let about = || About {
+            sense: Some(sense),
+            ..About::default()
+        };
+        let (ea, eb) = (sense.extreme(sa), sense.extreme(sb));
+        let rate = tolerance(&PEAK_PITCH_RATE);
+        let d = (ea.0 - eb.0).abs() / peak;
+        channels.push(values(about(), "rad/s", (ea.0, eb.0), d, &rate));
+        // The times of the extremes, each against the other engine's times within the rate's
+        // tolerance of its own extreme: on a plateau of the pitch rate (a vehicle rocking at
+        // one rate for a while) the time of its exact extreme is decided by ripples far
+        // below the tolerance, and these times are the ones the rate cannot tell apart.
+        let (ta, tb) = (time_of(ea), time_of(eb));
+        let apart = if ta == 0.0 || tb == 0.0 {
+            (ta - tb).abs()
+        } else {
+            let band = rate.limit * peak;
+            from_near_peak(b, sense, band, ta).max(from_near_peak(a, sense, band, tb))
+        };
+        let t = &tolerance(&PEAK_PITCH_RATE_TIME);
+        let c = channel(
+            about(),
+            "s",
+            Some((ta, tb)),
+            apart,
+            apart / basis.scales.time_s,
+            t,
+        );
+        channels.push(c);
+    }
     let (rms, max) = pitch_rate_differences(&a.trace, &b.trace);
     let scale = qa.abs().max(rate_floor);
     for (absolute, t) in [
@@ -804,6 +889,80 @@ mod tests {
             // the pairs are different landings: their comparison fails somewhere
             assert!(failing > 0, "{other:?}");
         }
+    }
+
+    /// `run` with its pitch rate replaced by `q(t)` at times 0 to 0.2 s, 0.1 ms apart (the
+    /// summary's extremes and peak set from them as the engines measure them).
+    fn pitching(run: &EngineRun, q: impl Fn(f64) -> f64) -> EngineRun {
+        let mut run = run.clone();
+        let t: Vec<f64> = (0..=2000).map(|i| i as f64 * 1e-4).collect();
+        let mut extremes =
+            touchdown_record::Extremes::new(1, touchdown_record::StrutCapacities::default());
+        for ti in &t {
+            extremes.update_pitch_rate(*ti, q(*ti));
+        }
+        let s = &mut run.summary;
+        [s.min_pitch_rate_rad_s, s.max_pitch_rate_rad_s] = extremes.pitch_rate_range();
+        let (low, high) = (s.min_pitch_rate_rad_s, s.max_pitch_rate_rad_s);
+        let time_of = |v: f64| t.iter().copied().find(|ti| q(*ti) == v).unwrap();
+        (s.min_pitch_rate_time_s, s.max_pitch_rate_time_s) = (time_of(low), time_of(high));
+        (s.peak_pitch_rate_rad_s, s.peak_pitch_rate_time_s) = if high > -low {
+            (high, time_of(high))
+        } else {
+            (low, time_of(low))
+        };
+        run.trace = Trace {
+            pitch_rate: t.iter().map(|ti| q(*ti)).collect(),
+            vz: vec![0.0; t.len()],
+            attitude: vec![[0.0; 3]; t.len()],
+            primary_stroke: vec![0.0; t.len()],
+            legs: 1,
+            t,
+            ..run.trace
+        };
+        run
+    }
+
+    /// A landing that rocks one way on a plateau of its pitch rate (rippled by 1 %) and swings
+    /// back as far: two engines whose swings agree within 2 % pass on the pitch rate in either
+    /// sense and on when each extreme came, although the larger swing is nose-down on one
+    /// and nose-up on the other and their plateaus' ripples put their exact extremes 25 ms
+    /// apart (2.5 times the time tolerance on this vehicle); a swing back 20 % stronger fails.
+    #[test]
+    fn a_rocking_landing_is_judged_swing_by_swing() {
+        let path = scenario("table-i-2-2-vv4.toml");
+        let real = run(Engine::Core, &path, &Scenario::load(&path).unwrap()).unwrap();
+        let plateau = |t: f64| (-((t - 0.06) / 0.05).powi(8)).exp();
+        let swing = |t: f64| (-((t - 0.14) / 0.01).powi(2)).exp();
+        let rocking = |ripple_at: f64, back: f64| {
+            move |t: f64| {
+                let ripple =
+                    1.0 + 0.01 * (2.0 * std::f64::consts::PI * (t - ripple_at) / 0.05).cos();
+                -plateau(t) * ripple + back * swing(t)
+            }
+        };
+        let a = pitching(&real, rocking(0.06, 1.0));
+        let b = pitching(&real, rocking(0.035, 1.02));
+        assert!(a.summary.peak_pitch_rate_rad_s < 0.0 && b.summary.peak_pitch_rate_rad_s > 0.0);
+        let time_apart = (a.summary.min_pitch_rate_time_s - b.summary.min_pitch_rate_time_s).abs();
+        assert!(time_apart > 2.0 * PEAK_PITCH_RATE_TIME.limit * a.basis.scales.time_s);
+        let verdicts = |b: &EngineRun| {
+            let set = channels(&a, b);
+            let of = |quantity: &str, sense| {
+                let c = set
+                    .iter()
+                    .find(|c| c.quantity == quantity && c.sense == Some(sense));
+                c.unwrap().verdict
+            };
+            [Sense::Positive, Sense::Negative]
+                .map(|s| [of("peak_pitch_rate", s), of("peak_pitch_rate_time", s)])
+        };
+        assert_eq!(verdicts(&b), [[Verdict::Pass; 2]; 2]);
+        let stronger = pitching(&real, rocking(0.035, 1.2));
+        assert_eq!(
+            verdicts(&stronger),
+            [[Verdict::Fail, Verdict::Pass], [Verdict::Pass; 2]]
+        );
     }
 
     #[test]

@@ -7,7 +7,7 @@
 //! not determined at this precision ([`Verdict::NotDetermined`]) with that spread, not as a
 //! pass or a fail.
 
-use crate::metrics::{channels, stroke_channels, Channel, Strut, Verdict, ENERGY};
+use crate::metrics::{channels, stroke_channels, Channel, Sense, Strut, Verdict, ENERGY};
 use crate::{CompareError, Engine, EngineRun};
 use serde::Serialize;
 use std::path::Path;
@@ -58,6 +58,9 @@ pub struct OwnSpread {
     /// The energy account (energy channels; never among the maxima [`undetermined`] lists).
     #[serde(skip)]
     pub account: Option<&'static str>,
+    /// The sense of a pitch-rate extreme (the peak pitch rate channels).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sense: Option<Sense>,
     /// The SI unit of `range`.
     pub unit: &'static str,
     /// Smallest and largest value over the ensemble, in `unit` (`None` for a history channel,
@@ -87,6 +90,7 @@ impl OwnSpread {
             leg: c.leg,
             strut: c.strut,
             account: c.account,
+            sense: c.sense,
             unit: c.unit,
             range: c.a.map(|a| [a; 2]),
             spread: 0.0,
@@ -98,7 +102,14 @@ impl OwnSpread {
 
     /// Whether `c` is about the same thing.
     pub(crate) fn is_of(&self, c: &Channel) -> bool {
-        c.key() == (self.quantity, self.leg, self.strut, self.account)
+        c.key()
+            == (
+                self.quantity,
+                self.leg,
+                self.strut,
+                self.account,
+                self.sense,
+            )
     }
 
     /// Widened by the same channel of two members (`None`: that pair has no such channel).

@@ -2,7 +2,7 @@
 //! proof"): once the landing is decided stable, an energy certificate checked at accepted
 //! states that no maximum stroke can grow by more than the scenario's tolerance ε, that the
 //! least stability distance cannot fall by more than ε, that no peak strut force, specific
-//! force or pitch rate can grow at all, and that no overturn is reachable. The run ends at the
+//! force or pitch rate (in either sense) can grow at all, and that no overturn is reachable. The run ends at the
 //! first state where it holds.
 //!
 //! The certificate bounds the energy the vehicle and its footpads can still spend on any of
@@ -64,7 +64,7 @@ pub(crate) enum Unsettled {
     Force,
     /// The peak specific force could grow.
     SpecificForce,
-    /// The peak pitch rate could grow.
+    /// The pitch rate's extreme in either sense could grow.
     PitchRate,
 }
 
@@ -231,7 +231,9 @@ impl State {
         // Forces, the specific force and the pitch rate.
         let speed = |mass: f64| (2.0 * budget / mass).sqrt();
         let spin = speed(settling.inertia_min);
-        if spin > self.extremes.pitch_rate().abs() {
+        // Each sense's extreme of the pitch rate (|q| ≤ spin from here on).
+        let [low, high] = self.extremes.pitch_rate_range();
+        if spin > high.min(-low) {
             return Err(Unsettled::PitchRate);
         }
         let mut on_vehicle = 0.0;
@@ -613,6 +615,10 @@ mod tests {
             full.peak_specific_force_m_s2
         );
         assert_eq!(early.peak_pitch_rate_rad_s, full.peak_pitch_rate_rad_s);
+        assert_eq!(
+            [early.min_pitch_rate_rad_s, early.max_pitch_rate_rad_s],
+            [full.min_pitch_rate_rad_s, full.max_pitch_rate_rad_s]
+        );
         assert!(early.steps < full.steps);
     }
 

@@ -32,8 +32,9 @@ struct LegExtremes {
 pub struct Extremes {
     legs: Vec<LegExtremes>,
     specific_force: f64,
-    pitch_rate: f64,
-    pitch_rate_time: f64,
+    /// The pitch rate's extremes so far in each sense, (rad/s, s at which it came): the
+    /// smallest (≤ 0) and the largest (≥ 0).
+    pitch_rate: [(f64, f64); 2],
     /// Closed: the landing overturned, later states measure the overturn, not the landing.
     closed: bool,
     /// The struts' capacities, to name those the strokes went past.
@@ -46,8 +47,7 @@ impl Extremes {
         Extremes {
             legs: vec![LegExtremes::default(); legs],
             specific_force: 0.0,
-            pitch_rate: 0.0,
-            pitch_rate_time: 0.0,
+            pitch_rate: [(0.0, 0.0); 2],
             closed: false,
             capacities,
         }
@@ -151,13 +151,19 @@ impl Extremes {
         }
     }
 
-    /// Updates the pitch rate of largest magnitude with `q` (rad/s, about the inertial X axis,
-    /// the cross-slope axis normal to the plane of a planar landing) at time `t`, s.
+    /// Updates the pitch rate's extremes in each sense with `q` (rad/s, about the inertial X
+    /// axis, the cross-slope axis normal to the plane of a planar landing) at time `t`, s.
     #[inline]
     pub fn update_pitch_rate(&mut self, t: f64, q: f64) {
-        if !self.closed && q.abs() > self.pitch_rate.abs() {
-            self.pitch_rate = q;
-            self.pitch_rate_time = t;
+        if self.closed {
+            return;
+        }
+        let [low, high] = &mut self.pitch_rate;
+        if q < low.0 {
+            *low = (q, t);
+        }
+        if q > high.0 {
+            *high = (q, t);
         }
     }
 
@@ -177,9 +183,20 @@ impl Extremes {
         self.specific_force
     }
 
-    /// The pitch rate of largest magnitude so far, rad/s (signed).
-    pub fn pitch_rate(&self) -> f64 {
-        self.pitch_rate
+    /// The pitch rate's extremes so far: the smallest (≤ 0) and the largest (≥ 0), rad/s.
+    pub fn pitch_rate_range(&self) -> [f64; 2] {
+        self.pitch_rate.map(|(q, _)| q)
+    }
+
+    /// The pitch rate of largest magnitude so far and its time, (rad/s signed, s): of two
+    /// senses' extremes of one magnitude, the earlier.
+    fn peak_pitch_rate(&self) -> (f64, f64) {
+        let [low, high] = self.pitch_rate;
+        if high.0 > -low.0 || (high.0 == -low.0 && high.1 <= low.1) {
+            high
+        } else {
+            low
+        }
     }
 
     /// One value per leg.
@@ -252,6 +269,18 @@ pub struct Summary {
     pub peak_pitch_rate_rad_s: f64,
     /// Time of that peak, s.
     pub peak_pitch_rate_time_s: f64,
+    /// Smallest pitch rate (the largest in the negative sense), rad/s, ≤ 0: 0 if the vehicle
+    /// never pitched that way. With [`Summary::max_pitch_rate_rad_s`] it describes a rocking
+    /// landing continuously, where the signed peak jumps sign between two swings of nearly
+    /// one magnitude.
+    pub min_pitch_rate_rad_s: f64,
+    /// Time of the smallest pitch rate, s (0 if it is 0).
+    pub min_pitch_rate_time_s: f64,
+    /// Largest pitch rate (the largest in the positive sense), rad/s, ≥ 0: 0 if the vehicle
+    /// never pitched that way.
+    pub max_pitch_rate_rad_s: f64,
+    /// Time of the largest pitch rate, s (0 if it is 0).
+    pub max_pitch_rate_time_s: f64,
     /// The struts' capacities and their stops' rates, the same on every leg.
     pub strut_capacity: StrutCapacities,
     /// The struts whose largest stroke went past their capacity onto their end stop, how far
@@ -387,8 +416,12 @@ impl Summary {
             peak_secondary_compression_force_n: extremes.per_leg(|l| l.sec_compression_force),
             peak_secondary_tension_force_n: extremes.per_leg(|l| l.sec_tension_force),
             peak_specific_force_m_s2: extremes.specific_force,
-            peak_pitch_rate_rad_s: extremes.pitch_rate,
-            peak_pitch_rate_time_s: extremes.pitch_rate_time,
+            peak_pitch_rate_rad_s: extremes.peak_pitch_rate().0,
+            peak_pitch_rate_time_s: extremes.peak_pitch_rate().1,
+            min_pitch_rate_rad_s: extremes.pitch_rate[0].0,
+            min_pitch_rate_time_s: extremes.pitch_rate[0].1,
+            max_pitch_rate_rad_s: extremes.pitch_rate[1].0,
+            max_pitch_rate_time_s: extremes.pitch_rate[1].1,
             strut_capacity: extremes.capacities,
             past_capacity,
             min_stability_distance_m: stability.min_distance(),
@@ -438,7 +471,16 @@ mod tests {
         x.update_pitch_rate(0.1, 0.5);
         x.update_pitch_rate(0.2, -0.7);
         x.update_pitch_rate(0.3, 0.6);
-        assert_eq!((x.pitch_rate, x.pitch_rate_time), (-0.7, 0.2));
+        assert_eq!(x.peak_pitch_rate(), (-0.7, 0.2));
+        assert_eq!(x.pitch_rate, [(-0.7, 0.2), (0.6, 0.3)]);
+        // Of two extremes of one magnitude the earlier is the peak, either way round.
+        x.update_pitch_rate(0.4, 0.7);
+        assert_eq!(x.peak_pitch_rate(), (-0.7, 0.2));
+        let mut y = Extremes::new(1, StrutCapacities::default());
+        y.update_pitch_rate(0.1, 0.7);
+        y.update_pitch_rate(0.2, -0.7);
+        assert_eq!(y.peak_pitch_rate(), (0.7, 0.1));
+        assert_eq!(y.pitch_rate_range(), [-0.7, 0.7]);
     }
 
     #[test]
