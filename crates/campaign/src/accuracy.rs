@@ -114,7 +114,9 @@ pub struct Maxima {
     /// Every maximum stroke (each strut's primary, secondary compression and tension) against
     /// the refined run's, as a fraction of that strut's capacity.
     pub stroke_of_capacity: Worst,
-    /// The peak pitch rate against the refined run's, as a fraction of the largest peak pitch
+    /// The pitch rate's extreme in each sense against the refined run's (the larger of the
+    /// two differences: a rocking landing's two swings, not the signed peak, which jumps from
+    /// one swing to the other as they change places), as a fraction of the largest peak pitch
     /// rate of the refined runs of the sample.
     pub peak_pitch_rate_of_largest: Worst,
 }
@@ -315,7 +317,9 @@ fn maxima(completed: &[(u64, &Summary, &Summary)]) -> Option<Maxima> {
             );
         }
         if largest_pitch_rate > 0.0 {
-            let d = (run.peak_pitch_rate_rad_s - refined.peak_pitch_rate_rad_s).abs();
+            let d = (run.min_pitch_rate_rad_s - refined.min_pitch_rate_rad_s)
+                .abs()
+                .max((run.max_pitch_rate_rad_s - refined.max_pitch_rate_rad_s).abs());
             keep(
                 &mut m.peak_pitch_rate_of_largest,
                 d / largest_pitch_rate,

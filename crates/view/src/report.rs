@@ -140,9 +140,13 @@ fn outcome(o: &mut String, s: &Summary) {
     }
     let _ = writeln!(
         o,
-        "<p>Peak pitch rate {:+.4} rad/s at {:.4} s; minimum stability distance {:.4} m at {:.4} s; peak specific force {:.2} m/s²; {} steps.</p>",
+        "<p>Peak pitch rate {:+.4} rad/s at {:.4} s (either way {:+.4} rad/s at {:.4} s and {:+.4} rad/s at {:.4} s); minimum stability distance {:.4} m at {:.4} s; peak specific force {:.2} m/s²; {} steps.</p>",
         s.peak_pitch_rate_rad_s,
         s.peak_pitch_rate_time_s,
+        s.min_pitch_rate_rad_s,
+        s.min_pitch_rate_time_s,
+        s.max_pitch_rate_rad_s,
+        s.max_pitch_rate_time_s,
         s.min_stability_distance_m,
         s.min_stability_distance_time_s,
         s.peak_specific_force_m_s2,
