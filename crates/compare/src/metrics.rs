@@ -647,13 +647,16 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
     // solver noise whose time means nothing: it counts as 0.
     let no_pitch = NO_PITCH * basis.rate();
     let time_of = |(q, t): (f64, f64)| if q.abs() < no_pitch { 0.0 } else { t };
+    let (rate, time) = (
+        tolerance(&PEAK_PITCH_RATE),
+        tolerance(&PEAK_PITCH_RATE_TIME),
+    );
     for sense in [Sense::Positive, Sense::Negative] {
         let about = || About {
             sense: Some(sense),
             ..About::default()
         };
         let (ea, eb) = (sense.extreme(sa), sense.extreme(sb));
-        let rate = tolerance(&PEAK_PITCH_RATE);
         let d = (ea.0 - eb.0).abs() / peak;
         channels.push(values(about(), "rad/s", (ea.0, eb.0), d, &rate));
         // The times of the extremes, each against the other engine's times within the rate's
@@ -667,16 +670,8 @@ pub(crate) fn channels(a: &EngineRun, b: &EngineRun) -> Vec<Channel> {
             let band = rate.limit * peak;
             from_near_peak(b, sense, band, ta).max(from_near_peak(a, sense, band, tb))
         };
-        let t = &tolerance(&PEAK_PITCH_RATE_TIME);
-        let c = channel(
-            about(),
-            "s",
-            Some((ta, tb)),
-            apart,
-            apart / basis.scales.time_s,
-            t,
-        );
-        channels.push(c);
+        let d = apart / basis.scales.time_s;
+        channels.push(channel(about(), "s", Some((ta, tb)), apart, d, &time));
     }
     let (rms, max) = pitch_rate_differences(&a.trace, &b.trace);
     let scale = qa.abs().max(rate_floor);
@@ -902,15 +897,10 @@ mod tests {
             extremes.update_pitch_rate(*ti, q(*ti));
         }
         let s = &mut run.summary;
-        [s.min_pitch_rate_rad_s, s.max_pitch_rate_rad_s] = extremes.pitch_rate_range();
-        let (low, high) = (s.min_pitch_rate_rad_s, s.max_pitch_rate_rad_s);
-        let time_of = |v: f64| t.iter().copied().find(|ti| q(*ti) == v).unwrap();
-        (s.min_pitch_rate_time_s, s.max_pitch_rate_time_s) = (time_of(low), time_of(high));
-        (s.peak_pitch_rate_rad_s, s.peak_pitch_rate_time_s) = if high > -low {
-            (high, time_of(high))
-        } else {
-            (low, time_of(low))
-        };
+        let [low, high] = extremes.pitch_rate_extremes();
+        (s.min_pitch_rate_rad_s, s.min_pitch_rate_time_s) = low;
+        (s.max_pitch_rate_rad_s, s.max_pitch_rate_time_s) = high;
+        (s.peak_pitch_rate_rad_s, s.peak_pitch_rate_time_s) = extremes.peak_pitch_rate();
         run.trace = Trace {
             pitch_rate: t.iter().map(|ti| q(*ti)).collect(),
             vz: vec![0.0; t.len()],

@@ -232,8 +232,8 @@ impl State {
         let speed = |mass: f64| (2.0 * budget / mass).sqrt();
         let spin = speed(settling.inertia_min);
         // Each sense's extreme of the pitch rate (|q| ≤ spin from here on).
-        let [low, high] = self.extremes.pitch_rate_range();
-        if spin > high.min(-low) {
+        let [low, high] = self.extremes.pitch_rate_extremes();
+        if spin > high.0.min(-low.0) {
             return Err(Unsettled::PitchRate);
         }
         let mut on_vehicle = 0.0;

@@ -183,14 +183,15 @@ impl Extremes {
         self.specific_force
     }
 
-    /// The pitch rate's extremes so far: the smallest (≤ 0) and the largest (≥ 0), rad/s.
-    pub fn pitch_rate_range(&self) -> [f64; 2] {
-        self.pitch_rate.map(|(q, _)| q)
+    /// The pitch rate's extremes so far, each with the time it came (rad/s, s): the smallest
+    /// (≤ 0) and the largest (≥ 0).
+    pub fn pitch_rate_extremes(&self) -> [(f64, f64); 2] {
+        self.pitch_rate
     }
 
     /// The pitch rate of largest magnitude so far and its time, (rad/s signed, s): of two
     /// senses' extremes of one magnitude, the earlier.
-    fn peak_pitch_rate(&self) -> (f64, f64) {
+    pub fn peak_pitch_rate(&self) -> (f64, f64) {
         let [low, high] = self.pitch_rate;
         if high.0 > -low.0 || (high.0 == -low.0 && high.1 <= low.1) {
             high
@@ -395,6 +396,8 @@ impl Summary {
         let past_capacity = extremes
             .capacities
             .past(&max_primary, &max_compression, &max_tension);
+        let (peak_pitch_rate, peak_pitch_rate_time) = extremes.peak_pitch_rate();
+        let [low, high] = extremes.pitch_rate;
         Summary {
             engine: engine.to_string(),
             scenario: scenario.to_string(),
@@ -416,12 +419,12 @@ impl Summary {
             peak_secondary_compression_force_n: extremes.per_leg(|l| l.sec_compression_force),
             peak_secondary_tension_force_n: extremes.per_leg(|l| l.sec_tension_force),
             peak_specific_force_m_s2: extremes.specific_force,
-            peak_pitch_rate_rad_s: extremes.peak_pitch_rate().0,
-            peak_pitch_rate_time_s: extremes.peak_pitch_rate().1,
-            min_pitch_rate_rad_s: extremes.pitch_rate[0].0,
-            min_pitch_rate_time_s: extremes.pitch_rate[0].1,
-            max_pitch_rate_rad_s: extremes.pitch_rate[1].0,
-            max_pitch_rate_time_s: extremes.pitch_rate[1].1,
+            peak_pitch_rate_rad_s: peak_pitch_rate,
+            peak_pitch_rate_time_s: peak_pitch_rate_time,
+            min_pitch_rate_rad_s: low.0,
+            min_pitch_rate_time_s: low.1,
+            max_pitch_rate_rad_s: high.0,
+            max_pitch_rate_time_s: high.1,
             strut_capacity: extremes.capacities,
             past_capacity,
             min_stability_distance_m: stability.min_distance(),
@@ -480,7 +483,7 @@ mod tests {
         y.update_pitch_rate(0.1, 0.7);
         y.update_pitch_rate(0.2, -0.7);
         assert_eq!(y.peak_pitch_rate(), (0.7, 0.1));
-        assert_eq!(y.pitch_rate_range(), [-0.7, 0.7]);
+        assert_eq!(y.pitch_rate_extremes(), [(-0.7, 0.2), (0.7, 0.1)]);
     }
 
     #[test]
