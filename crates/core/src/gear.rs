@@ -50,6 +50,17 @@ pub struct GearState {
     pub bending_lengthening: [f64; 2],
 }
 
+/// The primary strut of a gear at one state, as its evaluation found it: the unit vector V̂2P
+/// from the trunnion B2 to the footpad (eq. 28, body axes) and the strut's length |V2P| (eq. 27,
+/// m). The bearing friction off the surface (`crate::stiction`) works along it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrimaryAxis {
+    /// V̂2P, body axes, dimensionless.
+    pub axis: Vector3<f64>,
+    /// |V2P|, m.
+    pub length: f64,
+}
+
 /// A law that left its domain while evaluating a gear.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GearFault {
@@ -81,7 +92,8 @@ impl GearState {
 
 /// Geometry and strut forces for one gear with the footpad at `bp` (body axes, m) moving at
 /// `bp_dot` (its velocity relative to the body, in body axes, m/s), eqs. (26)-(65), written
-/// into `out` (in place: the state is too large to move cheaply on the hot path).
+/// into `out` (in place: the state is too large to move cheaply on the hot path); returns the
+/// primary strut's axis and length.
 pub fn evaluate(
     leg: &Leg,
     laws: &GearLaws,
@@ -90,10 +102,9 @@ pub fn evaluate(
     bp_dot: &Vector3<f64>,
     options: &GearOptions,
     out: &mut GearState,
-) -> Result<(), GearFault> {
+) -> Result<PrimaryAxis, GearFault> {
     if options.arrangement == Arrangement::Tripod {
-        evaluate_tripod(leg, laws, memory, bp, bp_dot, out);
-        return Ok(());
+        return Ok(evaluate_tripod(leg, laws, memory, bp, bp_dot, out));
     }
     let bearing = |error| GearFault {
         law: Law::BearingFriction,
@@ -179,12 +190,16 @@ pub fn evaluate(
         point1_deflection,
         bending_lengthening,
     };
-    Ok(())
+    Ok(PrimaryAxis {
+        axis: e,
+        length: len,
+    })
 }
 
 /// The tripod gear (docs/errata.md, "Tripod gear"; docs/model.md, "Tripod gear"): the secondaries meet the primary at the footpad (B1 = BP,
 /// eqs. 29-30 with L21 = V2P), so the primary is a two-force member with no side load and no
-/// bearing friction, and FP = F2P·V̂2P − FS (eqs. 64-65 rows).
+/// bearing friction, and FP = F2P·V̂2P − FS (eqs. 64-65 rows). Returns the primary's axis and
+/// length.
 fn evaluate_tripod(
     leg: &Leg,
     laws: &GearLaws,
@@ -192,7 +207,7 @@ fn evaluate_tripod(
     bp: &Vector3<f64>,
     bp_dot: &Vector3<f64>,
     out: &mut GearState,
-) {
+) -> PrimaryAxis {
     let v2p = bp - leg.b2; // eq. (27)
     let len = v2p.norm();
     let e = v2p / len; // eq. (28)
@@ -224,6 +239,10 @@ fn evaluate_tripod(
         point1_deflection: Vector3::zeros(),
         bending_lengthening: [0.0; 2],
     };
+    PrimaryAxis {
+        axis: e,
+        length: len,
+    }
 }
 
 /// The gradients of the strokes in the footpad's position BP (`bp`, body axes, m): the
@@ -371,7 +390,7 @@ mod tests {
         options: &GearOptions,
     ) -> Result<GearState, GearFault> {
         let mut out = GearState::default();
-        evaluate(leg, laws, memory, bp, bp_dot, options, &mut out).map(|()| out)
+        evaluate(leg, laws, memory, bp, bp_dot, options, &mut out).map(|_| out)
     }
 
     const CANTILEVER: GearOptions = GearOptions {

@@ -3,7 +3,7 @@
 //! vehicle-level mechanisms' loads added (eqs. 83-84), and the rigid-vehicle accelerations
 //! (eqs. 9-15, slosh eq. 109).
 
-use crate::gear::{self, GearOptions, GearState};
+use crate::gear::{self, GearOptions, GearState, PrimaryAxis};
 use crate::mechanisms::Power;
 use crate::model::Model;
 use crate::state::State;
@@ -86,11 +86,12 @@ impl State {
                 let (p0, v0) = self.pad_start[i];
                 (p0.lerp(&pad.position, blend), v0.lerp(&pad.velocity, blend))
             };
-            let (bp, bp_dot) = self.evaluate_leg(model, i, v, &position, &velocity, slot)?;
+            let (bp, bp_dot, primary) =
+                self.evaluate_leg(model, i, v, &position, &velocity, slot)?;
             if free && friction {
                 // Off the surface the bearing friction is set below, once the vehicle's
                 // acceleration without it is known (crate::stiction).
-                let h = Held::new(i, bp, bp_dot, &model.legs[i].b2);
+                let h = Held::new(i, bp, bp_dot, primary);
                 slot.f2p -= slot.fbr;
                 slot.fp -= h.axis * slot.fbr;
                 slot.fbr = 0.0;
@@ -149,7 +150,8 @@ impl State {
 
     /// Evaluates gear `i` (eqs. 26-65) into `slot` with the vehicle at `v` and its footpad at
     /// `position` moving at `velocity` (inertial, m and m/s); returns the footpad's body-frame
-    /// position BP and its velocity relative to the body ḂP in body axes, m and m/s.
+    /// position BP and its velocity relative to the body ḂP in body axes, m and m/s, and the
+    /// primary strut's axis and length there.
     pub(crate) fn evaluate_leg(
         &mut self,
         model: &Model,
@@ -158,7 +160,7 @@ impl State {
         position: &Vector3<f64>,
         velocity: &Vector3<f64>,
         slot: &mut GearState,
-    ) -> Result<(Vector3<f64>, Vector3<f64>), RunError> {
+    ) -> Result<(Vector3<f64>, Vector3<f64>, PrimaryAxis), RunError> {
         let t_ib = v.t_bi.transpose();
         let bp = t_ib * (position - v.position);
         let bp_dot = t_ib * (velocity - v.velocity) - v.omega.cross(&bp);
@@ -172,7 +174,7 @@ impl State {
             arrangement: model.arrangement,
             bending: (model.mechanisms.bending.as_ref()).map(|b| (b, self.bending_lag[i])),
         };
-        gear::evaluate(
+        let primary = gear::evaluate(
             &model.legs[i],
             &model.laws,
             &self.memory[i],
@@ -182,7 +184,7 @@ impl State {
             slot,
         )
         .map_err(|f| self.diverged(v, f.error.to_string(), f.law, Some(i)))?;
-        Ok((bp, bp_dot))
+        Ok((bp, bp_dot, primary))
     }
 
     /// Accelerations of `v` under `loads`: eqs. (10)-(12), (13)-(15) and (9a)-(9c); the slosh

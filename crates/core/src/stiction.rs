@@ -8,7 +8,7 @@
 //! footpad and the vehicle's acceleration), as long as that is within the bound μB·(F1 + F2);
 //! beyond it, the bound, opposing the stroking.
 
-use crate::gear::GearState;
+use crate::gear::{GearState, PrimaryAxis};
 use crate::model::Model;
 use crate::vehicle::VehicleState;
 use nalgebra::Vector3;
@@ -39,21 +39,19 @@ pub(crate) struct Held {
 
 impl Held {
     /// Footpad `leg` at BP `bp` moving at `bp_dot` relative to the body (body axes, m and m/s),
-    /// its primary's trunnion at `b2` (m).
+    /// its primary strut along `primary` (as its gear's evaluation found it, eqs. 27-28).
     pub(crate) fn new(
         leg: usize,
         bp: Vector3<f64>,
         bp_dot: Vector3<f64>,
-        b2: &Vector3<f64>,
+        primary: PrimaryAxis,
     ) -> Held {
-        let strut = bp - b2;
-        let length = strut.norm();
         Held {
             leg,
             bp,
             bp_dot,
-            axis: strut / length,
-            length,
+            axis: primary.axis,
+            length: primary.length,
         }
     }
 }
