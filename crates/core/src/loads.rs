@@ -91,9 +91,14 @@ impl State {
             if free && friction {
                 // Off the surface the bearing friction is set below, once the vehicle's
                 // acceleration without it is known (crate::stiction).
-                let h = Held::new(i, bp, bp_dot, primary);
+                let h = Held {
+                    leg: i,
+                    bp,
+                    bp_dot,
+                    primary,
+                };
                 slot.f2p -= slot.fbr;
-                slot.fp -= h.axis * slot.fbr;
+                slot.fp -= h.primary.axis * slot.fbr;
                 slot.fbr = 0.0;
                 held.push(h);
             }
@@ -130,7 +135,7 @@ impl State {
                     .map_err(|e| {
                         self.diverged(v, e.to_string(), Law::BearingFriction, Some(h.leg))
                     })?;
-                let on_pad = h.axis * fbr;
+                let on_pad = h.primary.axis * fbr;
                 slot.fbr = fbr;
                 slot.f2p += fbr;
                 slot.fp += on_pad;

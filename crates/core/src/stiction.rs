@@ -27,33 +27,14 @@ pub(crate) fn relaxation(laws: &GearLaws, footpad_mass: f64) -> f64 {
 
 /// A footpad off the surface whose bearing friction is to be set once the vehicle's
 /// acceleration is known: its leg, its body-frame position BP (m) and velocity relative to the
-/// body (m/s), and its primary strut's axis V̂2P and length |BP − B2| (m).
+/// body (m/s), both in body axes, and its primary strut as its gear's evaluation found it
+/// (eqs. 27-28).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Held {
     pub(crate) leg: usize,
     pub(crate) bp: Vector3<f64>,
     pub(crate) bp_dot: Vector3<f64>,
-    pub(crate) axis: Vector3<f64>,
-    pub(crate) length: f64,
-}
-
-impl Held {
-    /// Footpad `leg` at BP `bp` moving at `bp_dot` relative to the body (body axes, m and m/s),
-    /// its primary strut along `primary` (as its gear's evaluation found it, eqs. 27-28).
-    pub(crate) fn new(
-        leg: usize,
-        bp: Vector3<f64>,
-        bp_dot: Vector3<f64>,
-        primary: PrimaryAxis,
-    ) -> Held {
-        Held {
-            leg,
-            bp,
-            bp_dot,
-            axis: primary.axis,
-            length: primary.length,
-        }
-    }
+    pub(crate) primary: PrimaryAxis,
 }
 
 /// The bearing friction FBR (N, compression positive) on the primary strut of the footpad `h`
@@ -78,7 +59,7 @@ pub(crate) fn held_friction(
         return Ok(0.0);
     }
     let (bp, bp_dot, w) = (h.bp, h.bp_dot, v.omega);
-    let (e, len) = (h.axis, h.length);
+    let (e, len) = (h.primary.axis, h.primary.length);
     let c_dot = -e.dot(&bp_dot);
     let across = bp_dot - e * e.dot(&bp_dot);
     // The footpad's inertial acceleration per unit of FBR along T_BI·ê, and without it.
