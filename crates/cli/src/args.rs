@@ -310,8 +310,8 @@ pub(crate) struct ValidateArgs {
     /// Which protocol: `two-row` (reference/calibration-protocol.toml: the calibrated
     /// scenarios against the rows they were not fitted to) or `cv` (reference/
     /// cross-validation-protocol.toml: leave-one-out over every row, what the rows
-    /// determine, an interval on every prediction; about 3 million landings, about 3.5
-    /// hours on 2 cores, release).
+    /// determine, an interval on every prediction; about 2.7 million landings, about 70
+    /// minutes on 2 cores, release).
     #[arg(long, value_enum, default_value_t = ValidationProtocol::TwoRow)]
     pub(crate) protocol: ValidationProtocol,
     /// Output format.

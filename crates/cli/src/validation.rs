@@ -159,7 +159,7 @@ fn facts_text(o: &mut String, facts: &[facts::FactCheck]) {
 /// `touchdown validate --protocol cv`: whether the target is met.
 pub fn cross_validate(root: &Path, json: bool, out: Option<&Path>) -> Result<bool> {
     let paths = Paths::new(root);
-    eprintln!("cross-validating: 8 folds, the fit to every row and its profiles (about {} landings: about 3.5 hours on 2 cores in a release build) ...", indicatif::HumanCount(cross_validation::LANDINGS_ABOUT));
+    eprintln!("cross-validating: 8 folds, the fit to every row and its profiles (about {} landings: about 70 minutes on 2 cores in a release build) ...", indicatif::HumanCount(cross_validation::LANDINGS_ABOUT));
     let bar = crate::progress_bar(cross_validation::LANDINGS_ABOUT, "landings");
     // With --out, finished work is kept under it, so that a stopped run resumes: the key names
     // this program and every file it reads, so work of another build or other data is redone.
@@ -213,6 +213,14 @@ pub fn cross_validation_text(cv: &CrossValidation) -> String {
          {} parameters fitted to the other {} rows of each fold",
         p.parameter.len(),
         cv.folds.len().saturating_sub(1)
+    );
+    let _ = writeln!(
+        o,
+        "every landing on the core with {}",
+        match p.scheme {
+            Some(scheme) => format!("the {} scheme (the protocol's `scheme`)", scheme.name()),
+            None => "each Table I scenario's own scheme".to_string(),
+        }
     );
     let _ = writeln!(
         o,

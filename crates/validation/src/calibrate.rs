@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use touchdown_scenario::schema::ACCURACY_REFINEMENT;
+use touchdown_scenario::schema::{Scheme, ACCURACY_REFINEMENT};
 use touchdown_scenario::ScenarioBase;
 
 /// Most iterations of the optimiser.
@@ -31,14 +31,16 @@ const SIMPLEX: f64 = 0.1;
 pub type Predict<'a> = dyn Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a;
 
 /// The core's stroke for a Table I row of `rows` with each parameter's value written to its
-/// scenario `fields` (file units): the model every fit of the 1/6-scale model calibrates, with
-/// every step limit of the row's scenario refined `refinement` times (1: its own settings;
-/// `Integrator::refine`). Each row's scenario file is read and merged once, here, and resolved
-/// with the values at each call.
+/// scenario `fields` (file units): the model every fit of the 1/6-scale model calibrates,
+/// landed with `scheme` (`None`: the row's scenario's own) and every step limit of the row's
+/// scenario refined `refinement` times (1: its own settings; `Integrator::refine`, for the
+/// scheme landed). Each row's scenario file is read and merged once, here, and resolved with
+/// the values at each call.
 pub fn table_model<'a>(
     paths: &Paths,
     rows: &[Row],
     fields: &'a [Vec<String>],
+    scheme: Option<Scheme>,
     refinement: f64,
 ) -> Result<impl Fn(&Row, &[f64]) -> Result<f64, ValidationError> + Sync + 'a, ValidationError> {
     let mut bases: HashMap<String, (PathBuf, ScenarioBase)> = HashMap::new();
@@ -56,8 +58,15 @@ pub fn table_model<'a>(
             .map(|(f, v)| (f, toml::Value::Float(v)))
             .collect();
         let mut sc = base.with(&values)?;
-        if refinement > 1.0 {
-            sc = sc.with_integrator(|it| it.refine(refinement))?;
+        if scheme.is_some() || refinement > 1.0 {
+            sc = sc.with_integrator(|it| {
+                if let Some(scheme) = scheme {
+                    it.scheme = scheme;
+                }
+                if refinement > 1.0 {
+                    it.refine(refinement);
+                }
+            })?;
         }
         land(path, &sc).map(|s| stroke_in(&s, row.strut))
     })
@@ -358,7 +367,7 @@ pub fn calibrate(
     }
     let chosen = rows_of(&table, &ids)?;
     let fields = fields_of(&estimates, &protocol.parameter)?;
-    let model = table_model(paths, &chosen, &fields, 1.0)?;
+    let model = table_model(paths, &chosen, &fields, None, 1.0)?;
     protocol
         .restarts
         .check("calibration-protocol.toml", "restarts.")?;
@@ -381,7 +390,7 @@ pub fn calibrate(
             value: *v,
         })
         .collect();
-    let refined = table_model(paths, &chosen, &fields, ACCURACY_REFINEMENT)?;
+    let refined = table_model(paths, &chosen, &fields, None, ACCURACY_REFINEMENT)?;
     let row = chosen
         .par_iter()
         .map(|r| {

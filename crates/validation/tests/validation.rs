@@ -318,8 +318,9 @@ fn the_figure_25_26_landing_uses_the_estimated_velocities() {
 
 /// The cross-validation on the real model, end to end, with a protocol cut down to stay quick
 /// in a test build (two parameters, four iterations a run and one restart, two draws): eight
-/// folds in row order, each prediction the core's landing of its row with that fold's own fit,
-/// each stated against the same landing with every step limit eight times finer, the figure
+/// folds in row order, each prediction the core's landing of its row with that fold's own fit
+/// on the protocol's scheme (`strides`, not the scenarios' own), each stated against the same
+/// landing with every step limit eight times finer, the figure
 /// 25-26 facts measured at the fit to every row, and no NaN anywhere in the JSON.
 #[test]
 fn cross_validation_of_the_core_end_to_end() {
@@ -343,9 +344,24 @@ fn cross_validation_of_the_core_end_to_end() {
     let estimates: reference::Estimates =
         reference::read(&paths.reference("lm-1-6-estimates.toml")).unwrap();
     let fields = calibrate::fields_of(&estimates, &protocol.parameter).unwrap();
+    // Every landing takes the protocol's scheme, not the scenarios' own (the report's).
+    use touchdown_scenario::schema::{Scheme, DEFAULT_MODE_STEP};
+    assert_eq!(protocol.scheme, Some(Scheme::Strides));
     for (f, row) in cv.folds.iter().zip(&table.row) {
         let own = calibrate::overrides(&fields, &f.fit.value);
-        let s = table::run_row(&paths, row, &own).unwrap();
+        let path = paths.scenario(&row.scenario);
+        let strides = touchdown_scenario::Scenario::load_with(&path, &own)
+            .unwrap()
+            .with_integrator(|it| it.scheme = Scheme::Strides)
+            .unwrap();
+        let s = table::land(&path, &strides).unwrap();
+        let report = table::run_row(&paths, row, &own).unwrap();
+        assert_ne!(
+            f.predicted_in,
+            table::stroke_in(&report, row.strut),
+            "row {}: landed on the report's scheme",
+            row.id
+        );
         assert_eq!(
             f.predicted_in,
             table::stroke_in(&s, row.strut),
@@ -368,9 +384,11 @@ fn cross_validation_of_the_core_end_to_end() {
         let refined = touchdown_scenario::Scenario::load_with(&path, &own)
             .unwrap()
             .with_integrator(|it| {
+                it.scheme = Scheme::Strides;
                 it.dist /= 8.0;
                 it.dt_max /= 8.0;
                 it.max_steps *= 8.0;
+                it.mode_step = Some(DEFAULT_MODE_STEP / 8.0);
             })
             .unwrap();
         let s = table::land(&path, &refined).unwrap();

@@ -22,6 +22,18 @@ pub enum Scheme {
     Strides,
 }
 
+impl Scheme {
+    /// The scheme's name as a scenario file writes it (`integrator.scheme`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Report => "report",
+            Scheme::Rk4 => "rk4",
+            Scheme::Dopri5 => "dopri5",
+            Scheme::Strides => "strides",
+        }
+    }
+}
+
 /// How the core represents the vehicle's attitude.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
@@ -145,6 +157,19 @@ impl Integrator {
                 self.rtol /= tolerance;
                 self.atol /= tolerance;
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Scheme;
+
+    #[test]
+    fn a_schemes_name_is_the_one_its_file_writes() {
+        for scheme in [Scheme::Report, Scheme::Rk4, Scheme::Dopri5, Scheme::Strides] {
+            let written = toml::Value::try_from(scheme).expect("a scheme serialises");
+            assert_eq!(written.as_str(), Some(scheme.name()));
         }
     }
 }

@@ -4,6 +4,7 @@ use crate::reference::FitParameter;
 use crate::reference::Restarts;
 use crate::ValidationError;
 use serde::{Deserialize, Serialize};
+use touchdown_scenario::schema::Scheme;
 
 /// How the rows are split into folds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -36,6 +37,10 @@ pub struct CvProtocol {
     pub samples: usize,
     /// Seed of the draws.
     pub seed: u64,
+    /// The integration scheme every landing of the protocol takes, fits, draws and profiles
+    /// alike, and its refined runs (`None`: each Table I scenario's own, the report's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scheme: Option<Scheme>,
     /// The parameters fitted, with their initial values and bounds (file units).
     pub parameter: Vec<FitParameter>,
 }

@@ -36,6 +36,7 @@ fn protocol(parameter: Vec<FitParameter>) -> CvProtocol {
         determined_ratio: 0.5,
         samples: 32,
         seed: 7,
+        scheme: None,
         parameter,
     }
 }
