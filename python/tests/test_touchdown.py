@@ -469,6 +469,10 @@ def test_a_boundary_is_the_command_lines_and_overrides_move_it():
     with pytest.raises(touchdown.ScenarioInvalid) as e:
         touchdown.boundary(SCENARIO, vv=[-8.0], overrides={"touchdown.vertical_speed": 1.0})
     assert e.value.field == "touchdown.vertical_speed"
+    # A scenario with no horizontal velocity gives the search no direction to run along.
+    with pytest.raises(touchdown.ScenarioInvalid) as e:
+        touchdown.boundary(ROOT / "scenarios" / "tripod-drop.toml", vv=[-8.0])
+    assert e.value.field == "touchdown.horizontal_velocity" and "non-zero" in str(e.value)
 
 
 def test_a_landing_leaves_the_interpreter_free_for_other_threads():

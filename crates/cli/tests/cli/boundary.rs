@@ -1,6 +1,6 @@
 //! `touchdown boundary`: the stability boundary in CSV, JSON and text, its plot, its refusals.
 
-use super::{assert_png, extending, temp, touchdown};
+use super::{assert_png, extending, root, temp, touchdown};
 
 #[test]
 fn boundary_prints_csv_and_json() {
@@ -171,6 +171,19 @@ fn boundary_prints_csv_and_json() {
     assert!(
         e.contains(&format!("{} at vertical velocity -1e+308", f.display()))
             && e.contains("touchdown.vertical_velocity"),
+        "{e}"
+    );
+    // A scenario with no horizontal velocity gives the search no direction: a field error
+    // naming the file and the field, not a fault of the reference data.
+    let drop = root().join("scenarios/tripod-drop.toml");
+    let bad = touchdown(&["boundary", drop.to_str().unwrap(), "--vv=-8:-8:2"]);
+    assert_eq!(bad.status.code(), Some(1));
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        e.contains(&format!(
+            "{}: field `touchdown.horizontal_velocity`: expected a non-zero",
+            drop.display()
+        )) && !e.contains("reference data"),
         "{e}"
     );
 }

@@ -10,7 +10,7 @@ use std::path::Path;
 use touchdown_core::RunError;
 use touchdown_scenario::schema::{Engine, ACCURACY_REFINEMENT};
 use touchdown_scenario::units::Short;
-use touchdown_scenario::{Scenario, ScenarioBase};
+use touchdown_scenario::{Scenario, ScenarioBase, ScenarioError};
 
 /// A landing closure for [`super::search`] on the scenario `base` with `overrides` (field path and
 /// value in the file's units, [`ScenarioBase::with`]): its vertical velocity set to −vv and
@@ -28,10 +28,13 @@ where
     let [hx, hy] = sc.file.touchdown.horizontal_velocity;
     let norm = hx.hypot(hy);
     if norm == 0.0 {
-        return Err(ValidationError::Reference(format!(
-            "{}: touchdown.horizontal_velocity is zero, so it gives no direction to search along",
-            base.source()
-        )));
+        return Err(ScenarioError::field(
+            base.source(),
+            "touchdown.horizontal_velocity",
+            "expected a non-zero horizontal velocity, whose direction the search runs along \
+             (its size is the search's), got zero",
+        )
+        .into());
     }
     let (dx, dy) = (hx / norm, hy / norm);
     Ok(move |vv: f64, vh: f64| {
